@@ -1,0 +1,203 @@
+// rocking_sim: runs one body through one ground-motion record with the ROS-free core.
+// Thin command-line layer: parse, read, simulate, print. All physics lives in the core library.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "rocking_monitor/core/criteria.hpp"
+#include "rocking_monitor/core/ground_motion.hpp"
+#include "rocking_monitor/core/record_reader.hpp"
+#include "rocking_monitor/core/simulation.hpp"
+
+namespace rm = rocking_monitor::core;
+using nlohmann::json;
+
+namespace {
+
+json nullable(double v) { return std::isnan(v) ? json(nullptr) : json(v); }
+
+const rm::Component& first_horizontal(const std::vector<rm::Component>& comps, const std::string& file) {
+  for (const auto& c : comps)
+    if (!c.vertical) return c;
+  throw rm::RecordError(file + ": no horizontal component in this file");
+}
+
+void write_history(const std::string& path, const rm::SimulationResult& r) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(path + ": cannot open for writing");
+  out << "time_s,ax_mps2,ay_mps2,mode,pivot,theta_rad,omega_radps,rotation_ratio,energy_margin\n";
+  char line[256];
+  for (const auto& h : r.history) {
+    std::snprintf(line, sizeof line, "%.6f,%.9g,%.9g,%s,%d,%.12g,%.12g,%.9g,%.9g\n", h.t, h.ax, h.ay,
+                  rm::to_string(h.mode), h.side, h.theta, h.omega, h.rotation_ratio, h.margin);
+    out << line;
+  }
+  if (!out) throw std::runtime_error(path + ": write failed");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "rocking_sim: rocking and overturning of a free-standing (optionally eccentric) rigid body "
+      "under horizontal and vertical ground acceleration (Boroschek & Romo)."};
+  std::string record, vertical_file, units_text, history_path, method_text = "dopri5",
+                                                                  model_text = "nonlinear";
+  double scale = 1.0;
+  rm::BodyParameters body;
+  rm::SolverSettings settings;
+  bool as_json = false;
+  app.add_option("--record", record,
+                 "Ground acceleration: PEER .AT2 (g), SCEC .bbp, USGS .smc, or CSV/whitespace rows "
+                 "'time_s accel' or 'time_s accel_h accel_v' (units from --units)")
+      ->required();
+  app.add_option("--vertical", vertical_file, "Separate vertical component file (positive up)");
+  app.add_option("--units", units_text, "Units of CSV records: g | m/s2 | cm/s2 (default m/s2)")
+      ->check(CLI::IsMember({"g", "m/s2", "cm/s2"}));
+  app.add_option("--scale", scale, "Multiply the ground acceleration by S")->default_val(1.0);
+  app.add_option("--width", body.width, "Base width B, m")->required();
+  app.add_option("--cg-height", body.cg_height, "Height h of the centre of mass, m")->required();
+  app.add_option("--eccentricity", body.nu1,
+                 "nu1: CoM at nu1*B from corner 1, in (0,1); 0.5 = symmetric")
+      ->default_val(0.5);
+  app.add_option("--radius-of-gyration", body.radius_of_gyration,
+                 "Central radius of gyration i_g, m (default: homogeneous rectangle B x 2h)");
+  app.add_option("--mu-s", body.mu_s, "Static friction coefficient (default: not checked)");
+  app.add_option("--restitution", body.restitution,
+                 "Measured angular-velocity ratio at impact, overrides eq. 34");
+  app.add_option("--model", model_text, "nonlinear | linearized")
+      ->check(CLI::IsMember({"nonlinear", "linearized"}))
+      ->default_val("nonlinear");
+  app.add_option("--method", method_text, "dopri5 | rk4 | analytic")
+      ->check(CLI::IsMember({"dopri5", "rk4", "analytic"}))
+      ->default_val("dopri5");
+  app.add_option("--tol", settings.tol, "dopri5 relative tolerance")->default_val(settings.tol);
+  app.add_option("--substeps", settings.substeps, "rk4 sub-steps per input sample")
+      ->default_val(settings.substeps);
+  app.add_option("--history", history_path, "Write the time history (CSV) to this file");
+  app.add_flag("--json", as_json, "Print one JSON object instead of a text summary");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+
+  try {
+    rm::parse_method(method_text, settings.method);
+    rm::parse_model(model_text, settings.model);
+    if (const std::string e = rm::validate(settings); !e.empty()) throw std::invalid_argument(e);
+    const rm::Body rigid(body);
+
+    rm::ReadOptions options;
+    if (units_text == "g") options.csv_units = rm::AccelUnits::G;
+    else if (units_text == "cm/s2") options.csv_units = rm::AccelUnits::CentimetersPerSecond2;
+    const rm::RecordFormat format = rm::detect_format(record);
+    if (!units_text.empty() && format != rm::RecordFormat::Csv) {
+      throw rm::RecordError(record + ": --units applies to CSV records only; this " +
+                            rm::to_string(format) + " file states its own units");
+    }
+    const std::vector<rm::Component> comps = rm::read_record(record, options);
+    const rm::Component& horizontal = first_horizontal(comps, record);
+    std::optional<rm::Component> vertical;
+    if (format == rm::RecordFormat::Csv && comps.size() > 1) vertical = comps[1];
+    if (!vertical_file.empty()) {
+      if (vertical)
+        throw rm::RecordError(record + ": has a vertical column and --vertical was also given");
+      rm::ReadOptions vopt = options;
+      const std::vector<rm::Component> vcomps = rm::read_record(vertical_file, vopt);
+      // A multi-component file given as --vertical contributes its vertical channel.
+      const rm::Component* pick = &vcomps.front();
+      for (const auto& c : vcomps)
+        if (c.vertical) { pick = &c; break; }
+      vertical = *pick;
+    }
+    std::string notice;
+    const rm::GroundMotion motion =
+        rm::make_ground_motion(horizontal, vertical ? &*vertical : nullptr, scale, &notice);
+    if (!notice.empty()) std::cerr << "rocking_sim: note: " << notice << "\n";
+
+    const rm::SimulationResult r = rm::simulate(rigid, settings, motion, !history_path.empty());
+    if (!history_path.empty()) write_history(history_path, r);
+
+    const rm::RockingOutcome& o = r.outcome;
+    double pga = 0.0;
+    for (double a : motion.horizontal) pga = std::max(pga, std::abs(a));
+    if (as_json) {
+      json violations = json::array();
+      for (const auto& v : r.violations)
+        violations.push_back({{"criterion", rm::to_string(v.criterion)}, {"time_s", v.time}});
+      const rm::Pivot& p1 = rigid.pivot(1);
+      const rm::Pivot& p2 = rigid.pivot(-1);
+      json out = {
+          {"overturned", o.overturned},
+          {"committed", o.committed},
+          {"beyond_tipping", o.beyond_tipping},
+          {"max_rotation_ratio", o.max_rotation_ratio},
+          {"max_rotation_pivot", o.max_rotation_side},
+          {"impacts", o.impacts},
+          {"uplift_time_s", nullable(o.uplift_time)},
+          {"beyond_tipping_time_s", nullable(o.beyond_tipping_time)},
+          {"committed_time_s", nullable(o.committed_time)},
+          {"overturn_time_s", nullable(o.overturn_time)},
+          {"final_mode", rm::to_string(r.final_mode)},
+          {"violations", violations},
+          {"rest_captures", o.rest_captures},
+          {"forced_rest_captures", o.forced_rest_captures},
+          {"method", rm::to_string(settings.method)},
+          {"model", rm::to_string(settings.model)},
+          {"tol", settings.tol},
+          {"substeps", settings.substeps},
+          {"steps", o.integrator_steps},
+          {"samples", o.samples},
+          {"cpu_time_s", r.cpu_time_s},
+          {"body",
+           {{"width_m", rigid.width()},
+            {"cg_height_m", rigid.cg_height()},
+            {"nu1", rigid.nu1()},
+            {"radius_of_gyration_m", rigid.radius_of_gyration()},
+            {"alpha1_rad", p1.alpha},
+            {"alpha2_rad", p2.alpha},
+            {"p1_radps", p1.p},
+            {"p2_radps", p2.p},
+            {"restitution_to_1", p1.restitution},
+            {"restitution_to_2", p2.restitution}}},
+          {"record",
+           {{"description", motion.description},
+            {"dt_s", motion.dt},
+            {"samples", motion.size()},
+            {"duration_s", motion.dt * static_cast<double>(motion.size() - 1)},
+            {"scale", scale},
+            {"pga_mps2", pga},
+            {"has_vertical", !motion.vertical.empty()}}}};
+      std::cout << out.dump(2) << "\n";
+    } else {
+      std::printf("record      %s (%zu samples, dt %.4g s, PGA %.3f m/s^2)\n",
+                  motion.description.c_str(), motion.size(), motion.dt, pga);
+      std::printf("body        B %.3f m, h %.3f m, nu1 %.3f, alpha1 %.4f rad, alpha2 %.4f rad\n",
+                  rigid.width(), rigid.cg_height(), rigid.nu1(), rigid.pivot(1).alpha,
+                  rigid.pivot(-1).alpha);
+      std::printf("solver      %s, %s model\n", rm::to_string(settings.method),
+                  rm::to_string(settings.model));
+      std::printf("result      %s%s%s\n", o.overturned ? "OVERTURNED" : "survived",
+                  (!o.overturned && o.beyond_tipping) ? " (passed its tipping angle and came back)" : "",
+                  (!o.overturned && o.committed) ? " (was committed at some instant)" : "");
+      std::printf("max |theta|/alpha %.4f, impacts %ld, uplift at %s s\n", o.max_rotation_ratio,
+                  o.impacts, std::isnan(o.uplift_time) ? "never" : std::to_string(o.uplift_time).c_str());
+      for (const auto& v : r.violations)
+        std::printf("violation   %s at %.4f s (pure rocking assumption broken)\n",
+                    rm::to_string(v.criterion), v.time);
+      std::printf("cost        %ld steps, %.4f s CPU\n", o.integrator_steps, r.cpu_time_s);
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "rocking_sim: error: " << e.what() << "\n";
+    return 2;
+  }
+}

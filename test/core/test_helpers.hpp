@@ -1,0 +1,39 @@
+#pragma once
+// Small builders shared by the core tests.
+
+#include <cmath>
+#include <vector>
+
+#include "rocking_monitor/core/body.hpp"
+#include "rocking_monitor/core/constants.hpp"
+#include "rocking_monitor/core/ground_motion.hpp"
+
+namespace rocking_monitor::core::testing {
+
+/// Homogeneous symmetric rectangle with given p (rad/s) and alpha (rad): for a rectangle
+/// I_O = (4/3) m R^2, so p^2 = 3 g / (4 R).
+inline BodyParameters rectangle_with(double p, double alpha) {
+  const double r = 3.0 * kGravity / (4.0 * p * p);
+  BodyParameters b;
+  b.width = 2.0 * r * std::sin(alpha);
+  b.cg_height = r * std::cos(alpha);
+  return b;
+}
+
+/// One-sine pulse a_p sin(w t) for 0 <= t <= 2 pi / w, then zeros until t_end; sampled at dt.
+inline GroundMotion one_sine_pulse(double a_p, double w, double dt, double t_end) {
+  GroundMotion g;
+  g.dt = dt;
+  const double tp = 2.0 * kPi / w;
+  const auto n = static_cast<std::size_t>(std::llround(t_end / dt)) + 1;
+  g.horizontal.resize(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i) * dt;
+    g.horizontal[i] = t <= tp ? a_p * std::sin(w * t) : 0.0;
+  }
+  return g;
+}
+
+inline double deg(double d) { return d * kPi / 180.0; }
+
+}  // namespace rocking_monitor::core::testing
