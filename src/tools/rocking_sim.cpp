@@ -23,10 +23,14 @@ namespace {
 
 json nullable(double v) { return std::isnan(v) ? json(nullptr) : json(v); }
 
-const rm::Component& first_horizontal(const std::vector<rm::Component>& comps, const std::string& file) {
+// The rocking-direction input: the file's first horizontal component. A file that holds only a
+// vertical component is used as given (the user asked for it), with a note.
+const rm::Component& first_horizontal(const std::vector<rm::Component>& comps) {
   for (const auto& c : comps)
     if (!c.vertical) return c;
-  throw rm::RecordError(file + ": no horizontal component in this file");
+  std::cerr << "rocking_sim: note: " << comps.front().file << " holds only a vertical component ("
+            << comps.front().label << "); it is used as the horizontal input as asked\n";
+  return comps.front();
 }
 
 void write_history(const std::string& path, const rm::SimulationResult& r) {
@@ -104,7 +108,7 @@ int main(int argc, char** argv) {
                             rm::to_string(format) + " file states its own units");
     }
     const std::vector<rm::Component> comps = rm::read_record(record, options);
-    const rm::Component& horizontal = first_horizontal(comps, record);
+    const rm::Component& horizontal = first_horizontal(comps);
     std::optional<rm::Component> vertical;
     if (format == rm::RecordFormat::Csv && comps.size() > 1) vertical = comps[1];
     if (!vertical_file.empty()) {
@@ -188,8 +192,11 @@ int main(int argc, char** argv) {
       std::printf("result      %s%s%s\n", o.overturned ? "OVERTURNED" : "survived",
                   (!o.overturned && o.beyond_tipping) ? " (passed its tipping angle and came back)" : "",
                   (!o.overturned && o.committed) ? " (was committed at some instant)" : "");
-      std::printf("max |theta|/alpha %.4f, impacts %ld, uplift at %s s\n", o.max_rotation_ratio,
-                  o.impacts, std::isnan(o.uplift_time) ? "never" : std::to_string(o.uplift_time).c_str());
+      auto when = [](double t) { return std::isnan(t) ? std::string("never") : std::to_string(t) + " s"; };
+      std::printf("max |theta|/alpha %.4f, impacts %ld\n", o.max_rotation_ratio, o.impacts);
+      std::printf("times       uplift %s, beyond tipping %s, committed %s, overturned %s\n",
+                  when(o.uplift_time).c_str(), when(o.beyond_tipping_time).c_str(),
+                  when(o.committed_time).c_str(), when(o.overturn_time).c_str());
       for (const auto& v : r.violations)
         std::printf("violation   %s at %.4f s (pure rocking assumption broken)\n",
                     rm::to_string(v.criterion), v.time);

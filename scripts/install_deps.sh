@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs everything rocking_monitor needs on Debian 12 (Debian's own ROS 1 packages; no /opt/ros).
+# Safe to re-run: apt-get skips what is already there.
+set -euo pipefail
+
+packages=(
+  build-essential cmake git pkg-config
+  libeigen3-dev libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libtbb-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libsundials-dev
+  python3-matplotlib python3-numpy
+  catkin ros-core-dev libroscpp-dev librosbag-dev librostest-dev python3-rostest
+  python3-roslaunch python3-rosmaster python3-rosbag rosbash ros-message-generation
+  ros-std-msgs ros-std-srvs libstd-srvs-dev ros-geometry-msgs ros-sensor-msgs
+  ros-visualization-msgs ros-diagnostic-msgs libdiagnostic-updater-dev libnodeletlib-dev
+  libtf2-ros-dev libtf2-eigen-dev tf2-tools python3-sensor-msgs
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install_deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "install_deps: installing ${#missing[@]} packages: ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "install_deps: done"
