@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Configures and builds the package (core library, tools, tests) into ./build.
+# Configures and builds the package (core library, tools, ROS nodes, tests) into ./build.
 # Debian's ROS Python modules live under /usr/bin/python3, not a pyenv/venv python.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -7,3 +7,7 @@ export PATH=/usr/bin:$PATH
 mkdir -p build
 cmake -S . -B build -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"
+# catkin builds rostest executables only with its 'tests' target.
+if cmake --build build --target help | grep -q '^\.\.\. tests$'; then
+  cmake --build build --target tests -j"$(nproc)"
+fi

@@ -59,6 +59,11 @@ IshiyamaThreshold ishiyama_threshold(double base, double cg_height, double coeff
   return {coefficient * housner_pseudo_velocity(alpha, r), base / height * kGravity};
 }
 
+double housner_period(const Body& body) {
+  const Pivot& weak = body.pivot(1).alpha <= body.pivot(-1).alpha ? body.pivot(1) : body.pivot(-1);
+  return 2.0 * kPi / weak.p;
+}
+
 ScreeningThresholds screening_thresholds(const Body& body) {
   const Pivot& weak = body.pivot(1).alpha <= body.pivot(-1).alpha ? body.pivot(1) : body.pivot(-1);
   ScreeningThresholds t;

@@ -66,6 +66,11 @@ struct IshiyamaThreshold {
 /// acceleration = (base / 2h) g.
 IshiyamaThreshold ishiyama_threshold(double base, double cg_height, double coefficient = 0.4);
 
+/// Period at which the record's pseudo-velocity spectrum is read for Housner's criterion:
+/// T = 2 pi / p of the weaker corner (smaller alpha), s. Housner compared the rocking block with a
+/// pendulum of frequency p; the 5 %-damped PSV at that period is the demand compared with eq. 1.
+double housner_period(const Body& body);
+
 /// The four screening criteria the paper compares, for one body.
 struct ScreeningThresholds {
   double housner_pseudo_velocity = 0.0;  ///< eq. 1 with the body's smaller alpha and its R, m/s

@@ -1,0 +1,19 @@
+# rocking_sim and the core's GoogleTest suite (no ROS master needed).
+add_executable(rocking_sim src/tools/rocking_sim.cpp)
+target_link_libraries(rocking_sim PRIVATE rocking_monitor_core CLI11::CLI11 nlohmann_json::nlohmann_json)
+set_target_properties(rocking_sim PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_TOOL_DIR})
+
+if(BUILD_TESTING)
+  find_package(GTest REQUIRED)
+  include(GoogleTest)
+  file(GLOB ROCKING_CORE_TESTS CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/test/core/*.cpp)
+  add_executable(core_tests ${ROCKING_CORE_TESTS})
+  target_link_libraries(core_tests PRIVATE rocking_monitor_core GTest::gtest_main
+                        nlohmann_json::nlohmann_json)
+  target_compile_definitions(core_tests PRIVATE
+    ROCKING_RECORDS_DIR="${ROCKING_RECORDS_DIR}"
+    ROCKING_SIM_EXE="$<TARGET_FILE:rocking_sim>"
+    ROCKING_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
+  add_dependencies(core_tests rocking_sim)
+  gtest_discover_tests(core_tests DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
+endif()
