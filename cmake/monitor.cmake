@@ -1,0 +1,31 @@
+# The live monitor: library (RockingMonitor), node and nodelet shims, and its tests.
+include_directories(${catkin_INCLUDE_DIRS})
+add_library(rocking_monitor_ros src/ros/monitor.cpp src/ros/catalogue.cpp)
+target_include_directories(rocking_monitor_ros PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include ${catkin_INCLUDE_DIRS})
+target_link_libraries(rocking_monitor_ros PUBLIC rocking_monitor_core ${catkin_LIBRARIES})
+add_dependencies(rocking_monitor_ros ${PROJECT_NAME}_generate_messages_cpp)
+
+add_executable(monitor src/ros/monitor_node.cpp)
+target_link_libraries(monitor PRIVATE rocking_monitor_ros)
+
+add_library(rocking_monitor_nodelet src/ros/monitor_nodelet.cpp)
+target_link_libraries(rocking_monitor_nodelet PRIVATE rocking_monitor_ros)
+
+install(TARGETS monitor rocking_monitor_nodelet rocking_monitor_ros
+        RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION}
+        LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+        ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
+install(FILES nodelet_plugins.xml DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+install(DIRECTORY launch config bags DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+
+# ---------------------------------------------------------------- tests
+if(CATKIN_ENABLE_TESTING)
+  catkin_add_gtest(catalogue_tests test/ros/test_catalogue.cpp)
+  target_link_libraries(catalogue_tests rocking_monitor_ros)
+
+  find_package(rostest REQUIRED)
+  add_rostest_gtest(test_monitor_replay test/ros/monitor_replay.test test/ros/test_monitor_replay.cpp)
+  target_link_libraries(test_monitor_replay rocking_monitor_ros ${catkin_LIBRARIES})
+  add_rostest_gtest(test_monitor_bad_input test/ros/monitor_bad_input.test test/ros/test_monitor_bad_input.cpp)
+  target_link_libraries(test_monitor_bad_input rocking_monitor_ros ${catkin_LIBRARIES})
+endif()

@@ -1,0 +1,51 @@
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <XmlRpcValue.h>
+
+#include "rocking_monitor/core/item_monitor.hpp"
+
+namespace rocking_monitor::live {
+
+/// A ground-acceleration input of the monitor.
+struct SensorSpec {
+  enum class Type { Imu, Accel };
+  std::string name;      ///< referenced by items
+  std::string topic;     ///< sensor_msgs/Imu or geometry_msgs/AccelStamped topic
+  Type type = Type::Imu; ///< imu: specific force incl. gravity (REP 145); accel: ground acceleration
+  std::string frame_id;  ///< overrides the messages' header.frame_id when not empty
+  double rate = 200.0;   ///< expected sample rate, Hz (diagnostics only; dt comes from the stamps)
+};
+
+/// Optional static pose of an item, published by the monitor as a static transform.
+struct ItemPose {
+  bool given = false;
+  std::string parent_frame;            ///< e.g. the sensor's frame
+  double x = 0.0, y = 0.0, z = 0.0;    ///< m
+  double roll = 0.0, pitch = 0.0, yaw = 0.0;  ///< rad
+};
+
+struct CatalogueItem {
+  core::ItemSpec spec;
+  ItemPose pose;
+};
+
+struct Catalogue {
+  std::vector<SensorSpec> sensors;
+  std::vector<CatalogueItem> items;
+};
+
+/// Thrown with one line naming the entry and the field: "items[2] 'server_rack': width: ...".
+class CatalogueError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Parses the `sensors` and `items` lists (as loaded by rosparam from config/catalogue_example.yaml).
+/// Validates every field (types, units, ranges, unique ids, known sensors).
+Catalogue parse_catalogue(const XmlRpc::XmlRpcValue& sensors, const XmlRpc::XmlRpcValue& items);
+
+}  // namespace rocking_monitor::live

@@ -1,0 +1,116 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <diagnostic_updater/publisher.h>
+#include <diagnostic_updater/update_functions.h>
+#include <geometry_msgs/AccelStamped.h>
+#include <ros/ros.h>
+#include <sensor_msgs/Imu.h>
+#include <std_srvs/Trigger.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/static_transform_broadcaster.h>
+#include <tf2_ros/transform_broadcaster.h>
+#include <tf2_ros/transform_listener.h>
+
+#include "rocking_monitor/CriterionExceedance.h"
+#include "rocking_monitor/OverturnAlarm.h"
+#include "rocking_monitor/RockingStateArray.h"
+#include "rocking_monitor/core/gravity_baseline.hpp"
+#include "rocking_monitor/core/item_monitor.hpp"
+#include "rocking_monitor/core/sample_timing.hpp"
+#include "rocking_monitor/ros/catalogue.hpp"
+
+namespace rocking_monitor::live {
+
+/// The live monitor (thin ROS layer over core::ItemMonitor): subscribes to every sensor of the
+/// catalogue, rotates each sample into each item's frame with tf2, removes gravity with a tracked
+/// at-rest baseline, steps the items with dt from the header stamps and publishes states, criterion
+/// changes, overturn alarms, diagnostics, markers and tf. Used by the node and the nodelet.
+class RockingMonitor {
+ public:
+  RockingMonitor(::ros::NodeHandle nh, ::ros::NodeHandle pnh);
+  ~RockingMonitor();
+
+  /// Reads parameters and the catalogue, sets up topics. False (after a ROS_FATAL naming the item and
+  /// field or the parameter) on bad configuration.
+  bool init();
+
+ private:
+  struct Item {
+    CatalogueItem entry;
+    std::unique_ptr<core::ItemMonitor> monitor;
+    std::size_t sensor = 0;
+    bool has_rotation = false;
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // item <- sensor
+    ::ros::Time stamp;           // input stamp of the last step
+    std::uint64_t samples_without_transform = 0;
+  };
+  struct Sensor {
+    SensorSpec spec;
+    ::ros::Subscriber sub;
+    core::GravityBaseline baseline;
+    core::SampleTiming timing;
+    std::vector<std::size_t> items;
+    std::string frame;                // frame of the last message
+    bool have_first = false;          // a first sample is stored, models not started yet
+    double first_t = 0.0;
+    Eigen::Vector3d first_a = Eigen::Vector3d::Zero();
+    double dt_nominal = 0.0;
+    std::uint64_t received = 0, rejected_nonfinite = 0, rejected_limit = 0, zero_stamps = 0, resets = 0;
+    double last_processing_s = 0.0, max_processing_s = 0.0, mean_dt = 0.0;
+    ::ros::Time last_stamp;
+    std::unique_ptr<diagnostic_updater::TopicDiagnostic> topic_diag;
+    double min_freq = 0.0, max_freq = 0.0;
+  };
+
+  bool load_parameters();
+  void on_imu(std::size_t sensor, const sensor_msgs::ImuConstPtr& msg);
+  void on_accel(std::size_t sensor, const geometry_msgs::AccelStampedConstPtr& msg);
+  void on_sample(std::size_t sensor, const std_msgs::Header& header, const Eigen::Vector3d& reading);
+  void start_items(Sensor& s, double t, const Eigen::Vector3d& a);
+  bool lookup_rotation(Item& item, const std::string& sensor_frame);
+  void publish_events(Item& item, const core::ItemEvents& events, const ::ros::Time& stamp);
+  void reset_all(const std::string& why);
+  void on_state_timer(const ::ros::TimerEvent&);
+  void publish_states();
+  void on_startup_timer(const ::ros::WallTimerEvent&);
+  bool on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response&);
+  void fill_state(const Item& item, RockingState& out) const;
+  void publish_markers_and_tf();
+  void sensor_diagnostics(std::size_t sensor, diagnostic_updater::DiagnosticStatusWrapper& stat);
+  void catalogue_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& stat);
+
+  ::ros::NodeHandle nh_, pnh_;
+  core::ItemMonitor::Options options_;
+  core::GravityBaseline::Config baseline_config_;
+  core::SampleTiming::Config timing_config_;
+  double max_abs_acceleration_ = 50.0;
+  double state_rate_ = 20.0;
+  bool publish_markers_ = true, publish_tf_ = true;
+  std::string marker_frame_suffix_ = "/body";
+
+  std::vector<Sensor> sensors_;
+  std::vector<Item> items_;
+  std::vector<std::string> screening_names_;
+
+  ::ros::Publisher states_pub_, criteria_pub_, alarms_pub_, markers_pub_;
+  ::ros::ServiceServer reset_srv_;
+  ::ros::Timer state_timer_;
+  ::ros::WallTimer startup_timer_;
+  ::ros::Time last_tf_stamp_;
+  RockingStateArray states_msg_;  // reused: sized once
+  ::ros::Time last_now_;
+  std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
+  std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
+  std::unique_ptr<tf2_ros::TransformBroadcaster> tf_broadcaster_;
+  std::unique_ptr<tf2_ros::StaticTransformBroadcaster> static_broadcaster_;
+  std::unique_ptr<diagnostic_updater::Updater> diagnostics_;
+  std::uint64_t alarms_published_ = 0;
+};
+
+}  // namespace rocking_monitor::live

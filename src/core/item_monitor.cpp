@@ -1,0 +1,175 @@
+#include "rocking_monitor/core/item_monitor.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace rocking_monitor::core {
+namespace {
+
+constexpr std::uint8_t bit(Criterion c) { return static_cast<std::uint8_t>(1u << static_cast<int>(c)); }
+
+const ItemSpec& checked(const ItemSpec& spec) {
+  if (const std::string e = validate(spec); !e.empty()) throw std::invalid_argument(e);
+  return spec;
+}
+
+}  // namespace
+
+std::string validate(const ItemSpec& spec) {
+  if (spec.id.empty()) return "item without an 'id'";
+  const std::string who = "item '" + spec.id + "': ";
+  if (spec.sensor.empty()) return who + "sensor: missing (name of the sensor that feeds the item)";
+  if (spec.frame.empty()) return who + "frame: missing (tf frame of the item)";
+  std::string body = validate(spec.body);
+  if (!body.empty()) {
+    const std::string prefix = "invalid body: ";
+    if (body.rfind(prefix, 0) == 0) body = body.substr(prefix.size());
+    return who + body;
+  }
+  try {
+    Body b(spec.body);
+  } catch (const std::exception& e) {
+    return who + e.what();
+  }
+  return {};
+}
+
+const char* to_string(ItemMode mode) {
+  switch (mode) {
+    case ItemMode::Rest: return "REST";
+    case ItemMode::Rocking: return "ROCKING";
+    case ItemMode::BeyondTipping: return "BEYOND_TIPPING";
+    case ItemMode::Committed: return "COMMITTED";
+    case ItemMode::Overturned: return "OVERTURNED";
+  }
+  return "UNKNOWN";
+}
+
+const char* to_string(CriterionId id) {
+  switch (id) {
+    case CriterionId::Housner: return "housner";
+    case CriterionId::Ishiyama: return "ishiyama";
+    case CriterionId::IshiyamaEquivalent: return "ishiyama_equivalent";
+    case CriterionId::Proposed: return "proposed";
+    case CriterionId::FreeFlight: return "free_flight";
+    case CriterionId::SlideFromRest: return "slide_from_rest";
+    case CriterionId::SlideAtUplift: return "slide_at_uplift";
+    case CriterionId::SlideWhileRocking: return "slide_while_rocking";
+  }
+  return "unknown";
+}
+
+ItemMonitor::ItemMonitor(const ItemSpec& spec, const Options& options)
+    : spec_(checked(spec)),
+      options_(options),
+      model_(Body(spec.body), options.solver),
+      thresholds_(screening_thresholds(model_.body())) {}
+
+void ItemMonitor::start(double t, double ax, double ay, double dt_nominal) {
+  model_.reset(t, ax, ay);
+  StreamingIntensityConfig cfg;
+  cfg.dt = dt_nominal;
+  cfg.periods = {housner_period(model_.body())};
+  cfg.velocity_highpass_hz = std::min(options_.velocity_highpass_hz, 0.4 / dt_nominal);
+  intensity_ = std::make_unique<StreamingIntensity>(cfg);
+  intensity_->push(ax);
+  exceeded_.fill(false);
+  slid_at_uplift_ = false;
+  events_ = ItemEvents{};
+  started_ = true;
+}
+
+std::uint8_t ItemMonitor::violations() const {
+  std::uint8_t v = model_.violations();
+  if (slid_at_uplift_) v |= bit(Criterion::SlideAtUplift);
+  return v;
+}
+
+ItemMode ItemMonitor::mode() const {
+  switch (model_.mode()) {
+    case Mode::Rest: return ItemMode::Rest;
+    case Mode::Overturned: return ItemMode::Overturned;
+    case Mode::Rocking: break;
+  }
+  if (model_.margin().committed) return ItemMode::Committed;
+  if (model_.rotation_ratio() > 1.0) return ItemMode::BeyondTipping;
+  return ItemMode::Rocking;
+}
+
+void ItemMonitor::record_change(CriterionId id, bool exceeded, double value, double threshold,
+                                double second_value, double second_threshold) {
+  exceeded_[static_cast<int>(id)] = exceeded;
+  CriterionChange& c = events_.changes[events_.change_count++];
+  c.id = id;
+  c.exceeded = exceeded;
+  c.value = value;
+  c.threshold = threshold;
+  c.second_value = second_value;
+  c.second_threshold = second_threshold;
+}
+
+void ItemMonitor::evaluate_criteria(double ax, double ay) {
+  // Screening criteria on the running intensity (monotone: once exceeded they stay so).
+  const double pga = intensity_->pga(), pgv = intensity_->pgv(), sv = intensity_->psv()[0];
+  const ScreeningPrediction p = screening_prediction(thresholds_, pga, pgv, sv);
+  auto screen = [&](CriterionId id, bool now, const IshiyamaThreshold* t) {
+    if (now == exceeded_[static_cast<int>(id)]) return;
+    if (t == nullptr) record_change(id, now, sv, thresholds_.housner_pseudo_velocity);
+    else record_change(id, now, pgv, t->velocity, pga, t->acceleration);
+  };
+  screen(CriterionId::Housner, p.housner, nullptr);
+  screen(CriterionId::Ishiyama, p.ishiyama, &thresholds_.ishiyama);
+  screen(CriterionId::IshiyamaEquivalent, p.ishiyama_equivalent, &thresholds_.ishiyama_equivalent);
+  screen(CriterionId::Proposed, p.proposed, &thresholds_.proposed);
+
+  // Model validity: the model's bitmask at the end of the sample.
+  const std::uint8_t v = violations();
+  const Body& body = model_.body();
+  const double mu = body.mu_s();
+  auto validity = [&](CriterionId id, Criterion c, double value, double threshold) {
+    const bool now = (v & bit(c)) != 0;
+    if (now != exceeded_[static_cast<int>(id)]) record_change(id, now, value, threshold);
+  };
+  double normal = ay + kGravity, ratio = std::abs(ax) / std::max(normal, 1e-12);
+  double required_mu = 0.0;
+  if (model_.mode() == Mode::Rocking) {
+    const Pivot& pv = body.pivot(model_.side());
+    GroundInput in;
+    in.ax0 = ax;
+    in.ay0 = ay;
+    const RockingOde ode{&pv, model_.side(), model_.settings().model, in};
+    const ContactReaction r = rocking_reaction(pv, model_.side(), model_.theta(), model_.omega(),
+                                               ode.angular_acceleration(0.0, model_.theta()), ax, ay);
+    normal = r.ry;
+    ratio = std::abs(r.rx) / std::max(r.ry, 1e-12);
+    required_mu = rock_without_slip_friction(body, pv, std::abs(ax) / std::max(ay + kGravity, 1e-12));
+  }
+  validity(CriterionId::FreeFlight, Criterion::FreeFlight, -normal, 0.0);
+  validity(CriterionId::SlideFromRest, Criterion::SlideFromRest, ratio, mu);
+  validity(CriterionId::SlideAtUplift, Criterion::SlideAtUplift, required_mu, mu);
+  validity(CriterionId::SlideWhileRocking, Criterion::SlideWhileRocking, ratio, mu);
+}
+
+const ItemEvents& ItemMonitor::step(double ax, double ay, double dt) {
+  events_.change_count = 0;
+  events_.alarm_count = 0;
+  const StepReport& r = model_.step(ax, ay, dt);
+  intensity_->push(ax);
+  if (r.violation_onsets & bit(Criterion::SlideAtUplift)) slid_at_uplift_ = true;
+  if (model_.mode() == Mode::Rest) slid_at_uplift_ = false;
+  evaluate_criteria(ax, ay);
+
+  const RockingOutcome& o = model_.outcome();
+  auto alarm = [&](ItemMode level, double time) {
+    AlarmEvent& a = events_.alarms[events_.alarm_count++];
+    a.level = level;
+    a.time = time;
+    a.rotation_ratio = model_.rotation_ratio();
+  };
+  if (r.beyond_tipping_entered) alarm(ItemMode::BeyondTipping, o.beyond_tipping_time);
+  if (r.committed_entered) alarm(ItemMode::Committed, o.committed_time);
+  if (r.overturned) alarm(ItemMode::Overturned, o.overturn_time);
+  return events_;
+}
+
+}  // namespace rocking_monitor::core

@@ -1,0 +1,137 @@
+#pragma once
+// Offline counterpart of the monitor for the rostests: runs the ROS-free core on the same samples
+// (same catalogue and parameters, read from the parameter server), so live and offline can be
+// compared sample for sample.
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <ros/ros.h>
+
+#include "rocking_monitor/core/gravity_baseline.hpp"
+#include "rocking_monitor/core/item_monitor.hpp"
+#include "rocking_monitor/core/sample_timing.hpp"
+#include "rocking_monitor/ros/catalogue.hpp"
+
+namespace rocking_monitor::test {
+
+struct OfflineState {
+  std::uint8_t mode = 0;
+  double theta = 0.0;
+  std::uint32_t impacts = 0;
+};
+
+struct OfflineAlarm {
+  std::string item;
+  std::uint8_t level = 0;
+  double stamp = 0.0;  // input stamp, s
+};
+
+/// Reads the monitor's catalogue and solver parameters from `ns` and replays samples through
+/// core::ItemMonitor exactly as the node does for one Imu sensor whose frame is `sensor_frame`.
+class OfflineMonitor {
+ public:
+  OfflineMonitor(const std::string& ns, const std::string& sensor_frame) {
+    ::ros::NodeHandle nh(ns);
+    XmlRpc::XmlRpcValue sensors, items;
+    if (!nh.getParam("sensors", sensors) || !nh.getParam("items", items))
+      throw std::runtime_error("no catalogue under " + ns);
+    catalogue_ = live::parse_catalogue(sensors, items);
+    std::string method = "dopri5";
+    nh.getParam("method", method);
+    core::parse_method(method, options_.solver.method);
+    options_.solver.tol = number(nh, "tol", options_.solver.tol);
+    nh.getParam("substeps", options_.solver.substeps);
+    options_.velocity_highpass_hz = number(nh, "velocity_highpass_hz", options_.velocity_highpass_hz);
+    std::string mode = "tracked";
+    nh.getParam("gravity_baseline/mode", mode);
+    core::GravityBaseline::Config bc;
+    bc.mode = mode == "fixed" ? core::GravityBaseline::Mode::Fixed
+              : mode == "initial" ? core::GravityBaseline::Mode::Initial
+                                  : core::GravityBaseline::Mode::Tracked;
+    bc.time_constant = number(nh, "gravity_baseline/time_constant", bc.time_constant);
+    bc.quiet_threshold = number(nh, "gravity_baseline/quiet_threshold", bc.quiet_threshold);
+    baseline_ = core::GravityBaseline(bc);
+    core::SampleTiming::Config tc;
+    tc.max_gap = number(nh, "max_gap", tc.max_gap);
+    tc.backward_jump = number(nh, "backward_jump", tc.backward_jump);
+    timing_ = core::SampleTiming(tc);
+    for (const auto& entry : catalogue_.items) {
+      items_.emplace_back(entry.spec, options_);
+      // The pose gives the item frame in its parent (the sensor frame here): v_item = q^-1 v_sensor.
+      Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
+      if (entry.pose.given && entry.pose.parent_frame == sensor_frame) {
+        const Eigen::Quaterniond q = Eigen::AngleAxisd(entry.pose.yaw, Eigen::Vector3d::UnitZ()) *
+                                     Eigen::AngleAxisd(entry.pose.pitch, Eigen::Vector3d::UnitY()) *
+                                     Eigen::AngleAxisd(entry.pose.roll, Eigen::Vector3d::UnitX());
+        r = q.conjugate().toRotationMatrix();
+      }
+      rotations_.push_back(r);
+    }
+  }
+
+  /// One Imu reading (specific force, m/s^2) stamped t (s).
+  void push(double t, const Eigen::Vector3d& f) {
+    double dt = 0.0;
+    const auto v = timing_.classify(t, dt);
+    using V = core::SampleTiming::Verdict;
+    if (v == V::Duplicate || v == V::OutOfOrder) return;
+    const Eigen::Vector3d a = baseline_.remove(f, dt);
+    if (v == V::First || v == V::BackwardJump) {
+      first_t_ = t;
+      first_a_ = a;
+      have_first_ = true;
+      return;
+    }
+    if (have_first_) {
+      for (std::size_t i = 0; i < items_.size(); ++i) {
+        const Eigen::Vector3d ai = rotations_[i] * first_a_;
+        items_[i].start(first_t_, ai.x(), ai.z(), dt);
+      }
+      have_first_ = false;
+    }
+    std::vector<OfflineState>& row = states_[stamp_key(t)];
+    for (std::size_t i = 0; i < items_.size(); ++i) {
+      const Eigen::Vector3d ai = rotations_[i] * a;
+      const core::ItemEvents& ev = items_[i].step(ai.x(), ai.z(), dt);
+      for (int k = 0; k < ev.alarm_count; ++k)
+        alarms_.push_back({items_[i].spec().id, static_cast<std::uint8_t>(ev.alarms[k].level), t});
+      OfflineState s;
+      s.mode = static_cast<std::uint8_t>(items_[i].mode());
+      s.theta = items_[i].model().theta();
+      s.impacts = static_cast<std::uint32_t>(items_[i].model().outcome().impacts);
+      row.push_back(s);
+    }
+  }
+
+  static long long stamp_key(double t) { return std::llround(t * 1e6); }  // microseconds
+  const std::map<long long, std::vector<OfflineState>>& states() const { return states_; }
+  const std::vector<OfflineAlarm>& alarms() const { return alarms_; }
+  const live::Catalogue& catalogue() const { return catalogue_; }
+
+ private:
+  static double number(::ros::NodeHandle& nh, const std::string& key, double fallback) {
+    XmlRpc::XmlRpcValue v;
+    if (!nh.getParam(key, v)) return fallback;
+    if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) return static_cast<double>(v);
+    if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) return static_cast<int>(v);
+    if (v.getType() == XmlRpc::XmlRpcValue::TypeString) return std::stod(static_cast<std::string>(v));
+    return fallback;
+  }
+
+  live::Catalogue catalogue_;
+  core::ItemMonitor::Options options_;
+  core::GravityBaseline baseline_;
+  core::SampleTiming timing_;
+  std::vector<core::ItemMonitor> items_;
+  std::vector<Eigen::Matrix3d> rotations_;
+  bool have_first_ = false;
+  double first_t_ = 0.0;
+  Eigen::Vector3d first_a_ = Eigen::Vector3d::Zero();
+  std::map<long long, std::vector<OfflineState>> states_;
+  std::vector<OfflineAlarm> alarms_;
+};
+
+}  // namespace rocking_monitor::test

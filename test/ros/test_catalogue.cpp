@@ -1,0 +1,98 @@
+// Catalogue parsing: every bad field gives one line naming the entry and the field (no ROS master).
+#include <gtest/gtest.h>
+
+#include "rocking_monitor/ros/catalogue.hpp"
+
+namespace rocking_monitor::live {
+namespace {
+
+using XmlRpc::XmlRpcValue;
+
+XmlRpcValue sensors() {
+  XmlRpcValue s;
+  s[0]["name"] = "floor";
+  s[0]["topic"] = "/floor/imu";
+  return s;
+}
+
+XmlRpcValue one_item() {
+  XmlRpcValue i;
+  i[0]["id"] = "cabinet";
+  i[0]["sensor"] = "floor";
+  i[0]["width"] = 0.5;
+  i[0]["cg_height"] = 0.9;
+  return i;
+}
+
+std::string error_of(const XmlRpcValue& s, const XmlRpcValue& i) {
+  try {
+    parse_catalogue(s, i);
+  } catch (const CatalogueError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+TEST(Catalogue, ValidEntryWithDefaults) {
+  const Catalogue c = parse_catalogue(sensors(), one_item());
+  ASSERT_EQ(c.items.size(), 1u);
+  const core::ItemSpec& s = c.items[0].spec;
+  EXPECT_EQ(s.frame, "cabinet");  // defaults to the id
+  EXPECT_DOUBLE_EQ(s.body.nu1, 0.5);
+  EXPECT_TRUE(std::isnan(s.body.radius_of_gyration));  // homogeneous box
+  EXPECT_EQ(c.sensors[0].type, SensorSpec::Type::Imu);
+  EXPECT_DOUBLE_EQ(c.sensors[0].rate, 200.0);
+}
+
+TEST(Catalogue, CylinderShapeSetsItsRadiusOfGyration) {
+  XmlRpcValue i = one_item();
+  i[0]["shape"] = "cylinder";
+  const Catalogue c = parse_catalogue(sensors(), i);
+  // Solid cylinder, diameter B, length 2h, about a transverse axis: i^2 = B^2/16 + h^2/3.
+  EXPECT_NEAR(c.items[0].spec.body.radius_of_gyration, std::sqrt(0.25 / 16 + 0.81 / 3), 1e-15);
+}
+
+TEST(Catalogue, BadFieldsAreNamed) {
+  auto with = [](const char* key, XmlRpcValue v) {
+    XmlRpcValue i = one_item();
+    i[0][key] = v;
+    return error_of(sensors(), i);
+  };
+  EXPECT_EQ(with("width", -0.5), "items[0] 'cabinet': width = -0.5 (must be a finite length > 0 m)");
+  EXPECT_NE(with("width", "wide").find("items[0] 'cabinet': width: must be a number"), std::string::npos);
+  EXPECT_NE(with("eccentricity", 1.3).find("items[0] 'cabinet': eccentricity nu1 = 1.3"), std::string::npos);
+  EXPECT_NE(with("mu_s", -1).find("items[0] 'cabinet': mu_s = -1"), std::string::npos);
+  EXPECT_NE(with("sensor", "attic").find("items[0] 'cabinet': sensor: 'attic' is not a sensor"), std::string::npos);
+  EXPECT_NE(with("shape", "sphere").find("items[0] 'cabinet': shape: 'sphere'"), std::string::npos);
+  EXPECT_NE(with("widht", 0.3).find("items[0] 'cabinet': widht: unknown key"), std::string::npos);
+  EXPECT_NE(with("restitution", 2.0).find("restitution = 2"), std::string::npos);
+
+  XmlRpcValue missing = one_item();
+  missing[0] = XmlRpcValue();
+  missing[0]["id"] = "vase";
+  missing[0]["sensor"] = "floor";
+  missing[0]["width"] = 0.2;
+  EXPECT_EQ(error_of(sensors(), missing), "items[0] 'vase': cg_height: missing (height h of the centre of mass, m)");
+
+  XmlRpcValue dup = one_item();
+  const XmlRpcValue first = dup[0];
+  dup[1] = first;
+  EXPECT_EQ(error_of(sensors(), dup), "items[1] 'cabinet': id: duplicate id");
+
+  XmlRpcValue bad_sensor = sensors();
+  bad_sensor[0]["type"] = "gyro";
+  EXPECT_EQ(error_of(bad_sensor, one_item()), "sensors[0] 'floor': type: 'gyro' is not one of: imu, accel");
+  EXPECT_EQ(error_of(XmlRpcValue(), one_item()), "sensors: must be a non-empty list of sensor entries");
+
+  XmlRpcValue pose = one_item();
+  pose[0]["pose"]["x"] = 1.0;
+  EXPECT_EQ(error_of(sensors(), pose), "items[0] 'cabinet': pose: parent_frame: missing");
+}
+
+}  // namespace
+}  // namespace rocking_monitor::live
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}

@@ -1,0 +1,134 @@
+// rostest: NaN samples, duplicate / out-of-order / zero stamps, absurd values, a gap, a backward time
+// jump and a missing transform each get the documented treatment, are counted in /diagnostics, and
+// the node keeps processing.
+#include <gtest/gtest.h>
+
+#include <diagnostic_msgs/DiagnosticArray.h>
+#include <limits>
+#include <map>
+#include <ros/ros.h>
+#include <rosgraph_msgs/Clock.h>
+#include <sensor_msgs/Imu.h>
+
+#include "rocking_monitor/RockingStateArray.h"
+
+namespace {
+
+class BadInput : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+    imu_pub_ = nh_.advertise<sensor_msgs::Imu>("/ground/imu", 1000);
+    states_sub_ = nh_.subscribe<rocking_monitor::RockingStateArray>(
+        "/rocking_monitor/states", 1000, [this](const rocking_monitor::RockingStateArray::ConstPtr& m) {
+          last_states_ = *m;
+          ++states_;
+        });
+    diag_sub_ = nh_.subscribe<diagnostic_msgs::DiagnosticArray>(
+        "/diagnostics", 100, [this](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+          for (const auto& st : m->status) {
+            status_[st.name] = st;
+          }
+        });
+    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(20.0);
+    while ((imu_pub_.getNumSubscribers() == 0 || clock_pub_.getNumSubscribers() == 0) &&
+           ros::WallTime::now() < deadline)
+      ros::WallDuration(0.05).sleep();
+    set_clock(1.0);
+  }
+
+  void set_clock(double t) {
+    rosgraph_msgs::Clock c;
+    c.clock.fromSec(t);
+    clock_pub_.publish(c);
+  }
+
+  // Publishes one reading (ground acceleration ax plus gravity on z) stamped t; /clock advances by
+  // 10 ms per reading whatever the stamps do (a sensor with its own clock).
+  void sample(double t, double ax, double z = 9.80665) {
+    sensor_msgs::Imu m;
+    if (t > 0.0) m.header.stamp.fromSec(t);
+    m.header.frame_id = "accelerometer";
+    m.linear_acceleration.x = ax;
+    m.linear_acceleration.z = z;
+    m.orientation_covariance[0] = -1.0;
+    m.angular_velocity_covariance[0] = -1.0;
+    imu_pub_.publish(m);
+    clock_ += 0.01;
+    set_clock(clock_);
+    ros::WallDuration(0.002).sleep();
+    ros::spinOnce();
+  }
+
+  std::string value(const std::string& status, const std::string& key) {
+    const auto it = status_.find(status);
+    if (it == status_.end()) return "<no status '" + status + "'>";
+    for (const auto& kv : it->second.values)
+      if (kv.key == key) return kv.value;
+    return "<no key '" + key + "'>";
+  }
+
+  void spin_for(double seconds) {
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
+    while (ros::WallTime::now() < end) {
+      ros::spinOnce();
+      ros::WallDuration(0.01).sleep();
+    }
+  }
+
+  ros::NodeHandle nh_;
+  ros::Publisher clock_pub_, imu_pub_;
+  ros::Subscriber states_sub_, diag_sub_;
+  rocking_monitor::RockingStateArray last_states_;
+  int states_ = 0;
+  double clock_ = 1.0;
+  std::map<std::string, diagnostic_msgs::DiagnosticStatus> status_;
+};
+
+TEST_F(BadInput, EachFaultIsHandledCountedAndTheNodeKeepsGoing) {
+  double t = 10.0;
+  for (int i = 0; i < 100; ++i, t += 0.01) sample(t, 0.0);                    // quiet, accepted
+  sample(t, std::numeric_limits<double>::quiet_NaN());                         // non-finite: rejected
+  sample(t, 0.0);                                                              // accepted
+  sample(t, 0.0);                                                              // duplicate stamp: dropped
+  sample(t - 0.05, 0.0);                                                       // out of order: dropped
+  sample(0.0, 0.0);                                                            // zero stamp: dropped
+  sample(t + 0.01, 400.0);                                                     // absurd: rejected
+  t += 0.5;
+  sample(t, 0.0);                                                              // 0.5 s gap: bridged
+  for (int i = 0; i < 20; ++i) sample(t += 0.01, 0.0);
+  const int states_before_jump = states_;
+  t = 3.0;                                                                     // stamps jump back 7.7 s
+  for (int i = 0; i < 350; ++i, t += 0.01) sample(t, 0.0);
+  spin_for(3.0);
+
+  EXPECT_GT(states_, states_before_jump) << "the node stopped publishing after the faults";
+  ASSERT_EQ(last_states_.items.size(), 2u);
+  EXPECT_EQ(last_states_.items[1].id, "lost");
+  EXPECT_EQ(last_states_.items[1].input_stamp.toSec(), 0.0) << "an item without transform must not be stepped";
+  EXPECT_GT(last_states_.items[0].input_stamp.toSec(), 0.0);
+
+  const std::string s = "rocking_monitor: sensor floor samples";
+  EXPECT_EQ(value(s, "rejected non-finite"), "1");
+  EXPECT_EQ(value(s, "dropped duplicate stamp"), "1");
+  EXPECT_EQ(value(s, "dropped zero stamp"), "1");
+  EXPECT_EQ(value(s, "rejected beyond max_abs_acceleration"), "1");
+  EXPECT_EQ(value(s, "gaps bridged"), "1");
+  EXPECT_EQ(value(s, "resets (time jumped back)"), "1");
+  EXPECT_EQ(value(s, "dropped out-of-order stamp"), "1");
+  const std::string c = "rocking_monitor: catalogue";
+  EXPECT_EQ(value(c, "items without transform"), "1");
+  ASSERT_TRUE(status_.count(c));
+  EXPECT_EQ(status_[c].level, diagnostic_msgs::DiagnosticStatus::WARN);
+  EXPECT_TRUE(status_.count("rocking_monitor: sensor floor input /ground/imu topic status"))
+      << "TopicDiagnostic (rate and stamp delay) missing";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_monitor_bad_input");
+  ros::NodeHandle nh;
+  return RUN_ALL_TESTS();
+}
