@@ -2,7 +2,8 @@
 include_directories(${catkin_INCLUDE_DIRS})
 add_library(rocking_monitor_ros src/ros/monitor.cpp src/ros/catalogue.cpp)
 target_include_directories(rocking_monitor_ros PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include ${catkin_INCLUDE_DIRS})
-target_link_libraries(rocking_monitor_ros PUBLIC rocking_monitor_core ${catkin_LIBRARIES})
+find_package(TBB REQUIRED)
+target_link_libraries(rocking_monitor_ros PUBLIC rocking_monitor_core ${catkin_LIBRARIES} TBB::tbb)
 add_dependencies(rocking_monitor_ros ${PROJECT_NAME}_generate_messages_cpp)
 
 add_executable(monitor src/ros/monitor_node.cpp)
@@ -28,4 +29,18 @@ if(CATKIN_ENABLE_TESTING)
   target_link_libraries(test_monitor_replay rocking_monitor_ros ${catkin_LIBRARIES})
   add_rostest_gtest(test_monitor_bad_input test/ros/monitor_bad_input.test test/ros/test_monitor_bad_input.cpp)
   target_link_libraries(test_monitor_bad_input rocking_monitor_ros ${catkin_LIBRARIES})
+endif()
+
+if(CATKIN_ENABLE_TESTING)
+  # Needs the records (skips with a notice without them) and the record_to_bag / rocking_sim tools.
+  add_executable(test_monitor_historical EXCLUDE_FROM_ALL test/ros/test_monitor_historical.cpp)
+  target_link_libraries(test_monitor_historical rocking_monitor_ros ${catkin_LIBRARIES} GTest::gtest
+                        nlohmann_json::nlohmann_json)
+  add_dependencies(tests test_monitor_historical)
+  if(TARGET record_to_bag)
+    add_dependencies(test_monitor_historical record_to_bag rocking_sim)
+  endif()
+  add_rostest(test/ros/monitor_historical.test
+              ARGS records:=${ROCKING_RECORDS_DIR} tools:=${ROCKING_TOOL_DIR}
+              DEPENDENCIES test_monitor_historical)
 endif()

@@ -7,6 +7,8 @@
 
 #include <geometry_msgs/TransformStamped.h>
 #include <tf2_eigen/tf2_eigen.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include "rocking_monitor/core/solver_settings.hpp"
@@ -78,9 +80,15 @@ bool RockingMonitor::load_parameters() {
             param(pnh_, "max_abs_acceleration", max_abs_acceleration_, "number") &&
             param(pnh_, "state_rate", state_rate_, "number") &&
             param(pnh_, "publish_markers", publish_markers_, "bool") &&
-            param(pnh_, "publish_tf", publish_tf_, "bool");
+            param(pnh_, "publish_tf", publish_tf_, "bool") && param(pnh_, "threads", threads_, "integer") &&
+            param(pnh_, "marker_rate", marker_rate_, "number");
   if (!ok) return false;
   options_.solver.substeps = substeps;
+  if (threads_ < 1) {
+    ROS_FATAL("rocking_monitor: ~threads = %d must be >= 1", threads_);
+    return false;
+  }
+  if (threads_ > 1) arena_ = std::make_unique<tbb::task_arena>(threads_);
   if (!core::parse_method(method, options_.solver.method)) {
     ROS_FATAL("rocking_monitor: ~method '%s' is not one of dopri5, rk4, analytic", method.c_str());
     return false;
@@ -112,6 +120,7 @@ bool RockingMonitor::load_parameters() {
          positive(timing_config_.backward_jump, "backward_jump", "s") &&
          positive(max_abs_acceleration_, "max_abs_acceleration", "m/s^2") &&
          positive(options_.velocity_highpass_hz, "velocity_highpass_hz", "Hz") &&
+         positive(marker_rate_, "marker_rate", "Hz") &&
          (state_rate_ >= 0.0 || positive(state_rate_, "state_rate", "Hz (0 = every input sample)"));
 }
 
@@ -242,8 +251,8 @@ bool RockingMonitor::lookup_rotation(Item& item, const std::string& sensor_frame
         tf_buffer_->lookupTransform(item.entry.spec.frame, sensor_frame, ::ros::Time(0));
     item.rotation = tf2::transformToEigen(t).rotation();
     item.has_rotation = true;
-    ROS_INFO("rocking_monitor: item '%s' uses the transform %s <- %s", item.entry.spec.id.c_str(),
-             item.entry.spec.frame.c_str(), sensor_frame.c_str());
+    ROS_DEBUG("rocking_monitor: item '%s' uses the transform %s <- %s", item.entry.spec.id.c_str(),
+              item.entry.spec.frame.c_str(), sensor_frame.c_str());
     return true;
   } catch (const tf2::TransformException& e) {
     ROS_WARN_THROTTLE(5.0, "rocking_monitor: item '%s' is not monitored yet: no transform %s <- %s (%s)",
@@ -325,24 +334,51 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
     s.have_first = false;
   }
   s.mean_dt = s.mean_dt == 0.0 ? dt : 0.99 * s.mean_dt + 0.01 * dt;
+  // Serial: items still waiting for their transform, or starting late, are not stepped.
   for (std::size_t idx : s.items) {
     Item& it = items_[idx];
+    it.ready = false;
     if (!it.has_rotation && !lookup_rotation(it, s.frame)) {
       ++it.samples_without_transform;
       continue;
     }
-    const Eigen::Vector3d ai = it.rotation * a;
     if (!it.monitor->started()) {  // its transform arrived late: start now
+      const Eigen::Vector3d ai = it.rotation * a;
       it.monitor->start(t, ai.x(), ai.z(), s.dt_nominal);
       it.stamp = header.stamp;
       continue;
     }
-    const core::ItemEvents& ev = it.monitor->step(ai.x(), ai.z(), dt);
-    it.stamp = header.stamp;
+    it.ready = true;
+  }
+  // Items are independent: step them in parallel when ~threads > 1 (results do not depend on it).
+  auto step_range = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      Item& it = items_[s.items[k]];
+      if (!it.ready) continue;
+      const Eigen::Vector3d ai = it.rotation * a;
+      it.monitor->step(ai.x(), ai.z(), dt);
+      it.stamp = header.stamp;
+    }
+  };
+  if (arena_ && s.items.size() >= 64) {
+    arena_->execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, s.items.size(), 32),
+                        [&](const tbb::blocked_range<std::size_t>& r) { step_range(r.begin(), r.end()); });
+    });
+  } else {
+    step_range(0, s.items.size());
+  }
+  // Serial: publish what happened, in catalogue order.
+  for (std::size_t idx : s.items) {
+    Item& it = items_[idx];
+    if (!it.ready) continue;
+    const core::ItemEvents& ev = it.monitor->events();
     if (ev.change_count > 0 || ev.alarm_count > 0) publish_events(it, ev, header.stamp);
   }
   s.last_processing_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   s.max_processing_s = std::max(s.max_processing_s, s.last_processing_s);
+  s.total_processing_s += s.last_processing_s;
+  ++s.processed;
   if (state_rate_ == 0.0) publish_states();
 }
 
@@ -418,7 +454,11 @@ void RockingMonitor::on_state_timer(const ::ros::TimerEvent&) {
   }
   last_now_ = now;
   if (state_rate_ > 0.0) publish_states();  // else after every input sample
-  publish_markers_and_tf();
+  if (last_marker_time_.isZero() || (now - last_marker_time_).toSec() >= 1.0 / marker_rate_ ||
+      now < last_marker_time_) {
+    publish_markers_and_tf();
+    last_marker_time_ = now;
+  }
   diagnostics_->update();
 }
 
@@ -540,6 +580,7 @@ void RockingMonitor::sensor_diagnostics(std::size_t i, diagnostic_updater::Diagn
   st.add("mean sample period (s)", s.mean_dt);
   st.add("processing per sample, last (s)", s.last_processing_s);
   st.add("processing per sample, max (s)", s.max_processing_s);
+  st.add("processing per sample, mean (s)", s.processed > 0 ? s.total_processing_s / s.processed : 0.0);
   st.add("processing / sample period", s.mean_dt > 0.0 ? s.last_processing_s / s.mean_dt : 0.0);
   st.add("gravity baseline (m/s^2)", std::to_string(s.baseline.baseline().x()) + " " +
                                         std::to_string(s.baseline.baseline().y()) + " " +

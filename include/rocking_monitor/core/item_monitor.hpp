@@ -83,6 +83,8 @@ class ItemMonitor {
   /// previous one. No allocation.
   const ItemEvents& step(double ax, double ay, double dt);
 
+  /// Events of the last step().
+  const ItemEvents& events() const { return events_; }
   ItemMode mode() const;
   const RockingModel& model() const { return model_; }
   const ItemSpec& spec() const { return spec_; }

@@ -16,6 +16,7 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
+#include <tbb/task_arena.h>
 
 #include "rocking_monitor/CriterionExceedance.h"
 #include "rocking_monitor/OverturnAlarm.h"
@@ -49,6 +50,7 @@ class RockingMonitor {
     Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // item <- sensor
     ::ros::Time stamp;           // input stamp of the last step
     std::uint64_t samples_without_transform = 0;
+    bool ready = false;          // stepped in the current sample
   };
   struct Sensor {
     SensorSpec spec;
@@ -62,7 +64,8 @@ class RockingMonitor {
     Eigen::Vector3d first_a = Eigen::Vector3d::Zero();
     double dt_nominal = 0.0;
     std::uint64_t received = 0, rejected_nonfinite = 0, rejected_limit = 0, zero_stamps = 0, resets = 0;
-    double last_processing_s = 0.0, max_processing_s = 0.0, mean_dt = 0.0;
+    double last_processing_s = 0.0, max_processing_s = 0.0, total_processing_s = 0.0, mean_dt = 0.0;
+    std::uint64_t processed = 0;
     ::ros::Time last_stamp;
     std::unique_ptr<diagnostic_updater::TopicDiagnostic> topic_diag;
     double min_freq = 0.0, max_freq = 0.0;
@@ -92,6 +95,10 @@ class RockingMonitor {
   double max_abs_acceleration_ = 50.0;
   double state_rate_ = 20.0;
   bool publish_markers_ = true, publish_tf_ = true;
+  int threads_ = 1;
+  double marker_rate_ = 5.0;
+  ::ros::Time last_marker_time_;
+  std::unique_ptr<tbb::task_arena> arena_;
   std::string marker_frame_suffix_ = "/body";
 
   std::vector<Sensor> sensors_;

@@ -1,0 +1,30 @@
+#!/usr/bin/python3
+"""Writes a synthetic catalogue of N items (for load tests of the live monitor).
+
+Usage: make_catalogue.py N OUT.yaml [--topic /ground/imu] [--frame accelerometer] [--seed 1]
+Items get random but plausible geometry (B 0.15-0.8 m, h 0.2-1.2 m, nu1 0.25-0.5, mu_s 0.3-0.8)
+and random yaw, all fed by one Imu sensor.
+"""
+import argparse
+import math
+import random
+
+p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+p.add_argument("n", type=int)
+p.add_argument("out")
+p.add_argument("--topic", default="/ground/imu")
+p.add_argument("--frame", default="accelerometer")
+p.add_argument("--seed", type=int, default=1)
+p.add_argument("--rate", type=float, default=200.0)
+a = p.parse_args()
+rng = random.Random(a.seed)
+with open(a.out, "w") as f:
+    f.write("# %d synthetic items (scripts/make_catalogue.py, seed %d)\n" % (a.n, a.seed))
+    f.write("sensors:\n  - {name: floor, topic: %s, type: imu, rate: %g}\nitems:\n" % (a.topic, a.rate))
+    for i in range(a.n):
+        h = rng.uniform(0.2, 1.2)
+        b = rng.uniform(0.15, min(0.8, 1.5 * h))
+        f.write("  - {id: item%05d, sensor: floor, width: %.3f, cg_height: %.3f, eccentricity: %.2f, "
+                "mu_s: %.2f, pose: {parent_frame: %s, x: %.2f, y: %.2f, yaw: %.3f}}\n" % (
+                    i, b, h, rng.uniform(0.25, 0.5), rng.uniform(0.3, 0.8), a.frame,
+                    rng.uniform(0, 50), rng.uniform(0, 50), rng.uniform(-math.pi, math.pi)))

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Measures the live monitor's processing time per input sample for catalogues of N items:
+#   bash scripts/measure_monitor_load.sh BAG [N ...]      (default N: 1 100 10000)
+# Replays BAG (sensor_msgs/Imu on /ground/imu) at real time through a monitor fed by a synthetic
+# catalogue of N items and prints the mean and max processing time per sample from /diagnostics.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+export PATH=/usr/bin:$PATH
+set +u; source build/devel/setup.bash; set -u
+bag=$(realpath "$1"); shift
+counts=("$@"); [ ${#counts[@]} -gt 0 ] || counts=(1 100 10000)
+export ROS_HOME=${ROS_HOME:-/tmp/rocking_monitor_ros_home}
+printf "%8s %14s %14s %10s\n" items "mean (ms)" "max (ms)" "samples"
+for n in "${counts[@]}"; do
+  cat=$(mktemp --suffix=.yaml)
+  /usr/bin/python3 scripts/make_catalogue.py "$n" "$cat"
+  log=$(mktemp)
+  roslaunch rocking_monitor replay.launch bag:="$bag" catalogue:="$cat" required:=true start_delay:=3 \
+    > "$log" 2>&1 &
+  pid=$!
+  diag=""
+  # Sample /diagnostics until the bag is over (the launch ends with it).
+  while kill -0 $pid 2>/dev/null; do
+    d=$(timeout 3 rostopic echo -n 1 /diagnostics 2>/dev/null || true)
+    if echo "$d" | grep -q "processing per sample, mean"; then diag="$d"; fi
+  done
+  mean=$(echo "$diag" | grep -A1 'processing per sample, mean' | sed -n 's/.*value: "\(.*\)"/\1/p' | head -1)
+  max=$(echo "$diag" | grep -A1 'processing per sample, max' | sed -n 's/.*value: "\(.*\)"/\1/p' | head -1)
+  samples=$(echo "$diag" | grep -A1 '"accepted"' | sed -n 's/.*value: "\(.*\)"/\1/p' | head -1)
+  /usr/bin/python3 -c "import sys; print('%8d %14.4f %14.4f %10s' % (int(sys.argv[1]), float(sys.argv[2])*1e3, float(sys.argv[3])*1e3, sys.argv[4]))" \
+    "$n" "${mean:-nan}" "${max:-nan}" "${samples:-?}"
+  rm -f "$cat" "$log"
+done
