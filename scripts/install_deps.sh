@@ -11,7 +11,7 @@ packages=(
   catkin ros-core-dev libroscpp-dev librosbag-dev librostest-dev python3-rostest
   python3-roslaunch python3-rosmaster python3-rosbag rosbash ros-message-generation
   ros-std-msgs ros-std-srvs libstd-srvs-dev ros-geometry-msgs ros-sensor-msgs
-  ros-visualization-msgs ros-diagnostic-msgs libdiagnostic-updater-dev libnodeletlib-dev
+  ros-visualization-msgs ros-diagnostic-msgs libdiagnostic-updater-dev libnodeletlib-dev libnodeletlib-tools
   libtf2-ros-dev libtf2-eigen-dev tf2-tools python3-sensor-msgs
 )
 

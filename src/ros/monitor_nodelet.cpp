@@ -17,6 +17,10 @@ class MonitorNodelet : public nodelet::Nodelet {
       monitor_.reset();
     }
   }
+  // Debian 12's libnodeletlib writes members up to offset 0xe8 of nodelet::Nodelet while its header
+  // declares sizeof(nodelet::Nodelet) == 184: a derived member right after the base gets clobbered by
+  // Nodelet::init(). Keep ours clear of that region.
+  char abi_guard_[128] = {};
   std::unique_ptr<RockingMonitor> monitor_;
 };
 
