@@ -17,7 +17,8 @@ install(TARGETS monitor rocking_monitor_nodelet rocking_monitor_ros
         LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
         ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
 install(FILES nodelet_plugins.xml DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
-install(DIRECTORY launch config bags DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+install(DIRECTORY launch config bags DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}
+        PATTERN "historical" EXCLUDE)
 
 # ---------------------------------------------------------------- tests
 if(CATKIN_ENABLE_TESTING)
