@@ -8,6 +8,7 @@ mkdir -p build
 cmake -S . -B build -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"
 # catkin builds rostest executables only with its 'tests' target.
-if cmake --build build --target help | grep -q '^\.\.\. tests$'; then
+targets=$(cmake --build build --target help)  # not piped into grep -q: SIGPIPE under pipefail
+if grep -q '^\.\.\. tests$' <<<"$targets"; then
   cmake --build build --target tests -j"$(nproc)"
 fi
