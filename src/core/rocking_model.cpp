@@ -101,6 +101,14 @@ double RockingModel::find_uplift(const GroundInput& in, double tau, double tau_e
     if (u0 > 0.0) when = tau;
     else if (u1 > 0.0) when = std::clamp(tau + (tau_end - tau) * (-u0) / (u1 - u0), tau, tau_end);
     else continue;
+    // With the input held within rounding of the threshold, the uplift function can be > 0 while
+    // the equation of motion gives theta'' <= 0 at theta = 0: lifting would be undone at once
+    // (a degenerate step, back to REST) in every sample. Lift only if theta'' agrees somewhere
+    // in the rest of the sample.
+    const RockingOde ode{&pv, s, settings_.model, in};
+    if (!(s * ode.angular_acceleration(when, 0.0) > 0.0) &&
+        !(s * ode.angular_acceleration(tau_end, 0.0) > 0.0))
+      continue;
     if (when < best || (when == best && s == tipping_side(in.ax(when)))) {
       best = when;
       side = s;

@@ -1,0 +1,641 @@
+// Accuracy against cost, overturn-decision agreement and stability maps of the rocking
+// integrators (issue 6). Writes CSV files that scripts/plot_performance.py turns into the charts
+// of docs/performance/ (run everything with `bash scripts/make_performance_charts.sh`).
+//
+//   rocking_accuracy [--out DIR] [--records DIR] [--jobs N] [--quick]
+//                    [work-precision] [overturn] [stability]     (default: all three)
+//
+// Reference: dopri5 at tol = 1e-12 on the same piecewise-linear input re-sampled 8x finer (the
+// identical signal, with 8x shorter forced steps); the CVODE tests (reference_tests) show that
+// dopri5 at 1e-10 agrees with an independent integrator to 1e-8 s on impact times.
+//
+// work_precision.csv   one row per (model, input, case, method setting): cost (ns per simulated
+//                      second, ns per item-step) and errors (max |theta|/alpha, first-10 impact
+//                      times, overturn time) against the reference
+// overturn_agreement.csv  every .AT2 record x 4 bodies x every method: overturned or not, against
+//                      the reference (dopri5 1e-12 on the record's own samples)
+// stability_map.csv    per (method setting, p, alpha): free-rocking impacts, impact-time error,
+//                      energy gain between successive peaks, rest time, wrong decisions over a
+//                      set of pulses near the overturning boundary, events and steps per sample
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bench_common.hpp"
+
+#ifndef ROCKING_RECORDS_DIR
+#define ROCKING_RECORDS_DIR "../shared/records"
+#endif
+
+namespace rb = rocking_monitor::bench;
+using namespace rocking_monitor::core;
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr int kRefUpsample = 8;
+constexpr double kRefTol = 1e-12;
+constexpr std::size_t kImpactsCompared = 10;
+
+// ------------------------------------------------------------------ one run, summarised
+struct Run {
+  std::vector<int> impacts;        // per input sample
+  std::vector<double> first_impact;  // per input sample (NaN if none)
+  std::vector<double> peak;          // per input sample: largest located peak of |theta|/alpha
+  RockingOutcome outcome;
+  double rest_time = kNaN;  // end of the first sample after which a rocking body was at rest
+  double seconds = 0.0;     // wall time of one run
+  int max_steps = 0;        // most integrator steps in one sample
+  int max_impacts = 0;      // most impacts in one sample
+  double duration = 0.0;    // simulated seconds
+};
+
+GroundMotion upsample(const GroundMotion& g, int factor) {
+  GroundMotion r = rb::resample(g, g.dt / factor);
+  // resample() floors the sample count; make sure the last original sample is there.
+  const std::size_t want = (g.size() - 1) * static_cast<std::size_t>(factor) + 1;
+  r.horizontal.resize(want, g.horizontal.back());
+  r.horizontal.back() = g.horizontal.back();
+  if (!g.vertical.empty()) {
+    r.vertical.resize(want, g.vertical.back());
+    r.vertical.back() = g.vertical.back();
+  }
+  return r;
+}
+
+/// Runs one item over `g` (optionally released at theta0), summarising every `group` samples as
+/// one (so a run on an upsampled input reports on the original sample grid).
+Run run_once(const BodyParameters& body, const SolverSettings& s, const GroundMotion& g,
+             double theta0, int group = 1) {
+  Run r;
+  RockingModel m(body, s);
+  m.reset(g.t0, g.horizontal[0], g.ay(0));
+  if (theta0 != 0.0) m.set_state(theta0, 0.0);
+  const std::size_t n = g.size();
+  const std::size_t groups = (n - 1) / static_cast<std::size_t>(group);
+  r.impacts.assign(groups, 0);
+  r.first_impact.assign(groups, kNaN);
+  r.peak.assign(groups, 0.0);
+  bool was_rocking = m.mode() == Mode::Rocking;
+  std::vector<int> steps(groups, 0);
+  for (std::size_t i = 1; i < n; ++i) {
+    const StepReport& rep = m.step(g.horizontal[i], g.ay(i), g.dt);
+    const std::size_t k = std::min((i - 1) / static_cast<std::size_t>(group), groups - 1);
+    if (rep.impacts > 0 && std::isnan(r.first_impact[k])) r.first_impact[k] = rep.first_impact_time;
+    r.impacts[k] += rep.impacts;
+    r.peak[k] = std::max(r.peak[k], rep.peak_ratio);
+    steps[k] += rep.integrator_steps;
+    if (m.mode() == Mode::Rocking) was_rocking = true;
+    if (was_rocking && m.mode() == Mode::Rest && std::isnan(r.rest_time)) {
+      r.rest_time = g.t0 + static_cast<double>(k + 1) * g.dt * group;
+    }
+    if (m.mode() == Mode::Overturned) break;
+  }
+  r.outcome = m.outcome();
+  r.max_steps = *std::max_element(steps.begin(), steps.end());
+  r.max_impacts = *std::max_element(r.impacts.begin(), r.impacts.end());
+  r.duration = g.dt * static_cast<double>(n - 1);
+  return r;
+}
+
+/// Thread CPU time of stepping one item over `g` (nothing else in the loop), s.
+double time_once(const BodyParameters& body, const SolverSettings& s, const GroundMotion& g,
+                 double theta0) {
+  RockingModel m(body, s);
+  const double t0 = rb::thread_cpu_seconds();
+  m.reset(g.t0, g.horizontal[0], g.ay(0));
+  if (theta0 != 0.0) m.set_state(theta0, 0.0);
+  for (std::size_t i = 1; i < g.size() && m.mode() != Mode::Overturned; ++i)
+    m.step(g.horizontal[i], g.ay(i), g.dt);
+  return rb::thread_cpu_seconds() - t0;
+}
+
+/// run_once() plus its cost: the best of 5 batches of pure stepping, each repeated until it
+/// takes at least min_seconds (the minimum filters out interference from other processes).
+Run run_timed(const BodyParameters& body, const SolverSettings& s, const GroundMotion& g,
+              double theta0, double min_seconds = 0.01) {
+  Run r = run_once(body, s, g, theta0);  // also warms the caches
+  double best = std::numeric_limits<double>::infinity();
+  for (int batch = 0; batch < 5; ++batch) {
+    int reps = 0;
+    double total = 0.0;
+    do {
+      total += time_once(body, s, g, theta0);
+      ++reps;
+    } while (total < min_seconds && reps < 1000);
+    best = std::min(best, total / reps);
+  }
+  r.seconds = best;
+  return r;
+}
+
+Run reference_run(const BodyParameters& body, ModelKind model, const GroundMotion& g, double theta0) {
+  SolverSettings s;
+  s.method = Method::Dopri5;
+  s.model = model;
+  s.tol = kRefTol;
+  return run_once(body, s, upsample(g, kRefUpsample), theta0, kRefUpsample);
+}
+
+std::vector<double> impact_list(const Run& r, std::size_t max_count) {
+  std::vector<double> out;
+  for (double t : r.first_impact) {
+    if (std::isnan(t)) continue;
+    out.push_back(t);
+    if (out.size() == max_count) break;
+  }
+  return out;
+}
+
+/// Worst distance between the first impacts of the two runs (each impact to the nearest of the
+/// other run, both ways), over the reference's first kImpactsCompared impact samples. NaN when
+/// neither run has an impact; +inf when only one does.
+double impact_time_error(const Run& r, const Run& ref) {
+  const std::vector<double> a = impact_list(ref, kImpactsCompared);
+  std::vector<double> b = impact_list(r, kImpactsCompared + 5);
+  if (a.empty() && b.empty()) return kNaN;
+  if (a.empty() || b.empty()) return std::numeric_limits<double>::infinity();
+  const double horizon = a.back() + 1e-9;
+  b.erase(std::remove_if(b.begin(), b.end(), [&](double t) { return t > horizon + 0.05; }), b.end());
+  auto nearest = [](const std::vector<double>& v, double t) {
+    double d = std::numeric_limits<double>::infinity();
+    for (double x : v) d = std::min(d, std::abs(x - t));
+    return d;
+  };
+  double e = 0.0;
+  for (double t : a) e = std::max(e, nearest(b, t));
+  for (double t : b)
+    if (t <= horizon) e = std::max(e, nearest(a, t));
+  return e;
+}
+
+/// Worst error of the rotation peaks: max |theta|/alpha of the run, and the first
+/// kImpactsCompared located local maxima of |theta|/alpha above 1e-3 (in order), in units of alpha.
+double peak_error(const Run& r, const Run& ref) {
+  auto peaks = [](const Run& x) {
+    std::vector<double> out;
+    for (double p : x.peak)
+      if (p >= 1e-3 && out.size() < kImpactsCompared) out.push_back(p);
+    return out;
+  };
+  const std::vector<double> a = peaks(r), b = peaks(ref);
+  double e = std::abs(r.outcome.max_rotation_ratio - ref.outcome.max_rotation_ratio);
+  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) e = std::max(e, std::abs(a[i] - b[i]));
+  return e;
+}
+
+/// Largest rise of a located peak over the previous one, relative (free rocking must lose energy
+/// at every impact, so successive peaks must fall). 0 when they never rise.
+double energy_gain(const Run& r) {
+  double prev = -1.0, worst = 0.0;
+  for (double p : r.peak) {
+    if (p <= 0.0) continue;
+    if (prev > 0.0) worst = std::max(worst, (p - prev) / prev);
+    prev = p;
+  }
+  return worst;
+}
+
+std::string fmt(double x) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", x);
+  return buf;
+}
+
+// ------------------------------------------------------------------ parallel map
+void parallel_for(std::size_t n, int jobs, const std::function<void(std::size_t)>& f) {
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t i = next++; i < n; i = next++) f(i);
+  };
+  std::vector<std::thread> pool;
+  for (int j = 1; j < jobs; ++j) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+}
+
+// ------------------------------------------------------------------ work-precision
+struct Case {
+  std::string kind;  // free | pulse | record
+  std::string name;
+  BodyParameters body;
+  GroundMotion motion;
+  double theta0 = 0.0;
+};
+
+std::vector<Case> work_precision_cases(const std::string& records, bool quick) {
+  std::vector<Case> cases;
+  for (double rate : {200.0, 50.0}) {
+    const double dt = 1.0 / rate;
+    const std::string tag = "@" + std::to_string(static_cast<int>(rate)) + "Hz";
+    // Free rocking: the NOTES.md block (p = 2, alpha = 15 deg) from alpha/2 until rest, and a
+    // small stiff item (p = 8 rad/s, alpha = 10 deg) from 0.7 alpha.
+    cases.push_back({"free", "p2_a15" + tag, rb::rectangle_with(2.0, rb::deg(15)), rb::zeros(dt, 11.0),
+                     0.5 * rb::deg(15)});
+    cases.push_back({"free", "p8_a10" + tag, rb::rectangle_with(8.0, rb::deg(10)), rb::zeros(dt, 4.0),
+                     0.7 * rb::deg(10)});
+    // One-sine pulses just below/above the closed-form boundary (p = 2.5, alpha = 12 deg).
+    for (double wp : {2.0, 4.0}) {
+      for (double f : {0.997, 1.003}) {
+        const double p = 2.5, alpha = rb::deg(12), w = wp * p;
+        char nm[64];
+        std::snprintf(nm, sizeof nm, "wp%g_a%.3f%s", wp, f, tag.c_str());
+        cases.push_back({"pulse", nm, rb::rectangle_with(p, alpha),
+                         rb::one_sine_pulse(f * rb::pulse_min_amplitude_ratio(wp) * alpha * kGravity, w,
+                                            dt, 2.0 * kPi / w + 8.0)});
+      }
+    }
+  }
+  // Real records at their own sampling rate (100-250 Hz), a 0.4 x 1.2 m cabinet and a small
+  // vase-like item (0.12 x 0.3 m).
+  if (rb::records_available(records)) {
+    const std::vector<std::pair<std::string, std::string>> recs = {
+        {"rinaldi228", "northridge_1994/Rinaldi228.AT2"},
+        {"lucerne345", "landers_1992/RSN879_LANDERS_LCN345.AT2"},
+        {"elcentro5", "imperial_valley_1979/RSN180_IMPVALL.H_H-E05140.AT2"},
+        {"takatori090", "kobe_1995/RSN1120_KOBE_TAK090.AT2"},
+    };
+    BodyParameters cabinet, vase;
+    cabinet.width = 0.4;
+    cabinet.cg_height = 0.6;
+    vase.width = 0.12;
+    vase.cg_height = 0.15;
+    for (const auto& [nm, file] : recs) {
+      try {
+        const GroundMotion g = rb::load_record(records + "/" + file);
+        cases.push_back({"record", nm + "_cabinet", cabinet, g});
+        if (!quick) cases.push_back({"record", nm + "_vase", vase, g});
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "rocking_accuracy: skipping %s: %s\n", file.c_str(), e.what());
+      }
+    }
+  } else {
+    std::fprintf(stderr, "rocking_accuracy: records folder %s not found: record cases skipped\n",
+                 records.c_str());
+  }
+  return cases;
+}
+
+void work_precision(const std::string& out_dir, const std::string& records, bool quick) {
+  const std::vector<Case> cases = work_precision_cases(records, quick);
+  std::ofstream os(out_dir + "/work_precision.csv");
+  os << "model,input,case,sample_rate_hz,method,label,param,ns_per_sim_s,ns_per_item_step,"
+        "steps_per_sample,err_peak,err_impact_s,err_overturn_s,overturned,ref_overturned,impacts,"
+        "ref_impacts,max_ratio,ref_max_ratio\n";
+  for (ModelKind model : {ModelKind::Nonlinear, ModelKind::Linearized}) {
+    const std::vector<rb::MethodSetting> settings = rb::all_settings(model, !quick);
+    for (const Case& c : cases) {
+      const Run ref = reference_run(c.body, model, c.motion, c.theta0);
+      for (const rb::MethodSetting& ms : settings) {
+        const Run r = run_timed(c.body, ms.settings, c.motion, c.theta0);
+        const double samples = static_cast<double>(c.motion.size() - 1);
+        const double e_over = r.outcome.overturned && ref.outcome.overturned
+                                  ? std::abs(r.outcome.overturn_time - ref.outcome.overturn_time)
+                                  : kNaN;
+        os << to_string(model) << ',' << c.kind << ',' << c.name << ',' << fmt(1.0 / c.motion.dt)
+           << ',' << ms.method << ',' << ms.label << ',' << fmt(ms.param) << ','
+           << fmt(1e9 * r.seconds / r.duration) << ',' << fmt(1e9 * r.seconds / samples) << ','
+           << fmt(static_cast<double>(r.outcome.integrator_steps) / samples) << ','
+           << fmt(peak_error(r, ref)) << ',' << fmt(impact_time_error(r, ref)) << ','
+           << fmt(e_over) << ',' << r.outcome.overturned << ',' << ref.outcome.overturned << ',' << r.outcome.impacts << ','
+           << ref.outcome.impacts << ',' << fmt(r.outcome.max_rotation_ratio) << ','
+           << fmt(ref.outcome.max_rotation_ratio) << '\n';
+      }
+      std::fprintf(stderr, "work-precision: %s %s %s done\n", to_string(model), c.kind.c_str(),
+                   c.name.c_str());
+    }
+  }
+}
+
+// ------------------------------------------------------------------ overturn decisions
+struct NamedBody {
+  std::string name;
+  BodyParameters body;
+};
+
+std::vector<NamedBody> study_bodies() {
+  std::vector<NamedBody> out;
+  auto make = [](double b, double h, double nu1) {
+    BodyParameters p;
+    p.width = b;
+    p.cg_height = h;
+    p.nu1 = nu1;
+    return p;
+  };
+  out.push_back({"small_slender_0.1x0.5", make(0.1, 0.25, 0.5)});  // alpha 11 deg, p 5.5
+  out.push_back({"cabinet_0.4x1.6", make(0.4, 0.8, 0.5)});         // alpha 14 deg, p 2.7
+  out.push_back({"eccentric_0.5x1.2_nu0.3", make(0.5, 0.6, 0.3)}); // alpha 14/30 deg
+  out.push_back({"squat_0.6x0.8", make(0.6, 0.4, 0.5)});           // alpha 37 deg, p 3.4
+  return out;
+}
+
+void overturn_agreement(const std::string& out_dir, const std::string& records, int jobs,
+                        bool quick) {
+  std::vector<std::string> files = rb::at2_files(records);
+  if (files.empty()) {
+    std::fprintf(stderr, "rocking_accuracy: no .AT2 records under %s: overturn agreement skipped\n",
+                 records.c_str());
+    return;
+  }
+  if (quick && files.size() > 30) files.resize(30);
+  const std::vector<NamedBody> bodies = study_bodies();
+  // Every record at 1x and 2x its amplitude, so that many bodies sit near their boundary.
+  struct Job {
+    std::string file;
+    double scale;
+  };
+  std::vector<Job> jobs_list;
+  for (const std::string& f : files)
+    for (double s : {1.0, 2.0}) jobs_list.push_back({f, s});
+  std::vector<std::string> rows(jobs_list.size());
+  std::atomic<int> done{0};
+  parallel_for(jobs_list.size(), jobs, [&](std::size_t i) {
+    std::ostringstream os;
+    try {
+      const GroundMotion g = rb::load_record(jobs_list[i].file, jobs_list[i].scale);
+      const std::string rec = std::filesystem::relative(jobs_list[i].file, records).string();
+      std::vector<Run> nonlinear_refs;
+      for (const NamedBody& nb : bodies) {
+        SolverSettings rs;
+        rs.tol = kRefTol;
+        nonlinear_refs.push_back(run_once(nb.body, rs, g, 0.0));
+      }
+      for (ModelKind model : {ModelKind::Nonlinear, ModelKind::Linearized}) {
+        for (std::size_t b = 0; b < bodies.size(); ++b) {
+          const NamedBody& nb = bodies[b];
+          SolverSettings rs;
+          rs.model = model;
+          rs.tol = kRefTol;
+          const Run ref = model == ModelKind::Nonlinear ? nonlinear_refs[b] : run_once(nb.body, rs, g, 0.0);
+          for (const rb::MethodSetting& ms : rb::all_settings(model, true)) {
+            const Run r = run_once(nb.body, ms.settings, g, 0.0);
+            os << rec << ',' << fmt(jobs_list[i].scale) << ',' << fmt(1.0 / g.dt) << ',' << nb.name
+               << ',' << to_string(model) << ',' << ms.method << ',' << ms.label << ','
+               << fmt(ms.param) << ',' << r.outcome.overturned << ',' << ref.outcome.overturned
+               << ',' << fmt(r.outcome.max_rotation_ratio) << ','
+               << fmt(ref.outcome.max_rotation_ratio) << ',' << r.outcome.impacts << ','
+               << ref.outcome.impacts << ',' << nonlinear_refs[b].outcome.overturned << '\n';
+          }
+        }
+      }
+    } catch (const std::exception& e) {
+      if (std::string(e.what()).find("no horizontal component") == std::string::npos)
+        std::fprintf(stderr, "rocking_accuracy: skipping %s: %s\n", jobs_list[i].file.c_str(), e.what());
+    }
+    rows[i] = os.str();
+    const int d = ++done;
+    if (d % 50 == 0) std::fprintf(stderr, "overturn: %d / %zu record runs\n", d, jobs_list.size());
+  });
+  std::ofstream os(out_dir + "/overturn_agreement.csv");
+  os << "record,scale,sample_rate_hz,body,model,method,label,param,overturned,ref_overturned,"
+        "max_ratio,ref_max_ratio,impacts,ref_impacts,nonlinear_ref_overturned\n";
+  for (const std::string& r : rows) os << r;
+}
+
+// ------------------------------------------------------------------ stability maps
+/// Accumulation time of linearized free rocking from phi0 alpha (closed form, NOTES.md): the
+/// quarter period, then the half periods of the decaying amplitudes phi_n, with
+/// 1 - (1 - phi_n)^2 = eta^(2n) [1 - (1 - phi0)^2] and eta = 1 - 1.5 sin^2(alpha).
+double accumulation_time(double p, double alpha, double phi0) {
+  const double eta = 1.0 - 1.5 * std::sin(alpha) * std::sin(alpha);
+  const double s0 = std::sqrt(1.0 - (1.0 - phi0) * (1.0 - phi0));
+  auto half = [&](double phi) { return 2.0 / p * std::acosh(1.0 / (1.0 - phi)); };
+  double t = half(phi0) / 2.0;
+  for (int n = 1; n < 100000; ++n) {
+    const double s = std::pow(eta, n) * s0;
+    const double phi = 1.0 - std::sqrt(1.0 - s * s);
+    if (phi < 1e-15) break;
+    t += half(phi);
+  }
+  return t;
+}
+
+struct MapBody {
+  double p;
+  double alpha;  // rad
+  double dt;     // input sample interval, s
+  GroundMotion free;
+  std::vector<double> pulse_wps;     // omega_p / p of the pulses resolved by the input (>= 8 samples)
+  std::vector<double> boundary;      // per pulse_wps: the reference's overturning amplitude, m/s^2
+  std::vector<GroundMotion> pulses;  // around each boundary
+  Run ref_free;
+  std::vector<Run> ref_pulses;
+};
+
+struct MapCell {
+  rb::MethodSetting ms;
+  std::size_t body;  // index into the MapBody list
+};
+
+/// The stability maps: every method against the nonlinear reference over body p (and alpha) and
+/// the step size (rk4: feed interval / substeps; dopri5: tolerance at a fine and a coarse feed;
+/// analytic: alpha, since it is exact for the linearized model at any step).
+void stability_maps(const std::string& out_dir, int jobs, bool quick) {
+  const std::vector<double> ps = quick ? std::vector<double>{1, 4, 16, 64}
+                                       : std::vector<double>{1, 1.5, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64};
+  const std::vector<double> alphas_deg =
+      quick ? std::vector<double>{5, 25} : std::vector<double>{2, 5, 10, 15, 20, 25, 30, 35};
+  const std::vector<double> step_alphas_deg = {5, 25};  // slender and stocky
+  const std::vector<double> feeds_hz = {200, 100, 50, 20, 10};
+  // Pulses at 0.01 %, 0.1 % and 1 % of the reference's own overturning boundary, either side.
+  const std::vector<double> pulse_factors = {0.99, 0.999, 0.9999, 1.0001, 1.001, 1.01};
+  const std::vector<double> pulse_wps = {2.0, 4.0};
+  auto is_step_alpha = [&](double a_deg) {
+    return std::any_of(step_alphas_deg.begin(), step_alphas_deg.end(),
+                       [&](double x) { return std::abs(x - a_deg) < 1e-9; });
+  };
+
+  std::vector<MapBody> bodies;
+  for (double feed : feeds_hz) {
+    for (double a : alphas_deg) {
+      if (feed != 200.0 && !is_step_alpha(a)) continue;  // other alphas: analytic map at 200 Hz
+      for (double p : ps) {
+        MapBody b;
+        b.p = p;
+        b.alpha = rb::deg(a);
+        b.dt = 1.0 / feed;
+        const double t_free = std::min(200.0, 1.2 * accumulation_time(p, b.alpha, 0.5) + 2.0 / p);
+        b.free = rb::zeros(b.dt, t_free);
+        for (double wp : pulse_wps) {
+          const double w = wp * p;
+          if (2.0 * kPi / w < 8.0 * b.dt) continue;  // the pulse would not be resolved by the input
+          b.pulse_wps.push_back(wp);
+        }
+        bodies.push_back(std::move(b));
+      }
+    }
+  }
+  parallel_for(bodies.size(), jobs, [&](std::size_t i) {
+    MapBody& b = bodies[i];
+    const BodyParameters body = rb::rectangle_with(b.p, b.alpha);
+    b.ref_free = reference_run(body, ModelKind::Nonlinear, b.free, 0.5 * b.alpha);
+    for (double wp : b.pulse_wps) {
+      // The reference's overturning amplitude near the linearized closed form, by bisection (the
+      // boundary is not monotonic in general: this finds one sign change of "overturned").
+      const double w = wp * b.p, t_end = 2.0 * kPi / w + 20.0 / b.p;
+      auto pulse = [&](double ap) { return rb::one_sine_pulse(ap, w, b.dt, t_end); };
+      auto overturns = [&](double ap) {
+        return reference_run(body, ModelKind::Nonlinear, pulse(ap), 0.0).outcome.overturned;
+      };
+      const double a_lin = rb::pulse_min_amplitude_ratio(wp) * b.alpha * kGravity;
+      double lo = 0.3 * a_lin, hi = 3.0 * a_lin;
+      if (overturns(lo) || !overturns(hi)) continue;
+      for (int it = 0; it < 30; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (overturns(mid) ? hi : lo) = mid;
+      }
+      const double a_star = 0.5 * (lo + hi);
+      b.boundary.push_back(a_star);
+      for (double f : pulse_factors) {
+        b.pulses.push_back(pulse(f * a_star));
+        b.ref_pulses.push_back(reference_run(body, ModelKind::Nonlinear, b.pulses.back(), 0.0));
+      }
+    }
+  });
+  std::fprintf(stderr, "stability: %zu references done\n", bodies.size());
+
+  std::vector<MapCell> cells;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const MapBody& b = bodies[i];
+    const double a = b.alpha * 180.0 / kPi;
+    const double feed = 1.0 / b.dt;
+    if (is_step_alpha(a)) {
+      // rk4: at 200 Hz with 1..32 sub-steps, and one step per sample at the coarser feeds.
+      if (std::abs(feed - 200.0) < 1e-6) {
+        for (int n : {1, 2, 4, 8, 16, 32}) cells.push_back({rb::rk4_setting(n, ModelKind::Nonlinear), i});
+      } else {
+        cells.push_back({rb::rk4_setting(1, ModelKind::Nonlinear), i});
+      }
+      // dopri5: tolerances at 200 Hz (steps capped by the samples) and 20 Hz (tolerance-limited).
+      if (std::abs(feed - 200.0) < 1e-6 || std::abs(feed - 20.0) < 1e-6)
+        for (double tol : {1e-2, 1e-3, 1e-4, 1e-6, 1e-8, 1e-10})
+          cells.push_back({rb::dopri5_setting(tol, ModelKind::Nonlinear), i});
+    }
+    if (std::abs(feed - 200.0) < 1e-6) cells.push_back({rb::analytic_setting(), i});
+  }
+
+  std::vector<std::string> rows(cells.size());
+  std::atomic<int> done{0};
+  parallel_for(cells.size(), jobs, [&](std::size_t i) {
+    const MapCell& c = cells[i];
+    const MapBody& b = bodies[c.body];
+    const BodyParameters body = rb::rectangle_with(b.p, b.alpha);
+    const Run r = run_once(body, c.ms.settings, b.free, 0.5 * b.alpha);
+    int wrong = 0, total = 0, max_steps = r.max_steps, max_impacts = r.max_impacts;
+    double max_ratio_err = 0.0;
+    for (std::size_t k = 0; k < b.pulses.size(); ++k) {
+      const Run pm = run_once(body, c.ms.settings, b.pulses[k], 0.0);
+      const Run& pr = b.ref_pulses[k];
+      ++total;
+      wrong += pm.outcome.overturned != pr.outcome.overturned;
+      if (!pm.outcome.overturned && !pr.outcome.overturned)
+        max_ratio_err = std::max(max_ratio_err, std::abs(pm.outcome.max_rotation_ratio -
+                                                         pr.outcome.max_rotation_ratio));
+      max_steps = std::max(max_steps, pm.max_steps);
+      max_impacts = std::max(max_impacts, pm.max_impacts);
+    }
+    // Where the method puts the overturning boundary, relative to the reference's: bisection
+    // inside +-5 % of the reference amplitude (0.05 = off by 5 % or more).
+    double boundary_shift = b.boundary.empty() ? kNaN : 0.0;
+    for (std::size_t j = 0; j < b.boundary.size(); ++j) {
+      const double w = b.pulse_wps[j] * b.p, t_end = 2.0 * kPi / w + 20.0 / b.p;
+      auto overturns = [&](double ap) {
+        return run_once(body, c.ms.settings, rb::one_sine_pulse(ap, w, b.dt, t_end), 0.0)
+            .outcome.overturned;
+      };
+      const double a_ref = b.boundary[j];
+      double lo = 0.95 * a_ref, hi = 1.05 * a_ref;
+      if (overturns(lo) || !overturns(hi)) {
+        boundary_shift = std::max(boundary_shift, 0.05);
+        continue;
+      }
+      for (int it = 0; it < 25; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (overturns(mid) ? hi : lo) = mid;
+      }
+      boundary_shift = std::max(boundary_shift, std::abs(0.5 * (lo + hi) - a_ref) / a_ref);
+    }
+    const Run& ref = b.ref_free;
+    const double h = c.ms.method == "rk4" ? b.dt / c.ms.param : b.dt;
+    std::ostringstream os;
+    os << c.ms.method << ',' << c.ms.label << ',' << fmt(c.ms.param) << ','
+       << to_string(c.ms.settings.model) << ",nonlinear," << fmt(1.0 / b.dt) << ',' << fmt(h) << ','
+       << fmt(b.p) << ',' << fmt(b.alpha * 180.0 / kPi) << ',' << fmt(b.p * h) << ','
+       << r.outcome.impacts << ',' << ref.outcome.impacts << ',' << fmt(impact_time_error(r, ref))
+       << ',' << fmt(energy_gain(r)) << ',' << fmt(energy_gain(ref)) << ',' << fmt(r.rest_time)
+       << ',' << fmt(ref.rest_time) << ',' << r.outcome.rest_captures << ','
+       << r.outcome.forced_rest_captures << ',' << r.outcome.overturned << ','
+       << fmt(peak_error(r, ref)) << ',' << wrong << ',' << total << ',' << fmt(boundary_shift)
+       << ',' << fmt(max_ratio_err)
+       << ',' << max_impacts << ',' << ref.max_impacts << ',' << max_steps << ','
+       << fmt(b.free.dt * static_cast<double>(b.free.size() - 1)) << '\n';
+    rows[i] = os.str();
+    const int d = ++done;
+    if (d % 200 == 0) std::fprintf(stderr, "stability: %d / %zu cells\n", d, cells.size());
+  });
+  std::ofstream os(out_dir + "/stability_map.csv");
+  os << "method,label,param,model,ref_model,feed_hz,h,p,alpha_deg,p_h,impacts,ref_impacts,"
+        "err_impact_s,energy_gain,ref_energy_gain,rest_time,ref_rest_time,rest_captures,"
+        "forced_rest,free_overturned,free_err_peak,pulse_wrong,pulse_total,boundary_shift,pulse_err_ratio,"
+        "max_impacts_per_sample,ref_max_impacts_per_sample,max_steps_per_sample,free_duration_s\n";
+  for (const std::string& r : rows) os << r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string out = "docs/performance";
+  std::string records = ROCKING_RECORDS_DIR;
+  if (const char* env = std::getenv("ROCKING_RECORDS_DIR")) records = env;
+  int jobs = 2;
+  bool quick = false;
+  std::vector<std::string> parts;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "rocking_accuracy: %s needs a value\n", a.c_str());
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--out") out = value();
+    else if (a == "--records") records = value();
+    else if (a == "--jobs") jobs = std::max(1, std::atoi(value().c_str()));
+    else if (a == "--quick") quick = true;
+    else if (a == "work-precision" || a == "overturn" || a == "stability") parts.push_back(a);
+    else if (a == "-h" || a == "--help") {
+      std::printf("usage: rocking_accuracy [--out DIR] [--records DIR] [--jobs N] [--quick] "
+                  "[work-precision] [overturn] [stability]\n");
+      return 0;
+    } else {
+      std::fprintf(stderr, "rocking_accuracy: unknown argument '%s'\n", a.c_str());
+      return 2;
+    }
+  }
+  if (parts.empty()) parts = {"work-precision", "overturn", "stability"};
+  std::filesystem::create_directories(out);
+  for (const std::string& p : parts) {
+    const auto t0 = std::chrono::steady_clock::now();
+    if (p == "work-precision") work_precision(out, records, quick);
+    else if (p == "overturn") overturn_agreement(out, records, jobs, quick);
+    else stability_maps(out, jobs, quick);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::fprintf(stderr, "rocking_accuracy: %s written to %s in %.0f s\n", p.c_str(), out.c_str(), s);
+  }
+  return 0;
+}

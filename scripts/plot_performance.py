@@ -1,0 +1,628 @@
+#!/usr/bin/python3
+"""Charts of docs/performance.md from the CSV/JSON written by rocking_accuracy and rocking_benchmarks.
+
+    /usr/bin/python3 scripts/plot_performance.py [--data DIR] [--out docs/performance]
+
+Reads (whatever is present) in the data directory (default: build-bench/performance):
+  benchmarks.json          rocking_benchmarks --benchmark_out=... --benchmark_out_format=json
+  work_precision.csv       rocking_accuracy work-precision
+  overturn_agreement.csv   rocking_accuracy overturn
+  stability_map.csv        rocking_accuracy stability
+and writes PNG + SVG charts and a markdown summary of the numbers into the output directory:
+  cost_per_item_step.*, capacity.*, work_precision_nonlinear.*, work_precision_linearized.*,
+  overturn_agreement.*, stability_summary.*, stability_rk4.*, stability_dopri5.*,
+  stability_analytic.*, summary.md
+Uses Debian's python3-matplotlib only (no pandas).
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import re
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
+from matplotlib.colors import LogNorm, ListedColormap, BoundaryNorm  # noqa: E402
+
+METHOD_COLOURS = {"dopri5": "#1f77b4", "rk4": "#d62728", "analytic": "#2ca02c"}
+FLOOR = 1e-14  # errors of exactly zero are drawn here
+
+
+def fnum(x):
+    try:
+        v = float(x)
+    except (TypeError, ValueError):
+        return float("nan")
+    return v
+
+
+def save(fig, directory, name):
+    for ext in ("png", "svg"):
+        fig.savefig(os.path.join(directory, f"{name}.{ext}"), dpi=130, bbox_inches="tight")
+    plt.close(fig)
+    print(f"  wrote {name}.png/.svg")
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def short_param(method, param):
+    p = fnum(param)
+    if method == "dopri5":
+        return f"1e{int(round(math.log10(p)))}"
+    if method == "rk4":
+        return f"{int(p)}"
+    return ""
+
+
+# ----------------------------------------------------------------------------- benchmarks
+def parse_benchmarks(path):
+    with open(path) as f:
+        data = json.load(f)
+    out = []
+    for b in data.get("benchmarks", []):
+        if b.get("run_type") == "aggregate":
+            continue
+        name = b["name"].split("/min_time")[0].split("/iterations")[0].split("/real_time")[0]
+        parts = name.split("/")
+        if len(parts) < 4:
+            continue
+        rec = {
+            "kind": parts[0],
+            "scenario": parts[1],
+            "model": parts[2],
+            "method": parts[3],
+            "param": parts[4].split(":")[1] if len(parts) > 4 and ":" in parts[4] else "",
+        }
+        for key in ("ns_per_item_step", "capacity_200Hz", "rocking_frac", "ns_per_rocking",
+                    "cap_all_rocking", "int_steps_per_item_step", "impacts", "items",
+                    "allocs_per_item_step"):
+            if key in b:
+                rec[key] = float(b[key])
+        out.append(rec)
+    return out, data.get("context", {})
+
+
+def setting_label(r):
+    if r["method"] == "dopri5":
+        return f"dopri5 {r['param']}"
+    if r["method"] == "rk4":
+        return f"rk4 x{r['param']}"
+    return "analytic"
+
+
+def plot_benchmarks(directory, rows, context, summary):
+    items = [r for r in rows if r["kind"] == "item"]
+    if items:
+        scenarios = []
+        for r in items:
+            if r["scenario"] not in scenarios:
+                scenarios.append(r["scenario"])
+        fig, axes = plt.subplots(2, 2, figsize=(14, 9), squeeze=False)
+        for row, (key, ylabel) in enumerate((("ns_per_item_step", "ns per item-step (whole input)"),
+                                             ("ns_per_rocking", "ns per item-step in which it rocked"))):
+            for col, model in enumerate(("nonlinear", "linearized")):
+                ax = axes[row][col]
+                sub = [r for r in items if r["model"] == model]
+                labels = []
+                for r in sub:
+                    lab = setting_label(r)
+                    if lab not in labels:
+                        labels.append(lab)
+                width = 0.8 / max(1, len(scenarios))
+                for j, sc in enumerate(scenarios):
+                    vals = []
+                    for lab in labels:
+                        v = [r.get(key, float("nan")) for r in sub if r["scenario"] == sc and setting_label(r) == lab]
+                        vals.append(v[0] if v else float("nan"))
+                    xs = [i + (j - (len(scenarios) - 1) / 2) * width for i in range(len(labels))]
+                    ax.bar(xs, vals, width=width, label=sc)
+                ax.set_xticks(range(len(labels)))
+                ax.set_xticklabels(labels, rotation=50, ha="right", fontsize=8)
+                ax.set_ylabel(ylabel)
+                if row == 0:
+                    ax.set_title(f"{model} model, one item, 200 Hz input")
+                ax.grid(True, axis="y", alpha=0.3)
+                ax.legend(fontsize=7, ncol=2)
+        fig.suptitle("Cost of one input sample of one item (Release, one thread); the second row charges "
+                     "all the time to the samples in which the item rocked", fontsize=10)
+        fig.tight_layout()
+        save(fig, directory, "cost_per_item_step")
+
+        summary.append("## Cost per item-step (single item, 200 Hz)\n")
+        summary.append("ns per item-step averaged over the whole input; in brackets, per item-step in "
+                       "which the item rocked (all time charged to the rocking steps).\n")
+        hdr = "| scenario | model | " + " | ".join(labels_all(items)) + " |"
+        summary.append(hdr)
+        summary.append("|" + "---|" * (2 + len(labels_all(items))))
+        for sc in scenarios:
+            for model in ("nonlinear", "linearized"):
+                cells = []
+                for lab in labels_all(items):
+                    v = [r for r in items if r["scenario"] == sc and r["model"] == model
+                         and setting_label(r) == lab]
+                    if v:
+                        r = v[0]
+                        cells.append(f"{r['ns_per_item_step']:.0f} ({r.get('ns_per_rocking', float('nan')):.0f})")
+                    else:
+                        cells.append("")
+                summary.append(f"| {sc} | {model} | " + " | ".join(cells) + " |")
+        summary.append("")
+
+    cats = [r for r in rows if r["kind"] == "catalogue"]
+    if cats:
+        cases = []
+        for r in cats:
+            if r["scenario"] not in cases:
+                cases.append(r["scenario"])
+        labels = []
+        for r in cats:
+            lab = setting_label(r) + ("" if r["model"] == "nonlinear" else " (lin.)")
+            if lab not in labels:
+                labels.append(lab)
+        fig, axes = plt.subplots(1, len(cases), figsize=(5.2 * len(cases), 5), squeeze=False)
+        for ax, case in zip(axes[0], cases):
+            sub = [r for r in cats if r["scenario"] == case]
+            names = [setting_label(r) + ("" if r["model"] == "nonlinear" else " (lin.)") for r in sub]
+            cap = [r["capacity_200Hz"] for r in sub]
+            cap_r = [r.get("cap_all_rocking", float("nan")) for r in sub]
+            y = range(len(sub))
+            ax.barh([i + 0.2 for i in y], cap, height=0.4, color="#1f77b4", label="this input")
+            ax.barh([i - 0.2 for i in y], cap_r, height=0.4, color="#ff7f0e",
+                    label="if every item rocked in every sample")
+            ax.axvline(10000, color="k", ls="--", lw=1)
+            ax.text(10000, len(sub) - 0.4, " target 10,000", fontsize=7, va="top")
+            ax.set_yticks(list(y))
+            ax.set_yticklabels(names, fontsize=8)
+            ax.set_xscale("log")
+            ax.xaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v:,.0f}"))
+            ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+            ax.set_xlim(min(5000, min(cap_r + cap) * 0.8), max(cap + cap_r) * 2.2)
+            ax.set_xlabel("items one core keeps up with at 200 Hz")
+            frac = sub[0].get("rocking_frac", float("nan"))
+            ax.set_title(f"{case}\n(rocking in {100 * frac:.0f}% of item-steps)", fontsize=9)
+            ax.grid(True, axis="x", which="both", alpha=0.3)
+            for i, (c, cr) in enumerate(zip(cap, cap_r)):
+                ax.text(c, i + 0.2, f" {c:,.0f}", va="center", fontsize=6.5)
+                if not math.isnan(cr):
+                    ax.text(cr, i - 0.2, f" {cr:,.0f}", va="center", fontsize=6.5)
+        handles, labs = axes[0][0].get_legend_handles_labels()
+        fig.legend(handles, labs, loc="lower center", ncol=2, fontsize=8, bbox_to_anchor=(0.5, -0.04))
+        fig.suptitle("Real-time capacity of one core (catalogue of 10,000 items, one 200 Hz feed)")
+        fig.tight_layout(rect=(0, 0.04, 1, 1))
+        save(fig, directory, "capacity")
+
+        summary.append("## Real-time capacity (10,000-item catalogue, 200 Hz, one core)\n")
+        summary.append("| input | method | rocking share | ns/item-step | ns/rocking item-step | "
+                       "capacity (this input) | capacity (all rocking) |")
+        summary.append("|---|---|---|---|---|---|---|")
+        for r in cats:
+            summary.append(
+                f"| {r['scenario']} | {setting_label(r)} ({r['model']}) | {100 * r.get('rocking_frac', 0):.1f}% "
+                f"| {r['ns_per_item_step']:.0f} | {r.get('ns_per_rocking', float('nan')):.0f} "
+                f"| {r['capacity_200Hz']:,.0f} | {r.get('cap_all_rocking', float('nan')):,.0f} |")
+        summary.append("")
+    if context:
+        summary.append(f"Machine: {context.get('num_cpus', '?')} CPUs at {context.get('mhz_per_cpu', '?')} MHz; "
+                       f"benchmark run {context.get('date', '')}.\n")
+
+
+def labels_all(items):
+    labels = []
+    for r in items:
+        lab = setting_label(r)
+        if lab not in labels:
+            labels.append(lab)
+    return labels
+
+
+# ----------------------------------------------------------------------------- work-precision
+def merge_coincident(pts):
+    """Consecutive settings with the same error (dopri5 whose steps are capped by the input samples
+    does exactly the same work at every tolerance) become one point labelled with the range."""
+    out = []
+    for x, y, lab in pts:
+        if out and abs(out[-1][1] - y) <= 1e-3 * y and 0.5 < out[-1][0][-1] / x < 2.0:
+            out[-1][0].append(x)
+            out[-1][2].append(lab)
+        else:
+            out.append(([x], y, [lab]))
+    merged = []
+    for xs, y, labs in out:
+        xs = sorted(xs)
+        lab = labs[0] if len(labs) == 1 else f"{labs[0]}..{labs[-1]}"
+        merged.append((xs[len(xs) // 2], y, lab))
+    return merged
+
+
+def plot_work_precision(directory, rows, summary):
+    kinds = [k for k in ("free", "pulse", "record") if any(r["input"] == k for r in rows)]
+    metrics = [("err_peak", "max |theta|/alpha and peaks error (units of alpha)"),
+               ("err_impact_s", "impact-time error, first 10 impacts (s)")]
+    for model in ("nonlinear", "linearized"):
+        sub = [r for r in rows if r["model"] == model]
+        if not sub:
+            continue
+        fig, axes = plt.subplots(len(metrics), len(kinds), figsize=(5.0 * len(kinds), 4.2 * len(metrics)),
+                                 squeeze=False)
+        for col, kind in enumerate(kinds):
+            kr = [r for r in sub if r["input"] == kind]
+            # group by sample rate: free/pulse cases are at 200 or 50 Hz; records at their own rate
+            def rate_group(r):
+                if kind == "record":
+                    return "native (100-250 Hz)"
+                return f"{int(round(fnum(r['sample_rate_hz'])))} Hz"
+            groups = sorted({rate_group(r) for r in kr}, key=lambda g: -fnum(g.split()[0]) if g[0].isdigit() else 0)
+            for row, (metric, mlabel) in enumerate(metrics):
+                ax = axes[row][col]
+                for g in groups:
+                    style = "-" if g.startswith("200") or g.startswith("native") else "--"
+                    for method in ("dopri5", "rk4", "analytic"):
+                        mr = [r for r in kr if r["method"] == method and rate_group(r) == g]
+                        if not mr:
+                            continue
+                        by_label = defaultdict(list)
+                        for r in mr:
+                            by_label[(fnum(r["param"]), r["label"])].append(r)
+                        pts = []
+                        for (param, _label), rs in sorted(by_label.items(), key=lambda kv: -kv[0][0] if method == "dopri5" else kv[0][0]):
+                            costs = sorted(fnum(r["ns_per_sim_s"]) for r in rs)
+                            cost = costs[len(costs) // 2]
+                            errs = [fnum(r[metric]) for r in rs]
+                            errs = [e for e in errs if not math.isnan(e)]
+                            if not errs:
+                                continue
+                            err = max(errs)
+                            if math.isinf(err):
+                                err = 1.0
+                            pts.append((cost, max(err, FLOOR), short_param(method, param)))
+                        if not pts:
+                            continue
+                        pts = merge_coincident(pts)
+                        xs, ys, ls = zip(*pts)
+                        ax.plot(xs, ys, style, marker="o" if method != "analytic" else "*",
+                                ms=5 if method != "analytic" else 11, color=METHOD_COLOURS[method],
+                                label=f"{method}, {g}", alpha=0.9)
+                        for x, y, lab in pts:
+                            if lab:
+                                ax.annotate(lab, (x, y), textcoords="offset points", xytext=(3, 3),
+                                            fontsize=6, color=METHOD_COLOURS[method])
+                ax.set_xscale("log")
+                ax.set_yscale("log")
+                ax.set_ylim(bottom=FLOOR / 3)
+                ax.grid(True, which="both", alpha=0.25)
+                if row == 0:
+                    ax.set_title(f"{kind} input ({model} model)")
+                if row == len(metrics) - 1:
+                    ax.set_xlabel("cost: ns per simulated second (one item)")
+                if col == 0:
+                    ax.set_ylabel(mlabel)
+                ax.legend(fontsize=6.5, loc="upper right")
+        fig.suptitle(f"Work-precision, {model} model: worst error over the cases of each input kind "
+                     "(labels: dopri5 tol, rk4 sub-steps; error 0 drawn at 1e-14)", fontsize=10)
+        fig.tight_layout()
+        save(fig, directory, f"work_precision_{model}")
+
+    summary.append("## Work-precision (worst error over the cases of each kind; cost = median ns per simulated second)\n")
+    summary.append("| model | input | rate | setting | ns/sim-s | ns/item-step | peak err (alpha) | impact err (s) | overturn t err (s) |")
+    summary.append("|---|---|---|---|---|---|---|---|---|")
+    key = defaultdict(list)
+    for r in rows:
+        rate = "native" if r["input"] == "record" else f"{int(round(fnum(r['sample_rate_hz'])))}Hz"
+        key[(r["model"], r["input"], rate, r["label"])].append(r)
+    for (model, kind, rate, label), rs in key.items():
+        costs = sorted(fnum(r["ns_per_sim_s"]) for r in rs)
+        steps = sorted(fnum(r["ns_per_item_step"]) for r in rs)
+        def worst(m):
+            v = [fnum(r[m]) for r in rs if not math.isnan(fnum(r[m]))]
+            return max(v) if v else float("nan")
+        summary.append(f"| {model} | {kind} | {rate} | {label} | {costs[len(costs) // 2]:.3g} | "
+                       f"{steps[len(steps) // 2]:.0f} | {worst('err_peak'):.1e} | {worst('err_impact_s'):.1e} | "
+                       f"{worst('err_overturn_s'):.1e} |")
+    summary.append("")
+
+
+# ----------------------------------------------------------------------------- overturn agreement
+def plot_overturn(directory, rows, summary):
+    def tally(reference_key, model_filter):
+        stats = defaultdict(lambda: [0, 0, 0, 0])  # runs, different, reference overturned, missed
+        for r in rows:
+            if r["model"] != model_filter or reference_key not in r:
+                continue
+            s = stats[r["label"]]
+            s[0] += 1
+            o, ro = r["overturned"] == "1", r[reference_key] == "1"
+            s[1] += o != ro
+            s[2] += ro
+            s[3] += ro and not o
+        return stats
+
+    panels = [("nonlinear methods vs nonlinear reference", tally("ref_overturned", "nonlinear")),
+              ("linearized methods vs linearized reference", tally("ref_overturned", "linearized")),
+              ("linearized methods vs NONLINEAR reference\n(error of the slender-body model itself)",
+               tally("nonlinear_ref_overturned", "linearized"))]
+    panels = [p for p in panels if p[1]]
+
+    def order(label):
+        m = label.split()[0]
+        v = label.split("=")[-1] if "=" in label else "0"
+        return ({"dopri5": 0, "rk4": 1, "analytic": 2}[m], -fnum(v) if m == "dopri5" else fnum(v))
+
+    fig, axes = plt.subplots(1, len(panels), figsize=(5.6 * len(panels), 5.8), squeeze=False)
+    for ax, (title, stats) in zip(axes[0], panels):
+        names = sorted(stats, key=order)
+        dis = [stats[n][1] for n in names]
+        y = range(len(names))
+        ax.barh(list(y), dis, color=[METHOD_COLOURS[n.split()[0]] for n in names])
+        for i, n in enumerate(names):
+            ax.text(dis[i], i, f" {dis[i]} / {stats[n][0]}", va="center", fontsize=7)
+        ax.set_yticks(list(y))
+        ax.set_yticklabels(names, fontsize=8)
+        ax.invert_yaxis()
+        ax.set_xlabel("overturn decisions different from the reference")
+        ax.set_title(f"{title}\n({stats[names[0]][2]} of {stats[names[0]][0]} runs overturn in the reference)",
+                     fontsize=9)
+        ax.set_xlim(0, max(5, max(dis) * 1.35))
+        ax.grid(True, axis="x", alpha=0.3)
+    fig.suptitle("Overturn decisions over every horizontal .AT2 record (x1 and x2) and 4 bodies; "
+                 "reference: dopri5 tol 1e-12")
+    fig.tight_layout()
+    save(fig, directory, "overturn_agreement")
+    summary.append("## Overturn decision agreement (every horizontal .AT2 record at x1 and x2, 4 bodies)\n")
+    summary.append("| comparison | setting | runs | reference overturned | different decisions | missed overturns |")
+    summary.append("|---|---|---|---|---|---|")
+    for title, stats in panels:
+        for n in sorted(stats, key=order):
+            s = stats[n]
+            summary.append(f"| {title.splitlines()[0]} | {n} | {s[0]} | {s[2]} | {s[1]} | {s[3]} |")
+    summary.append("")
+
+
+# ----------------------------------------------------------------------------- stability maps
+FAILURES = [
+    ("M", "missed impacts",
+     "impacts short of the reference by > 2 % (free rocking until rest), or first-10 impact times off by > 0.05/p s"),
+    ("C", "spurious chattering",
+     "more impacts than the reference by > 2 %, or a forced rest capture"),
+    ("E", "energy gained",
+     "a free-rocking peak higher than the one before it (> 1e-6 relative), or a spurious overturn"),
+    ("D", "wrong overturn decisions",
+     "overturning amplitude of one-sine pulses (wp = 2p, 4p) shifted by > 0.1 % from the reference's"),
+    ("R", "rest capture misfiring",
+     "returns to rest more than 2 samples + 0.5 % away from the reference, or never / when it should not"),
+]
+
+
+def failures(r):
+    imp, ref = fnum(r["impacts"]), fnum(r["ref_impacts"])
+    tol = max(1.0, 0.02 * ref)
+    p = fnum(r["p"])
+    dt = 1.0 / fnum(r["feed_hz"])
+    e_imp = fnum(r["err_impact_s"])
+    out = {}
+    out["M"] = (ref - imp > tol) or (not math.isnan(e_imp) and p * e_imp > 0.05)
+    out["C"] = (imp - ref > tol) or fnum(r["forced_rest"]) > 0
+    out["E"] = (fnum(r["energy_gain"]) > 1e-6 and fnum(r["ref_energy_gain"]) <= 1e-6) or r["free_overturned"] == "1"
+    shift = fnum(r["boundary_shift"])
+    out["D"] = not math.isnan(shift) and shift > 1e-3
+    rt, rr = fnum(r["rest_time"]), fnum(r["ref_rest_time"])
+    if math.isnan(rt) and math.isnan(rr):
+        out["R"] = False
+    elif math.isnan(rt) != math.isnan(rr):
+        out["R"] = True
+    else:
+        out["R"] = abs(rt - rr) > 2 * dt + 0.005 * rr
+    return out
+
+
+def metric_values(r):
+    """Continuous severity of each failure kind (for the detailed maps)."""
+    imp, ref = fnum(r["impacts"]), fnum(r["ref_impacts"])
+    p = fnum(r["p"])
+    e_imp = fnum(r["err_impact_s"])
+    rt, rr = fnum(r["rest_time"]), fnum(r["ref_rest_time"])
+    dt = 1.0 / fnum(r["feed_hz"])
+    rest = float("inf") if math.isnan(rt) != math.isnan(rr) else (0.0 if math.isnan(rt) else abs(rt - rr) / dt)
+    return {
+        "M": max(p * e_imp if not math.isnan(e_imp) else 0.0, max(0.0, (ref - imp) / max(ref, 1))),
+        "C": max(0.0, (imp - ref) / max(ref, 1)) + (1.0 if fnum(r["forced_rest"]) > 0 else 0.0),
+        "E": 1.0 if r["free_overturned"] == "1" else fnum(r["energy_gain"]),
+        "D": fnum(r["boundary_shift"]),
+        "R": rest,
+    }
+
+
+METRIC_LABELS = {
+    "M": "p x impact-time error (rad), or share of impacts missed",
+    "C": "share of extra impacts",
+    "E": "largest relative rise of a free-rocking peak",
+    "D": "relative shift of the overturning amplitude",
+    "R": "|rest time - reference| in samples",
+}
+METRIC_THRESHOLDS = {"M": 0.05, "C": 0.02, "E": 1e-6, "D": 1e-3, "R": 2.0}
+
+
+def grid_of(rows, xkey, ykey="p"):
+    xs = sorted({fnum(r[xkey]) for r in rows})
+    ys = sorted({fnum(r[ykey]) for r in rows})
+    return xs, ys
+
+
+def draw_summary_panel(ax, rows, xkey, xlabel, title, xlog=True, xreverse=False):
+    xs, ys = grid_of(rows, xkey)
+    cmap = ListedColormap(["#e8f5e9", "#ffe082", "#ffab91", "#e57373", "#b71c1c", "#4a0000"])
+    norm = BoundaryNorm([-0.5, 0.5, 1.5, 2.5, 3.5, 4.5, 5.5], cmap.N)
+    z = [[float("nan")] * len(xs) for _ in ys]
+    text = {}
+    for r in rows:
+        i, j = ys.index(fnum(r["p"])), xs.index(fnum(r[xkey]))
+        f = failures(r)
+        letters = "".join(k for k in "MCEDR" if f[k])
+        z[i][j] = len(letters)
+        text[(i, j)] = letters
+    ax.imshow(z, origin="lower", aspect="auto", cmap=cmap, norm=norm,
+              extent=(-0.5, len(xs) - 0.5, -0.5, len(ys) - 0.5))
+    for (i, j), t in text.items():
+        if t:
+            ax.text(j, i, t, ha="center", va="center", fontsize=6.5, color="k" if len(t) < 3 else "w")
+    ax.set_xticks(range(len(xs)))
+    if xkey == "param" and rows and rows[0]["method"] == "dopri5":
+        ax.set_xticklabels([f"1e{int(round(math.log10(x)))}" for x in xs], fontsize=7)
+    elif xkey == "h":
+        ax.set_xticklabels([f"{1000 * x:.3g}" for x in xs], fontsize=7, rotation=45)
+    else:
+        ax.set_xticklabels([f"{x:g}" for x in xs], fontsize=7)
+    ax.set_yticks(range(len(ys)))
+    ax.set_yticklabels([f"{y:g}" for y in ys], fontsize=7)
+    ax.set_xlabel(xlabel, fontsize=8)
+    ax.set_ylabel("p (rad/s)", fontsize=8)
+    ax.set_title(title, fontsize=9)
+    if xreverse:
+        ax.invert_xaxis()
+
+
+def plot_stability(directory, rows, summary):
+    rk = [r for r in rows if r["method"] == "rk4" and r["model"] == "nonlinear"]
+    dp = [r for r in rows if r["method"] == "dopri5"]
+    an = [r for r in rows if r["method"] == "analytic"]
+    alphas = sorted({fnum(r["alpha_deg"]) for r in rk})
+
+    # ---------------- overview: letters of the failing kinds in every cell
+    panels = []
+    for a in alphas:
+        panels.append(("rk4", [r for r in rk if fnum(r["alpha_deg"]) == a], "h",
+                       "step h = input interval / sub-steps (ms)", f"rk4, alpha = {a:g} deg"))
+    for feed in (200, 20):
+        for a in alphas:
+            sub = [r for r in dp if fnum(r["alpha_deg"]) == a and fnum(r["feed_hz"]) == feed]
+            if sub:
+                panels.append(("dopri5", sub, "param", "tolerance", f"dopri5 at {feed} Hz, alpha = {a:g} deg"))
+    if an:
+        panels.append(("analytic", an, "alpha_deg", "alpha (deg)", "analytic (linearized) vs nonlinear, 200 Hz"))
+    ncol = 4
+    nrow = math.ceil(len(panels) / ncol)
+    fig, axes = plt.subplots(nrow, ncol, figsize=(4.3 * ncol, 3.9 * nrow + 1.0), squeeze=False)
+    for k, (method, sub, xkey, xlabel, title) in enumerate(panels):
+        ax = axes[k // ncol][k % ncol]
+        draw_summary_panel(ax, sub, xkey, xlabel, title, xreverse=(method == "dopri5"))
+    for k in range(len(panels), nrow * ncol):
+        axes[k // ncol][k % ncol].set_visible(False)
+    legend = "   ".join(f"{c} = {name}" for c, name, _ in FAILURES)
+    fig.suptitle("Where each method fails (nonlinear reference: dopri5 tol 1e-12 on 8x finer samples)\n"
+                 + legend + "   (green: none)", fontsize=10)
+    fig.tight_layout()
+    save(fig, directory, "stability_summary")
+
+    # ---------------- detailed maps: one row per failure kind
+    def detail(name, sets, xkey, xfmt):
+        fig, axes = plt.subplots(len(FAILURES), len(sets), figsize=(3.6 * len(sets), 2.7 * len(FAILURES) + 0.8),
+                                 squeeze=False)
+        for col, (title, sub) in enumerate(sets):
+            xs, ys = grid_of(sub, xkey)
+            for row, (code, fname, _desc) in enumerate(FAILURES):
+                ax = axes[row][col]
+                z = [[float("nan")] * len(xs) for _ in ys]
+                fail = []
+                for r in sub:
+                    i, j = ys.index(fnum(r["p"])), xs.index(fnum(r[xkey]))
+                    v = metric_values(r)[code]
+                    z[i][j] = min(max(v, 1e-12), 1e3) if not math.isnan(v) else float("nan")
+                    if failures(r)[code]:
+                        fail.append((j, i))
+                im = ax.imshow(z, origin="lower", aspect="auto", cmap="viridis",
+                               norm=LogNorm(vmin=1e-10, vmax=1e2),
+                               extent=(-0.5, len(xs) - 0.5, -0.5, len(ys) - 0.5))
+                for j, i in fail:
+                    ax.text(j, i, "x", ha="center", va="center", color="red", fontsize=9, fontweight="bold")
+                ax.set_xticks(range(len(xs)))
+                ax.set_xticklabels([xfmt(x) for x in xs], fontsize=6, rotation=45)
+                ax.set_yticks(range(len(ys)))
+                ax.set_yticklabels([f"{y:g}" for y in ys], fontsize=6)
+                if row == 0:
+                    ax.set_title(title, fontsize=8.5)
+                if col == 0:
+                    ax.set_ylabel(f"{fname}\np (rad/s)", fontsize=8)
+                if row == len(FAILURES) - 1:
+                    ax.set_xlabel({"h": "step h (ms)", "param": "tolerance", "alpha_deg": "alpha (deg)"}[xkey],
+                                  fontsize=8)
+                if xkey == "param":
+                    ax.invert_xaxis()
+                if col == len(sets) - 1:
+                    cb = fig.colorbar(im, ax=ax, fraction=0.05)
+                    cb.ax.tick_params(labelsize=6.5)
+                    cb.set_label(METRIC_LABELS[code] + f"\n(x: > {METRIC_THRESHOLDS[code]:g})", fontsize=7)
+        fig.suptitle(f"{name}: severity of each failure kind (colour) and failing cells (red x)", fontsize=10)
+        fig.tight_layout()
+        save(fig, directory, f"stability_{name}")
+
+    if rk:
+        detail("rk4", [(f"rk4, alpha = {a:g} deg", [r for r in rk if fnum(r["alpha_deg"]) == a]) for a in alphas],
+               "h", lambda x: f"{1000 * x:.3g}")
+    if dp:
+        sets = []
+        for feed in (200, 20):
+            for a in alphas:
+                sub = [r for r in dp if fnum(r["alpha_deg"]) == a and fnum(r["feed_hz"]) == feed]
+                if sub:
+                    sets.append((f"dopri5 {feed} Hz, alpha = {a:g} deg", sub))
+        detail("dopri5", sets, "param", lambda x: f"1e{int(round(math.log10(x)))}")
+    if an:
+        detail("analytic", [("analytic (linearized) vs nonlinear", an)], "alpha_deg", lambda x: f"{x:g}")
+
+    # ---------------- summary lines: the first failing cell of each method
+    summary.append("## Stability maps: failing cells\n")
+    summary.append("Failure kinds: " + "; ".join(f"**{c}** {n}: {d}" for c, n, d in FAILURES) + ".\n")
+    summary.append("| method | input rate | alpha | failing cells (of) | kinds seen | smallest p*h with a failure |")
+    summary.append("|---|---|---|---|---|---|")
+    groups = defaultdict(list)
+    for r in rows:
+        groups[(r["method"], r["feed_hz"] if r["method"] != "rk4" else "all", r["alpha_deg"] if r["method"] != "analytic" else "all")].append(r)
+    for (m, feed, a), rs in sorted(groups.items()):
+        bad = [r for r in rs if any(failures(r).values())]
+        kinds = sorted({k for r in bad for k, v in failures(r).items() if v})
+        ph = min((fnum(r["p_h"]) for r in bad), default=float("nan"))
+        summary.append(f"| {m} | {feed} | {a} | {len(bad)} ({len(rs)}) | {''.join(kinds)} | {ph:.3g} |")
+    summary.append("")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--data", default="build-bench/performance",
+                    help="where rocking_benchmarks/rocking_accuracy wrote their JSON/CSV")
+    ap.add_argument("--out", default="docs/performance", help="where the charts go")
+    args = ap.parse_args()
+    d, out = args.data, args.out
+    if not os.path.isdir(d):
+        sys.exit(f"plot_performance: no such directory {d}")
+    os.makedirs(out, exist_ok=True)
+    summary = ["# Performance summary (generated by scripts/plot_performance.py)\n",
+               "Numbers behind the charts of this folder; see ../performance.md for their reading.\n"]
+    bj = os.path.join(d, "benchmarks.json")
+    if os.path.exists(bj):
+        rows, ctx = parse_benchmarks(bj)
+        plot_benchmarks(out, rows, ctx, summary)
+    else:
+        print("  (benchmarks.json not found: skipped)")
+    for name, fn in (("work_precision.csv", plot_work_precision),
+                     ("overturn_agreement.csv", plot_overturn),
+                     ("stability_map.csv", plot_stability)):
+        p = os.path.join(d, name)
+        if os.path.exists(p):
+            fn(out, read_csv(p), summary)
+        else:
+            print(f"  ({name} not found: skipped)")
+    with open(os.path.join(out, "summary.md"), "w") as f:
+        f.write("\n".join(summary) + "\n")
+    print(f"  wrote {os.path.join(out, 'summary.md')}")
+
+
+if __name__ == "__main__":
+    main()
