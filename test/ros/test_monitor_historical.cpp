@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <sstream>
 #include <nlohmann/json.hpp>
 #include <ros/ros.h>
 #include <rosbag/bag.h>
@@ -23,6 +24,13 @@
 namespace fs = std::filesystem;
 
 namespace {
+
+std::string num(double v) {
+  std::ostringstream os;
+  os.precision(17);
+  os << v;
+  return os.str();
+}
 
 std::string run(const std::string& cmd, int& status) {
   std::string out;
@@ -70,10 +78,10 @@ TEST(MonitorHistorical, AlarmsEqualRockingSimForEveryItem) {
   for (const auto& item : cat.items) {
     const auto& b = item.spec.body;
     std::string cmd = tools + "/rocking_sim --record " + h.string() + " --vertical " + v.string() +
-                      " --json --tol " + std::to_string(tol) + " --width " + std::to_string(b.width) +
-                      " --cg-height " + std::to_string(b.cg_height) + " --eccentricity " + std::to_string(b.nu1);
-    if (!std::isnan(b.radius_of_gyration)) cmd += " --radius-of-gyration " + std::to_string(b.radius_of_gyration);
-    if (!std::isnan(b.restitution)) cmd += " --restitution " + std::to_string(b.restitution);
+                      " --json --tol " + num(tol) + " --width " + num(b.width) + " --cg-height " +
+                      num(b.cg_height) + " --eccentricity " + num(b.nu1);
+    if (!std::isnan(b.radius_of_gyration)) cmd += " --radius-of-gyration " + num(b.radius_of_gyration);
+    if (!std::isnan(b.restitution)) cmd += " --restitution " + num(b.restitution);
     const std::string json = run(cmd + " 2>/dev/null", status);
     ASSERT_EQ(status, 0) << cmd;
     offline[item.spec.id] = nlohmann::json::parse(json);

@@ -1,0 +1,211 @@
+// The rocking_study command line: options, identical files for 1 and 2 threads, shards + --merge
+// equal to the whole run, error messages and exit status, a reduced run over real records, and the
+// figure script on its output.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int status = -1;
+  std::string out;  // stdout + stderr
+};
+
+CliRun run(const std::string& cmd) {
+  CliRun r;
+  FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) return r;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), pipe) != nullptr) r.out += buf.data();
+  const int st = pclose(pipe);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+CliRun study(const std::string& args) { return run(std::string(ROCKING_STUDY_EXE) + " " + args); }
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+const fs::path& root() {
+  static const fs::path r = fs::temp_directory_path() / ("rocking_study_cli_" + std::to_string(::getpid()));
+  return r;
+}
+
+class Cleanup : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(root(), ec);
+  }
+};
+const auto* const kCleanup = ::testing::AddGlobalTestEnvironment(new Cleanup);
+
+// Three one-sine pulses (one with a vertical column) and a YAML body list.
+fs::path fixture() {
+  const fs::path dir = root() / "fixture";
+  if (fs::exists(dir / "bodies.yaml")) return dir;
+  fs::create_directories(dir / "records" / "pulses");
+  struct P {
+    const char* name;
+    double a, f, av;
+  };
+  for (const P& p : {P{"strong", 4.0, 0.8, -1}, P{"mid", 2.5, 1.5, -1}, P{"vert", 3.5, 1.0, 3.0}}) {
+    std::ofstream out(dir / "records" / "pulses" / (std::string(p.name) + ".csv"));
+    const double w = 2 * 3.14159265358979323846 * p.f;
+    for (int i = 0; i <= 800; ++i) {
+      const double t = 0.01 * i;
+      const double on = t <= 1.0 / p.f ? 1.0 : 0.0;
+      char line[128];
+      if (p.av >= 0)
+        std::snprintf(line, sizeof line, "%.2f,%.17g,%.17g\n", t, on * p.a * std::sin(w * t),
+                      on * p.av * std::sin(2 * w * t));
+      else
+        std::snprintf(line, sizeof line, "%.2f,%.17g\n", t, on * p.a * std::sin(w * t));
+      out << line;
+    }
+  }
+  std::ofstream(dir / "bodies.yaml") << "bodies:\n"
+                                        "  - {name: vase, width: 0.12, cg_height: 0.35, nu1: [0.5, 0.3]}\n"
+                                        "  - {name: cabinet, width: 0.45, cg_height: 0.9, nu1: [0.5, 0.4, 0.2]}\n"
+                                        "  - {name: rack, width: 0.6, cg_height: 1.0}\n"
+                                        "  - {name: cart, width: 0.3, cg_height: 0.5, nu1: 0.35,"
+                                        " radius_of_gyration: 0.25}\n";
+  return dir;
+}
+
+TEST(StudyCli, HelpListsTheOptions) {
+  const CliRun r = study("--help");
+  ASSERT_EQ(r.status, 0) << r.out;
+  for (const char* opt : {"--records", "--bodies", "--method", "--tol", "--substeps", "--model", "--threads",
+                          "--shard", "--out", "--merge", "--heights", "--widths", "--eccentricities", "--only",
+                          "--no-vertical", "--quiet"})
+    EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
+}
+
+TEST(StudyCli, ThreadCountShardsAndMergeGiveIdenticalFiles) {
+  const fs::path dir = fixture();
+  const std::string common = "--records " + (dir / "records").string() + " --bodies " +
+                             (dir / "bodies.yaml").string() + " --quiet";
+  const fs::path one = root() / "one", two = root() / "two";
+  CliRun r = study(common + " --threads 1 --out " + one.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  r = study(common + " --threads 2 --out " + two.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  const std::string whole = slurp(one / "cases.csv");
+  EXPECT_EQ(whole, slurp(two / "cases.csv"));
+  // 7 bodies x (2 + 2 + 4) inputs, plus the header.
+  EXPECT_EQ(std::count(whole.begin(), whole.end(), '\n'), 1 + 7 * 8);
+  EXPECT_EQ(slurp(one / "bodies.csv"), slurp(two / "bodies.csv"));
+  EXPECT_EQ(slurp(one / "records.csv"), slurp(two / "records.csv"));
+
+  std::string merge_args;
+  std::string concatenated;
+  for (int k = 1; k <= 3; ++k) {
+    const fs::path out = root() / ("shard" + std::to_string(k));
+    r = study(common + " --threads 2 --shard " + std::to_string(k) + "/3 --out " + out.string());
+    ASSERT_EQ(r.status, 0) << r.out;
+    const std::string part = slurp(out / "cases.csv");
+    concatenated += part.substr(part.find('\n') + 1);  // without the header
+    merge_args += " " + (out / "cases.csv").string();
+  }
+  EXPECT_EQ(whole.substr(whole.find('\n') + 1), concatenated);
+  const fs::path merged = root() / "merged";
+  r = study("--merge" + merge_args + " --out " + merged.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(slurp(merged / "cases.csv"), whole);
+  const auto a = nlohmann::json::parse(slurp(one / "summary.json"));
+  const auto b = nlohmann::json::parse(slurp(merged / "summary.json"));
+  EXPECT_EQ(a["sets"], b["sets"]);
+  EXPECT_EQ(a["vertical_effect"], b["vertical_effect"]);
+  EXPECT_EQ(a["headline"], b["headline"]);
+  EXPECT_EQ(a["cases"].get<long>(), 56);
+
+  // A missing shard is an error naming the first missing case.
+  r = study("--merge " + (root() / "shard1" / "cases.csv").string() + " " +
+            (root() / "shard3" / "cases.csv").string() + " --out " + (root() / "bad_merge").string());
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("is missing"), std::string::npos) << r.out;
+}
+
+TEST(StudyCli, BadInputExitsWithStatus2AndOneLineNamingTheProblem) {
+  const fs::path dir = fixture();
+  const fs::path bad = root() / "bad.yaml";
+  std::ofstream(bad) << "bodies:\n  - {name: shelf, width: 0.4, cg_height: -2}\n";
+  const std::string rec = " --records " + (dir / "records").string() + " --quiet --out " + (root() / "bad").string();
+  struct Case {
+    std::string args;
+    std::vector<std::string> expect;
+  };
+  const std::vector<Case> cases{
+      {"--bodies " + bad.string() + rec, {bad.string(), "bodies[0] (shelf)", "cg_height", "-2"}},
+      {"--records " + (root() / "nowhere").string(), {"nowhere", "not a directory"}},
+      {"--shard 3/2" + rec, {"invalid shard"}},
+      {"--method analytic" + rec, {"analytic", "linearized"}},
+      {"--eccentricities 0.5,x" + rec, {"--eccentricities", "'x'"}},
+  };
+  for (const auto& c : cases) {
+    const CliRun r = study(c.args);
+    EXPECT_EQ(r.status, 2) << c.args << "\n" << r.out;
+    EXPECT_NE(r.out.find("rocking_study: error: "), std::string::npos) << r.out;
+    for (const auto& s : c.expect) EXPECT_NE(r.out.find(s), std::string::npos) << r.out << " lacks " << s;
+  }
+}
+
+// A reduced version of the documented full study: two stations of ../shared/records (one with a
+// vertical) on a 2 x 3 grid, then the figure script on the result.
+TEST(StudyCli, ReducedRunOverRealRecordsAndFigures) {
+  const fs::path records(ROCKING_RECORDS_DIR);
+  if (!fs::exists(records / "MANIFEST.csv")) GTEST_SKIP() << "no records at " << records;
+  const fs::path out = root() / "real";
+  const CliRun r = study("--records " + records.string() +
+                      " --only Rinaldi --only CHY028 --heights 2 --widths 3 --eccentricities 0.5,0.3 "
+                      "--method rk4 --quiet --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("Ishiyama's criterion satisfied in"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(slurp(out / "summary.json"));
+  // 12 bodies x (Rinaldi 228/318 with UP: 2 x 2 x 2, CHY028 N/E: 2 x 2) = 12 x 12.
+  EXPECT_EQ(j["cases"].get<long>(), 144);
+  EXPECT_EQ(j["records"].get<long>(), 4);
+  EXPECT_EQ(j["records_with_vertical"].get<long>(), 2);
+  EXPECT_EQ(j["run"]["method"], "rk4");
+  EXPECT_TRUE(j["run"]["from_manifest"].get<bool>());
+
+  const CliRun probe = run(std::string(ROCKING_PYTHON) + " -c 'import matplotlib'");
+  if (probe.status != 0) GTEST_SKIP() << "python3-matplotlib not installed: figures not checked";
+  const fs::path figs = root() / "figures";
+  const CliRun p = run(std::string(ROCKING_PYTHON) + " " + ROCKING_SOURCE_DIR + "/scripts/plot_study.py " +
+                    out.string() + " --out " + figs.string());
+  ASSERT_EQ(p.status, 0) << p.out;
+  for (const char* f : {"figure4_nu0.50", "figure5_nu0.30", "figure7_overturned_percent", "figure8_ratio"}) {
+    for (const char* ext : {".png", ".svg"}) {
+      const fs::path file = figs / (std::string(f) + ext);
+      ASSERT_TRUE(fs::exists(file)) << file;
+      EXPECT_GT(fs::file_size(file), 10000u) << file;
+    }
+  }
+  const CliRun pv = run(std::string(ROCKING_PYTHON) + " " + ROCKING_SOURCE_DIR + "/scripts/plot_study.py " +
+                     out.string() + " --vertical --formats png --out " + (root() / "figures_v").string());
+  EXPECT_EQ(pv.status, 0) << pv.out;
+}
+
+}  // namespace
