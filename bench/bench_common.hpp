@@ -18,6 +18,8 @@
 #include "rocking_monitor/core/rocking_model.hpp"
 #include "rocking_monitor/core/solver_settings.hpp"
 
+#include "test_helpers.hpp"
+
 namespace rocking_monitor::bench {
 
 using namespace rocking_monitor::core;
@@ -34,17 +36,10 @@ inline double thread_cpu_seconds() {
 inline constexpr double kFeedRate = 200.0;  // Hz
 inline constexpr double kFeedDt = 1.0 / kFeedRate;
 
-inline double deg(double d) { return d * kPi / 180.0; }
-
-/// Homogeneous symmetric rectangle with given p (rad/s) and alpha (rad): I_O = (4/3) m R^2 for a
-/// rectangle, so p^2 = 3 g / (4 R).
-inline BodyParameters rectangle_with(double p, double alpha) {
-  const double r = 3.0 * kGravity / (4.0 * p * p);
-  BodyParameters b;
-  b.width = 2.0 * r * std::sin(alpha);
-  b.cg_height = r * std::cos(alpha);
-  return b;
-}
+// The same oracle builders as the tests (deg, rectangle_with, one_sine_pulse).
+using rocking_monitor::core::testing::deg;
+using rocking_monitor::core::testing::one_sine_pulse;
+using rocking_monitor::core::testing::rectangle_with;
 
 /// One named solver setting (method + parameters), e.g. "dopri5 tol=1e-8".
 struct MethodSetting {
@@ -154,21 +149,6 @@ inline std::vector<std::string> at2_files(const std::string& dir) {
 inline bool records_available(const std::string& dir) {
   std::error_code ec;
   return std::filesystem::is_directory(dir, ec);
-}
-
-/// One-sine pulse a_p sin(w t) on [0, 2 pi / w], then zeros until t_end, sampled at dt.
-inline GroundMotion one_sine_pulse(double a_p, double w, double dt, double t_end) {
-  GroundMotion g;
-  g.dt = dt;
-  const double tp = 2.0 * kPi / w;
-  const auto n = static_cast<std::size_t>(std::llround(t_end / dt)) + 1;
-  g.horizontal.assign(n, 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double t = static_cast<double>(i) * dt;
-    g.horizontal[i] = t <= tp ? a_p * std::sin(w * t) : 0.0;
-  }
-  g.description = "one-sine pulse";
-  return g;
 }
 
 inline GroundMotion zeros(double dt, double t_end) {

@@ -42,6 +42,7 @@ if(BUILD_TESTING)
     ROCKING_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}"
     ROCKING_STUDY_EXE="$<TARGET_FILE:rocking_study>"
     ROCKING_PYTHON="/usr/bin/python3")
+  target_include_directories(study_cli_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/core)
   add_dependencies(study_cli_tests rocking_study)
   gtest_discover_tests(study_cli_tests DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 900)
 endif()

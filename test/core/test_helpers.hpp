@@ -1,7 +1,12 @@
 #pragma once
 // Small builders shared by the core tests.
 
+#include <sys/wait.h>
+
+#include <array>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <vector>
 
 #include "rocking_monitor/core/body.hpp"
@@ -35,5 +40,22 @@ inline GroundMotion one_sine_pulse(double a_p, double w, double dt, double t_end
 }
 
 inline double deg(double d) { return d * kPi / 180.0; }
+
+/// Runs a shell command (tests of the command-line tools); `out` is its standard output (append
+/// 2>&1 to the command to capture errors too), `status` its exit status (-1 if it did not exit).
+struct CommandResult {
+  int status = -1;
+  std::string out;
+};
+inline CommandResult run_command(const std::string& cmd) {
+  CommandResult r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (pipe == nullptr) return r;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), pipe) != nullptr) r.out += buf.data();
+  const int st = pclose(pipe);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
 
 }  // namespace rocking_monitor::core::testing

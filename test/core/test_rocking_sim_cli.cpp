@@ -16,27 +16,17 @@
 
 #include "rocking_monitor/core/record_reader.hpp"
 #include "rocking_monitor/core/simulation.hpp"
+#include "test_helpers.hpp"
 
 namespace rocking_monitor::core {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int status = -1;
-  std::string out;  // stdout and stderr
-};
+using CliRun = testing::CommandResult;
 
 CliRun run_sim(const std::string& args) {
-  const std::string cmd = std::string(ROCKING_SIM_EXE) + " " + args + " 2>&1";
-  CliRun r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (pipe == nullptr) return r;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), pipe) != nullptr) r.out += buf.data();
-  const int st = pclose(pipe);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
+  return testing::run_command(std::string(ROCKING_SIM_EXE) + " " + args + " 2>&1");
 }
 
 const std::string kPulse = std::string(ROCKING_SOURCE_DIR) + "/bags/one_sine_pulse.csv";

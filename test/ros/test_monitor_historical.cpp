@@ -20,6 +20,7 @@
 #include "rocking_monitor/OverturnAlarm.h"
 #include "rocking_monitor/RockingStateArray.h"
 #include "rocking_monitor/ros/catalogue.hpp"
+#include "test_helpers.hpp"
 
 namespace fs = std::filesystem;
 
@@ -33,17 +34,9 @@ std::string num(double v) {
 }
 
 std::string run(const std::string& cmd, int& status) {
-  std::string out;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (p == nullptr) {
-    status = -1;
-    return out;
-  }
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), p) != nullptr) out += buf.data();
-  const int st = pclose(p);
-  status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return out;
+  const rocking_monitor::core::testing::CommandResult r = rocking_monitor::core::testing::run_command(cmd);
+  status = r.status;
+  return r.out;
 }
 
 TEST(MonitorHistorical, AlarmsEqualRockingSimForEveryItem) {

@@ -13,6 +13,8 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+
+#include "test_helpers.hpp"
 #include <sstream>
 #include <string>
 #include <vector>
@@ -21,21 +23,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int status = -1;
-  std::string out;  // stdout + stderr
-};
+using CliRun = rocking_monitor::core::testing::CommandResult;
 
-CliRun run(const std::string& cmd) {
-  CliRun r;
-  FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
-  if (pipe == nullptr) return r;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), pipe) != nullptr) r.out += buf.data();
-  const int st = pclose(pipe);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
+CliRun run(const std::string& cmd) { return rocking_monitor::core::testing::run_command(cmd + " 2>&1"); }
 
 CliRun study(const std::string& args) { return run(std::string(ROCKING_STUDY_EXE) + " " + args); }
 
