@@ -10,6 +10,8 @@
 #include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/Imu.h>
 
+#include <std_srvs/Trigger.h>
+
 #include "rocking_monitor/RockingStateArray.h"
 
 namespace {
@@ -122,6 +124,26 @@ TEST_F(BadInput, EachFaultIsHandledCountedAndTheNodeKeepsGoing) {
   EXPECT_EQ(status_[c].level, diagnostic_msgs::DiagnosticStatus::WARN);
   EXPECT_TRUE(status_.count("rocking_monitor: sensor floor input /ground/imu topic status"))
       << "TopicDiagnostic (rate and stamp delay) missing";
+}
+
+// ~reset re-arms items: an item knocked over by a strong push is back at rest afterwards.
+TEST_F(BadInput, ResetReArmsAnOverturnedItem) {
+  double t = 100.0;
+  for (int i = 0; i < 20; ++i, t += 0.01) sample(t, 0.0);
+  for (int i = 0; i < 150; ++i, t += 0.01) sample(t, 20.0);  // 2 g for 1.5 s: the 0.4 x 0.8 m box falls
+  for (int i = 0; i < 100; ++i, t += 0.01) sample(t, 0.0);
+  spin_for(0.5);
+  ASSERT_EQ(last_states_.items.size(), 2u);
+  ASSERT_EQ(last_states_.items[0].mode, rocking_monitor::RockingState::OVERTURNED);
+  std_srvs::Trigger srv;
+  ASSERT_TRUE(ros::service::waitForService("/rocking_monitor/reset", ros::Duration(5.0)));
+  ASSERT_TRUE(ros::service::call("/rocking_monitor/reset", srv));
+  EXPECT_TRUE(srv.response.success);
+  for (int i = 0; i < 50; ++i, t += 0.01) sample(t, 0.0);
+  spin_for(0.5);
+  EXPECT_EQ(last_states_.items[0].mode, rocking_monitor::RockingState::REST);
+  EXPECT_EQ(last_states_.items[0].impacts, 0u);
+  EXPECT_GT(last_states_.items[0].input_stamp.toSec(), t - 0.5);
 }
 
 }  // namespace
