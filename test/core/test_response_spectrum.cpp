@@ -99,7 +99,19 @@ TEST_P(SpectrumNigamJenningsExact, RampResponseMatchesClosedForm) {
   EXPECT_LT(max_v_err, 1e-12);
 }
 
-INSTANTIATE_TEST_SUITE_P(Cases, SpectrumNigamJenningsExact, ::testing::ValuesIn(kExactCases));
+INSTANTIATE_TEST_SUITE_P(Cases, SpectrumNigamJenningsExact, ::testing::ValuesIn(kExactCases),
+                         [](const ::testing::TestParamInfo<OscillatorCase>& info) {
+                           // e.g. "T0p5_z0p05_dt0p1": readable names in the ctest listing
+                           auto f = [](double v) {
+                             std::string s = std::to_string(v);
+                             s.erase(s.find_last_not_of('0') + 1);
+                             if (!s.empty() && s.back() == '.') s.pop_back();
+                             for (char& c : s) if (c == '.') c = 'p';
+                             return s;
+                           };
+                           return "T" + f(info.param.period) + "_z" + f(info.param.damping) + "_dt" +
+                                  f(info.param.dt) + "_" + std::to_string(info.index);
+                         });
 
 // Long period with a fine dt is where the B coefficients suffer cancellation (terms ~2z/(w^3 dt) cancelling
 // to ~dt^2); the long-double evaluation keeps the ramp response exact to 1e-11 even at w dt = 6e-4
