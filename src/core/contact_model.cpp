@@ -547,17 +547,10 @@ void ContactModel::handle_event(int ev, const GroundInput& in, double tau) {
 }
 
 const ContactReport& ContactModel::step(double ax, double ay, double dt) {
-  if (!(dt > 0.0) || !std::isfinite(dt))
-    throw std::invalid_argument("ContactModel::step: dt must be finite and > 0");
-  if (!std::isfinite(ax) || !std::isfinite(ay))
-    throw std::invalid_argument("ContactModel::step: ground acceleration must be finite");
+  require_valid_sample(ax, ay, dt, "ContactModel::step");
   report_ = ContactReport{};
   dt_ = dt;
-  GroundInput in;
-  in.ax0 = ax_prev_;
-  in.ax_slope = (ax - ax_prev_) / dt;
-  in.ay0 = ay_prev_;
-  in.ay_slope = (ay - ay_prev_) / dt;
+  const GroundInput in = GroundInput::first_order_hold(ax_prev_, ay_prev_, ax, ay, dt);
 
   double tau = 0.0;
   int events = 0;

@@ -1,6 +1,16 @@
 #include "rocking_monitor/core/dynamics.hpp"
 
+#include <stdexcept>
+#include <string>
+
 namespace rocking_monitor::core {
+
+void require_valid_sample(double ax, double ay, double dt, const char* who) {
+  if (!(dt > 0.0) || !std::isfinite(dt))
+    throw std::invalid_argument(std::string(who) + ": dt must be finite and > 0");
+  if (!std::isfinite(ax) || !std::isfinite(ay))
+    throw std::invalid_argument(std::string(who) + ": ground acceleration must be finite");
+}
 
 ContactReaction rocking_reaction(const Pivot& pv, int side, double theta, double omega,
                                  double theta_ddot, double ax, double ay) {

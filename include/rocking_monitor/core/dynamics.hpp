@@ -21,7 +21,16 @@ struct GroundInput {
 
   double ax(double tau) const { return ax0 + ax_slope * tau; }
   double ay(double tau) const { return ay0 + ay_slope * tau; }
+
+  /// The straight line from sample (ax0, ay0) to the next sample (ax1, ay1), dt seconds later.
+  static GroundInput first_order_hold(double ax0, double ay0, double ax1, double ay1, double dt) {
+    return {ax0, (ax1 - ax0) / dt, ay0, (ay1 - ay0) / dt};
+  }
 };
+
+/// Throws std::invalid_argument ("<who>: ...") unless dt is finite and > 0 and ax, ay are finite:
+/// the common precondition of the streaming models' step().
+void require_valid_sample(double ax, double ay, double dt, const char* who);
 
 /// Right-hand side of pure rocking about pivot `side` (+1: corner 1, theta > 0; -1: corner 2).
 /// With phi = alpha_s - s*theta (angle of the pivot->CoM line from the vertical, > 0 inside):
