@@ -590,7 +590,9 @@ void RockingMonitor::sensor_diagnostics(std::size_t i, diagnostic_updater::Diagn
 void RockingMonitor::catalogue_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st) {
   std::array<int, 5> counts{};
   int without_tf = 0, invalid = 0;
+  std::uint64_t skipped = 0;
   for (const Item& it : items_) {
+    skipped += it.samples_without_transform;
     ++counts[static_cast<int>(it.monitor->mode())];
     if (!it.has_rotation) ++without_tf;
     if (it.monitor->violations() != 0) ++invalid;
@@ -602,6 +604,7 @@ void RockingMonitor::catalogue_diagnostics(diagnostic_updater::DiagnosticStatusW
   for (int m = 0; m < 5; ++m) st.add(core::to_string(static_cast<ItemMode>(m)), counts[m]);
   st.add("pure-rocking model not valid now", invalid);
   st.add("items without transform", without_tf);
+  st.add("item-samples skipped for want of a transform", skipped);
   st.add("alarms published", alarms_published_);
   st.add("method", core::to_string(options_.solver.method));
 }
