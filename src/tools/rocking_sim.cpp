@@ -1,6 +1,7 @@
 // rocking_sim: runs one body through one ground-motion record with the ROS-free core.
 // Thin command-line layer: parse, read, simulate, print. All physics lives in the core library.
 #include <cmath>
+#include <ctime>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -11,6 +12,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "rocking_monitor/core/adaptive_model.hpp"
 #include "rocking_monitor/core/criteria.hpp"
 #include "rocking_monitor/core/ground_motion.hpp"
 #include "rocking_monitor/core/record_reader.hpp"
@@ -46,6 +48,50 @@ void write_history(const std::string& path, const rm::SimulationResult& r) {
   if (!out) throw std::runtime_error(path + ": write failed");
 }
 
+// --fidelity contact | adaptive: the AdaptiveModel over the record, as a SimulationResult-like summary.
+struct FidelityRun {
+  rm::AdaptiveOutcome outcome;
+  std::string final_mode;
+  std::vector<rm::SwitchRecord> switches;
+  rm::SwitchReason initial = rm::SwitchReason::None;
+  double cpu_time_s = 0.0;
+};
+
+FidelityRun run_fidelity(const rm::Body& body, const rm::AdaptiveSettings& settings,
+                         const rm::GroundMotion& motion, const std::string& history_path) {
+  rm::AdaptiveModel model(body, settings);
+  std::ofstream hist;
+  if (!history_path.empty()) {
+    hist.open(history_path);
+    if (!hist) throw std::runtime_error(history_path + ": cannot open for writing");
+    hist << "time_s,ax_mps2,ay_mps2,model,mode,pivot,theta_rad,omega_radps,slip_m\n";
+  }
+  auto ay = [&](std::size_t i) { return motion.vertical.empty() ? 0.0 : motion.vertical[i]; };
+  char line[256];
+  auto row = [&](std::size_t i) {
+    if (!hist.is_open()) return;
+    std::snprintf(line, sizeof line, "%.6f,%.9g,%.9g,%s,%s,%d,%.12g,%.12g,%.12g\n", model.time(),
+                  motion.horizontal[i], ay(i), rm::to_string(model.active()), model.mode_name(),
+                  model.side(), model.theta(), model.omega(), model.slip());
+    hist << line;
+  };
+  const std::clock_t start = std::clock();  // CPU time, as simulate()
+  model.reset(0.0, motion.horizontal.front(), ay(0));
+  row(0);
+  for (std::size_t i = 1; i < motion.size(); ++i) {
+    model.step(motion.horizontal[i], ay(i), motion.dt);
+    row(i);
+  }
+  FidelityRun r;
+  r.cpu_time_s = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
+  r.outcome = model.outcome();
+  r.final_mode = model.mode_name();
+  r.switches = model.switches();
+  r.initial = model.initial_reason();
+  if (hist.is_open() && !hist) throw std::runtime_error(history_path + ": write failed");
+  return r;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -74,6 +120,15 @@ int main(int argc, char** argv) {
   app.add_option("--radius-of-gyration", body.radius_of_gyration,
                  "Central radius of gyration i_g, m (default: homogeneous rectangle B x 2h)");
   app.add_option("--mu-s", body.mu_s, "Static friction coefficient (default: not checked)");
+  app.add_option("--mu-k", body.mu_k,
+                 "Kinetic friction coefficient for --fidelity contact|adaptive (default mu_s)");
+  std::string fidelity_text = "rocking";
+  app.add_option("--fidelity", fidelity_text,
+                 "rocking (pure-rocking model only, violations flagged) | contact (full contact "
+                 "model: slide, slide-rock, flight) | adaptive (rocking model while valid, contact "
+                 "model when needed; docs/fidelity.md)")
+      ->check(CLI::IsMember({"rocking", "contact", "adaptive"}))
+      ->default_val("rocking");
   app.add_option("--restitution", body.restitution,
                  "Measured angular-velocity ratio at impact, overrides eq. 34");
   app.add_option("--model", model_text, "nonlinear | linearized")
@@ -127,12 +182,86 @@ int main(int argc, char** argv) {
         rm::make_ground_motion(horizontal, vertical ? &*vertical : nullptr, scale, &notice);
     if (!notice.empty()) std::cerr << "rocking_sim: note: " << notice << "\n";
 
+    rm::Fidelity fidelity = rm::Fidelity::Rocking;
+    rm::parse_fidelity(fidelity_text.c_str(), fidelity);
+    double pga = 0.0;
+    for (double a : motion.horizontal) pga = std::max(pga, std::abs(a));
+    if (fidelity != rm::Fidelity::Rocking) {
+      rm::AdaptiveSettings as;
+      as.fidelity = fidelity;
+      as.rocking = settings;
+      const FidelityRun f = run_fidelity(rigid, as, motion, history_path);
+      const rm::AdaptiveOutcome& o = f.outcome;
+      json reasons = json::array();
+      for (const auto& sw : f.switches)
+        reasons.push_back({{"time_s", sw.time}, {"onset_time_s", sw.onset_time},
+                           {"to", rm::to_string(sw.to)}, {"reason", rm::to_string(sw.reason)}});
+      if (as_json) {
+        json out = {{"overturned", o.overturned},
+                    {"committed", o.committed},
+                    {"beyond_tipping", o.beyond_tipping},
+                    {"max_rotation_ratio", o.max_rotation_ratio},
+                    {"impacts", o.impacts},
+                    {"uplift_time_s", nullable(o.uplift_time)},
+                    {"beyond_tipping_time_s", nullable(o.beyond_tipping_time)},
+                    {"committed_time_s", nullable(o.committed_time)},
+                    {"overturn_time_s", nullable(o.overturn_time)},
+                    {"final_mode", f.final_mode},
+                    {"slip_episodes", o.slip_episodes},
+                    {"flight_episodes", o.flight_episodes},
+                    {"first_slip_time_s", nullable(o.first_slip_time)},
+                    {"first_flight_time_s", nullable(o.first_flight_time)},
+                    {"max_abs_slip_m", o.max_abs_slip},
+                    {"method", rm::to_string(settings.method)},
+                    {"model", rm::to_string(settings.model)},
+                    {"fidelity", rm::to_string(fidelity)},
+                    {"initial_model_reason", rm::to_string(f.initial)},
+                    {"sliding_ruled_out", o.sliding_ruled_out},
+                    {"samples_rocking_model", o.samples_rocking_model},
+                    {"samples_contact_model", o.samples_contact_model},
+                    {"replayed_samples", o.replayed_samples},
+                    {"model_switches", o.model_switches},
+                    {"switch_reasons", reasons},
+                    {"steps", o.rocking_steps + o.contact_steps},
+                    {"steps_rocking_model", o.rocking_steps},
+                    {"steps_contact_model", o.contact_steps},
+                    {"samples", o.samples},
+                    {"cpu_time_s", f.cpu_time_s},
+                    {"record",
+                     {{"description", motion.description},
+                      {"dt_s", motion.dt},
+                      {"samples", motion.size()},
+                      {"scale", scale},
+                      {"pga_mps2", pga},
+                      {"has_vertical", !motion.vertical.empty()}}}};
+        std::cout << out.dump(2) << "\n";
+      } else {
+        auto when = [](double t) { return std::isnan(t) ? std::string("never") : std::to_string(t) + " s"; };
+        std::printf("record      %s (%zu samples, dt %.4g s, PGA %.3f m/s^2)\n",
+                    motion.description.c_str(), motion.size(), motion.dt, pga);
+        std::printf("fidelity    %s (start: %s)\n", rm::to_string(fidelity), rm::to_string(f.initial));
+        std::printf("result      %s, final mode %s\n", o.overturned ? "OVERTURNED" : "survived",
+                    f.final_mode.c_str());
+        std::printf("times       uplift %s, beyond tipping %s, committed %s, overturned %s, "
+                    "first slip %s, first flight %s\n",
+                    when(o.uplift_time).c_str(), when(o.beyond_tipping_time).c_str(),
+                    when(o.committed_time).c_str(), when(o.overturn_time).c_str(),
+                    when(o.first_slip_time).c_str(), when(o.first_flight_time).c_str());
+        for (const auto& sw : f.switches)
+          std::printf("switch      to %s at %.4f s (detected %.4f s): %s\n", rm::to_string(sw.to),
+                      sw.time, sw.onset_time, rm::to_string(sw.reason));
+        std::printf("cost        %ld rocking-model + %ld contact-model samples, %ld + %ld steps, "
+                    "%.4f s CPU\n",
+                    o.samples_rocking_model, o.samples_contact_model, o.rocking_steps,
+                    o.contact_steps, f.cpu_time_s);
+      }
+      return 0;
+    }
+
     const rm::SimulationResult r = rm::simulate(rigid, settings, motion, !history_path.empty());
     if (!history_path.empty()) write_history(history_path, r);
 
     const rm::RockingOutcome& o = r.outcome;
-    double pga = 0.0;
-    for (double a : motion.horizontal) pga = std::max(pga, std::abs(a));
     if (as_json) {
       json violations = json::array();
       for (const auto& v : r.violations)
@@ -156,6 +285,11 @@ int main(int argc, char** argv) {
           {"forced_rest_captures", o.forced_rest_captures},
           {"method", rm::to_string(settings.method)},
           {"model", rm::to_string(settings.model)},
+          {"fidelity", "rocking"},
+          {"samples_rocking_model", o.samples},
+          {"samples_contact_model", 0},
+          {"model_switches", 0},
+          {"switch_reasons", json::array()},
           {"tol", settings.tol},
           {"substeps", settings.substeps},
           {"steps", o.integrator_steps},

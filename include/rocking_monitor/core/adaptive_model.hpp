@@ -1,0 +1,179 @@
+#pragma once
+// Fidelity selection per item (issue 7, part 2): run the cheap pure-rocking RockingModel while pure
+// rocking is valid and the full ContactModel only when sliding or free flight can happen.
+// See docs/fidelity.md.
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "rocking_monitor/core/contact_model.hpp"
+#include "rocking_monitor/core/rocking_model.hpp"
+
+namespace rocking_monitor::core {
+
+/// Which model(s) an item runs.
+enum class Fidelity : std::uint8_t {
+  Rocking,   ///< RockingModel only (today's behaviour; violations are only flagged)
+  Contact,   ///< ContactModel only (the richest model)
+  Adaptive,  ///< RockingModel while pure rocking is valid, ContactModel when it is not
+};
+const char* to_string(Fidelity fidelity);
+/// "rocking" | "contact" | "adaptive"; false for an unknown name.
+bool parse_fidelity(const char* text, Fidelity& fidelity);
+
+enum class ActiveModel : std::uint8_t { Rocking, Contact };
+const char* to_string(ActiveModel model);
+
+/// Why the active model is what it is (initial choice and every switch).
+enum class SwitchReason : std::uint8_t {
+  None,
+  FrictionRulesOutSliding,  ///< initial: mu_s = inf, the sliding model is never needed
+  PureRockingValid,         ///< initial: start on RockingModel, ContactModel on demand
+  FixedFidelity,            ///< initial: --fidelity rocking or contact
+  SlideFromRest,            ///< up: eq. 22 violated at rest
+  SlideAtUplift,            ///< up: mu_s below eq. 25 when rocking starts
+  SlideWhileRocking,        ///< up: |R_x| > mu_s R_y while rocking
+  FreeFlight,               ///< up: a_yg + g < 0 at rest or R_y < 0 while rocking
+  SlipAtImpact,             ///< up: an impact whose tangential impulse exceeds mu_s P_y
+  FrictionNearLimit,        ///< up: |R_x| > friction_safety mu_s R_y at a sample end (early, safe)
+  NearLiftOff,              ///< up: R_y < lift_off_margin g at a sample end while rocking (early, safe)
+  ReplayWindowFull,         ///< up: rocking episode longer than the replay window
+  RestHeld,                 ///< down: ContactModel at REST for hold_time
+  RockHeld,                 ///< down: ContactModel in pure ROCK (sticking pivot) for hold_time
+};
+const char* to_string(SwitchReason reason);
+
+struct SwitchRecord {
+  double time = 0.0;  ///< s: start of the re-run for an up switch (see docs), sample end for down
+  ActiveModel to = ActiveModel::Rocking;
+  SwitchReason reason = SwitchReason::None;
+  double onset_time = 0.0;  ///< s: end of the sample in which the reason was detected
+};
+
+struct AdaptiveSettings {
+  Fidelity fidelity = Fidelity::Adaptive;
+  SolverSettings rocking{};   ///< RockingModel settings (default dopri5, tol 1e-8)
+  ContactSettings contact{};  ///< ContactModel settings
+  /// Down switch: ContactModel at REST, or in ROCK (pivot sticking, zero slip velocity), for at
+  /// least this long (s, measured at sample ends) goes back to RockingModel.
+  double hold_time_s = 0.1;
+  /// Up switch also when |R_x| > friction_safety * mu_s * R_y at a sample end while rocking (the
+  /// rocking model checks the exact condition only at sample ends; this catches excursions that
+  /// approach the limit inside a sample). 1 = exact criterion only.
+  double friction_safety = 0.9;
+  /// Up switch also when the rocking normal reaction R_y < lift_off_margin * g at a sample end
+  /// (catches lift-off inside a sample early). 0 = exact criterion (R_y < 0) only.
+  double lift_off_margin = 0.1;
+  /// Input samples kept since the last exact anchor (REST, or the ContactModel state at a down
+  /// switch) so that an up switch re-runs them with ContactModel. Bounds the work of one sample.
+  int replay_capacity = 4000;
+  /// Switch records kept (the count goes on beyond it). Reserved at construction.
+  int max_switch_records = 256;
+  /// Scene limits for the static pre-check: |a_xg| <= a_max, a_yg >= -a_y_max (m/s^2).
+  double a_max = std::numeric_limits<double>::infinity();
+  double a_y_max = std::numeric_limits<double>::infinity();
+};
+
+/// One sample.
+struct AdaptiveReport {
+  ActiveModel model = ActiveModel::Rocking;  ///< model whose result stands at the sample end
+  bool switched = false;                     ///< a switch happened in this sample
+  SwitchReason reason = SwitchReason::None;  ///< its reason
+  int replayed_samples = 0;                  ///< samples re-run with ContactModel (up switch)
+  int integrator_steps = 0;                  ///< rocking + contact steps spent in this sample
+  bool alarms_revised = false;  ///< a replay replaced provisional alarms of the rocking run
+};
+
+/// Totals since reset(). Alarm definitions as RockingOutcome (see docs/fidelity.md for the
+/// ContactModel part). Times absolute, NaN when never.
+struct AdaptiveOutcome {
+  bool beyond_tipping = false, committed = false, overturned = false;
+  double beyond_tipping_time = std::numeric_limits<double>::quiet_NaN();
+  double committed_time = std::numeric_limits<double>::quiet_NaN();
+  double overturn_time = std::numeric_limits<double>::quiet_NaN();
+  double uplift_time = std::numeric_limits<double>::quiet_NaN();
+  double first_slip_time = std::numeric_limits<double>::quiet_NaN();
+  double first_flight_time = std::numeric_limits<double>::quiet_NaN();
+  double max_rotation_ratio = 0.0;
+  double max_abs_slip = 0.0;
+  long impacts = 0, slip_episodes = 0, flight_episodes = 0;
+  long samples = 0;
+  // Work (never rolled back by a replay).
+  long samples_rocking_model = 0;   ///< samples stepped by RockingModel
+  long samples_contact_model = 0;   ///< samples stepped by ContactModel (replays included)
+  long rocking_steps = 0;           ///< RockingModel integrator steps (dopri5 or RK4)
+  long contact_steps = 0;           ///< ContactModel RK4 sub-steps
+  long replayed_samples = 0;
+  long max_replay = 0;
+  long model_switches = 0;
+  bool sliding_ruled_out = false;   ///< static pre-check result
+};
+
+/// Streaming shape of RockingModel / ContactModel: reset(t, ax, ay), step(ax, ay, dt).
+/// step() allocates nothing (buffers reserved at construction) and does bounded work:
+/// at most (replay_capacity + 1) ContactModel samples plus one RockingModel sample.
+class AdaptiveModel {
+ public:
+  AdaptiveModel(const Body& body, const AdaptiveSettings& settings = {});
+  AdaptiveModel(const BodyParameters& body, const AdaptiveSettings& settings = {});
+
+  void reset(double t, double ax = 0.0, double ay = 0.0);
+  /// dt finite > 0 and finite inputs, else std::invalid_argument (state unchanged).
+  const AdaptiveReport& step(double ax, double ay, double dt);
+
+  ActiveModel active() const { return active_; }
+  /// Mode name of the active model ("REST", "ROCKING", "SLIDE", ...).
+  const char* mode_name() const;
+  ContactMode mode() const;  ///< mapped to ContactMode (RockingModel ROCKING -> Rock)
+  int side() const;
+  double theta() const;
+  double omega() const;
+  double slip() const;  ///< m, horizontal displacement of the base (constant while rocking)
+  double time() const { return t_; }
+  const AdaptiveOutcome& outcome() const { return outcome_; }
+  const AdaptiveReport& last_report() const { return report_; }
+  const std::vector<SwitchRecord>& switches() const { return switches_; }
+  SwitchReason initial_reason() const { return initial_reason_; }
+  const Body& body() const { return body_; }
+  const AdaptiveSettings& settings() const { return settings_; }
+  /// |P_x| / P_y of a sticking impact from pure rocking that makes corner `new_side` the pivot
+  /// (geometry and restitution only): the impact slips in ContactModel when mu_s is below it.
+  double impact_friction_demand(int new_side) const;
+
+ private:
+  struct Pending { double ax, ay, dt; };
+  void accumulate_rocking(const StepReport& r, double t0);
+  void accumulate_contact(const ContactReport& r, double t0, double dt, double th0, double om0,
+                          int side0, ContactMode mode0);
+  void contact_step(double ax, double ay, double dt);
+  SwitchReason check_rocking(const StepReport& r) const;
+  void switch_up(SwitchReason reason);
+  void switch_down(SwitchReason reason, double ax, double ay);
+  void anchor_rest(double t, double ax, double ay);
+  void record(double time, ActiveModel to, SwitchReason reason, double onset);
+
+  Body body_;
+  AdaptiveSettings settings_;
+  RockingModel rock_;
+  ContactModel contact_;
+  ActiveModel active_ = ActiveModel::Rocking;
+  SwitchReason initial_reason_ = SwitchReason::None;
+  double impact_demand_[2] = {0.0, 0.0};
+  double t_ = 0.0, ax_prev_ = 0.0, ay_prev_ = 0.0;
+  double slip_base_ = 0.0;  // slip at the last contact_.reset
+  double hold_ = 0.0;
+  double rock_slip_ = 0.0;  // slip while RockingModel runs (constant)
+  // Exact anchor for a replay: either REST at (anchor_t_, anchor_ax_, anchor_ay_) with slip
+  // anchor_slip_, or a copy of the ContactModel (anchor_is_contact_).
+  bool anchor_valid_ = false, anchor_is_contact_ = false;
+  double anchor_t_ = 0.0, anchor_ax_ = 0.0, anchor_ay_ = 0.0, anchor_slip_ = 0.0;
+  ContactModel anchor_contact_;
+  AdaptiveOutcome anchor_outcome_;
+  std::vector<Pending> pending_;  // capacity replay_capacity, reserved
+  std::vector<SwitchRecord> switches_;  // capacity max_switch_records, reserved
+  AdaptiveReport report_;
+  AdaptiveOutcome outcome_;
+};
+
+}  // namespace rocking_monitor::core

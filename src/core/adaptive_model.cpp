@@ -1,0 +1,428 @@
+#include "rocking_monitor/core/adaptive_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include "rocking_monitor/core/criteria.hpp"
+#include "rocking_monitor/core/impact.hpp"
+
+namespace rocking_monitor::core {
+
+const char* to_string(Fidelity f) {
+  switch (f) {
+    case Fidelity::Rocking: return "rocking";
+    case Fidelity::Contact: return "contact";
+    case Fidelity::Adaptive: return "adaptive";
+  }
+  return "unknown";
+}
+
+bool parse_fidelity(const char* text, Fidelity& f) {
+  for (Fidelity c : {Fidelity::Rocking, Fidelity::Contact, Fidelity::Adaptive}) {
+    if (std::strcmp(text, to_string(c)) == 0) {
+      f = c;
+      return true;
+    }
+  }
+  return false;
+}
+
+const char* to_string(ActiveModel m) {
+  return m == ActiveModel::Rocking ? "rocking_model" : "contact_model";
+}
+
+const char* to_string(SwitchReason r) {
+  switch (r) {
+    case SwitchReason::None: return "none";
+    case SwitchReason::FrictionRulesOutSliding: return "friction rules out sliding (mu_s = inf)";
+    case SwitchReason::PureRockingValid: return "pure rocking valid";
+    case SwitchReason::FixedFidelity: return "fixed fidelity";
+    case SwitchReason::SlideFromRest: return "slide from rest";
+    case SwitchReason::SlideAtUplift: return "slide at uplift";
+    case SwitchReason::SlideWhileRocking: return "slide while rocking";
+    case SwitchReason::FreeFlight: return "free flight";
+    case SwitchReason::SlipAtImpact: return "slip at impact";
+    case SwitchReason::FrictionNearLimit: return "friction near its limit while rocking";
+    case SwitchReason::NearLiftOff: return "rocking reaction near lift-off";
+    case SwitchReason::ReplayWindowFull: return "rocking episode longer than the replay window";
+    case SwitchReason::RestHeld: return "contact model at rest for the hold time";
+    case SwitchReason::RockHeld: return "pure rocking (sticking pivot) for the hold time";
+  }
+  return "unknown";
+}
+
+namespace {
+
+bool pivoting(ContactMode m) { return m == ContactMode::Rock || m == ContactMode::SlideRock; }
+
+void latch_min(double& slot, double value) {
+  if (std::isnan(slot) && !std::isnan(value)) slot = value;
+}
+
+// Work counters survive a replay (the rolled-back outcome is the physics, not the cost).
+void keep_work(AdaptiveOutcome& to, const AdaptiveOutcome& from) {
+  to.samples_rocking_model = from.samples_rocking_model;
+  to.samples_contact_model = from.samples_contact_model;
+  to.rocking_steps = from.rocking_steps;
+  to.contact_steps = from.contact_steps;
+  to.replayed_samples = from.replayed_samples;
+  to.max_replay = from.max_replay;
+  to.model_switches = from.model_switches;
+  to.sliding_ruled_out = from.sliding_ruled_out;
+}
+
+const AdaptiveSettings& checked(const AdaptiveSettings& s) {
+  if (const std::string e = validate(s.rocking); !e.empty()) throw std::invalid_argument(e);
+  if (!(s.hold_time_s >= 0.0) || !std::isfinite(s.hold_time_s))
+    throw std::invalid_argument("AdaptiveSettings::hold_time_s must be finite and >= 0");
+  if (!(s.lift_off_margin >= 0.0 && s.lift_off_margin < 1.0))
+    throw std::invalid_argument("AdaptiveSettings::lift_off_margin must be in [0, 1)");
+  if (!(s.friction_safety > 0.0 && s.friction_safety <= 1.0))
+    throw std::invalid_argument("AdaptiveSettings::friction_safety must be in (0, 1]");
+  if (s.replay_capacity < 1 || s.replay_capacity > 10000000)
+    throw std::invalid_argument("AdaptiveSettings::replay_capacity must be in [1, 1e7]");
+  if (s.max_switch_records < 0)
+    throw std::invalid_argument("AdaptiveSettings::max_switch_records must be >= 0");
+  if (std::isnan(s.a_max) || std::isnan(s.a_y_max) || s.a_max < 0.0 || s.a_y_max < 0.0)
+    throw std::invalid_argument("AdaptiveSettings: scene limits must be >= 0 (inf = unknown)");
+  return s;
+}
+
+}  // namespace
+
+AdaptiveModel::AdaptiveModel(const BodyParameters& body, const AdaptiveSettings& settings)
+    : AdaptiveModel(Body(body), settings) {}
+
+AdaptiveModel::AdaptiveModel(const Body& body, const AdaptiveSettings& settings)
+    : body_(body),
+      settings_(checked(settings)),
+      rock_(body, settings.rocking),
+      contact_(body, settings.contact),
+      anchor_contact_(body, settings.contact) {
+  const double ig2 = body_.radius_of_gyration() * body_.radius_of_gyration();
+  for (int s : {1, -1}) {
+    const double nu_new = body_.pivot(s).nu, nu_old = body_.pivot(-s).nu;
+    const double e = impact_velocity_ratio(ig2, body_.cg_height(), body_.width(), nu_new);
+    const double den = body_.width() * (e * nu_new + nu_old);
+    impact_demand_[s > 0 ? 0 : 1] =
+        den > 0.0 ? body_.cg_height() * (1.0 - e) / den : std::numeric_limits<double>::infinity();
+  }
+  pending_.reserve(static_cast<std::size_t>(settings_.replay_capacity));
+  switches_.reserve(static_cast<std::size_t>(settings_.max_switch_records));
+  reset(0.0);
+}
+
+double AdaptiveModel::impact_friction_demand(int new_side) const {
+  return impact_demand_[new_side > 0 ? 0 : 1];
+}
+
+void AdaptiveModel::reset(double t, double ax, double ay) {
+  rock_.reset(t, ax, ay);
+  contact_.reset(t, ax, ay);
+  t_ = t;
+  ax_prev_ = ax;
+  ay_prev_ = ay;
+  slip_base_ = 0.0;
+  hold_ = 0.0;
+  anchor_valid_ = anchor_is_contact_ = false;
+  anchor_slip_ = rock_slip_ = 0.0;
+  pending_.clear();
+  switches_.clear();
+  report_ = AdaptiveReport{};
+  outcome_ = AdaptiveOutcome{};
+  // Static pre-check. Only mu_s = inf is proven to rule out sliding for every admissible input:
+  // the rocking reaction ratio |R_x|/R_y contains the centripetal term R omega^2, which no bound on
+  // the ground acceleration alone bounds (see docs/fidelity.md). The scene limits are kept for
+  // the report; they do not rule anything out today.
+  outcome_.sliding_ruled_out = std::isinf(body_.mu_s());
+  switch (settings_.fidelity) {
+    case Fidelity::Rocking:
+      active_ = ActiveModel::Rocking;
+      initial_reason_ = SwitchReason::FixedFidelity;
+      break;
+    case Fidelity::Contact:
+      active_ = ActiveModel::Contact;
+      initial_reason_ = SwitchReason::FixedFidelity;
+      break;
+    case Fidelity::Adaptive:
+      active_ = ActiveModel::Rocking;
+      initial_reason_ = outcome_.sliding_ruled_out ? SwitchReason::FrictionRulesOutSliding
+                                                   : SwitchReason::PureRockingValid;
+      break;
+  }
+  report_.model = active_;
+}
+
+ContactMode AdaptiveModel::mode() const {
+  if (active_ == ActiveModel::Contact) return contact_.mode();
+  switch (rock_.mode()) {
+    case Mode::Rest: return ContactMode::Rest;
+    case Mode::Rocking: return ContactMode::Rock;
+    case Mode::Overturned: return ContactMode::Overturned;
+  }
+  return ContactMode::Rest;
+}
+
+const char* AdaptiveModel::mode_name() const {
+  return active_ == ActiveModel::Contact ? to_string(contact_.mode()) : to_string(rock_.mode());
+}
+
+int AdaptiveModel::side() const {
+  return active_ == ActiveModel::Contact ? contact_.side() : rock_.side();
+}
+double AdaptiveModel::theta() const {
+  return active_ == ActiveModel::Contact ? contact_.theta() : rock_.theta();
+}
+double AdaptiveModel::omega() const {
+  return active_ == ActiveModel::Contact ? contact_.omega() : rock_.omega();
+}
+double AdaptiveModel::slip() const {
+  return active_ == ActiveModel::Contact ? slip_base_ + contact_.slip() : rock_slip_;
+}
+
+void AdaptiveModel::record(double time, ActiveModel to, SwitchReason reason, double onset) {
+  ++outcome_.model_switches;
+  report_.switched = true;
+  report_.reason = reason;
+  if (switches_.size() < switches_.capacity()) switches_.push_back({time, to, reason, onset});
+}
+
+void AdaptiveModel::accumulate_rocking(const StepReport& r, double /*t0*/) {
+  const RockingOutcome& o = rock_.outcome();
+  ++outcome_.samples;
+  ++outcome_.samples_rocking_model;
+  outcome_.rocking_steps += r.integrator_steps;
+  report_.integrator_steps += r.integrator_steps;
+  outcome_.impacts += r.impacts;
+  if (r.uplift) latch_min(outcome_.uplift_time, o.uplift_time);
+  if (r.beyond_tipping_entered && !outcome_.beyond_tipping) {
+    outcome_.beyond_tipping = true;
+    outcome_.beyond_tipping_time = o.beyond_tipping_time;
+  }
+  if (r.committed_entered && !outcome_.committed) {
+    outcome_.committed = true;
+    outcome_.committed_time = o.committed_time;
+  }
+  if (r.overturned && !outcome_.overturned) {
+    outcome_.overturned = true;
+    outcome_.overturn_time = o.overturn_time;
+  }
+  outcome_.max_rotation_ratio = std::max(outcome_.max_rotation_ratio, o.max_rotation_ratio);
+}
+
+// ContactModel has no tipping / committed alarms of its own: they are derived here with the same
+// definitions as RockingModel (docs/fidelity.md). The tipping crossing inside a sample without
+// transitions is located on the cubic Hermite interpolant of (theta, omega) at the sample ends.
+void AdaptiveModel::accumulate_contact(const ContactReport& r, double t0, double dt, double th0,
+                                       double om0, int side0, ContactMode mode0) {
+  const ContactOutcome& o = contact_.outcome();
+  ++outcome_.samples;
+  outcome_.impacts += r.impacts;
+  outcome_.slip_episodes += r.slip_episodes;
+  outcome_.flight_episodes += r.flight_episodes;
+  latch_min(outcome_.uplift_time, o.first_uplift_time);
+  latch_min(outcome_.first_slip_time, o.first_slip_time);
+  latch_min(outcome_.first_flight_time, o.first_flight_time);
+  outcome_.max_abs_slip = std::max(outcome_.max_abs_slip, std::abs(slip()));
+  const double t1 = t0 + dt;
+  if (!outcome_.beyond_tipping && o.max_rotation_ratio > 1.0) {
+    double when = t1;
+    const double th1 = contact_.theta(), om1 = contact_.omega();
+    if (r.transitions == 0 && pivoting(mode0) && pivoting(r.mode) && side0 == r.side && side0 != 0) {
+      const double a = body_.pivot(side0).alpha;
+      auto f = [&](double s) {  // Hermite on [0, 1]
+        const double s2 = s * s, s3 = s2 * s;
+        const double th = (2 * s3 - 3 * s2 + 1) * th0 + (s3 - 2 * s2 + s) * dt * om0 +
+                          (-2 * s3 + 3 * s2) * th1 + (s3 - s2) * dt * om1;
+        return side0 * th - a;
+      };
+      if (f(0.0) <= 0.0 && f(1.0) > 0.0) {
+        double lo = 0.0, hi = 1.0;
+        for (int i = 0; i < 60; ++i) {
+          const double mid = 0.5 * (lo + hi);
+          (f(mid) > 0.0 ? hi : lo) = mid;
+        }
+        when = t0 + hi * dt;
+      }
+    }
+    outcome_.beyond_tipping = true;
+    outcome_.beyond_tipping_time = when;
+  }
+  outcome_.max_rotation_ratio = std::max(outcome_.max_rotation_ratio, o.max_rotation_ratio);
+  if (r.overturned && !outcome_.overturned) {
+    outcome_.overturned = true;
+    outcome_.overturn_time = o.overturn_time;
+  }
+  if (!outcome_.committed) {
+    if (pivoting(r.mode) && r.side != 0 &&
+        overturn_margin(body_.pivot(r.side), r.side, ModelKind::Nonlinear, contact_.theta(),
+                        contact_.omega()).committed) {
+      outcome_.committed = true;
+      outcome_.committed_time = t1;
+    } else if (outcome_.overturned) {
+      outcome_.committed = true;
+      outcome_.committed_time = outcome_.overturn_time;
+    }
+  }
+}
+
+void AdaptiveModel::contact_step(double ax, double ay, double dt) {
+  const double t0 = contact_.time(), th0 = contact_.theta(), om0 = contact_.omega();
+  const int side0 = contact_.side();
+  const ContactMode mode0 = contact_.mode();
+  const ContactReport& r = contact_.step(ax, ay, dt);
+  ++outcome_.samples_contact_model;
+  outcome_.contact_steps += r.integrator_steps;
+  report_.integrator_steps += r.integrator_steps;
+  accumulate_contact(r, t0, dt, th0, om0, side0, mode0);
+}
+
+SwitchReason AdaptiveModel::check_rocking(const StepReport& r) const {
+  if (rock_.mode() == Mode::Overturned && !r.overturned) return SwitchReason::None;
+  const std::uint8_t v = static_cast<std::uint8_t>(r.violation_onsets | rock_.violations());
+  auto has = [v](Criterion c) { return (v >> static_cast<int>(c)) & 1u; };
+  if (has(Criterion::FreeFlight)) return SwitchReason::FreeFlight;
+  if (has(Criterion::SlideFromRest)) return SwitchReason::SlideFromRest;
+  if (has(Criterion::SlideAtUplift)) return SwitchReason::SlideAtUplift;
+  if (has(Criterion::SlideWhileRocking)) return SwitchReason::SlideWhileRocking;
+  const double mu = body_.mu_s();
+  if (!std::isinf(mu)) {
+    if (r.impacts > 0 && mu < std::max(impact_demand_[0], impact_demand_[1]))
+      return SwitchReason::SlipAtImpact;
+    if (rock_.mode() == Mode::Rocking) {
+      const int s = rock_.side();
+      const Pivot& pv = body_.pivot(s);
+      GroundInput in;
+      in.ax0 = rock_.last_ax();
+      in.ay0 = rock_.last_ay();
+      const RockingOde ode{&pv, s, settings_.rocking.model, in};
+      const double acc = ode.angular_acceleration(0.0, rock_.theta());
+      const ContactReaction cr =
+          rocking_reaction(pv, s, rock_.theta(), rock_.omega(), acc, in.ax0, in.ay0);
+      if (std::abs(cr.rx) > settings_.friction_safety * mu * std::max(cr.ry, 0.0))
+        return SwitchReason::FrictionNearLimit;
+    }
+  }
+  if (rock_.mode() == Mode::Rocking && settings_.lift_off_margin > 0.0) {
+    const int s = rock_.side();
+    const Pivot& pv = body_.pivot(s);
+    GroundInput in;
+    in.ax0 = rock_.last_ax();
+    in.ay0 = rock_.last_ay();
+    const RockingOde ode{&pv, s, settings_.rocking.model, in};
+    const double acc = ode.angular_acceleration(0.0, rock_.theta());
+    const ContactReaction cr =
+        rocking_reaction(pv, s, rock_.theta(), rock_.omega(), acc, in.ax0, in.ay0);
+    if (cr.ry < settings_.lift_off_margin * kGravity) return SwitchReason::NearLiftOff;
+  }
+  if (rock_.mode() == Mode::Rocking &&
+      pending_.size() >= static_cast<std::size_t>(settings_.replay_capacity))
+    return SwitchReason::ReplayWindowFull;
+  return SwitchReason::None;
+}
+
+void AdaptiveModel::anchor_rest(double t, double ax, double ay) {
+  anchor_valid_ = true;
+  anchor_is_contact_ = false;
+  anchor_t_ = t;
+  anchor_ax_ = ax;
+  anchor_ay_ = ay;
+  anchor_slip_ = rock_slip_;
+  anchor_outcome_ = outcome_;
+}
+
+// Re-runs every sample since the exact anchor with ContactModel (the sample of the onset
+// included), then continues on ContactModel.
+void AdaptiveModel::switch_up(SwitchReason reason) {
+  const AdaptiveOutcome before = outcome_;
+  if (anchor_is_contact_) {
+    contact_ = anchor_contact_;
+  } else {
+    contact_.reset(anchor_t_, anchor_ax_, anchor_ay_);
+  }
+  slip_base_ = anchor_slip_;
+  outcome_ = anchor_outcome_;
+  keep_work(outcome_, before);
+  active_ = ActiveModel::Contact;  // slip() reads the contact model from here on
+  for (const Pending& p : pending_) contact_step(p.ax, p.ay, p.dt);
+  const long n = static_cast<long>(pending_.size());
+  outcome_.replayed_samples += n;
+  outcome_.max_replay = std::max(outcome_.max_replay, n);
+  report_.replayed_samples = static_cast<int>(n);
+  report_.alarms_revised =
+      before.beyond_tipping != outcome_.beyond_tipping || before.committed != outcome_.committed ||
+      before.overturned != outcome_.overturned ||
+      !(before.beyond_tipping_time == outcome_.beyond_tipping_time ||
+        (std::isnan(before.beyond_tipping_time) && std::isnan(outcome_.beyond_tipping_time))) ||
+      !(before.committed_time == outcome_.committed_time ||
+        (std::isnan(before.committed_time) && std::isnan(outcome_.committed_time))) ||
+      !(before.overturn_time == outcome_.overturn_time ||
+        (std::isnan(before.overturn_time) && std::isnan(outcome_.overturn_time)));
+  record(anchor_is_contact_ ? anchor_contact_.time() : anchor_t_, ActiveModel::Contact, reason,
+         contact_.time());
+  pending_.clear();
+  anchor_valid_ = false;
+  hold_ = 0.0;
+}
+
+void AdaptiveModel::switch_down(SwitchReason reason, double ax, double ay) {
+  rock_slip_ = slip();  // constant while the pivot sticks
+  rock_.reset(t_, ax, ay);
+  if (contact_.mode() == ContactMode::Rock) {
+    rock_.set_state(contact_.theta(), contact_.omega());
+    anchor_valid_ = true;
+    anchor_is_contact_ = true;
+    anchor_contact_ = contact_;
+    anchor_slip_ = slip_base_;
+    anchor_outcome_ = outcome_;
+  } else {
+    anchor_valid_ = false;  // at REST: anchored lazily at the next sample start
+  }
+  active_ = ActiveModel::Rocking;
+  pending_.clear();
+  hold_ = 0.0;
+  record(t_, ActiveModel::Rocking, reason, t_);
+}
+
+const AdaptiveReport& AdaptiveModel::step(double ax, double ay, double dt) {
+  if (!(dt > 0.0) || !std::isfinite(dt))
+    throw std::invalid_argument("AdaptiveModel::step: dt must be finite and > 0");
+  if (!std::isfinite(ax) || !std::isfinite(ay))
+    throw std::invalid_argument("AdaptiveModel::step: ground acceleration must be finite");
+  report_ = AdaptiveReport{};
+  const double t0 = t_;
+  if (settings_.fidelity == Fidelity::Rocking) {
+    accumulate_rocking(rock_.step(ax, ay, dt), t0);
+  } else if (settings_.fidelity == Fidelity::Contact || active_ == ActiveModel::Contact) {
+    contact_step(ax, ay, dt);
+  } else {
+    if (!anchor_valid_) anchor_rest(t_, ax_prev_, ay_prev_);  // RockingModel is at REST here
+    const StepReport& r = rock_.step(ax, ay, dt);
+    accumulate_rocking(r, t0);
+    pending_.push_back({ax, ay, dt});  // size <= replay_capacity: cleared at REST, switch when full
+    const SwitchReason why = check_rocking(r);
+    if (why != SwitchReason::None) {
+      switch_up(why);
+    } else if (rock_.mode() != Mode::Rocking) {  // REST (next anchor) or OVERTURNED (final)
+      pending_.clear();
+      anchor_valid_ = false;
+    }
+  }
+  t_ += dt;
+  ax_prev_ = ax;
+  ay_prev_ = ay;
+  if (settings_.fidelity == Fidelity::Adaptive && active_ == ActiveModel::Contact &&
+      !report_.switched) {
+    const ContactMode m = contact_.mode();
+    if (m == ContactMode::Rest || m == ContactMode::Rock) hold_ += dt;
+    else hold_ = 0.0;
+    if (hold_ >= settings_.hold_time_s && m != ContactMode::Overturned)
+      switch_down(m == ContactMode::Rest ? SwitchReason::RestHeld : SwitchReason::RockHeld, ax, ay);
+  }
+  report_.model = active_;
+  return report_;
+}
+
+}  // namespace rocking_monitor::core
