@@ -1,6 +1,8 @@
 #include "rocking_monitor/core/item_monitor.hpp"
 
+#include <array>
 #include <cmath>
+#include <utility>
 #include <stdexcept>
 
 namespace rocking_monitor::core {
@@ -122,14 +124,20 @@ void ItemMonitor::evaluate_criteria(double ax, double ay) {
   screen(CriterionId::IshiyamaEquivalent, p.ishiyama_equivalent, &thresholds_.ishiyama_equivalent);
   screen(CriterionId::Proposed, p.proposed, &thresholds_.proposed);
 
-  // Model validity: the model's bitmask at the end of the sample.
+  // Model validity: the model's bitmask at the end of the sample. The values reported with a change
+  // need the contact reaction; compute it only when some validity criterion changed state.
   const std::uint8_t v = violations();
+  constexpr std::array<std::pair<CriterionId, Criterion>, 4> kValidity = {{
+      {CriterionId::FreeFlight, Criterion::FreeFlight},
+      {CriterionId::SlideFromRest, Criterion::SlideFromRest},
+      {CriterionId::SlideAtUplift, Criterion::SlideAtUplift},
+      {CriterionId::SlideWhileRocking, Criterion::SlideWhileRocking},
+  }};
+  bool changed = false;
+  for (const auto& [id, c] : kValidity) changed |= ((v & bit(c)) != 0) != exceeded_[static_cast<int>(id)];
+  if (!changed) return;
   const Body& body = model_.body();
   const double mu = body.mu_s();
-  auto validity = [&](CriterionId id, Criterion c, double value, double threshold) {
-    const bool now = (v & bit(c)) != 0;
-    if (now != exceeded_[static_cast<int>(id)]) record_change(id, now, value, threshold);
-  };
   double normal = ay + kGravity, ratio = std::abs(ax) / std::max(normal, 1e-12);
   double required_mu = 0.0;
   if (model_.mode() == Mode::Rocking) {
@@ -144,10 +152,15 @@ void ItemMonitor::evaluate_criteria(double ax, double ay) {
     ratio = std::abs(r.rx) / std::max(r.ry, 1e-12);
     required_mu = rock_without_slip_friction(body, pv, std::abs(ax) / std::max(ay + kGravity, 1e-12));
   }
-  validity(CriterionId::FreeFlight, Criterion::FreeFlight, -normal, 0.0);
-  validity(CriterionId::SlideFromRest, Criterion::SlideFromRest, ratio, mu);
-  validity(CriterionId::SlideAtUplift, Criterion::SlideAtUplift, required_mu, mu);
-  validity(CriterionId::SlideWhileRocking, Criterion::SlideWhileRocking, ratio, mu);
+  for (const auto& [id, c] : kValidity) {
+    const bool now = (v & bit(c)) != 0;
+    if (now == exceeded_[static_cast<int>(id)]) continue;
+    switch (id) {
+      case CriterionId::FreeFlight: record_change(id, now, -normal, 0.0); break;
+      case CriterionId::SlideAtUplift: record_change(id, now, required_mu, mu); break;
+      default: record_change(id, now, ratio, mu); break;
+    }
+  }
 }
 
 const ItemEvents& ItemMonitor::step(double ax, double ay, double dt) {
