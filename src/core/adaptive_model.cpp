@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include <type_traits>
 
 #include "rocking_monitor/core/criteria.hpp"
 #include "rocking_monitor/core/impact.hpp"
@@ -46,7 +47,6 @@ const char* to_string(SwitchReason r) {
     case SwitchReason::SlipAtImpact: return "slip at impact";
     case SwitchReason::FrictionNearLimit: return "friction near its limit while rocking";
     case SwitchReason::NearLiftOff: return "rocking reaction near lift-off";
-    case SwitchReason::ReplayWindowFull: return "rocking episode longer than the replay window";
     case SwitchReason::RestHeld: return "contact model at rest for the hold time";
     case SwitchReason::RockHeld: return "pure rocking (sticking pivot) for the hold time";
   }
@@ -61,17 +61,10 @@ void latch_min(double& slot, double value) {
   if (std::isnan(slot) && !std::isnan(value)) slot = value;
 }
 
-// Work counters survive a replay (the rolled-back outcome is the physics, not the cost).
-void keep_work(AdaptiveOutcome& to, const AdaptiveOutcome& from) {
-  to.samples_rocking_model = from.samples_rocking_model;
-  to.samples_contact_model = from.samples_contact_model;
-  to.rocking_steps = from.rocking_steps;
-  to.contact_steps = from.contact_steps;
-  to.replayed_samples = from.replayed_samples;
-  to.max_replay = from.max_replay;
-  to.model_switches = from.model_switches;
-  to.sliding_ruled_out = from.sliding_ruled_out;
-}
+// The up switch keeps the RockingModel's start-of-sample state by value (a few scalars); a full
+// copy of the model would be allocation-free too (all members are plain values):
+static_assert(std::is_trivially_copyable_v<RockingModel>, "RockingModel copy must not allocate");
+static_assert(std::is_trivially_copyable_v<ContactModel>, "ContactModel copy must not allocate");
 
 const AdaptiveSettings& checked(const AdaptiveSettings& s) {
   if (const std::string e = validate(s.rocking); !e.empty()) throw std::invalid_argument(e);
@@ -81,8 +74,6 @@ const AdaptiveSettings& checked(const AdaptiveSettings& s) {
     throw std::invalid_argument("AdaptiveSettings::lift_off_margin must be in [0, 1)");
   if (!(s.friction_safety > 0.0 && s.friction_safety <= 1.0))
     throw std::invalid_argument("AdaptiveSettings::friction_safety must be in (0, 1]");
-  if (s.replay_capacity < 1 || s.replay_capacity > 10000000)
-    throw std::invalid_argument("AdaptiveSettings::replay_capacity must be in [1, 1e7]");
   if (s.max_switch_records < 0)
     throw std::invalid_argument("AdaptiveSettings::max_switch_records must be >= 0");
   if (std::isnan(s.a_max) || std::isnan(s.a_y_max) || s.a_max < 0.0 || s.a_y_max < 0.0)
@@ -99,8 +90,7 @@ AdaptiveModel::AdaptiveModel(const Body& body, const AdaptiveSettings& settings)
     : body_(body),
       settings_(checked(settings)),
       rock_(body, settings.rocking),
-      contact_(body, settings.contact),
-      anchor_contact_(body, settings.contact) {
+      contact_(body, settings.contact) {
   const double ig2 = body_.radius_of_gyration() * body_.radius_of_gyration();
   for (int s : {1, -1}) {
     const double nu_new = body_.pivot(s).nu, nu_old = body_.pivot(-s).nu;
@@ -109,7 +99,6 @@ AdaptiveModel::AdaptiveModel(const Body& body, const AdaptiveSettings& settings)
     impact_demand_[s > 0 ? 0 : 1] =
         den > 0.0 ? body_.cg_height() * (1.0 - e) / den : std::numeric_limits<double>::infinity();
   }
-  pending_.reserve(static_cast<std::size_t>(settings_.replay_capacity));
   switches_.reserve(static_cast<std::size_t>(settings_.max_switch_records));
   reset(0.0);
 }
@@ -124,11 +113,8 @@ void AdaptiveModel::reset(double t, double ax, double ay) {
   t_ = t;
   ax_prev_ = ax;
   ay_prev_ = ay;
-  slip_base_ = 0.0;
   hold_ = 0.0;
-  anchor_valid_ = anchor_is_contact_ = false;
-  anchor_slip_ = rock_slip_ = 0.0;
-  pending_.clear();
+  rock_slip_ = 0.0;
   switches_.clear();
   report_ = AdaptiveReport{};
   outcome_ = AdaptiveOutcome{};
@@ -179,7 +165,7 @@ double AdaptiveModel::omega() const {
   return active_ == ActiveModel::Contact ? contact_.omega() : rock_.omega();
 }
 double AdaptiveModel::slip() const {
-  return active_ == ActiveModel::Contact ? slip_base_ + contact_.slip() : rock_slip_;
+  return active_ == ActiveModel::Contact ? contact_.slip() : rock_slip_;
 }
 
 void AdaptiveModel::record(double time, ActiveModel to, SwitchReason reason, double onset) {
@@ -189,12 +175,18 @@ void AdaptiveModel::record(double time, ActiveModel to, SwitchReason reason, dou
   if (switches_.size() < switches_.capacity()) switches_.push_back({time, to, reason, onset});
 }
 
-void AdaptiveModel::accumulate_rocking(const StepReport& r, double /*t0*/) {
-  const RockingOutcome& o = rock_.outcome();
-  ++outcome_.samples;
+void AdaptiveModel::count_rocking_work(const StepReport& r) {
   ++outcome_.samples_rocking_model;
   outcome_.rocking_steps += r.integrator_steps;
+  ++report_.rocking_samples;
+  report_.rocking_steps += r.integrator_steps;
   report_.integrator_steps += r.integrator_steps;
+}
+
+// The physics of a RockingModel sample whose result stands (no up switch in it).
+void AdaptiveModel::accumulate_rocking(const StepReport& r) {
+  const RockingOutcome& o = rock_.outcome();
+  ++outcome_.samples;
   outcome_.impacts += r.impacts;
   if (r.uplift) latch_min(outcome_.uplift_time, o.uplift_time);
   if (r.beyond_tipping_entered && !outcome_.beyond_tipping) {
@@ -275,6 +267,8 @@ void AdaptiveModel::contact_step(double ax, double ay, double dt) {
   const ContactReport& r = contact_.step(ax, ay, dt);
   ++outcome_.samples_contact_model;
   outcome_.contact_steps += r.integrator_steps;
+  ++report_.contact_samples;
+  report_.contact_steps += r.integrator_steps;
   report_.integrator_steps += r.integrator_steps;
   accumulate_contact(r, t0, dt, th0, om0, side0, mode0);
 }
@@ -317,71 +311,35 @@ SwitchReason AdaptiveModel::check_rocking(const StepReport& r) const {
         rocking_reaction(pv, s, rock_.theta(), rock_.omega(), acc, in.ax0, in.ay0);
     if (cr.ry < settings_.lift_off_margin * kGravity) return SwitchReason::NearLiftOff;
   }
-  if (rock_.mode() == Mode::Rocking &&
-      pending_.size() >= static_cast<std::size_t>(settings_.replay_capacity))
-    return SwitchReason::ReplayWindowFull;
   return SwitchReason::None;
 }
 
-void AdaptiveModel::anchor_rest(double t, double ax, double ay) {
-  anchor_valid_ = true;
-  anchor_is_contact_ = false;
-  anchor_t_ = t;
-  anchor_ax_ = ax;
-  anchor_ay_ = ay;
-  anchor_slip_ = rock_slip_;
-  anchor_outcome_ = outcome_;
-}
-
-// Re-runs every sample since the exact anchor with ContactModel (the sample of the onset
-// included), then continues on ContactModel.
-void AdaptiveModel::switch_up(SwitchReason reason) {
-  const AdaptiveOutcome before = outcome_;
-  if (anchor_is_contact_) {
-    contact_ = anchor_contact_;
-  } else {
-    contact_.reset(anchor_t_, anchor_ax_, anchor_ay_);
+// Exact state transfer: the sample in which `reason` fired is recomputed with ContactModel placed
+// in the RockingModel state at the start of that sample (REST, or ROCK with the pivot sticking;
+// pure rocking was valid there, else the previous sample would have switched). The rocking run's
+// result for this sample is discarded (only its work counts); everything latched before stands.
+void AdaptiveModel::switch_up(SwitchReason reason, const RockStart& start, double ax, double ay,
+                              double dt) {
+  if (start.mode == Mode::Rocking) {
+    // side * theta >= 0 while rocking; a rounding-level excursion past theta = 0 is clamped.
+    const double theta = start.side * start.theta < 0.0 ? 0.0 : start.theta;
+    contact_.set_state(t_, ax_prev_, ay_prev_, start.side, theta, start.omega, rock_slip_);
   }
-  slip_base_ = anchor_slip_;
-  outcome_ = anchor_outcome_;
-  keep_work(outcome_, before);
+  else
+    contact_.set_state(t_, ax_prev_, ay_prev_, 0, 0.0, 0.0, rock_slip_);
   active_ = ActiveModel::Contact;  // slip() reads the contact model from here on
-  for (const Pending& p : pending_) contact_step(p.ax, p.ay, p.dt);
-  const long n = static_cast<long>(pending_.size());
-  outcome_.replayed_samples += n;
-  outcome_.max_replay = std::max(outcome_.max_replay, n);
-  report_.replayed_samples = static_cast<int>(n);
-  report_.alarms_revised =
-      before.beyond_tipping != outcome_.beyond_tipping || before.committed != outcome_.committed ||
-      before.overturned != outcome_.overturned ||
-      !(before.beyond_tipping_time == outcome_.beyond_tipping_time ||
-        (std::isnan(before.beyond_tipping_time) && std::isnan(outcome_.beyond_tipping_time))) ||
-      !(before.committed_time == outcome_.committed_time ||
-        (std::isnan(before.committed_time) && std::isnan(outcome_.committed_time))) ||
-      !(before.overturn_time == outcome_.overturn_time ||
-        (std::isnan(before.overturn_time) && std::isnan(outcome_.overturn_time)));
-  record(anchor_is_contact_ ? anchor_contact_.time() : anchor_t_, ActiveModel::Contact, reason,
-         contact_.time());
-  pending_.clear();
-  anchor_valid_ = false;
+  record(t_, ActiveModel::Contact, reason, t_ + dt);
+  contact_step(ax, ay, dt);
+  ++outcome_.recomputed_samples;
+  report_.recomputed_samples = 1;
   hold_ = 0.0;
 }
 
 void AdaptiveModel::switch_down(SwitchReason reason, double ax, double ay) {
   rock_slip_ = slip();  // constant while the pivot sticks
   rock_.reset(t_, ax, ay);
-  if (contact_.mode() == ContactMode::Rock) {
-    rock_.set_state(contact_.theta(), contact_.omega());
-    anchor_valid_ = true;
-    anchor_is_contact_ = true;
-    anchor_contact_ = contact_;
-    anchor_slip_ = slip_base_;
-    anchor_outcome_ = outcome_;
-  } else {
-    anchor_valid_ = false;  // at REST: anchored lazily at the next sample start
-  }
+  if (contact_.mode() == ContactMode::Rock) rock_.set_state(contact_.theta(), contact_.omega());
   active_ = ActiveModel::Rocking;
-  pending_.clear();
   hold_ = 0.0;
   record(t_, ActiveModel::Rocking, reason, t_);
 }
@@ -392,23 +350,20 @@ const AdaptiveReport& AdaptiveModel::step(double ax, double ay, double dt) {
   if (!std::isfinite(ax) || !std::isfinite(ay))
     throw std::invalid_argument("AdaptiveModel::step: ground acceleration must be finite");
   report_ = AdaptiveReport{};
-  const double t0 = t_;
   if (settings_.fidelity == Fidelity::Rocking) {
-    accumulate_rocking(rock_.step(ax, ay, dt), t0);
+    const StepReport& r = rock_.step(ax, ay, dt);
+    count_rocking_work(r);
+    accumulate_rocking(r);
   } else if (settings_.fidelity == Fidelity::Contact || active_ == ActiveModel::Contact) {
     contact_step(ax, ay, dt);
   } else {
-    if (!anchor_valid_) anchor_rest(t_, ax_prev_, ay_prev_);  // RockingModel is at REST here
+    // rock_ is at (t_, ax_prev_, ay_prev_) here: same clock and input as this wrapper.
+    const RockStart start{rock_.mode(), rock_.side(), rock_.theta(), rock_.omega()};
     const StepReport& r = rock_.step(ax, ay, dt);
-    accumulate_rocking(r, t0);
-    pending_.push_back({ax, ay, dt});  // size <= replay_capacity: cleared at REST, switch when full
+    count_rocking_work(r);
     const SwitchReason why = check_rocking(r);
-    if (why != SwitchReason::None) {
-      switch_up(why);
-    } else if (rock_.mode() != Mode::Rocking) {  // REST (next anchor) or OVERTURNED (final)
-      pending_.clear();
-      anchor_valid_ = false;
-    }
+    if (why == SwitchReason::None) accumulate_rocking(r);
+    else switch_up(why, start, ax, ay, dt);
   }
   t_ += dt;
   ax_prev_ = ax;

@@ -60,6 +60,49 @@ void ContactModel::reset(double t, double ax, double ay) {
   outcome_ = ContactOutcome{};
 }
 
+void ContactModel::set_state(double t, double ax, double ay, int side, double theta, double omega,
+                             double slip, const ContactOutcome& outcome) {
+  set_state(t, ax, ay, side, theta, omega, slip);
+  outcome_ = outcome;
+}
+
+void ContactModel::set_state(double t, double ax, double ay, int side, double theta, double omega,
+                             double slip) {
+  if (!std::isfinite(t) || !std::isfinite(ax) || !std::isfinite(ay) || !std::isfinite(theta) ||
+      !std::isfinite(omega) || !std::isfinite(slip))
+    throw std::invalid_argument("ContactModel::set_state: arguments must be finite");
+  if (side != 0 && side != 1 && side != -1)
+    throw std::invalid_argument("ContactModel::set_state: side must be 0 (REST), +1 or -1 (ROCK)");
+  if (side == 0 && (theta != 0.0 || omega != 0.0))
+    throw std::invalid_argument("ContactModel::set_state: REST needs theta = omega = 0");
+  if (side != 0 && (side * theta < 0.0 || std::abs(theta) >= body_.overturn_angle()))
+    throw std::invalid_argument(
+        "ContactModel::set_state: ROCK needs side * theta >= 0 and |theta| < overturn angle");
+  t_ = t;
+  ax_prev_ = ax;
+  ay_prev_ = ay;
+  sigma_ = 0;
+  if (side == 0) {
+    mode_ = ContactMode::Rest;
+    side_ = 0;
+    pivot_x_ = 0.0;
+    x_ = {slip + body_.nu1() * body_.width(), 0.0, 0.0, 0.0, body_.cg_height(), 0.0};
+  } else {
+    mode_ = ContactMode::Rock;
+    side_ = side;
+    pivot_x_ = slip + (side > 0 ? 0.0 : body_.width());  // corner 1 at u, corner 2 at u + B
+    x_[2] = theta;
+    x_[3] = omega;
+    project_rock();
+  }
+  report_ = ContactReport{};
+  report_.mode = mode_;
+  report_.side = side_;
+  report_.slip = this->slip();
+  report_.slip_velocity = slip_velocity();
+  report_.theta = x_[2];
+}
+
 // Vector from the centre of mass to corner c (+1: corner 1, -1: corner 2), rotated by theta.
 void ContactModel::corner(int c, const State& s, double& rx, double& ry) const {
   const double dx = c > 0 ? -body_.nu1() * body_.width() : body_.nu2() * body_.width();

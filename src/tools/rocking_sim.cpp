@@ -219,7 +219,7 @@ int main(int argc, char** argv) {
                     {"sliding_ruled_out", o.sliding_ruled_out},
                     {"samples_rocking_model", o.samples_rocking_model},
                     {"samples_contact_model", o.samples_contact_model},
-                    {"replayed_samples", o.replayed_samples},
+                    {"replayed_samples", o.recomputed_samples},  // samples recomputed at up switches
                     {"model_switches", o.model_switches},
                     {"switch_reasons", reasons},
                     {"steps", o.rocking_steps + o.contact_steps},

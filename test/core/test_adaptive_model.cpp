@@ -40,8 +40,33 @@ struct RunResult {
   std::vector<rm::SwitchRecord> switches;
   std::vector<double> theta;
   int max_steps_per_sample = 0;
-  int max_replay = 0;
+  int max_rocking_samples = 0, max_contact_samples = 0, max_recomputed = 0;  // per sample
+  int max_rocking_steps = 0, max_contact_steps = 0;                          // per sample
+  bool steps_add_up = true;  // integrator_steps == rocking_steps + contact_steps every sample
+  int revised_alarms = 0;    // samples in which an already latched alarm changed
 };
+
+bool same_time(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
+
+// Counts latched alarms (flag set, or time known) that a later sample changed.
+int revisions(const rm::AdaptiveOutcome& before, const rm::AdaptiveOutcome& now) {
+  int n = 0;
+  if (before.beyond_tipping && (!now.beyond_tipping ||
+                                !same_time(before.beyond_tipping_time, now.beyond_tipping_time)))
+    ++n;
+  if (before.committed && (!now.committed || !same_time(before.committed_time, now.committed_time)))
+    ++n;
+  if (before.overturned && (!now.overturned || !same_time(before.overturn_time, now.overturn_time)))
+    ++n;
+  if (!std::isnan(before.uplift_time) && !same_time(before.uplift_time, now.uplift_time)) ++n;
+  if (!std::isnan(before.first_slip_time) && !same_time(before.first_slip_time, now.first_slip_time))
+    ++n;
+  if (!std::isnan(before.first_flight_time) &&
+      !same_time(before.first_flight_time, now.first_flight_time))
+    ++n;
+  if (now.max_rotation_ratio < before.max_rotation_ratio || now.impacts < before.impacts) ++n;
+  return n;
+}
 
 RunResult run(const rm::BodyParameters& body, Fidelity f, const Input& in, AdaptiveSettings s = {}) {
   s.fidelity = f;
@@ -50,9 +75,16 @@ RunResult run(const rm::BodyParameters& body, Fidelity f, const Input& in, Adapt
   RunResult r;
   r.theta.reserve(in.ax.size());
   for (std::size_t i = 1; i < in.ax.size(); ++i) {
+    const rm::AdaptiveOutcome before = m.outcome();
     const rm::AdaptiveReport& rep = m.step(in.ax[i], in.ay.empty() ? 0.0 : in.ay[i], in.dt);
     r.max_steps_per_sample = std::max(r.max_steps_per_sample, rep.integrator_steps);
-    r.max_replay = std::max(r.max_replay, rep.replayed_samples);
+    r.max_rocking_samples = std::max(r.max_rocking_samples, rep.rocking_samples);
+    r.max_contact_samples = std::max(r.max_contact_samples, rep.contact_samples);
+    r.max_recomputed = std::max(r.max_recomputed, rep.recomputed_samples);
+    r.max_rocking_steps = std::max(r.max_rocking_steps, rep.rocking_steps);
+    r.max_contact_steps = std::max(r.max_contact_steps, rep.contact_steps);
+    r.steps_add_up &= rep.integrator_steps == rep.rocking_steps + rep.contact_steps;
+    r.revised_alarms += revisions(before, m.outcome());
     r.theta.push_back(m.theta());
   }
   r.o = m.outcome();
@@ -237,6 +269,9 @@ TEST(AdaptiveModel, SlidingAndFlightScenesGiveTheContactModelAlarms) {
     const RunResult a = run(c.body, Fidelity::Adaptive, c.in);
     const RunResult ct = run(c.body, Fidelity::Contact, c.in);
     const double worst = expect_same_alarms(a, ct, c.name);
+    EXPECT_EQ(a.revised_alarms, 0) << c.name;
+    EXPECT_LE(a.max_contact_samples, 1) << c.name;
+    EXPECT_LE(a.max_rocking_samples, 1) << c.name;
     if (c.expect_switch) {
       EXPECT_GE(a.o.model_switches, 1) << c.name;
     }
@@ -255,6 +290,8 @@ TEST(AdaptiveModel, CatalogueOverSyntheticInputsMatchesTheRichestModel) {
       const RunResult a = run(body, Fidelity::Adaptive, in);
       const RunResult c = run(body, Fidelity::Contact, in);
       const double worst = expect_same_alarms(a, c, id + " / " + in.name);
+      EXPECT_EQ(a.revised_alarms, 0) << id << " / " << in.name;
+      EXPECT_LE(a.max_contact_samples, 1) << id << " / " << in.name;
       std::printf("[ measured ] %-16s %-18s adaptive: rock %ld / contact %ld samples, %ld switches, "
                   "steps %ld+%ld; contact-only steps %ld; tipping %d committed %d overturned %d, "
                   "max alarm dt %.3g s\n",
@@ -265,27 +302,54 @@ TEST(AdaptiveModel, CatalogueOverSyntheticInputsMatchesTheRichestModel) {
   }
 }
 
-TEST(AdaptiveModel, BoundedWorkAndAllocationFreeRecords) {
+// Work per sample: at most one RockingModel sample plus one ContactModel sample (the up switch
+// recomputes only its own sample), each bounded by its own settings; the report's step counts add
+// up; latched alarms are never revised.
+TEST(AdaptiveModel, BoundedWorkOneRockingPlusOneContactSampleAndNoRevisedAlarm) {
   AdaptiveSettings s;
-  s.replay_capacity = 50;
   s.max_switch_records = 8;
   s.hold_time_s = 0.0;
-  Input in{"alternating"};
+  Input alternating{"alternating"};
   for (int i = 0; i < 2000; ++i) {
-    in.ax.push_back((i % 2 ? 3.0 : -3.0) * kG * (i % 7 == 0 ? 0.1 : 1.0));
-    in.ay.push_back((i % 5 == 0) ? -2.0 * kG : (i % 3 == 0 ? kG : 0.0));
+    alternating.ax.push_back((i % 2 ? 3.0 : -3.0) * kG * (i % 7 == 0 ? 0.1 : 1.0));
+    alternating.ay.push_back((i % 5 == 0) ? -2.0 * kG : (i % 3 == 0 ? kG : 0.0));
   }
-  for (const auto& [id, body] : catalogue()) {
-    const RunResult a = run(body, Fidelity::Adaptive, in, s);
-    EXPECT_LE(a.max_replay, s.replay_capacity) << id;
-    // one RockingModel sample + (capacity + 1) ContactModel samples, each bounded by its settings
-    const int bound = (s.replay_capacity + 1) *
-                          (s.contact.substeps * (s.contact.max_events_per_sample + 1)) +
-                      100000;
-    EXPECT_LE(a.max_steps_per_sample, bound) << id;
-    EXPECT_LE(a.switches.size(), 8u);
-    EXPECT_TRUE(std::isfinite(a.theta.back()));
+  // ContactModel: <= substeps sub-steps per stretch between events, <= max_events + 1 stretches.
+  const int contact_bound = s.contact.substeps * (s.contact.max_events_per_sample + 1);
+  long recomputed = 0, up_switches = 0;
+  int worst_contact = 0, worst_rocking = 0;
+  for (const Input& in : {alternating, one_sine_pulse_csv(), ricker_input(4.0)}) {
+    for (AdaptiveSettings st : {s, AdaptiveSettings{}}) {
+      for (const auto& [id, body] : catalogue()) {
+        const RunResult a = run(body, Fidelity::Adaptive, in, st);
+        const std::string what = id + " / " + in.name;
+        EXPECT_LE(a.max_rocking_samples, 1) << what;
+        EXPECT_LE(a.max_contact_samples, 1) << what;
+        EXPECT_LE(a.max_recomputed, 1) << what;
+        EXPECT_TRUE(a.steps_add_up) << what;
+        EXPECT_LE(a.max_contact_steps, contact_bound) << what;
+        EXPECT_LE(a.max_steps_per_sample, a.max_rocking_steps + a.max_contact_steps) << what;
+        EXPECT_EQ(a.revised_alarms, 0) << what;
+        EXPECT_LE(a.switches.size(), static_cast<std::size_t>(st.max_switch_records)) << what;
+        EXPECT_TRUE(std::isfinite(a.theta.back())) << what;
+        // every up switch recomputes exactly one sample; the work counters agree
+        long ups = 0;
+        for (const auto& sw : a.switches) ups += sw.to == rm::ActiveModel::Contact;
+        if (a.o.model_switches <= st.max_switch_records) EXPECT_EQ(a.o.recomputed_samples, ups) << what;
+        EXPECT_EQ(a.o.samples_rocking_model + a.o.samples_contact_model - a.o.recomputed_samples,
+                  a.o.samples)
+            << what;
+        recomputed += a.o.recomputed_samples;
+        up_switches += ups;
+        worst_contact = std::max(worst_contact, a.max_contact_steps);
+        worst_rocking = std::max(worst_rocking, a.max_rocking_steps);
+      }
+    }
   }
+  EXPECT_GT(recomputed, 0);
+  std::printf("[ measured ] %ld samples recomputed at up switches (%ld up switches in the kept switch records); "
+              "worst per sample: rocking %d steps, contact %d sub-steps (bound %d)\n",
+              recomputed, up_switches, worst_rocking, worst_contact, contact_bound);
   AdaptiveModel m(box(0.3, 0.6, 0.5, 0.5));
   EXPECT_THROW(m.step(0.0, 0.0, 0.0), std::invalid_argument);
   EXPECT_THROW(m.step(NAN, 0.0, 0.005), std::invalid_argument);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "rocking_monitor/core/contact_model.hpp"
@@ -284,6 +285,90 @@ TEST(ContactModel, HighFrictionGivesTheRockingModelThetaHistory) {
     EXPECT_LT(max_diff, 1e-7 * alpha) << "mu " << mu;
     RecordProperty("theta_max_diff_rad", std::to_string(max_diff));
   }
+}
+
+// Exact state transfer: ContactModel placed with set_state() in the RockingModel's state at some
+// sample (pure ROCK, pivot sticking, given slip offset) and stepped with infinite (and very high)
+// friction follows the RockingModel from there, to the tolerance of the test above.
+TEST(ContactModel, SetIntoRockingStateFollowsRockingModel) {
+  const double alpha = 0.25, p = 2.0, dt = 0.005, offset = 0.123;
+  for (double mu : {std::numeric_limits<double>::infinity(), 100.0}) {
+    BodyParameters b = testing::rectangle_with(p, alpha);
+    b.mu_s = mu;
+    ContactSettings cs;
+    cs.substeps = 32;
+    SolverSettings st;
+    st.tol = 1e-11;
+    const GroundMotion gm = testing::one_sine_pulse(1.2 * alpha * g, 2.0 * p, dt, 6.0);
+    // Reference run, to pick transfer samples while rocking (early, after the first impact, late).
+    RockingModel probe(b, st);
+    probe.reset(0.0, gm.horizontal[0], 0.0);
+    std::vector<std::size_t> starts;
+    long impacts_seen = 0;
+    for (std::size_t k = 1; k < gm.horizontal.size(); ++k) {
+      probe.step(gm.horizontal[k], 0.0, dt);
+      if (probe.mode() != Mode::Rocking) continue;
+      if (starts.empty() || (probe.outcome().impacts > impacts_seen && starts.size() < 3)) {
+        starts.push_back(k);
+        impacts_seen = probe.outcome().impacts;
+      }
+    }
+    ASSERT_EQ(starts.size(), 3u);
+    for (std::size_t k0 : starts) {
+      RockingModel rm(b, st);
+      rm.reset(0.0, gm.horizontal[0], 0.0);
+      for (std::size_t k = 1; k <= k0; ++k) rm.step(gm.horizontal[k], 0.0, dt);
+      ASSERT_EQ(rm.mode(), Mode::Rocking);
+      ContactModel m(b, cs);
+      ContactOutcome kept;
+      kept.impacts = 7;
+      kept.samples = 11;
+      m.set_state(rm.time(), rm.last_ax(), rm.last_ay(), rm.side(), rm.theta(), rm.omega(), offset,
+                  kept);
+      EXPECT_EQ(m.mode(), ContactMode::Rock);
+      EXPECT_EQ(m.side(), rm.side());
+      EXPECT_EQ(m.theta(), rm.theta());
+      EXPECT_EQ(m.omega(), rm.omega());
+      EXPECT_EQ(m.time(), rm.time());
+      EXPECT_NEAR(m.slip(), offset, 1e-15);
+      EXPECT_NEAR(m.slip_velocity(), 0.0, 1e-15);
+      EXPECT_EQ(m.outcome().impacts, 7);
+      EXPECT_EQ(m.outcome().samples, 11);
+      const long rm_impacts0 = rm.outcome().impacts;
+      double max_diff = 0.0;
+      for (std::size_t k = k0 + 1; k < gm.horizontal.size(); ++k) {
+        m.step(gm.horizontal[k], 0.0, dt);
+        rm.step(gm.horizontal[k], 0.0, dt);
+        max_diff = std::max(max_diff, std::abs(m.theta() - rm.theta()));
+      }
+      EXPECT_EQ(m.outcome().impacts - 7, rm.outcome().impacts - rm_impacts0) << "from " << k0;
+      EXPECT_GT(rm.outcome().impacts - rm_impacts0, 0) << "from " << k0;
+      EXPECT_EQ(m.outcome().slip_episodes, 0);
+      EXPECT_NEAR(m.slip(), offset, 1e-9) << "sticking pivots keep the offset";
+      EXPECT_LT(max_diff, 1e-7 * alpha) << "mu " << mu << " from sample " << k0;
+      RecordProperty("theta_max_diff_rad_from_" + std::to_string(k0), std::to_string(max_diff));
+    }
+  }
+}
+
+TEST(ContactModel, SetStateRestAndInvalidArguments) {
+  ContactModel m(slender(0.5, 0.4));
+  m.set_state(2.0, 0.1, 0.0, 0, 0.0, 0.0, -0.25);
+  EXPECT_EQ(m.mode(), ContactMode::Rest);
+  EXPECT_EQ(m.time(), 2.0);
+  EXPECT_NEAR(m.slip(), -0.25, 1e-15);
+  for (int k = 0; k < 100; ++k) m.step(0.1, 0.0, 0.005);
+  EXPECT_EQ(m.mode(), ContactMode::Rest);
+  EXPECT_NEAR(m.slip(), -0.25, 1e-15);
+  EXPECT_NEAR(m.time(), 2.5, 1e-12);
+  const ContactModel::State before = m.state();
+  EXPECT_THROW(m.set_state(0.0, 0.0, 0.0, 2, 0.1, 0.0), std::invalid_argument);
+  EXPECT_THROW(m.set_state(0.0, 0.0, 0.0, 0, 0.1, 0.0), std::invalid_argument);
+  EXPECT_THROW(m.set_state(0.0, 0.0, 0.0, 1, -0.1, 0.0), std::invalid_argument);
+  EXPECT_THROW(m.set_state(0.0, 0.0, 0.0, -1, -2.0, 0.0), std::invalid_argument);
+  EXPECT_THROW(m.set_state(0.0, NAN, 0.0, 1, 0.1, 0.0), std::invalid_argument);
+  EXPECT_EQ(m.state(), before);
+  EXPECT_EQ(m.mode(), ContactMode::Rest);
 }
 
 // After the excitation stops, the relative-frame energy never increases, through rocking,

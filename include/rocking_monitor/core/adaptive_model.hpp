@@ -38,14 +38,14 @@ enum class SwitchReason : std::uint8_t {
   SlipAtImpact,             ///< up: an impact whose tangential impulse exceeds mu_s P_y
   FrictionNearLimit,        ///< up: |R_x| > friction_safety mu_s R_y at a sample end (early, safe)
   NearLiftOff,              ///< up: R_y < lift_off_margin g at a sample end while rocking (early, safe)
-  ReplayWindowFull,         ///< up: rocking episode longer than the replay window
   RestHeld,                 ///< down: ContactModel at REST for hold_time
   RockHeld,                 ///< down: ContactModel in pure ROCK (sticking pivot) for hold_time
 };
 const char* to_string(SwitchReason reason);
 
 struct SwitchRecord {
-  double time = 0.0;  ///< s: start of the re-run for an up switch (see docs), sample end for down
+  double time = 0.0;  ///< s: up switch: start of the sample recomputed by ContactModel (the
+                      ///< state transfer); down switch: sample end
   ActiveModel to = ActiveModel::Rocking;
   SwitchReason reason = SwitchReason::None;
   double onset_time = 0.0;  ///< s: end of the sample in which the reason was detected
@@ -65,9 +65,6 @@ struct AdaptiveSettings {
   /// Up switch also when the rocking normal reaction R_y < lift_off_margin * g at a sample end
   /// (catches lift-off inside a sample early). 0 = exact criterion (R_y < 0) only.
   double lift_off_margin = 0.1;
-  /// Input samples kept since the last exact anchor (REST, or the ContactModel state at a down
-  /// switch) so that an up switch re-runs them with ContactModel. Bounds the work of one sample.
-  int replay_capacity = 4000;
   /// Switch records kept (the count goes on beyond it). Reserved at construction.
   int max_switch_records = 256;
   /// Scene limits for the static pre-check: |a_xg| <= a_max, a_yg >= -a_y_max (m/s^2).
@@ -80,9 +77,14 @@ struct AdaptiveReport {
   ActiveModel model = ActiveModel::Rocking;  ///< model whose result stands at the sample end
   bool switched = false;                     ///< a switch happened in this sample
   SwitchReason reason = SwitchReason::None;  ///< its reason
-  int replayed_samples = 0;                  ///< samples re-run with ContactModel (up switch)
-  int integrator_steps = 0;                  ///< rocking + contact steps spent in this sample
-  bool alarms_revised = false;  ///< a replay replaced provisional alarms of the rocking run
+  /// 1 when this sample was first stepped by RockingModel and then recomputed by ContactModel
+  /// from the RockingModel state at the sample start (up switch), else 0.
+  int recomputed_samples = 0;
+  int rocking_samples = 0;   ///< RockingModel samples stepped in this sample (0 or 1)
+  int contact_samples = 0;   ///< ContactModel samples stepped in this sample (0 or 1)
+  int rocking_steps = 0;     ///< RockingModel integrator steps in this sample
+  int contact_steps = 0;     ///< ContactModel RK4 sub-steps in this sample
+  int integrator_steps = 0;  ///< rocking_steps + contact_steps
 };
 
 /// Totals since reset(). Alarm definitions as RockingOutcome (see docs/fidelity.md for the
@@ -99,20 +101,22 @@ struct AdaptiveOutcome {
   double max_abs_slip = 0.0;
   long impacts = 0, slip_episodes = 0, flight_episodes = 0;
   long samples = 0;
-  // Work (never rolled back by a replay).
+  // Work. A recomputed sample (up switch) counts in both samples_rocking_model and
+  // samples_contact_model, and once in samples.
   long samples_rocking_model = 0;   ///< samples stepped by RockingModel
-  long samples_contact_model = 0;   ///< samples stepped by ContactModel (replays included)
+  long samples_contact_model = 0;   ///< samples stepped by ContactModel (recomputed included)
   long rocking_steps = 0;           ///< RockingModel integrator steps (dopri5 or RK4)
   long contact_steps = 0;           ///< ContactModel RK4 sub-steps
-  long replayed_samples = 0;
-  long max_replay = 0;
+  long recomputed_samples = 0;      ///< samples recomputed by ContactModel (one per up switch)
   long model_switches = 0;
   bool sliding_ruled_out = false;   ///< static pre-check result
 };
 
 /// Streaming shape of RockingModel / ContactModel: reset(t, ax, ay), step(ax, ay, dt).
-/// step() allocates nothing (buffers reserved at construction) and does bounded work:
-/// at most (replay_capacity + 1) ContactModel samples plus one RockingModel sample.
+/// step() allocates nothing (switch records reserved at construction) and does bounded work:
+/// at most one RockingModel sample plus one ContactModel sample. Alarms, once latched, are never
+/// revised: an up switch recomputes only the sample in which it fired, with ContactModel placed
+/// exactly in the RockingModel state at the start of that sample (ContactModel::set_state).
 class AdaptiveModel {
  public:
   AdaptiveModel(const Body& body, const AdaptiveSettings& settings = {});
@@ -142,15 +146,20 @@ class AdaptiveModel {
   double impact_friction_demand(int new_side) const;
 
  private:
-  struct Pending { double ax, ay, dt; };
-  void accumulate_rocking(const StepReport& r, double t0);
+  /// RockingModel state at the start of a sample (what the up switch transfers).
+  struct RockStart {
+    Mode mode;
+    int side;
+    double theta, omega;
+  };
+  void count_rocking_work(const StepReport& r);
+  void accumulate_rocking(const StepReport& r);
   void accumulate_contact(const ContactReport& r, double t0, double dt, double th0, double om0,
                           int side0, ContactMode mode0);
   void contact_step(double ax, double ay, double dt);
   SwitchReason check_rocking(const StepReport& r) const;
-  void switch_up(SwitchReason reason);
+  void switch_up(SwitchReason reason, const RockStart& start, double ax, double ay, double dt);
   void switch_down(SwitchReason reason, double ax, double ay);
-  void anchor_rest(double t, double ax, double ay);
   void record(double time, ActiveModel to, SwitchReason reason, double onset);
 
   Body body_;
@@ -161,16 +170,8 @@ class AdaptiveModel {
   SwitchReason initial_reason_ = SwitchReason::None;
   double impact_demand_[2] = {0.0, 0.0};
   double t_ = 0.0, ax_prev_ = 0.0, ay_prev_ = 0.0;
-  double slip_base_ = 0.0;  // slip at the last contact_.reset
   double hold_ = 0.0;
   double rock_slip_ = 0.0;  // slip while RockingModel runs (constant)
-  // Exact anchor for a replay: either REST at (anchor_t_, anchor_ax_, anchor_ay_) with slip
-  // anchor_slip_, or a copy of the ContactModel (anchor_is_contact_).
-  bool anchor_valid_ = false, anchor_is_contact_ = false;
-  double anchor_t_ = 0.0, anchor_ax_ = 0.0, anchor_ay_ = 0.0, anchor_slip_ = 0.0;
-  ContactModel anchor_contact_;
-  AdaptiveOutcome anchor_outcome_;
-  std::vector<Pending> pending_;  // capacity replay_capacity, reserved
   std::vector<SwitchRecord> switches_;  // capacity max_switch_records, reserved
   AdaptiveReport report_;
   AdaptiveOutcome outcome_;

@@ -76,6 +76,24 @@ class ContactModel {
   /// dt finite > 0 and finite inputs, else std::invalid_argument (state unchanged).
   const ContactReport& step(double ax, double ay, double dt);
 
+  /// Exact state transfer (used by AdaptiveModel to take over from RockingModel): places the
+  /// body at time t (s), with the current ground acceleration (ax, ay) (the start of the next
+  /// first-order-hold sample), in
+  ///  * REST (side == 0; theta and omega must be 0): flat, nothing moving, or
+  ///  * pure ROCK about corner `side` (+1 corner 1, -1 corner 2) with (theta, omega): the pivot
+  ///    sticks on the floor, slip velocity exactly zero, centre of mass on the rocking manifold
+  ///    (y_pivot = 0, x and y velocities from omega); side * theta >= 0, |theta| < overturn angle.
+  /// `slip` is the base's horizontal offset u (m), kept while the pivot sticks. Friction and
+  /// lift-off are not checked here: the next step() exits ROCK at once if |R_x| > mu_s R_y or
+  /// R_y < 0 (the caller places only valid pure-rocking states). Only the mechanical state, the
+  /// time and the previous input change; the outcome counters (outcome()) are kept, or replaced by
+  /// `outcome` in the second overload; last_report() is cleared to describe the placed state.
+  /// Invalid arguments: std::invalid_argument, state unchanged.
+  void set_state(double t, double ax, double ay, int side, double theta, double omega,
+                 double slip = 0.0);
+  void set_state(double t, double ax, double ay, int side, double theta, double omega,
+                 double slip, const ContactOutcome& outcome);
+
   ContactMode mode() const { return mode_; }
   int side() const { return side_; }
   double theta() const { return x_[2]; }
