@@ -65,10 +65,18 @@ ItemMonitor::ItemMonitor(const ItemSpec& spec, const Options& options)
     : spec_(checked(spec)),
       options_(options),
       model_(Body(spec.body), options.solver),
-      thresholds_(screening_thresholds(model_.body())) {}
+      thresholds_(screening_thresholds(model_.body())) {
+  if (options.fidelity != Fidelity::Rocking) {
+    AdaptiveSettings a;
+    a.fidelity = options.fidelity;
+    a.rocking = options.solver;
+    adaptive_ = std::make_unique<AdaptiveModel>(model_.body(), a);
+  }
+}
 
 void ItemMonitor::start(double t, double ax, double ay, double dt_nominal) {
   model_.reset(t, ax, ay);
+  if (adaptive_) adaptive_->reset(t, ax, ay);
   StreamingIntensityConfig cfg;
   cfg.dt = dt_nominal;
   cfg.periods = {housner_period(model_.body())};
@@ -82,20 +90,58 @@ void ItemMonitor::start(double t, double ax, double ay, double dt_nominal) {
 }
 
 std::uint8_t ItemMonitor::violations() const {
+  if (adaptive_) return 0;  // sliding and flight are modelled, not flagged
   std::uint8_t v = model_.violations();
   if (slid_at_uplift_) v |= bit(Criterion::SlideAtUplift);
   return v;
 }
 
 ItemMode ItemMonitor::mode() const {
-  switch (model_.mode()) {
-    case Mode::Rest: return ItemMode::Rest;
-    case Mode::Overturned: return ItemMode::Overturned;
-    case Mode::Rocking: break;
+  if (adaptive_) {
+    if (adaptive_->outcome().overturned) return ItemMode::Overturned;
+    if (side() == 0) return ItemMode::Rest;  // at rest or sliding on both corners
+  } else {
+    switch (model_.mode()) {
+      case Mode::Rest: return ItemMode::Rest;
+      case Mode::Overturned: return ItemMode::Overturned;
+      case Mode::Rocking: break;
+    }
   }
-  if (model_.margin().committed) return ItemMode::Committed;
-  if (model_.rotation_ratio() > 1.0) return ItemMode::BeyondTipping;
+  if (margin().committed) return ItemMode::Committed;
+  if (rotation_ratio() > 1.0) return ItemMode::BeyondTipping;
   return ItemMode::Rocking;
+}
+
+int ItemMonitor::side() const { return adaptive_ ? adaptive_->side() : model_.side(); }
+double ItemMonitor::theta() const { return adaptive_ ? adaptive_->theta() : model_.theta(); }
+double ItemMonitor::omega() const { return adaptive_ ? adaptive_->omega() : model_.omega(); }
+double ItemMonitor::slip() const { return adaptive_ ? adaptive_->slip() : 0.0; }
+long ItemMonitor::impacts() const { return adaptive_ ? adaptive_->outcome().impacts : model_.outcome().impacts; }
+const char* ItemMonitor::active_model() const {
+  return adaptive_ && adaptive_->active() == ActiveModel::Contact ? "contact" : "rocking";
+}
+
+double ItemMonitor::rotation_ratio() const {
+  const int s = side();
+  return s == 0 ? 0.0 : std::abs(theta()) / model_.body().pivot(s).alpha;
+}
+
+OverturnMargin ItemMonitor::margin() const {
+  if (!adaptive_) return model_.margin();
+  if (adaptive_->outcome().overturned) return {-1.0, true};
+  const int s = side();
+  if (s == 0) return {1.0, false};
+  return overturn_margin(model_.body().pivot(s), s, ModelKind::Nonlinear, theta(), omega());
+}
+
+ContactMode ItemMonitor::contact_mode() const {
+  if (adaptive_) return adaptive_->mode();
+  switch (model_.mode()) {
+    case Mode::Rest: return ContactMode::Rest;
+    case Mode::Rocking: return ContactMode::Rock;
+    case Mode::Overturned: return ContactMode::Overturned;
+  }
+  return ContactMode::Rest;
 }
 
 void ItemMonitor::record_change(CriterionId id, bool exceeded, double value, double threshold,
@@ -166,6 +212,23 @@ void ItemMonitor::evaluate_criteria(double ax, double ay) {
 const ItemEvents& ItemMonitor::step(double ax, double ay, double dt) {
   events_.change_count = 0;
   events_.alarm_count = 0;
+  auto alarm = [&](ItemMode level, double time) {
+    AlarmEvent& a = events_.alarms[events_.alarm_count++];
+    a.level = level;
+    a.time = time;
+    a.rotation_ratio = rotation_ratio();
+  };
+  if (adaptive_) {
+    const AdaptiveOutcome& o = adaptive_->outcome();
+    const bool tipped = o.beyond_tipping, committed = o.committed, overturned = o.overturned;
+    adaptive_->step(ax, ay, dt);
+    intensity_->push(ax);
+    evaluate_criteria(ax, ay);
+    if (!tipped && o.beyond_tipping) alarm(ItemMode::BeyondTipping, o.beyond_tipping_time);
+    if (!committed && o.committed) alarm(ItemMode::Committed, o.committed_time);
+    if (!overturned && o.overturned) alarm(ItemMode::Overturned, o.overturn_time);
+    return events_;
+  }
   const StepReport& r = model_.step(ax, ay, dt);
   intensity_->push(ax);
   if (r.violation_onsets & bit(Criterion::SlideAtUplift)) slid_at_uplift_ = true;
@@ -173,12 +236,6 @@ const ItemEvents& ItemMonitor::step(double ax, double ay, double dt) {
   evaluate_criteria(ax, ay);
 
   const RockingOutcome& o = model_.outcome();
-  auto alarm = [&](ItemMode level, double time) {
-    AlarmEvent& a = events_.alarms[events_.alarm_count++];
-    a.level = level;
-    a.time = time;
-    a.rotation_ratio = model_.rotation_ratio();
-  };
   if (r.beyond_tipping_entered) alarm(ItemMode::BeyondTipping, o.beyond_tipping_time);
   if (r.committed_entered) alarm(ItemMode::Committed, o.committed_time);
   if (r.overturned) alarm(ItemMode::Overturned, o.overturn_time);

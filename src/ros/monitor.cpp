@@ -66,7 +66,7 @@ RockingMonitor::RockingMonitor(::ros::NodeHandle nh, ::ros::NodeHandle pnh) : nh
 RockingMonitor::~RockingMonitor() = default;
 
 bool RockingMonitor::load_parameters() {
-  std::string method = "dopri5", model = "nonlinear", baseline = "tracked";
+  std::string method = "dopri5", model = "nonlinear", baseline = "tracked", fidelity = "rocking";
   int substeps = options_.solver.substeps;
   bool ok = param(pnh_, "method", method, "string") && param(pnh_, "model", model, "string") &&
             param(pnh_, "tol", options_.solver.tol, "number") && param(pnh_, "substeps", substeps, "integer") &&
@@ -81,7 +81,8 @@ bool RockingMonitor::load_parameters() {
             param(pnh_, "state_rate", state_rate_, "number") &&
             param(pnh_, "publish_markers", publish_markers_, "bool") &&
             param(pnh_, "publish_tf", publish_tf_, "bool") && param(pnh_, "threads", threads_, "integer") &&
-            param(pnh_, "marker_rate", marker_rate_, "number");
+            param(pnh_, "marker_rate", marker_rate_, "number") &&
+            param(pnh_, "fidelity", fidelity, "string");
   if (!ok) return false;
   options_.solver.substeps = substeps;
   if (threads_ < 1) {
@@ -91,6 +92,10 @@ bool RockingMonitor::load_parameters() {
   if (threads_ > 1) arena_ = std::make_unique<tbb::task_arena>(threads_);
   if (!core::parse_method(method, options_.solver.method)) {
     ROS_FATAL("rocking_monitor: ~method '%s' is not one of dopri5, rk4, analytic", method.c_str());
+    return false;
+  }
+  if (!core::parse_fidelity(fidelity.c_str(), options_.fidelity)) {
+    ROS_FATAL("rocking_monitor: ~fidelity '%s' is not one of rocking, adaptive, contact", fidelity.c_str());
     return false;
   }
   if (!core::parse_model(model, options_.solver.model)) {
@@ -224,9 +229,10 @@ bool RockingMonitor::init() {
   // Wall time: under sim time nothing ticks until a /clock arrives, which is what we warn about.
   startup_timer_ = nh_.createWallTimer(::ros::WallDuration(5.0), &RockingMonitor::on_startup_timer, this);
   last_now_ = ::ros::Time::now();
-  ROS_INFO("rocking_monitor: %zu items on %zu sensors, method %s (%s model, tol %g, substeps %d)",
+  ROS_INFO("rocking_monitor: %zu items on %zu sensors, method %s (%s model, tol %g, substeps %d), fidelity %s",
            items_.size(), sensors_.size(), core::to_string(options_.solver.method),
-           core::to_string(options_.solver.model), options_.solver.tol, options_.solver.substeps);
+           core::to_string(options_.solver.model), options_.solver.tol, options_.solver.substeps,
+           core::to_string(options_.fidelity));
   return true;
 }
 
@@ -424,16 +430,18 @@ void RockingMonitor::publish_events(Item& it, const core::ItemEvents& ev, const 
 
 void RockingMonitor::fill_state(const Item& it, RockingState& out) const {
   const core::ItemMonitor& im = *it.monitor;
-  const core::RockingModel& m = im.model();
   out.mode = static_cast<std::uint8_t>(im.mode());
-  out.pivot = static_cast<std::int8_t>(m.side());
-  out.theta = m.theta();
-  out.theta_dot = m.omega();
-  out.rotation_ratio = m.rotation_ratio();
-  out.energy_margin = m.margin().margin;
-  out.impacts = static_cast<std::uint32_t>(m.outcome().impacts);
+  out.pivot = static_cast<std::int8_t>(im.side());
+  out.theta = im.theta();
+  out.theta_dot = im.omega();
+  out.rotation_ratio = im.rotation_ratio();
+  out.energy_margin = im.margin().margin;
+  out.impacts = static_cast<std::uint32_t>(im.impacts());
   out.violations = im.violations();
   out.model_valid = out.violations == 0;
+  out.contact_mode = static_cast<std::uint8_t>(im.contact_mode());
+  out.slip = im.slip();
+  out.model = im.active_model();
   out.input_stamp = it.stamp;
 }
 
@@ -469,9 +477,9 @@ void RockingMonitor::publish_markers_and_tf() {
   const ::ros::Time now = ::ros::Time::now();
   for (std::size_t i = 0; i < items_.size(); ++i) {
     const Item& it = items_[i];
-    const core::Body& b = it.monitor->model().body();
-    const double theta = it.monitor->model().theta();
-    const int side = it.monitor->model().side();
+    const core::Body& b = it.monitor->body();
+    const double theta = it.monitor->theta();
+    const int side = it.monitor->side();
     // Item frame: origin on the floor below the centre of mass, x across the base, z up.
     // Corner 1 at x = -nu1 B, corner 2 at x = +nu2 B; theta > 0 rotates about corner 1 (about -y).
     const Eigen::Vector3d pivot(side >= 0 ? -b.nu1() * b.width() : b.nu2() * b.width(), 0.0, 0.0);
@@ -607,6 +615,10 @@ void RockingMonitor::catalogue_diagnostics(diagnostic_updater::DiagnosticStatusW
   st.add("item-samples skipped for want of a transform", skipped);
   st.add("alarms published", alarms_published_);
   st.add("method", core::to_string(options_.solver.method));
+  st.add("fidelity", core::to_string(options_.fidelity));
+  int on_contact = 0;
+  for (const Item& it : items_) on_contact += std::string(it.monitor->active_model()) == "contact";
+  st.add("items on the contact model now", on_contact);
 }
 
 }  // namespace rocking_monitor::live

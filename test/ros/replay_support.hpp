@@ -44,6 +44,9 @@ class OfflineMonitor {
     core::parse_method(method, options_.solver.method);
     options_.solver.tol = number(nh, "tol", options_.solver.tol);
     nh.getParam("substeps", options_.solver.substeps);
+    std::string fidelity = "rocking";
+    nh.getParam("fidelity", fidelity);
+    core::parse_fidelity(fidelity.c_str(), options_.fidelity);
     options_.velocity_highpass_hz = number(nh, "velocity_highpass_hz", options_.velocity_highpass_hz);
     std::string mode = "tracked";
     nh.getParam("gravity_baseline/mode", mode);
@@ -100,8 +103,8 @@ class OfflineMonitor {
         alarms_.push_back({items_[i].spec().id, static_cast<std::uint8_t>(ev.alarms[k].level), t});
       OfflineState s;
       s.mode = static_cast<std::uint8_t>(items_[i].mode());
-      s.theta = items_[i].model().theta();
-      s.impacts = static_cast<std::uint32_t>(items_[i].model().outcome().impacts);
+      s.theta = items_[i].theta();
+      s.impacts = static_cast<std::uint32_t>(items_[i].impacts());
       row.push_back(s);
     }
   }

@@ -16,11 +16,12 @@ namespace {
 
 TEST(MonitorReplay, LiveEqualsOfflineSampleForSample) {
   ros::NodeHandle pnh("~");
-  std::string bag_path, ns = "/rocking_monitor", must_overturn, must_survive;
+  std::string bag_path, ns = "/rocking_monitor", must_overturn, must_survive, must_slide;
   ASSERT_TRUE(pnh.getParam("bag", bag_path));
   pnh.getParam("monitor", ns);
   pnh.getParam("must_overturn", must_overturn);
   pnh.getParam("must_survive", must_survive);
+  pnh.getParam("must_slide", must_slide);
 
   // Offline: the same samples through the core library.
   rosbag::Bag bag(bag_path);
@@ -89,6 +90,14 @@ TEST(MonitorReplay, LiveEqualsOfflineSampleForSample) {
     bool found = false;
     for (const auto& a : alarms) found |= a.item_id == must_overturn && a.level == OverturnAlarm::OVERTURNED;
     EXPECT_TRUE(found) << must_overturn << " must overturn";
+  }
+  if (!must_slide.empty()) {  // the contact model ran for it: sliding was modelled, not only flagged
+    bool slid = false;
+    for (const auto& [key, msg] : live)
+      for (const RockingState& st : msg.items)
+        slid |= st.id == must_slide && st.model == "contact" &&
+                (st.contact_mode == RockingState::CONTACT_SLIDE || st.contact_mode == RockingState::CONTACT_SLIDE_ROCK);
+    EXPECT_TRUE(slid) << must_slide << " must slide";
   }
   if (!must_survive.empty()) {
     for (const auto& a : alarms) EXPECT_NE(a.item_id, must_survive) << must_survive << " must raise no alarm";

@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 
+#include "rocking_monitor/core/adaptive_model.hpp"
 #include "rocking_monitor/core/criteria.hpp"
 #include "rocking_monitor/core/rocking_model.hpp"
 #include "rocking_monitor/core/streaming_intensity.hpp"
@@ -69,6 +70,9 @@ class ItemMonitor {
   struct Options {
     SolverSettings solver;
     double velocity_highpass_hz = 0.05;  ///< PGV high-pass corner, Hz (see StreamingIntensity)
+    /// Rocking: pure rocking, violations flagged (default). Adaptive / Contact: sliding and free
+    /// flight modelled (AdaptiveModel, docs/fidelity.md); the validity criteria are then not flagged.
+    Fidelity fidelity = Fidelity::Rocking;
   };
 
   /// Throws std::invalid_argument (message from validate()) for a bad spec.
@@ -86,7 +90,21 @@ class ItemMonitor {
   /// Events of the last step().
   const ItemEvents& events() const { return events_; }
   ItemMode mode() const;
+  /// The pure-rocking model (the one that runs with Fidelity::Rocking).
   const RockingModel& model() const { return model_; }
+  /// Present with Fidelity::Adaptive or Contact.
+  const AdaptiveModel* adaptive() const { return adaptive_.get(); }
+  // The state of whichever model runs:
+  int side() const;
+  double theta() const;                ///< rad
+  double omega() const;                ///< rad/s
+  double rotation_ratio() const;       ///< |theta| / alpha of the active pivot
+  OverturnMargin margin() const;
+  long impacts() const;
+  double slip() const;                 ///< m, base displacement relative to the floor
+  ContactMode contact_mode() const;    ///< REST, SLIDE, ROCK, SLIDE_ROCK, FLIGHT, OVERTURNED
+  const char* active_model() const;    ///< "rocking" or "contact"
+  const Body& body() const { return model_.body(); }
   const ItemSpec& spec() const { return spec_; }
   const ScreeningThresholds& thresholds() const { return thresholds_; }
   /// Screening criteria exceeded so far (they are running maxima, so they stay exceeded).
@@ -104,6 +122,7 @@ class ItemMonitor {
   ItemSpec spec_;
   Options options_;
   RockingModel model_;
+  std::unique_ptr<AdaptiveModel> adaptive_;
   ScreeningThresholds thresholds_;
   std::unique_ptr<StreamingIntensity> intensity_;
   bool started_ = false;
