@@ -170,6 +170,7 @@ void ItemMonitor::evaluate_criteria(double ax, double ay) {
   screen(CriterionId::IshiyamaEquivalent, p.ishiyama_equivalent, &thresholds_.ishiyama_equivalent);
   screen(CriterionId::Proposed, p.proposed, &thresholds_.proposed);
 
+  if (adaptive_) return;  // validity criteria are reported as model switches (report_switch)
   // Model validity: the model's bitmask at the end of the sample. The values reported with a change
   // need the contact reaction; compute it only when some validity criterion changed state.
   const std::uint8_t v = violations();
@@ -209,6 +210,25 @@ void ItemMonitor::evaluate_criteria(double ax, double ay) {
   }
 }
 
+// With adaptive fidelity the validity criteria are why the contact model runs: a switch up is reported
+// as the criterion that caused it becoming exceeded, the switch down as it clearing.
+void ItemMonitor::report_switch(SwitchReason reason, bool to_contact) {
+  CriterionId id;
+  switch (reason) {
+    case SwitchReason::SlideFromRest: id = CriterionId::SlideFromRest; break;
+    case SwitchReason::SlideAtUplift: id = CriterionId::SlideAtUplift; break;
+    case SwitchReason::FreeFlight:
+    case SwitchReason::NearLiftOff: id = CriterionId::FreeFlight; break;
+    case SwitchReason::SlideWhileRocking:
+    case SwitchReason::SlipAtImpact:
+    case SwitchReason::FrictionNearLimit: id = CriterionId::SlideWhileRocking; break;
+    default: id = last_switch_criterion_; break;  // switch down: clear what switched up
+  }
+  if (to_contact) last_switch_criterion_ = id;
+  if (exceeded_[static_cast<int>(id)] == to_contact) return;
+  record_change(id, to_contact, 0.0, model_.body().mu_s());
+}
+
 const ItemEvents& ItemMonitor::step(double ax, double ay, double dt) {
   events_.change_count = 0;
   events_.alarm_count = 0;
@@ -221,9 +241,10 @@ const ItemEvents& ItemMonitor::step(double ax, double ay, double dt) {
   if (adaptive_) {
     const AdaptiveOutcome& o = adaptive_->outcome();
     const bool tipped = o.beyond_tipping, committed = o.committed, overturned = o.overturned;
-    adaptive_->step(ax, ay, dt);
+    const AdaptiveReport& rep = adaptive_->step(ax, ay, dt);
     intensity_->push(ax);
     evaluate_criteria(ax, ay);
+    if (rep.switched) report_switch(rep.reason, adaptive_->active() == ActiveModel::Contact);
     if (!tipped && o.beyond_tipping) alarm(ItemMode::BeyondTipping, o.beyond_tipping_time);
     if (!committed && o.committed) alarm(ItemMode::Committed, o.committed_time);
     if (!overturned && o.overturned) alarm(ItemMode::Overturned, o.overturn_time);

@@ -74,6 +74,8 @@ TEST(ItemMonitor, AdaptiveFidelityModelsSlidingAndMatchesTheAdaptiveModel) {
   direct.reset(0.0, c.accel[0], 0.0);
   bool slid = false;
   double max_slip = 0.0;
+  int slide_changes = 0;
+  bool slide_exceeded = false;
   for (std::size_t i = 1; i < c.accel.size(); ++i) {
     const ItemEvents& ev = im.step(c.accel[i], 0.0, c.dt);
     direct.step(c.accel[i], 0.0, c.dt);
@@ -82,9 +84,17 @@ TEST(ItemMonitor, AdaptiveFidelityModelsSlidingAndMatchesTheAdaptiveModel) {
     slid |= im.contact_mode() == ContactMode::Slide;
     max_slip = std::max(max_slip, std::abs(im.slip()));
     EXPECT_EQ(im.violations(), 0) << "sliding is modelled, not flagged";
-    for (int k = 0; k < ev.change_count; ++k) EXPECT_LT(static_cast<int>(ev.changes[k].id), kScreeningCount);
+    for (int k = 0; k < ev.change_count; ++k) {
+      if (ev.changes[k].id != CriterionId::SlideFromRest) continue;
+      // Reported when the model switches: up to the contact model, and back down once at rest.
+      EXPECT_NE(ev.changes[k].exceeded, slide_exceeded);
+      slide_exceeded = ev.changes[k].exceeded;
+      EXPECT_EQ(slide_exceeded, std::string(im.active_model()) == "contact");
+      ++slide_changes;
+    }
   }
   EXPECT_TRUE(slid);
+  EXPECT_EQ(slide_changes, 2);  // slide from rest at 0.08 s, back to the rocking model at rest later
   EXPECT_GT(max_slip, 5e-3);  // about 12 mm out and back under the full sine
   EXPECT_EQ(im.impacts(), direct.outcome().impacts);
 }

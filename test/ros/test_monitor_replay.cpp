@@ -8,6 +8,7 @@
 #include <sensor_msgs/Imu.h>
 
 #include "replay_support.hpp"
+#include "rocking_monitor/CriterionExceedance.h"
 #include "rocking_monitor/OverturnAlarm.h"
 #include "rocking_monitor/RockingStateArray.h"
 
@@ -48,6 +49,9 @@ TEST(MonitorReplay, LiveEqualsOfflineSampleForSample) {
     live[OfflineMonitor::stamp_key(m->header.stamp.toSec())] = *m;
   });
   auto sub_a = nh.subscribe<OverturnAlarm>(ns + "/alarms", 1000, [&](const OverturnAlarm::ConstPtr& m) { alarms.push_back(*m); });
+  std::vector<CriterionExceedance> criteria;
+  auto sub_c = nh.subscribe<CriterionExceedance>(ns + "/criteria", 1000,
+                                                 [&](const CriterionExceedance::ConstPtr& m) { criteria.push_back(*m); });
   const double last = samples.back().header.stamp.toSec();
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(45.0);
   while (ros::ok() && ros::WallTime::now() < deadline &&
@@ -98,6 +102,11 @@ TEST(MonitorReplay, LiveEqualsOfflineSampleForSample) {
         slid |= st.id == must_slide && st.model == "contact" &&
                 (st.contact_mode == RockingState::CONTACT_SLIDE || st.contact_mode == RockingState::CONTACT_SLIDE_ROCK);
     EXPECT_TRUE(slid) << must_slide << " must slide";
+    // ... and the node says why it switched to the contact model.
+    bool why = false;
+    for (const auto& c : criteria)
+      why |= c.item_id == must_slide && c.criterion == CriterionExceedance::SLIDE_FROM_REST && c.exceeded;
+    EXPECT_TRUE(why) << "no slide_from_rest event for " << must_slide;
   }
   if (!must_survive.empty()) {
     for (const auto& a : alarms) EXPECT_NE(a.item_id, must_survive) << must_survive << " must raise no alarm";

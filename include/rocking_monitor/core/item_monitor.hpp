@@ -116,6 +116,7 @@ class ItemMonitor {
 
  private:
   void evaluate_criteria(double ax, double ay);
+  void report_switch(SwitchReason reason, bool to_contact);
   void record_change(CriterionId id, bool exceeded, double value, double threshold,
                      double second_value = 0.0, double second_threshold = 0.0);
 
@@ -127,6 +128,7 @@ class ItemMonitor {
   std::unique_ptr<StreamingIntensity> intensity_;
   bool started_ = false;
   bool slid_at_uplift_ = false;  // latched from the onset until the body is back at rest
+  CriterionId last_switch_criterion_ = CriterionId::SlideFromRest;  // adaptive: why it went up
   std::array<bool, kCriterionIdCount> exceeded_{};
   ItemEvents events_;
 };
