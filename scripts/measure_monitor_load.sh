@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Measures the live monitor's processing time per input sample for catalogues of N items:
-#   [THREADS=k] bash scripts/measure_monitor_load.sh BAG [N ...]      (default N: 1 100 10000)
+#   [THREADS=k] [FIDELITY=rocking|adaptive|contact] bash scripts/measure_monitor_load.sh BAG [N ...]
+#   (default N: 1 100 10000)
 # Replays BAG (sensor_msgs/Imu on /ground/imu) at real time through a monitor fed by a synthetic
 # catalogue of N items and prints the mean and max processing time per sample from /diagnostics.
 set -euo pipefail
@@ -15,7 +16,7 @@ for n in "${counts[@]}"; do
   cat=$(mktemp --suffix=.yaml)
   /usr/bin/python3 scripts/make_catalogue.py "$n" "$cat"
   log=$(mktemp)
-  roslaunch rocking_monitor replay.launch bag:="$bag" catalogue:="$cat" required:=true start_delay:=3 threads:="${THREADS:-1}" \
+  roslaunch rocking_monitor replay.launch bag:="$bag" catalogue:="$cat" required:=true start_delay:=3 threads:="${THREADS:-1}" fidelity:="${FIDELITY:-rocking}" \
     > "$log" 2>&1 &
   pid=$!
   diag=""
