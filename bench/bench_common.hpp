@@ -18,6 +18,9 @@
 #include "rocking_monitor/core/rocking_model.hpp"
 #include "rocking_monitor/core/solver_settings.hpp"
 
+#include <cstdio>
+#include <cstdlib>
+
 #include "test_helpers.hpp"
 
 namespace rocking_monitor::bench {
@@ -144,6 +147,27 @@ inline std::vector<std::string> at2_files(const std::string& dir) {
   }
   std::sort(out.begin(), out.end());
   return out;
+}
+
+#ifndef ROCKING_RECORDS_DIR
+#define ROCKING_RECORDS_DIR "../shared/records"
+#endif
+
+/// Records directory: $ROCKING_RECORDS_DIR if set, else the build's default.
+inline std::string records_dir() {
+  if (const char* env = std::getenv("ROCKING_RECORDS_DIR")) return env;
+  return ROCKING_RECORDS_DIR;
+}
+
+/// "/tol:1e-08" for dopri5, "/substeps:4" for rk4, "" for analytic (benchmark names).
+inline std::string setting_suffix(const MethodSetting& ms) {
+  if (ms.method == "dopri5") {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "/tol:%.0e", ms.param);
+    return buf;
+  }
+  if (ms.method == "rk4") return "/substeps:" + std::to_string(static_cast<int>(ms.param));
+  return {};
 }
 
 inline bool records_available(const std::string& dir) {

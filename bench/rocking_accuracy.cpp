@@ -35,10 +35,6 @@
 
 #include "bench_common.hpp"
 
-#ifndef ROCKING_RECORDS_DIR
-#define ROCKING_RECORDS_DIR "../shared/records"
-#endif
-
 namespace rb = rocking_monitor::bench;
 using namespace rocking_monitor::core;
 
@@ -599,8 +595,7 @@ void stability_maps(const std::string& out_dir, int jobs, bool quick) {
 
 int main(int argc, char** argv) {
   std::string out = "docs/performance";
-  std::string records = ROCKING_RECORDS_DIR;
-  if (const char* env = std::getenv("ROCKING_RECORDS_DIR")) records = env;
+  std::string records = rb::records_dir();
   int jobs = 2;
   bool quick = false;
   std::vector<std::string> parts;

@@ -49,19 +49,10 @@ void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
-#ifndef ROCKING_RECORDS_DIR
-#define ROCKING_RECORDS_DIR "../shared/records"
-#endif
-
 namespace rb = rocking_monitor::bench;
 using namespace rocking_monitor::core;
 
 namespace {
-
-std::string records_dir() {
-  if (const char* env = std::getenv("ROCKING_RECORDS_DIR")) return env;
-  return ROCKING_RECORDS_DIR;
-}
 
 /// An input stream for one or many items: 200 Hz samples plus an optional initial rocking state.
 struct Scenario {
@@ -187,14 +178,8 @@ std::vector<std::unique_ptr<CatalogueCase>> g_catalogues;
 void register_item(const Scenario* sc) {
   for (ModelKind model : {ModelKind::Nonlinear, ModelKind::Linearized}) {
     for (const rb::MethodSetting& ms : rb::all_settings(model)) {
-      std::string name = "item/" + sc->name + "/" + to_string(model) + "/" + ms.method;
-      if (ms.method == "dopri5") {
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "/tol:%.0e", ms.param);
-        name += buf;
-      } else if (ms.method == "rk4") {
-        name += "/substeps:" + std::to_string(static_cast<int>(ms.param));
-      }
+      const std::string name =
+          "item/" + sc->name + "/" + to_string(model) + "/" + ms.method + rb::setting_suffix(ms);
       benchmark::RegisterBenchmark(name.c_str(), BM_Item, sc, ms)
           ->Unit(benchmark::kMicrosecond)
           ->MinTime(0.2);
@@ -204,15 +189,8 @@ void register_item(const Scenario* sc) {
 
 void register_catalogue(const CatalogueCase* cc, const std::vector<rb::MethodSetting>& settings) {
   for (const rb::MethodSetting& ms : settings) {
-    std::string name = "catalogue/" + cc->name + "/" + to_string(ms.settings.model) + "/" +
-                       ms.method;
-    if (ms.method == "dopri5") {
-      char buf[32];
-      std::snprintf(buf, sizeof buf, "/tol:%.0e", ms.param);
-      name += buf;
-    } else if (ms.method == "rk4") {
-      name += "/substeps:" + std::to_string(static_cast<int>(ms.param));
-    }
+    const std::string name = "catalogue/" + cc->name + "/" + to_string(ms.settings.model) + "/" +
+                             ms.method + rb::setting_suffix(ms);
     benchmark::RegisterBenchmark(name.c_str(), BM_Catalogue, cc, ms)
         ->Unit(benchmark::kMillisecond)
         ->Iterations(2);
@@ -246,7 +224,7 @@ void register_all() {
   }
   // 3. Real records (unscaled, resampled to 200 Hz) with a 0.4 m x 1.2 m cabinet (alpha = 18 deg,
   //    uplift at 0.33 g): the strong records make it rock, some overturn it.
-  const std::string dir = records_dir();
+  const std::string dir = rb::records_dir();
   const std::vector<std::pair<std::string, std::string>> records = {
       {"rinaldi228", "northridge_1994/Rinaldi228.AT2"},
       {"lucerne345", "landers_1992/RSN879_LANDERS_LCN345.AT2"},

@@ -64,6 +64,7 @@ if(CATKIN_ENABLE_TESTING AND BUILD_TESTING)
     ROCKING_RECORDS_DIR="${ROCKING_RECORDS_DIR}"
     RECORD_TO_BAG_EXE="$<TARGET_FILE:record_to_bag>"
     ROCKING_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
+  target_include_directories(records_ros_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/core)
   add_dependencies(records_ros_tests record_to_bag)
   if(TARGET tests)
     add_dependencies(tests records_ros_tests)

@@ -286,30 +286,13 @@ SwitchReason AdaptiveModel::check_rocking(const StepReport& r) const {
     if (r.impacts > 0 && mu < std::max(impact_demand_[0], impact_demand_[1]))
       return SwitchReason::SlipAtImpact;
     if (rock_.mode() == Mode::Rocking) {
-      const int s = rock_.side();
-      const Pivot& pv = body_.pivot(s);
-      GroundInput in;
-      in.ax0 = rock_.last_ax();
-      in.ay0 = rock_.last_ay();
-      const RockingOde ode{&pv, s, settings_.rocking.model, in};
-      const double acc = ode.angular_acceleration(0.0, rock_.theta());
-      const ContactReaction cr =
-          rocking_reaction(pv, s, rock_.theta(), rock_.omega(), acc, in.ax0, in.ay0);
+      const ContactReaction cr = rock_.reaction();
       if (std::abs(cr.rx) > settings_.friction_safety * mu * std::max(cr.ry, 0.0))
         return SwitchReason::FrictionNearLimit;
     }
   }
   if (rock_.mode() == Mode::Rocking && settings_.lift_off_margin > 0.0) {
-    const int s = rock_.side();
-    const Pivot& pv = body_.pivot(s);
-    GroundInput in;
-    in.ax0 = rock_.last_ax();
-    in.ay0 = rock_.last_ay();
-    const RockingOde ode{&pv, s, settings_.rocking.model, in};
-    const double acc = ode.angular_acceleration(0.0, rock_.theta());
-    const ContactReaction cr =
-        rocking_reaction(pv, s, rock_.theta(), rock_.omega(), acc, in.ax0, in.ay0);
-    if (cr.ry < settings_.lift_off_margin * kGravity) return SwitchReason::NearLiftOff;
+    if (rock_.reaction().ry < settings_.lift_off_margin * kGravity) return SwitchReason::NearLiftOff;
   }
   return SwitchReason::None;
 }
@@ -345,10 +328,7 @@ void AdaptiveModel::switch_down(SwitchReason reason, double ax, double ay) {
 }
 
 const AdaptiveReport& AdaptiveModel::step(double ax, double ay, double dt) {
-  if (!(dt > 0.0) || !std::isfinite(dt))
-    throw std::invalid_argument("AdaptiveModel::step: dt must be finite and > 0");
-  if (!std::isfinite(ax) || !std::isfinite(ay))
-    throw std::invalid_argument("AdaptiveModel::step: ground acceleration must be finite");
+  require_valid_sample(ax, ay, dt, "AdaptiveModel::step");
   report_ = AdaptiveReport{};
   if (settings_.fidelity == Fidelity::Rocking) {
     const StepReport& r = rock_.step(ax, ay, dt);

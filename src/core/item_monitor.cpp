@@ -189,12 +189,7 @@ void ItemMonitor::evaluate_criteria(double ax, double ay) {
   double required_mu = 0.0;
   if (model_.mode() == Mode::Rocking) {
     const Pivot& pv = body.pivot(model_.side());
-    GroundInput in;
-    in.ax0 = ax;
-    in.ay0 = ay;
-    const RockingOde ode{&pv, model_.side(), model_.settings().model, in};
-    const ContactReaction r = rocking_reaction(pv, model_.side(), model_.theta(), model_.omega(),
-                                               ode.angular_acceleration(0.0, model_.theta()), ax, ay);
+    const ContactReaction r = model_.reaction();  // at this sample: (ax, ay) are its inputs
     normal = r.ry;
     ratio = std::abs(r.rx) / std::max(r.ry, 1e-12);
     required_mu = rock_without_slip_friction(body, pv, std::abs(ax) / std::max(ay + kGravity, 1e-12));

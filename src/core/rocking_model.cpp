@@ -245,6 +245,15 @@ RockingModel::Event RockingModel::advance_rocking(const GroundInput& in, double&
   return Event::None;
 }
 
+ContactReaction RockingModel::reaction_at(double ax, double ay) const {
+  const Pivot& pv = body_.pivot(side_);
+  GroundInput in;
+  in.ax0 = ax;
+  in.ay0 = ay;
+  const RockingOde ode{&pv, side_, settings_.model, in};
+  return rocking_reaction(pv, side_, theta_, omega_, ode.angular_acceleration(0.0, theta_), ax, ay);
+}
+
 void RockingModel::update_criteria(const GroundInput& in, double tau) {
   const double ax = in.ax(tau), ay = in.ay(tau);
   std::uint8_t now = 0;
@@ -252,10 +261,7 @@ void RockingModel::update_criteria(const GroundInput& in, double tau) {
     if (free_flight(ay)) now |= bit(Criterion::FreeFlight);
     if (slides_from_rest(body_, ax, ay)) now |= bit(Criterion::SlideFromRest);
   } else if (mode_ == Mode::Rocking) {
-    const Pivot& pv = body_.pivot(side_);
-    const RockingOde ode{&pv, side_, settings_.model, in};
-    const double acc = ode.angular_acceleration(tau, theta_);
-    const ContactReaction r = rocking_reaction(pv, side_, theta_, omega_, acc, ax, ay);
+    const ContactReaction r = reaction_at(ax, ay);
     if (r.ry < 0.0) now |= bit(Criterion::FreeFlight);
     if (slides_while_rocking(r, body_.mu_s())) now |= bit(Criterion::SlideWhileRocking);
   }

@@ -37,6 +37,8 @@
 #include "rocking_monitor/core/station.hpp"
 #include "rocking_monitor/ros/ground_motion_source.hpp"
 
+#include "test_helpers.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -59,13 +61,10 @@ ToolRun run_tool(const std::string& args) {
   static std::atomic<int> counter{0};
   const fs::path err_file = fs::temp_directory_path() / ("record_to_bag_err_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
   const std::string cmd = std::string(RECORD_TO_BAG_EXE) + " " + args + " 2>" + err_file.string();
+  const rocking_monitor::core::testing::CommandResult c = rocking_monitor::core::testing::run_command(cmd);
   ToolRun r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (pipe == nullptr) return r;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), pipe) != nullptr) r.out += buf.data();
-  const int st = pclose(pipe);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  r.status = c.status;
+  r.out = c.out;
   std::ifstream in(err_file);
   std::ostringstream ss;
   ss << in.rdbuf();

@@ -90,6 +90,8 @@ class RockingModel {
   double rotation_ratio() const;
   /// Energy distance to overturning if the shaking stopped now (+1 at rest, < 0 committed).
   OverturnMargin margin() const;
+  /// Ground reaction per unit mass at the last sample (rocking only; centripetal terms included).
+  ContactReaction reaction() const { return reaction_at(ax_prev_, ay_prev_); }
   /// Bit (1 << Criterion) set while that pure-rocking condition is violated (at the last sample).
   std::uint8_t violations() const { return violations_; }
   const StepReport& last_report() const { return report_; }
@@ -105,6 +107,7 @@ class RockingModel {
   bool apply_impact(const GroundInput& in, double tau);
   void go_to_rest();
   void update_criteria(const GroundInput& in, double tau);
+  ContactReaction reaction_at(double ax, double ay) const;
   template <class Stepper>
   Event handle_step(const Stepper& stepper, const Pivot& pv, double& tau);
 
