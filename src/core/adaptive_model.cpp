@@ -7,7 +7,6 @@
 #include <type_traits>
 
 #include "rocking_monitor/core/criteria.hpp"
-#include "rocking_monitor/core/impact.hpp"
 
 namespace rocking_monitor::core {
 
@@ -38,6 +37,8 @@ const char* to_string(SwitchReason r) {
   switch (r) {
     case SwitchReason::None: return "none";
     case SwitchReason::FrictionRulesOutSliding: return "friction rules out sliding (mu_s = inf)";
+    case SwitchReason::SceneRulesOutContact:
+      return "friction rules out sliding, slip at impact and flight in the scene envelope";
     case SwitchReason::PureRockingValid: return "pure rocking valid";
     case SwitchReason::FixedFidelity: return "fixed fidelity";
     case SwitchReason::SlideFromRest: return "slide from rest";
@@ -76,8 +77,9 @@ const AdaptiveSettings& checked(const AdaptiveSettings& s) {
     throw std::invalid_argument("AdaptiveSettings::friction_safety must be in (0, 1]");
   if (s.max_switch_records < 0)
     throw std::invalid_argument("AdaptiveSettings::max_switch_records must be >= 0");
-  if (std::isnan(s.a_max) || std::isnan(s.a_y_max) || s.a_max < 0.0 || s.a_y_max < 0.0)
-    throw std::invalid_argument("AdaptiveSettings: scene limits must be >= 0 (inf = unknown)");
+  if (!(s.scene.horizontal >= 0.0) || !(s.scene.vertical >= 0.0))
+    throw std::invalid_argument(
+        "AdaptiveSettings::scene: horizontal and vertical limits must be >= 0 m/s^2 (inf = unknown)");
   return s;
 }
 
@@ -91,19 +93,14 @@ AdaptiveModel::AdaptiveModel(const Body& body, const AdaptiveSettings& settings)
       settings_(checked(settings)),
       rock_(body, settings.rocking),
       contact_(body, settings.contact) {
-  const double ig2 = body_.radius_of_gyration() * body_.radius_of_gyration();
-  for (int s : {1, -1}) {
-    const double nu_new = body_.pivot(s).nu, nu_old = body_.pivot(-s).nu;
-    const double e = impact_velocity_ratio(ig2, body_.cg_height(), body_.width(), nu_new);
-    const double den = body_.width() * (e * nu_new + nu_old);
-    impact_demand_[s > 0 ? 0 : 1] =
-        den > 0.0 ? body_.cg_height() * (1.0 - e) / den : std::numeric_limits<double>::infinity();
-  }
+  for (int s : {1, -1}) impact_demand_[s > 0 ? 0 : 1] = core::impact_friction_demand(body_, s);
+  bound_ = core::sliding_bound(body_, settings_.scene);
+  scene_rules_out_contact_ = !std::isinf(body_.mu_s()) && body_.mu_s() >= bound_.required_mu();
   switches_.reserve(static_cast<std::size_t>(settings_.max_switch_records));
   reset(0.0);
 }
 
-double AdaptiveModel::impact_friction_demand(int new_side) const {
+double AdaptiveModel::impact_friction_demand(int new_side) const {  // cached core:: function
   return impact_demand_[new_side > 0 ? 0 : 1];
 }
 
@@ -118,11 +115,10 @@ void AdaptiveModel::reset(double t, double ax, double ay) {
   switches_.clear();
   report_ = AdaptiveReport{};
   outcome_ = AdaptiveOutcome{};
-  // Static pre-check. Only mu_s = inf is proven to rule out sliding for every admissible input:
-  // the rocking reaction ratio |R_x|/R_y contains the centripetal term R omega^2, which no bound on
-  // the ground acceleration alone bounds (see docs/fidelity.md). The scene limits are kept for
-  // the report; they do not rule anything out today.
-  outcome_.sliding_ruled_out = std::isinf(body_.mu_s());
+  // Static pre-check: mu_s = inf (sliding never evaluated; flight still possible), or finite
+  // mu_s above what the scene envelope can demand (sliding_bound(), docs/fidelity.md).
+  outcome_.sliding_ruled_out = std::isinf(body_.mu_s()) || scene_rules_out_contact_;
+  scene_guarantee_ = scene_rules_out_contact_;
   switch (settings_.fidelity) {
     case Fidelity::Rocking:
       active_ = ActiveModel::Rocking;
@@ -134,8 +130,9 @@ void AdaptiveModel::reset(double t, double ax, double ay) {
       break;
     case Fidelity::Adaptive:
       active_ = ActiveModel::Rocking;
-      initial_reason_ = outcome_.sliding_ruled_out ? SwitchReason::FrictionRulesOutSliding
-                                                   : SwitchReason::PureRockingValid;
+      initial_reason_ = scene_rules_out_contact_       ? SwitchReason::SceneRulesOutContact
+                        : outcome_.sliding_ruled_out ? SwitchReason::FrictionRulesOutSliding
+                                                     : SwitchReason::PureRockingValid;
       break;
   }
   report_.model = active_;
@@ -281,6 +278,9 @@ SwitchReason AdaptiveModel::check_rocking(const StepReport& r) const {
   if (has(Criterion::SlideFromRest)) return SwitchReason::SlideFromRest;
   if (has(Criterion::SlideAtUplift)) return SwitchReason::SlideAtUplift;
   if (has(Criterion::SlideWhileRocking)) return SwitchReason::SlideWhileRocking;
+  // Under the scene guarantee the exact criteria above cannot fire (sliding_bound()); they are
+  // still checked so that a broken assumption is never missed, but the early margins are not.
+  if (scene_guarantee_) return SwitchReason::None;
   const double mu = body_.mu_s();
   if (!std::isinf(mu)) {
     if (r.impacts > 0 && mu < std::max(impact_demand_[0], impact_demand_[1]))
@@ -337,10 +337,17 @@ const AdaptiveReport& AdaptiveModel::step(double ax, double ay, double dt) {
   } else if (settings_.fidelity == Fidelity::Contact || active_ == ActiveModel::Contact) {
     contact_step(ax, ay, dt);
   } else {
+    if (!settings_.scene.contains(ax, ay)) {
+      if (std::isnan(outcome_.scene_exceeded_time)) outcome_.scene_exceeded_time = t_ + dt;
+      ++outcome_.samples_outside_scene;
+      scene_guarantee_ = false;
+    }
     // rock_ is at (t_, ax_prev_, ay_prev_) here: same clock and input as this wrapper.
     const RockStart start{rock_.mode(), rock_.side(), rock_.theta(), rock_.omega()};
     const StepReport& r = rock_.step(ax, ay, dt);
     count_rocking_work(r);
+    // The guarantee holds below the tipping angle only (sliding_bound()).
+    if (scene_guarantee_ && (outcome_.beyond_tipping || r.beyond_tipping_entered)) scene_guarantee_ = false;
     const SwitchReason why = check_rocking(r);
     if (why == SwitchReason::None) accumulate_rocking(r);
     else switch_up(why, start, ax, ay, dt);

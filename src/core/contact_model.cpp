@@ -444,6 +444,10 @@ void ContactModel::impact(int c, const GroundInput& in, double tau, bool from_fl
   if (!from_flight) {
     x_[2] = 0.0;
     if (c * w <= 0.0 || std::abs(w) < settings_.rest_capture_ratio * pv.p * pv.alpha) {
+      // Rest capture collapses the rest of a Zeno sequence of impacts. After a sticking impact
+      // those would stick too, so their tangential impulse stops the CoM with the rotation (a
+      // leftover w * r_y would otherwise start a nanometre slide the pure-rocking model never has).
+      if (stick) vx = vy = 0.0;
       enter_flat(in, tau);
       return;
     }

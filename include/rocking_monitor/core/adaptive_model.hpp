@@ -9,6 +9,7 @@
 
 #include "rocking_monitor/core/contact_model.hpp"
 #include "rocking_monitor/core/rocking_model.hpp"
+#include "rocking_monitor/core/sliding_bound.hpp"
 
 namespace rocking_monitor::core {
 
@@ -29,6 +30,8 @@ const char* to_string(ActiveModel model);
 enum class SwitchReason : std::uint8_t {
   None,
   FrictionRulesOutSliding,  ///< initial: mu_s = inf, the sliding model is never needed
+  SceneRulesOutContact,     ///< initial: mu_s >= the scene's SlidingBound::required_mu() and no
+                            ///< flight possible: no slide, slip at impact or flight below alpha
   PureRockingValid,         ///< initial: start on RockingModel, ContactModel on demand
   FixedFidelity,            ///< initial: --fidelity rocking or contact
   SlideFromRest,            ///< up: eq. 22 violated at rest
@@ -67,9 +70,11 @@ struct AdaptiveSettings {
   double lift_off_margin = 0.1;
   /// Switch records kept (the count goes on beyond it). Reserved at construction.
   int max_switch_records = 256;
-  /// Scene limits for the static pre-check: |a_xg| <= a_max, a_yg >= -a_y_max (m/s^2).
-  double a_max = std::numeric_limits<double>::infinity();
-  double a_y_max = std::numeric_limits<double>::infinity();
+  /// Scene envelope for the static pre-check (sliding_bound()). Inside it an item with
+  /// mu_s >= required_mu() provably never leaves pure rocking while |theta| < alpha, and the
+  /// early margins above are not applied to it. An input sample outside the envelope, or a
+  /// rotation beyond alpha, ends the guarantee: the margins apply again from that sample on.
+  SceneEnvelope scene{};
 };
 
 /// One sample.
@@ -109,7 +114,10 @@ struct AdaptiveOutcome {
   long contact_steps = 0;           ///< ContactModel RK4 sub-steps
   long recomputed_samples = 0;      ///< samples recomputed by ContactModel (one per up switch)
   long model_switches = 0;
-  bool sliding_ruled_out = false;   ///< static pre-check result
+  bool sliding_ruled_out = false;   ///< static pre-check: mu_s = inf, or mu_s >= required_mu()
+  /// First input sample outside the scene envelope (s), NaN while every sample was inside.
+  double scene_exceeded_time = std::numeric_limits<double>::quiet_NaN();
+  long samples_outside_scene = 0;   ///< input samples outside the scene envelope
 };
 
 /// Streaming shape of RockingModel / ContactModel: reset(t, ax, ay), step(ax, ay, dt).
@@ -139,6 +147,8 @@ class AdaptiveModel {
   const AdaptiveReport& last_report() const { return report_; }
   const std::vector<SwitchRecord>& switches() const { return switches_; }
   SwitchReason initial_reason() const { return initial_reason_; }
+  /// The static pre-check (computed at construction): what friction the scene can demand.
+  const SlidingBound& sliding_bound() const { return bound_; }
   const Body& body() const { return body_; }
   const AdaptiveSettings& settings() const { return settings_; }
   /// |P_x| / P_y of a sticking impact from pure rocking that makes corner `new_side` the pivot
@@ -169,6 +179,9 @@ class AdaptiveModel {
   ActiveModel active_ = ActiveModel::Rocking;
   SwitchReason initial_reason_ = SwitchReason::None;
   double impact_demand_[2] = {0.0, 0.0};
+  SlidingBound bound_;
+  bool scene_rules_out_contact_ = false;  // static pre-check passed (finite mu_s)
+  bool scene_guarantee_ = false;          // ... and it still holds (input inside, |theta| < alpha)
   double t_ = 0.0, ax_prev_ = 0.0, ay_prev_ = 0.0;
   double hold_ = 0.0;
   double rock_slip_ = 0.0;  // slip while RockingModel runs (constant)
