@@ -70,6 +70,7 @@ ItemMonitor::ItemMonitor(const ItemSpec& spec, const Options& options)
     AdaptiveSettings a;
     a.fidelity = options.fidelity;
     a.rocking = options.solver;
+    a.scene = options.scene;
     adaptive_ = std::make_unique<AdaptiveModel>(model_.body(), a);
   }
 }

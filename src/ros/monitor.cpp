@@ -1,6 +1,8 @@
 #include "rocking_monitor/ros/monitor.hpp"
 
 #include <chrono>
+#include <limits>
+#include <map>
 #include <cmath>
 #include <cstdlib>
 #include <type_traits>
@@ -83,7 +85,18 @@ bool RockingMonitor::load_parameters() {
             param(pnh_, "publish_tf", publish_tf_, "bool") && param(pnh_, "threads", threads_, "integer") &&
             param(pnh_, "marker_rate", marker_rate_, "number") &&
             param(pnh_, "fidelity", fidelity, "string");
+  double scene_h = 0.0, scene_v = 0.0;
+  ok = ok && param(pnh_, "scene_envelope/horizontal", scene_h, "number") &&
+       param(pnh_, "scene_envelope/vertical", scene_v, "number");
   if (!ok) return false;
+  if (!(scene_h >= 0.0) || !(scene_v >= 0.0)) {
+    ROS_FATAL("rocking_monitor: ~scene_envelope/horizontal = %g and ~scene_envelope/vertical = %g must be "
+              ">= 0 m/s^2 (0 = unknown)", scene_h, scene_v);
+    return false;
+  }
+  // 0 = unknown: no finite envelope, only mu_s = inf rules sliding out.
+  constexpr double kUnknown = std::numeric_limits<double>::infinity();
+  options_.scene = {scene_h > 0.0 ? scene_h : kUnknown, scene_v > 0.0 ? scene_v : kUnknown};
   options_.solver.substeps = substeps;
   if (threads_ < 1) {
     ROS_FATAL("rocking_monitor: ~threads = %d must be >= 1", threads_);
@@ -233,7 +246,27 @@ bool RockingMonitor::init() {
            items_.size(), sensors_.size(), core::to_string(options_.solver.method),
            core::to_string(options_.solver.model), options_.solver.tol, options_.solver.substeps,
            core::to_string(options_.fidelity));
+  log_initial_models();
   return true;
+}
+
+// Which model each item starts on and why (issue 7): one line per item for small catalogues,
+// counts per reason for large ones.
+void RockingMonitor::log_initial_models() const {
+  if (options_.fidelity != core::Fidelity::Adaptive) return;
+  std::map<std::string, int> per_reason;
+  for (const Item& it : items_) {
+    const core::AdaptiveModel& a = *it.monitor->adaptive();
+    const double need = a.sliding_bound().required_mu();
+    if (items_.size() <= 50) {
+      ROS_INFO("rocking_monitor: item '%s' starts on the rocking model: %s (mu_s %g; friction the scene can "
+               "demand: %s)",
+               it.entry.spec.id.c_str(), core::to_string(a.initial_reason()), a.body().mu_s(),
+               std::isinf(need) ? "unbounded" : std::to_string(need).c_str());
+    }
+    ++per_reason[core::to_string(a.initial_reason())];
+  }
+  for (const auto& [reason, n] : per_reason) ROS_INFO("rocking_monitor: %d items: %s", n, reason.c_str());
 }
 
 void RockingMonitor::on_imu(std::size_t sensor, const sensor_msgs::ImuConstPtr& m) {
@@ -619,6 +652,20 @@ void RockingMonitor::catalogue_diagnostics(diagnostic_updater::DiagnosticStatusW
   int on_contact = 0;
   for (const Item& it : items_) on_contact += std::string(it.monitor->active_model()) == "contact";
   st.add("items on the contact model now", on_contact);
+  if (options_.fidelity == core::Fidelity::Adaptive) {
+    int ruled_out = 0;
+    long outside = 0;
+    for (const Item& it : items_) {
+      const core::AdaptiveModel& a = *it.monitor->adaptive();
+      ruled_out += a.initial_reason() == core::SwitchReason::SceneRulesOutContact;
+      outside = std::max(outside, a.outcome().samples_outside_scene);
+    }
+    st.add("items whose friction rules out the contact model in the scene envelope", ruled_out);
+    st.add("input samples outside the scene envelope", outside);
+    if (outside > 0 && without_tf == 0)
+      st.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN,
+                      "input outside ~scene_envelope: pre-check guarantee void, margins apply");
+  }
 }
 
 }  // namespace rocking_monitor::live

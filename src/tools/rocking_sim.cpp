@@ -54,8 +54,31 @@ struct FidelityRun {
   std::string final_mode;
   std::vector<rm::SwitchRecord> switches;
   rm::SwitchReason initial = rm::SwitchReason::None;
+  rm::SlidingBound bound;
   double cpu_time_s = 0.0;
 };
+
+json nullable_inf(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+// --scene: "auto" (the record's own peaks), "unknown", or "H,V" (m/s^2).
+rm::SceneEnvelope parse_scene(const std::string& text, const rm::GroundMotion& motion) {
+  rm::SceneEnvelope e;
+  if (text == "unknown") return e;
+  if (text == "auto") {
+    e.horizontal = e.vertical = 0.0;
+    for (double a : motion.horizontal) e.horizontal = std::max(e.horizontal, std::abs(a));
+    for (double a : motion.vertical) e.vertical = std::max(e.vertical, std::abs(a));
+    return e;
+  }
+  char* end = nullptr;
+  e.horizontal = std::strtod(text.c_str(), &end);
+  const bool comma = *end == ',';
+  if (comma) e.vertical = std::strtod(end + 1, &end);
+  if (!comma || *end != '\0' || !(e.horizontal >= 0.0) || !(e.vertical >= 0.0))
+    throw std::invalid_argument("--scene '" + text +
+                                "': expected auto, unknown or H,V (two numbers >= 0, m/s^2)");
+  return e;
+}
 
 FidelityRun run_fidelity(const rm::Body& body, const rm::AdaptiveSettings& settings,
                          const rm::GroundMotion& motion, const std::string& history_path) {
@@ -88,6 +111,7 @@ FidelityRun run_fidelity(const rm::Body& body, const rm::AdaptiveSettings& setti
   r.final_mode = model.mode_name();
   r.switches = model.switches();
   r.initial = model.initial_reason();
+  r.bound = model.sliding_bound();
   if (hist.is_open() && !hist) throw std::runtime_error(history_path + ": write failed");
   return r;
 }
@@ -129,6 +153,11 @@ int main(int argc, char** argv) {
                  "model when needed; docs/fidelity.md)")
       ->check(CLI::IsMember({"rocking", "contact", "adaptive"}))
       ->default_val("rocking");
+  std::string scene_text = "auto";
+  app.add_option("--scene", scene_text,
+                 "Scene envelope for the adaptive pre-check (docs/fidelity.md): auto = this record's "
+                 "own peak |a_h|, |a_v| (the whole scene is known offline); unknown; or H,V in m/s^2")
+      ->default_val(scene_text);
   app.add_option("--restitution", body.restitution,
                  "Measured angular-velocity ratio at impact, overrides eq. 34");
   app.add_option("--model", model_text, "nonlinear | linearized")
@@ -190,6 +219,7 @@ int main(int argc, char** argv) {
       rm::AdaptiveSettings as;
       as.fidelity = fidelity;
       as.rocking = settings;
+      as.scene = parse_scene(scene_text, motion);
       const FidelityRun f = run_fidelity(rigid, as, motion, history_path);
       const rm::AdaptiveOutcome& o = f.outcome;
       json reasons = json::array();
@@ -217,6 +247,12 @@ int main(int argc, char** argv) {
                     {"fidelity", rm::to_string(fidelity)},
                     {"initial_model_reason", rm::to_string(f.initial)},
                     {"sliding_ruled_out", o.sliding_ruled_out},
+                    {"scene",
+                     {{"source", scene_text},
+                      {"horizontal_mps2", nullable_inf(as.scene.horizontal)},
+                      {"vertical_mps2", nullable_inf(as.scene.vertical)},
+                      {"required_mu", nullable_inf(f.bound.required_mu())},
+                      {"samples_outside", o.samples_outside_scene}}},
                     {"samples_rocking_model", o.samples_rocking_model},
                     {"samples_contact_model", o.samples_contact_model},
                     {"replayed_samples", o.recomputed_samples},  // samples recomputed at up switches
@@ -240,6 +276,10 @@ int main(int argc, char** argv) {
         std::printf("record      %s (%zu samples, dt %.4g s, PGA %.3f m/s^2)\n",
                     motion.description.c_str(), motion.size(), motion.dt, pga);
         std::printf("fidelity    %s (start: %s)\n", rm::to_string(fidelity), rm::to_string(f.initial));
+        std::printf("scene       %s: |a_h| <= %.4g, |a_v| <= %.4g m/s^2; friction needed to rule out "
+                    "sliding, slip at impact and flight: %.4g (mu_s %.4g)\n",
+                    scene_text.c_str(), as.scene.horizontal, as.scene.vertical,
+                    f.bound.required_mu(), rigid.mu_s());
         std::printf("result      %s, final mode %s\n", o.overturned ? "OVERTURNED" : "survived",
                     f.final_mode.c_str());
         std::printf("times       uplift %s, beyond tipping %s, committed %s, overturned %s, "

@@ -3,6 +3,8 @@
 // (same catalogue and parameters, read from the parameter server), so live and offline can be
 // compared sample for sample.
 
+#include <cmath>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -47,6 +49,10 @@ class OfflineMonitor {
     std::string fidelity = "rocking";
     nh.getParam("fidelity", fidelity);
     core::parse_fidelity(fidelity.c_str(), options_.fidelity);
+    const double scene_h = number(nh, "scene_envelope/horizontal", 0.0);
+    const double scene_v = number(nh, "scene_envelope/vertical", 0.0);
+    constexpr double kUnknown = std::numeric_limits<double>::infinity();  // 0 = unknown, as the node
+    options_.scene = {scene_h > 0.0 ? scene_h : kUnknown, scene_v > 0.0 ? scene_v : kUnknown};
     options_.velocity_highpass_hz = number(nh, "velocity_highpass_hz", options_.velocity_highpass_hz);
     std::string mode = "tracked";
     nh.getParam("gravity_baseline/mode", mode);
@@ -113,6 +119,7 @@ class OfflineMonitor {
   const std::map<long long, std::vector<OfflineState>>& states() const { return states_; }
   const std::vector<OfflineAlarm>& alarms() const { return alarms_; }
   const live::Catalogue& catalogue() const { return catalogue_; }
+  const std::vector<core::ItemMonitor>& items() const { return items_; }
 
  private:
   static double number(::ros::NodeHandle& nh, const std::string& key, double fallback) {

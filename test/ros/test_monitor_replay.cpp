@@ -23,6 +23,8 @@ TEST(MonitorReplay, LiveEqualsOfflineSampleForSample) {
   pnh.getParam("must_overturn", must_overturn);
   pnh.getParam("must_survive", must_survive);
   pnh.getParam("must_slide", must_slide);
+  std::string must_rule_out;  // adaptive with ~scene_envelope: this item never runs the contact model
+  pnh.getParam("must_rule_out", must_rule_out);
 
   // Offline: the same samples through the core library.
   rosbag::Bag bag(bag_path);
@@ -107,6 +109,21 @@ TEST(MonitorReplay, LiveEqualsOfflineSampleForSample) {
     for (const auto& c : criteria)
       why |= c.item_id == must_slide && c.criterion == CriterionExceedance::SLIDE_FROM_REST && c.exceeded;
     EXPECT_TRUE(why) << "no slide_from_rest event for " << must_slide;
+  }
+  if (!must_rule_out.empty()) {
+    bool known = false;
+    for (const auto& item : offline.items()) {
+      if (item.spec().id != must_rule_out) continue;
+      known = true;
+      ASSERT_NE(item.adaptive(), nullptr);
+      EXPECT_EQ(item.adaptive()->initial_reason(), core::SwitchReason::SceneRulesOutContact);
+      EXPECT_EQ(item.adaptive()->outcome().samples_contact_model, 0);
+      EXPECT_FALSE(std::isnan(item.adaptive()->outcome().uplift_time)) << must_rule_out << " must rock";
+    }
+    EXPECT_TRUE(known) << must_rule_out;
+    for (const auto& [key, msg] : live)
+      for (const RockingState& st : msg.items)
+        if (st.id == must_rule_out) ASSERT_EQ(st.model, "rocking") << must_rule_out << " at " << key;
   }
   if (!must_survive.empty()) {
     for (const auto& a : alarms) EXPECT_NE(a.item_id, must_survive) << must_survive << " must raise no alarm";

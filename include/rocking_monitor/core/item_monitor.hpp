@@ -73,6 +73,8 @@ class ItemMonitor {
     /// Rocking: pure rocking, violations flagged (default). Adaptive / Contact: sliding and free
     /// flight modelled (AdaptiveModel, docs/fidelity.md); the validity criteria are then not flagged.
     Fidelity fidelity = Fidelity::Rocking;
+    /// Adaptive: scene envelope of the static pre-check (AdaptiveSettings::scene; inf = unknown).
+    SceneEnvelope scene{};
   };
 
   /// Throws std::invalid_argument (message from validate()) for a bad spec.

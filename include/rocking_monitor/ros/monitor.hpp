@@ -42,6 +42,7 @@ class RockingMonitor {
   bool init();
 
  private:
+  void log_initial_models() const;
   struct Item {
     CatalogueItem entry;
     std::unique_ptr<core::ItemMonitor> monitor;
