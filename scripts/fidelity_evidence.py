@@ -45,10 +45,13 @@ def quiet_noise_csv(path):
             f.write("%.3f,%.9f,%.9f\n" % (i * 0.005, rx.gauss(0, 0.005), rz.gauss(0, 0.005)))
 
 
-def run(sim, record, scale, item_args, fidelity, repeat):
+SCENE_RULES_OUT = "friction rules out sliding, slip at impact and flight in the scene envelope"
+
+
+def run(sim, record, scale, item_args, fidelity, repeat, extra=()):
     best = None
     for _ in range(repeat):
-        cmd = [sim, "--record", record, "--scale", str(scale), "--fidelity", fidelity, "--json"] + item_args
+        cmd = [sim, "--record", record, "--scale", str(scale), "--fidelity", fidelity, "--json"] + item_args + list(extra)
         p = subprocess.run(cmd, capture_output=True, text=True, check=True)
         j = json.loads(p.stdout[p.stdout.find("{"):])
         if best is None or j["cpu_time_s"] < best["cpu_time_s"]:
@@ -75,6 +78,7 @@ def main():
     ap.add_argument("--sim", required=True)
     ap.add_argument("--records", default=os.path.join(ROOT, "..", "shared", "records"))
     ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="parallel runs in the sweep")
     ap.add_argument("--sweep-scales", default="0.5,1.0",
                     help="agreement sweep: every .AT2 under --records at these scales ('' = skip)")
     args = ap.parse_args()
@@ -114,7 +118,9 @@ def main():
                           "beyond_tipping": res["contact"]["beyond_tipping"],
                           "contact_final_mode": res["contact"]["final_mode"],
                           "rocking_only_overturned": res["rocking"]["overturned"],
-                          "switches": res["adaptive"]["model_switches"], "first_reason": first})
+                          "switches": res["adaptive"]["model_switches"], "first_reason": first,
+                          "ruled_out": res["adaptive"]["initial_model_reason"] == SCENE_RULES_OUT,
+                          "required_mu": res["adaptive"]["scene"]["required_mu"]})
             print("%-32s %-17s rock %.3f  contact %.3f  adaptive %.3f us/sample  agree %s" % (
                 name, item, *[1e6 * res[f]["cpu_time_s"] / n for f in FIDELITIES], ok), file=sys.stderr)
     with open(os.path.join(out_dir, "cost.csv"), "w", newline="") as f:
@@ -145,13 +151,14 @@ def main():
             lv, r[0], c[0], a[0], ratio, r[1], c[1], a[1], 100 * a[2]))
     lines += ["", "Scenes: " + "; ".join("%s = %s" % (lv, ", ".join(sorted({s[1] for s in scenes if s[0] == lv})))
                                       for lv in levels) + ".", "",
-              "| scene | item | adaptive alarms == contact alarms | max alarm time diff, s | contact: beyond tipping / overturned / final mode | rocking-only overturned | adaptive switches (first reason) |",
-              "|---|---|---|---|---|---|---|"]
+              "| scene | item | adaptive alarms == contact alarms | max alarm time diff, s | contact: beyond tipping / overturned / final mode | rocking-only overturned | friction the scene can demand (ruled out?) | adaptive switches (first reason) |",
+              "|---|---|---|---|---|---|---|---|"]
     for a in agree:
-        lines.append("| %s | %s | %s | %.3g | %s / %s / %s | %s | %d (%s) |" % (
+        need = "unbounded" if a["required_mu"] is None else "%.3f" % a["required_mu"]
+        lines.append("| %s | %s | %s | %.3g | %s / %s / %s | %s | %s (%s) | %d (%s) |" % (
             a["scene"], a["item"], "yes" if a["agree"] else "**NO**", a["max_time_diff_s"],
             a["beyond_tipping"], a["overturned"], a["contact_final_mode"], a["rocking_only_overturned"],
-            a["switches"], a["first_reason"]))
+            need, "yes" if a["ruled_out"] else "no", a["switches"], a["first_reason"]))
     n_ok = sum(a["agree"] for a in agree)
     lines += ["", "Agreement: %d of %d item-scene runs give the same alarms (flags, final mode, times within 1e-4 s)." % (n_ok, len(agree))]
     # Agreement sweep over every historical record (adaptive vs contact, alarms only).
@@ -159,38 +166,52 @@ def main():
     if scales:
         records = sorted(os.path.join(d, f) for d, _, fs in os.walk(args.records) for f in fs
                          if f.lower().endswith(".at2"))
-        sweep = []
-        for rec in records:
-            for sc in scales:
-                for item, item_args in CATALOGUE:
-                    try:
-                        a = run(args.sim, rec, sc, item_args, "adaptive", 1)
-                        c = run(args.sim, rec, sc, item_args, "contact", 1)
-                    except subprocess.CalledProcessError:
-                        continue  # unreadable record (rocking_sim reports it)
-                    ok, worst = same_alarms(a, c, 1e-4)
-                    sweep.append({"record": os.path.relpath(rec, args.records), "scale": sc, "item": item,
-                                  "agree": ok, "max_time_diff_s": worst, "overturned": c["overturned"],
-                                  "beyond_tipping": c["beyond_tipping"], "switches": a["model_switches"],
-                                  "adaptive_steps": a["steps"], "contact_steps": c["steps"],
-                                  "adaptive_cpu_s": a["cpu_time_s"], "contact_cpu_s": c["cpu_time_s"]})
+        def one(job):
+            rec, sc, item, item_args = job
+            try:
+                a = run(args.sim, rec, sc, item_args, "adaptive", 1)
+                c = run(args.sim, rec, sc, item_args, "contact", 1)
+            except subprocess.CalledProcessError:
+                return None  # unreadable record (rocking_sim reports it)
+            ok, worst = same_alarms(a, c, 1e-4)
+            row = {"record": os.path.relpath(rec, args.records), "scale": sc, "item": item,
+                   "agree": ok, "max_time_diff_s": worst, "overturned": c["overturned"],
+                   "beyond_tipping": c["beyond_tipping"], "switches": a["model_switches"],
+                   "ruled_out": a["initial_model_reason"] == SCENE_RULES_OUT,
+                   "adaptive_steps": a["steps"], "contact_steps": c["steps"],
+                   "adaptive_cpu_s": a["cpu_time_s"], "contact_cpu_s": c["cpu_time_s"],
+                   "contact_self_agree_x4_substeps": ""}
+            if not ok:
+                # Is always-contact itself that sensitive? Same model, 4x the RK4 sub-steps.
+                c4 = run(args.sim, rec, sc, item_args, "contact", 1, ["--contact-substeps", "64"])
+                row["contact_self_agree_x4_substeps"] = same_alarms(c, c4, 1e-4)[0]
+            return row
+        from concurrent.futures import ThreadPoolExecutor
+        jobs = [(rec, sc, item, item_args) for rec in records for sc in scales for item, item_args in CATALOGUE]
+        with ThreadPoolExecutor(max_workers=args.jobs) as pool:
+            sweep = [r for r in pool.map(one, jobs) if r is not None]
         with open(os.path.join(out_dir, "agreement_sweep.csv"), "w", newline="") as f:
             w = csv.DictWriter(f, fieldnames=list(sweep[0].keys()))
             w.writeheader()
             w.writerows(sweep)
         bad = [x for x in sweep if not x["agree"]]
         lines += ["", "Sweep: %d historical records x scales %s x 6 items = %d runs: adaptive alarms == contact alarms in %d "
-                  "(%d with beyond tipping, %d overturned, %d with at least one switch); max alarm time difference %.3g s; "
+                  "(%d with beyond tipping, %d overturned, %d with at least one switch, %d where the record's own envelope "
+                  "rules the contact model out); max alarm time difference %.3g s; "
                   "integrator steps adaptive / contact = %.3f; CPU adaptive / contact = %.3f "
                   "(docs/fidelity/agreement_sweep.csv)." % (
                       len({x["record"] for x in sweep}), ",".join("x%g" % s for s in scales), len(sweep),
                       len(sweep) - len(bad), sum(x["beyond_tipping"] for x in sweep),
                       sum(x["overturned"] for x in sweep), sum(x["switches"] > 0 for x in sweep),
+                      sum(x["ruled_out"] for x in sweep),
                       max([x["max_time_diff_s"] for x in sweep if x["agree"]] + [0.0]),
                       sum(x["adaptive_steps"] for x in sweep) / max(1, sum(x["contact_steps"] for x in sweep)),
                       sum(x["adaptive_cpu_s"] for x in sweep) / max(1e-12, sum(x["contact_cpu_s"] for x in sweep)))]
         for x in bad:
-            lines.append("* disagreement: %s x%g %s (max time diff %.3g s)" % (x["record"], x["scale"], x["item"], x["max_time_diff_s"]))
+            lines.append("* disagreement: %s x%g %s (max time diff %.3g s; always-contact with 64 instead of 16 "
+                         "sub-steps per sample %s itself)" % (
+                             x["record"], x["scale"], x["item"], x["max_time_diff_s"],
+                             "agrees with" if x["contact_self_agree_x4_substeps"] else "**differs from**"))
     md = os.path.join(ROOT, "docs", "fidelity.md")
     text = open(md).read()
     b, e = "<!-- measured:begin -->", "<!-- measured:end -->"

@@ -153,6 +153,11 @@ int main(int argc, char** argv) {
                  "model when needed; docs/fidelity.md)")
       ->check(CLI::IsMember({"rocking", "contact", "adaptive"}))
       ->default_val("rocking");
+  rm::ContactSettings contact_settings;
+  app.add_option("--contact-substeps", contact_settings.substeps,
+                 "RK4 sub-steps per input sample of the contact model (--fidelity contact|adaptive)")
+      ->default_val(contact_settings.substeps)
+      ->check(CLI::Range(1, 100000));
   std::string scene_text = "auto";
   app.add_option("--scene", scene_text,
                  "Scene envelope for the adaptive pre-check (docs/fidelity.md): auto = this record's "
@@ -220,6 +225,7 @@ int main(int argc, char** argv) {
       as.fidelity = fidelity;
       as.rocking = settings;
       as.scene = parse_scene(scene_text, motion);
+      as.contact = contact_settings;
       const FidelityRun f = run_fidelity(rigid, as, motion, history_path);
       const rm::AdaptiveOutcome& o = f.outcome;
       json reasons = json::array();
