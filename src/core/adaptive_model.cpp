@@ -75,11 +75,20 @@ const AdaptiveSettings& checked(const AdaptiveSettings& s) {
     throw std::invalid_argument("AdaptiveSettings::lift_off_margin must be in [0, 1)");
   if (!(s.friction_safety > 0.0 && s.friction_safety <= 1.0))
     throw std::invalid_argument("AdaptiveSettings::friction_safety must be in (0, 1]");
+  if (!(s.linearized_max_alpha >= 0.0) || !(s.linearized_max_ratio > 0.0 && s.linearized_max_ratio < 1.0))
+    throw std::invalid_argument(
+        "AdaptiveSettings: linearized_max_alpha must be >= 0 rad and linearized_max_ratio in (0, 1)");
   if (s.max_switch_records < 0)
     throw std::invalid_argument("AdaptiveSettings::max_switch_records must be >= 0");
   if (!(s.scene.horizontal >= 0.0) || !(s.scene.vertical >= 0.0))
     throw std::invalid_argument(
         "AdaptiveSettings::scene: horizontal and vertical limits must be >= 0 m/s^2 (inf = unknown)");
+  return s;
+}
+
+SolverSettings linearized_settings(SolverSettings s) {
+  s.method = Method::Analytic;
+  s.model = ModelKind::Linearized;
   return s;
 }
 
@@ -92,7 +101,10 @@ AdaptiveModel::AdaptiveModel(const Body& body, const AdaptiveSettings& settings)
     : body_(body),
       settings_(checked(settings)),
       rock_(body, settings.rocking),
-      contact_(body, settings.contact) {
+      contact_(body, settings.contact),
+      lin_(body, linearized_settings(settings.rocking)) {
+  lin_eligible_ = settings_.fidelity == Fidelity::Adaptive && settings_.linearized_max_alpha > 0.0 &&
+                  std::max(body_.pivot(1).alpha, body_.pivot(-1).alpha) <= settings_.linearized_max_alpha;
   for (int s : {1, -1}) impact_demand_[s > 0 ? 0 : 1] = core::impact_friction_demand(body_, s);
   bound_ = core::sliding_bound(body_, settings_.scene);
   scene_rules_out_contact_ = !std::isinf(body_.mu_s()) && body_.mu_s() >= bound_.required_mu();
@@ -107,6 +119,7 @@ double AdaptiveModel::impact_friction_demand(int new_side) const {  // cached co
 void AdaptiveModel::reset(double t, double ax, double ay) {
   rock_.reset(t, ax, ay);
   contact_.reset(t, ax, ay);
+  lin_active_ = false;
   t_ = t;
   ax_prev_ = ax;
   ay_prev_ = ay;
@@ -140,7 +153,7 @@ void AdaptiveModel::reset(double t, double ax, double ay) {
 
 ContactMode AdaptiveModel::mode() const {
   if (active_ == ActiveModel::Contact) return contact_.mode();
-  switch (rock_.mode()) {
+  switch (rocking_model().mode()) {
     case Mode::Rest: return ContactMode::Rest;
     case Mode::Rocking: return ContactMode::Rock;
     case Mode::Overturned: return ContactMode::Overturned;
@@ -149,17 +162,17 @@ ContactMode AdaptiveModel::mode() const {
 }
 
 const char* AdaptiveModel::mode_name() const {
-  return active_ == ActiveModel::Contact ? to_string(contact_.mode()) : to_string(rock_.mode());
+  return active_ == ActiveModel::Contact ? to_string(contact_.mode()) : to_string(rocking_model().mode());
 }
 
 int AdaptiveModel::side() const {
-  return active_ == ActiveModel::Contact ? contact_.side() : rock_.side();
+  return active_ == ActiveModel::Contact ? contact_.side() : rocking_model().side();
 }
 double AdaptiveModel::theta() const {
-  return active_ == ActiveModel::Contact ? contact_.theta() : rock_.theta();
+  return active_ == ActiveModel::Contact ? contact_.theta() : rocking_model().theta();
 }
 double AdaptiveModel::omega() const {
-  return active_ == ActiveModel::Contact ? contact_.omega() : rock_.omega();
+  return active_ == ActiveModel::Contact ? contact_.omega() : rocking_model().omega();
 }
 double AdaptiveModel::slip() const {
   return active_ == ActiveModel::Contact ? contact_.slip() : rock_slip_;
@@ -181,8 +194,8 @@ void AdaptiveModel::count_rocking_work(const StepReport& r) {
 }
 
 // The physics of a RockingModel sample whose result stands (no up switch in it).
-void AdaptiveModel::accumulate_rocking(const StepReport& r) {
-  const RockingOutcome& o = rock_.outcome();
+void AdaptiveModel::accumulate_rocking(const RockingModel& m, const StepReport& r) {
+  const RockingOutcome& o = m.outcome();
   ++outcome_.samples;
   outcome_.impacts += r.impacts;
   if (r.uplift) latch_min(outcome_.uplift_time, o.uplift_time);
@@ -270,9 +283,9 @@ void AdaptiveModel::contact_step(double ax, double ay, double dt) {
   accumulate_contact(r, t0, dt, th0, om0, side0, mode0);
 }
 
-SwitchReason AdaptiveModel::check_rocking(const StepReport& r) const {
-  if (rock_.mode() == Mode::Overturned && !r.overturned) return SwitchReason::None;
-  const std::uint8_t v = static_cast<std::uint8_t>(r.violation_onsets | rock_.violations());
+SwitchReason AdaptiveModel::check_rocking(const RockingModel& rock, const StepReport& r) const {
+  if (rock.mode() == Mode::Overturned && !r.overturned) return SwitchReason::None;
+  const std::uint8_t v = static_cast<std::uint8_t>(r.violation_onsets | rock.violations());
   auto has = [v](Criterion c) { return (v >> static_cast<int>(c)) & 1u; };
   if (has(Criterion::FreeFlight)) return SwitchReason::FreeFlight;
   if (has(Criterion::SlideFromRest)) return SwitchReason::SlideFromRest;
@@ -285,16 +298,36 @@ SwitchReason AdaptiveModel::check_rocking(const StepReport& r) const {
   if (!std::isinf(mu)) {
     if (r.impacts > 0 && mu < std::max(impact_demand_[0], impact_demand_[1]))
       return SwitchReason::SlipAtImpact;
-    if (rock_.mode() == Mode::Rocking) {
-      const ContactReaction cr = rock_.reaction();
+    if (rock.mode() == Mode::Rocking) {
+      const ContactReaction cr = rock.reaction();
       if (std::abs(cr.rx) > settings_.friction_safety * mu * std::max(cr.ry, 0.0))
         return SwitchReason::FrictionNearLimit;
     }
   }
-  if (rock_.mode() == Mode::Rocking && settings_.lift_off_margin > 0.0) {
-    if (rock_.reaction().ry < settings_.lift_off_margin * kGravity) return SwitchReason::NearLiftOff;
+  if (rock.mode() == Mode::Rocking && settings_.lift_off_margin > 0.0) {
+    if (rock.reaction().ry < settings_.lift_off_margin * kGravity) return SwitchReason::NearLiftOff;
   }
   return SwitchReason::None;
+}
+
+// A linearized-tier sample stands only if it stayed in small rotation and nothing happened that
+// the nonlinear model must decide (rest, tipping, overturn, a validity criterion or margin).
+bool AdaptiveModel::linearized_sample_stands(const StepReport& r) const {
+  if (lin_.mode() != Mode::Rocking || r.beyond_tipping_entered || r.overturned) return false;
+  const double limit = settings_.linearized_max_ratio;
+  if (lin_.rotation_ratio() > limit || r.peak_ratio > limit) return false;
+  return check_rocking(lin_, r) == SwitchReason::None;
+}
+
+// After a nonlinear sample that stands: go to the linearized tier when the item is eligible and
+// well inside the small-rotation region (half the limit: hysteresis against toggling).
+void AdaptiveModel::maybe_enter_linearized(double ax, double ay) {
+  if (!lin_eligible_ || lin_active_ || active_ != ActiveModel::Rocking) return;
+  if (rock_.mode() != Mode::Rocking || rock_.theta() == 0.0 || rock_.violations() != 0) return;
+  if (rock_.rotation_ratio() > 0.5 * settings_.linearized_max_ratio) return;
+  lin_.reset(t_, ax, ay);
+  lin_.set_state(rock_.theta(), rock_.omega());
+  lin_active_ = true;
 }
 
 // Exact state transfer: the sample in which `reason` fired is recomputed with ContactModel placed
@@ -333,7 +366,7 @@ const AdaptiveReport& AdaptiveModel::step(double ax, double ay, double dt) {
   if (settings_.fidelity == Fidelity::Rocking) {
     const StepReport& r = rock_.step(ax, ay, dt);
     count_rocking_work(r);
-    accumulate_rocking(r);
+    accumulate_rocking(rock_, r);
   } else if (settings_.fidelity == Fidelity::Contact || active_ == ActiveModel::Contact) {
     contact_step(ax, ay, dt);
   } else {
@@ -342,14 +375,38 @@ const AdaptiveReport& AdaptiveModel::step(double ax, double ay, double dt) {
       ++outcome_.samples_outside_scene;
       scene_guarantee_ = false;
     }
-    // rock_ is at (t_, ax_prev_, ay_prev_) here: same clock and input as this wrapper.
-    const RockStart start{rock_.mode(), rock_.side(), rock_.theta(), rock_.omega()};
+    // The rocking model in use is at (t_, ax_prev_, ay_prev_) here: same clock and input.
+    const RockingModel& cur = rocking_model();
+    const RockStart start{cur.mode(), cur.side(), cur.theta(), cur.omega()};
+    if (lin_active_) {
+      const StepReport& rl = lin_.step(ax, ay, dt);
+      outcome_.rocking_steps += rl.integrator_steps;  // its work counts either way
+      report_.rocking_steps += rl.integrator_steps;
+      report_.integrator_steps += rl.integrator_steps;
+      ++outcome_.samples_linearized_model;
+      report_.linearized_samples = 1;
+      if (linearized_sample_stands(rl)) {
+        ++outcome_.samples_rocking_model;
+        ++report_.rocking_samples;
+        accumulate_rocking(lin_, rl);
+        t_ += dt;
+        ax_prev_ = ax;
+        ay_prev_ = ay;
+        report_.model = active_;
+        return report_;
+      }
+      // Recompute this sample with the nonlinear model from its start state.
+      ++outcome_.linearized_fallbacks;
+      lin_active_ = false;
+      rock_.reset(t_, ax_prev_, ay_prev_);
+      rock_.set_state(start.theta, start.omega);
+    }
     const StepReport& r = rock_.step(ax, ay, dt);
     count_rocking_work(r);
     // The guarantee holds below the tipping angle only (sliding_bound()).
     if (scene_guarantee_ && (outcome_.beyond_tipping || r.beyond_tipping_entered)) scene_guarantee_ = false;
-    const SwitchReason why = check_rocking(r);
-    if (why == SwitchReason::None) accumulate_rocking(r);
+    const SwitchReason why = check_rocking(rock_, r);
+    if (why == SwitchReason::None) accumulate_rocking(rock_, r);
     else switch_up(why, start, ax, ay, dt);
   }
   t_ += dt;
@@ -363,6 +420,7 @@ const AdaptiveReport& AdaptiveModel::step(double ax, double ay, double dt) {
     if (hold_ >= settings_.hold_time_s && m != ContactMode::Overturned)
       switch_down(m == ContactMode::Rest ? SwitchReason::RestHeld : SwitchReason::RockHeld, ax, ay);
   }
+  if (settings_.fidelity == Fidelity::Adaptive && !report_.switched) maybe_enter_linearized(ax, ay);
   report_.model = active_;
   return report_;
 }

@@ -71,6 +71,7 @@ ItemMonitor::ItemMonitor(const ItemSpec& spec, const Options& options)
     a.fidelity = options.fidelity;
     a.rocking = options.solver;
     a.scene = options.scene;
+    a.linearized_max_alpha = options.linearized_max_alpha;
     adaptive_ = std::make_unique<AdaptiveModel>(model_.body(), a);
   }
 }
@@ -119,7 +120,9 @@ double ItemMonitor::omega() const { return adaptive_ ? adaptive_->omega() : mode
 double ItemMonitor::slip() const { return adaptive_ ? adaptive_->slip() : 0.0; }
 long ItemMonitor::impacts() const { return adaptive_ ? adaptive_->outcome().impacts : model_.outcome().impacts; }
 const char* ItemMonitor::active_model() const {
-  return adaptive_ && adaptive_->active() == ActiveModel::Contact ? "contact" : "rocking";
+  if (!adaptive_) return "rocking";
+  if (adaptive_->active() == ActiveModel::Contact) return "contact";
+  return adaptive_->linearized() ? "rocking_linearized" : "rocking";
 }
 
 double ItemMonitor::rotation_ratio() const {

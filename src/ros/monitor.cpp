@@ -86,9 +86,15 @@ bool RockingMonitor::load_parameters() {
             param(pnh_, "marker_rate", marker_rate_, "number") &&
             param(pnh_, "fidelity", fidelity, "string");
   double scene_h = 0.0, scene_v = 0.0;
-  ok = ok && param(pnh_, "scene_envelope/horizontal", scene_h, "number") &&
+  ok = ok && param(pnh_, "linearized_max_alpha", options_.linearized_max_alpha, "number") &&
+       param(pnh_, "scene_envelope/horizontal", scene_h, "number") &&
        param(pnh_, "scene_envelope/vertical", scene_v, "number");
   if (!ok) return false;
+  if (!(options_.linearized_max_alpha >= 0.0) || !(options_.linearized_max_alpha < 1.0)) {
+    ROS_FATAL("rocking_monitor: ~linearized_max_alpha = %g rad must be in [0, 1) (0 = off)",
+              options_.linearized_max_alpha);
+    return false;
+  }
   if (!(scene_h >= 0.0) || !(scene_v >= 0.0)) {
     ROS_FATAL("rocking_monitor: ~scene_envelope/horizontal = %g and ~scene_envelope/vertical = %g must be "
               ">= 0 m/s^2 (0 = unknown)", scene_h, scene_v);

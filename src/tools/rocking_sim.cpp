@@ -158,6 +158,12 @@ int main(int argc, char** argv) {
                  "RK4 sub-steps per input sample of the contact model (--fidelity contact|adaptive)")
       ->default_val(contact_settings.substeps)
       ->check(CLI::Range(1, 100000));
+  double linearized_max_alpha = 0.0;
+  app.add_option("--linearized-max-alpha", linearized_max_alpha,
+                 "--fidelity adaptive: items with both tipping angles <= this (rad) rock on the linearized "
+                 "closed form while |theta|/alpha < 0.5 (0 = off; docs/fidelity.md)")
+      ->default_val(0.0)
+      ->check(CLI::NonNegativeNumber);
   std::string scene_text = "auto";
   app.add_option("--scene", scene_text,
                  "Scene envelope for the adaptive pre-check (docs/fidelity.md): auto = this record's "
@@ -226,6 +232,7 @@ int main(int argc, char** argv) {
       as.rocking = settings;
       as.scene = parse_scene(scene_text, motion);
       as.contact = contact_settings;
+      as.linearized_max_alpha = linearized_max_alpha;
       const FidelityRun f = run_fidelity(rigid, as, motion, history_path);
       const rm::AdaptiveOutcome& o = f.outcome;
       json reasons = json::array();
@@ -261,6 +268,8 @@ int main(int argc, char** argv) {
                       {"samples_outside", o.samples_outside_scene}}},
                     {"samples_rocking_model", o.samples_rocking_model},
                     {"samples_contact_model", o.samples_contact_model},
+                    {"samples_linearized_model", o.samples_linearized_model},
+                    {"linearized_fallbacks", o.linearized_fallbacks},
                     {"replayed_samples", o.recomputed_samples},  // samples recomputed at up switches
                     {"model_switches", o.model_switches},
                     {"switch_reasons", reasons},

@@ -75,6 +75,15 @@ struct AdaptiveSettings {
   /// early margins above are not applied to it. An input sample outside the envelope, or a
   /// rotation beyond alpha, ends the guarantee: the margins apply again from that sample on.
   SceneEnvelope scene{};
+  /// Linearized tier (issue 7: "a slender item in small rotation may use the linearized model
+  /// only where the error bound allows it"). An item whose tipping angles are both <= this (rad)
+  /// rocks on the closed-form linearized model (method analytic) while |theta| / alpha stays below
+  /// linearized_max_ratio; any sample that would leave that region (or reach rest, an overturn or
+  /// a validity criterion) is recomputed by the nonlinear model from its start state, so every
+  /// alarm is decided by the nonlinear (or contact) model. 0 = off (default). docs/performance.md
+  /// gives the linearized model's error: overturning amplitude 0.3 % at alpha = 5 deg, 1.2 % at 10.
+  double linearized_max_alpha = 0.0;
+  double linearized_max_ratio = 0.5;
 };
 
 /// One sample.
@@ -85,7 +94,9 @@ struct AdaptiveReport {
   /// 1 when this sample was first stepped by RockingModel and then recomputed by ContactModel
   /// from the RockingModel state at the sample start (up switch), else 0.
   int recomputed_samples = 0;
-  int rocking_samples = 0;   ///< RockingModel samples stepped in this sample (0 or 1)
+  int rocking_samples = 0;   ///< RockingModel samples whose result stands or was handed up (0 or 1)
+  int linearized_samples = 0;  ///< linearized-tier samples stepped (0 or 1; a fallback recomputes
+                               ///< it with the nonlinear model, which is then the rocking sample)
   int contact_samples = 0;   ///< ContactModel samples stepped in this sample (0 or 1)
   int rocking_steps = 0;     ///< RockingModel integrator steps in this sample
   int contact_steps = 0;     ///< ContactModel RK4 sub-steps in this sample
@@ -113,6 +124,8 @@ struct AdaptiveOutcome {
   long rocking_steps = 0;           ///< RockingModel integrator steps (dopri5 or RK4)
   long contact_steps = 0;           ///< ContactModel RK4 sub-steps
   long recomputed_samples = 0;      ///< samples recomputed by ContactModel (one per up switch)
+  long samples_linearized_model = 0;  ///< samples stepped on the linearized tier (kept or not)
+  long linearized_fallbacks = 0;      ///< of which recomputed by the nonlinear model
   long model_switches = 0;
   bool sliding_ruled_out = false;   ///< static pre-check: mu_s = inf, or mu_s >= required_mu()
   /// First input sample outside the scene envelope (s), NaN while every sample was inside.
@@ -135,6 +148,9 @@ class AdaptiveModel {
   const AdaptiveReport& step(double ax, double ay, double dt);
 
   ActiveModel active() const { return active_; }
+  /// The rocking model runs on the linearized tier now (see AdaptiveSettings::linearized_max_alpha).
+  bool linearized() const { return active_ == ActiveModel::Rocking && lin_active_; }
+  bool linearized_eligible() const { return lin_eligible_; }
   /// Mode name of the active model ("REST", "ROCKING", "SLIDE", ...).
   const char* mode_name() const;
   ContactMode mode() const;  ///< mapped to ContactMode (RockingModel ROCKING -> Rock)
@@ -163,11 +179,14 @@ class AdaptiveModel {
     double theta, omega;
   };
   void count_rocking_work(const StepReport& r);
-  void accumulate_rocking(const StepReport& r);
+  void accumulate_rocking(const RockingModel& m, const StepReport& r);
   void accumulate_contact(const ContactReport& r, double t0, double dt, double th0, double om0,
                           int side0, ContactMode mode0);
   void contact_step(double ax, double ay, double dt);
-  SwitchReason check_rocking(const StepReport& r) const;
+  SwitchReason check_rocking(const RockingModel& m, const StepReport& r) const;
+  const RockingModel& rocking_model() const { return lin_active_ ? lin_ : rock_; }
+  bool linearized_sample_stands(const StepReport& r) const;
+  void maybe_enter_linearized(double ax, double ay);
   void switch_up(SwitchReason reason, const RockStart& start, double ax, double ay, double dt);
   void switch_down(SwitchReason reason, double ax, double ay);
   void record(double time, ActiveModel to, SwitchReason reason, double onset);
@@ -176,6 +195,9 @@ class AdaptiveModel {
   AdaptiveSettings settings_;
   RockingModel rock_;
   ContactModel contact_;
+  RockingModel lin_;          // linearized tier (analytic stepper), used only when eligible
+  bool lin_eligible_ = false;
+  bool lin_active_ = false;
   ActiveModel active_ = ActiveModel::Rocking;
   SwitchReason initial_reason_ = SwitchReason::None;
   double impact_demand_[2] = {0.0, 0.0};

@@ -75,6 +75,8 @@ class ItemMonitor {
     Fidelity fidelity = Fidelity::Rocking;
     /// Adaptive: scene envelope of the static pre-check (AdaptiveSettings::scene; inf = unknown).
     SceneEnvelope scene{};
+    /// Adaptive: linearized tier for slender items (AdaptiveSettings::linearized_max_alpha, rad; 0 = off).
+    double linearized_max_alpha = 0.0;
   };
 
   /// Throws std::invalid_argument (message from validate()) for a bad spec.
