@@ -423,3 +423,36 @@ TEST(RockingSimFidelity, DefaultIsRockingAndAdaptiveMatchesContact) {
     EXPECT_NEAR(ja[k].get<double>(), jc[k].get<double>(), kTimeTol) << k;
   EXPECT_NE(rm::testing::run_command(base + " --fidelity best 2>&1").status, 0);
 }
+
+TEST(RockingSimFidelity, SceneEnvelopeAndLinearizedOptions) {
+  const std::string base = std::string(ROCKING_SIM_EXE) + " --record " + ROCKING_SOURCE_DIR +
+                           "/bags/one_sine_pulse.csv --width 0.50 --cg-height 0.90 --eccentricity 0.4"
+                           " --mu-s 0.6 --fidelity adaptive --json";
+  // auto: the record's own peak (4.0 m/s^2, no vertical) -> the same bound as given explicitly.
+  const auto autoj = rm::testing::run_command(base);
+  const auto given = rm::testing::run_command(base + " --scene 4.0,0");
+  const auto unknown = rm::testing::run_command(base + " --scene unknown");
+  ASSERT_EQ(autoj.status, 0);
+  ASSERT_EQ(given.status, 0);
+  ASSERT_EQ(unknown.status, 0);
+  const auto ja = nlohmann::json::parse(autoj.out), jg = nlohmann::json::parse(given.out),
+             ju = nlohmann::json::parse(unknown.out);
+  EXPECT_NEAR(ja["scene"]["horizontal_mps2"].get<double>(), 4.0, 1e-6);
+  EXPECT_EQ(ja["scene"]["vertical_mps2"].get<double>(), 0.0);
+  EXPECT_NEAR(ja["scene"]["required_mu"].get<double>(), jg["scene"]["required_mu"].get<double>(), 1e-6);
+  EXPECT_LT(ja["scene"]["required_mu"].get<double>(), 0.6);
+  EXPECT_TRUE(ja["sliding_ruled_out"].get<bool>());
+  EXPECT_EQ(ja["samples_contact_model"], 0);
+  EXPECT_EQ(ja["initial_model_reason"],
+            "friction rules out sliding, slip at impact and flight in the scene envelope");
+  EXPECT_TRUE(ju["scene"]["required_mu"].is_null());
+  EXPECT_EQ(ju["initial_model_reason"], "pure rocking valid");
+  for (const char* k : {"overturned", "committed", "beyond_tipping", "final_mode"})
+    EXPECT_EQ(ja[k], ju[k]) << k;
+  EXPECT_EQ(ja["samples_linearized_model"], 0);  // tier off by default
+  for (const char* bad : {" --scene 1,x", " --scene -1,0", " --scene 3", " --linearized-max-alpha -1"}) {
+    const auto r = rm::testing::run_command(base + bad + " 2>&1");
+    EXPECT_NE(r.status, 0) << bad;
+    EXPECT_NE(r.out.find(std::string(bad).substr(3, 5)), std::string::npos) << bad << ": " << r.out;
+  }
+}
