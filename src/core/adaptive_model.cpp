@@ -105,15 +105,14 @@ AdaptiveModel::AdaptiveModel(const Body& body, const AdaptiveSettings& settings)
       lin_(body, linearized_settings(settings.rocking)) {
   lin_eligible_ = settings_.fidelity == Fidelity::Adaptive && settings_.linearized_max_alpha > 0.0 &&
                   std::max(body_.pivot(1).alpha, body_.pivot(-1).alpha) <= settings_.linearized_max_alpha;
-  for (int s : {1, -1}) impact_demand_[s > 0 ? 0 : 1] = core::impact_friction_demand(body_, s);
   bound_ = core::sliding_bound(body_, settings_.scene);
   scene_rules_out_contact_ = !std::isinf(body_.mu_s()) && body_.mu_s() >= bound_.required_mu();
   switches_.reserve(static_cast<std::size_t>(settings_.max_switch_records));
   reset(0.0);
 }
 
-double AdaptiveModel::impact_friction_demand(int new_side) const {  // cached core:: function
-  return impact_demand_[new_side > 0 ? 0 : 1];
+double AdaptiveModel::impact_friction_demand(int new_side) const {
+  return core::impact_friction_demand(body_, new_side);
 }
 
 void AdaptiveModel::reset(double t, double ax, double ay) {
@@ -296,7 +295,7 @@ SwitchReason AdaptiveModel::check_rocking(const RockingModel& rock, const StepRe
   if (scene_guarantee_) return SwitchReason::None;
   const double mu = body_.mu_s();
   if (!std::isinf(mu)) {
-    if (r.impacts > 0 && mu < std::max(impact_demand_[0], impact_demand_[1]))
+    if (r.impacts > 0 && mu < bound_.impact)  // the larger corner's sticking-impact demand
       return SwitchReason::SlipAtImpact;
     if (rock.mode() == Mode::Rocking) {
       const ContactReaction cr = rock.reaction();
@@ -317,6 +316,28 @@ bool AdaptiveModel::linearized_sample_stands(const StepReport& r) const {
   const double limit = settings_.linearized_max_ratio;
   if (lin_.rotation_ratio() > limit || r.peak_ratio > limit) return false;
   return check_rocking(lin_, r) == SwitchReason::None;
+}
+
+// One sample on the linearized tier. True when its result stands; otherwise the rocking model is
+// put back in the start state and the caller recomputes the sample with the nonlinear model.
+bool AdaptiveModel::linearized_step(double ax, double ay, double dt, const RockStart& start) {
+  const StepReport& rl = lin_.step(ax, ay, dt);
+  outcome_.rocking_steps += rl.integrator_steps;  // its work counts either way
+  report_.rocking_steps += rl.integrator_steps;
+  report_.integrator_steps += rl.integrator_steps;
+  ++outcome_.samples_linearized_model;
+  report_.linearized_samples = 1;
+  if (linearized_sample_stands(rl)) {
+    ++outcome_.samples_rocking_model;
+    ++report_.rocking_samples;
+    accumulate_rocking(lin_, rl);
+    return true;
+  }
+  ++outcome_.linearized_fallbacks;
+  lin_active_ = false;
+  rock_.reset(t_, ax_prev_, ay_prev_);
+  rock_.set_state(start.theta, start.omega);
+  return false;
 }
 
 // After a nonlinear sample that stands: go to the linearized tier when the item is eligible and
@@ -378,36 +399,15 @@ const AdaptiveReport& AdaptiveModel::step(double ax, double ay, double dt) {
     // The rocking model in use is at (t_, ax_prev_, ay_prev_) here: same clock and input.
     const RockingModel& cur = rocking_model();
     const RockStart start{cur.mode(), cur.side(), cur.theta(), cur.omega()};
-    if (lin_active_) {
-      const StepReport& rl = lin_.step(ax, ay, dt);
-      outcome_.rocking_steps += rl.integrator_steps;  // its work counts either way
-      report_.rocking_steps += rl.integrator_steps;
-      report_.integrator_steps += rl.integrator_steps;
-      ++outcome_.samples_linearized_model;
-      report_.linearized_samples = 1;
-      if (linearized_sample_stands(rl)) {
-        ++outcome_.samples_rocking_model;
-        ++report_.rocking_samples;
-        accumulate_rocking(lin_, rl);
-        t_ += dt;
-        ax_prev_ = ax;
-        ay_prev_ = ay;
-        report_.model = active_;
-        return report_;
-      }
-      // Recompute this sample with the nonlinear model from its start state.
-      ++outcome_.linearized_fallbacks;
-      lin_active_ = false;
-      rock_.reset(t_, ax_prev_, ay_prev_);
-      rock_.set_state(start.theta, start.omega);
+    if (!(lin_active_ && linearized_step(ax, ay, dt, start))) {
+      const StepReport& r = rock_.step(ax, ay, dt);
+      count_rocking_work(r);
+      // The guarantee holds below the tipping angle only (sliding_bound()).
+      if (scene_guarantee_ && (outcome_.beyond_tipping || r.beyond_tipping_entered)) scene_guarantee_ = false;
+      const SwitchReason why = check_rocking(rock_, r);
+      if (why == SwitchReason::None) accumulate_rocking(rock_, r);
+      else switch_up(why, start, ax, ay, dt);
     }
-    const StepReport& r = rock_.step(ax, ay, dt);
-    count_rocking_work(r);
-    // The guarantee holds below the tipping angle only (sliding_bound()).
-    if (scene_guarantee_ && (outcome_.beyond_tipping || r.beyond_tipping_entered)) scene_guarantee_ = false;
-    const SwitchReason why = check_rocking(rock_, r);
-    if (why == SwitchReason::None) accumulate_rocking(rock_, r);
-    else switch_up(why, start, ax, ay, dt);
   }
   t_ += dt;
   ax_prev_ = ax;

@@ -100,9 +100,7 @@ bool RockingMonitor::load_parameters() {
               ">= 0 m/s^2 (0 = unknown)", scene_h, scene_v);
     return false;
   }
-  // 0 = unknown: no finite envelope, only mu_s = inf rules sliding out.
-  constexpr double kUnknown = std::numeric_limits<double>::infinity();
-  options_.scene = {scene_h > 0.0 ? scene_h : kUnknown, scene_v > 0.0 ? scene_v : kUnknown};
+  options_.scene = core::SceneEnvelope::from_parameters(scene_h, scene_v);
   options_.solver.substeps = substeps;
   if (threads_ < 1) {
     ROS_FATAL("rocking_monitor: ~threads = %d must be >= 1", threads_);

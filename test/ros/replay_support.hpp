@@ -51,8 +51,7 @@ class OfflineMonitor {
     core::parse_fidelity(fidelity.c_str(), options_.fidelity);
     const double scene_h = number(nh, "scene_envelope/horizontal", 0.0);
     const double scene_v = number(nh, "scene_envelope/vertical", 0.0);
-    constexpr double kUnknown = std::numeric_limits<double>::infinity();  // 0 = unknown, as the node
-    options_.scene = {scene_h > 0.0 ? scene_h : kUnknown, scene_v > 0.0 ? scene_v : kUnknown};
+    options_.scene = core::SceneEnvelope::from_parameters(scene_h, scene_v);
     options_.velocity_highpass_hz = number(nh, "velocity_highpass_hz", options_.velocity_highpass_hz);
     std::string mode = "tracked";
     nh.getParam("gravity_baseline/mode", mode);

@@ -186,6 +186,7 @@ class AdaptiveModel {
   SwitchReason check_rocking(const RockingModel& m, const StepReport& r) const;
   const RockingModel& rocking_model() const { return lin_active_ ? lin_ : rock_; }
   bool linearized_sample_stands(const StepReport& r) const;
+  bool linearized_step(double ax, double ay, double dt, const RockStart& start);
   void maybe_enter_linearized(double ax, double ay);
   void switch_up(SwitchReason reason, const RockStart& start, double ax, double ay, double dt);
   void switch_down(SwitchReason reason, double ax, double ay);
@@ -200,7 +201,6 @@ class AdaptiveModel {
   bool lin_active_ = false;
   ActiveModel active_ = ActiveModel::Rocking;
   SwitchReason initial_reason_ = SwitchReason::None;
-  double impact_demand_[2] = {0.0, 0.0};
   SlidingBound bound_;
   bool scene_rules_out_contact_ = false;  // static pre-check passed (finite mu_s)
   bool scene_guarantee_ = false;          // ... and it still holds (input inside, |theta| < alpha)

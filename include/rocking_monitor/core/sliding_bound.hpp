@@ -15,6 +15,11 @@ namespace rocking_monitor::core {
 struct SceneEnvelope {
   double horizontal = std::numeric_limits<double>::infinity();
   double vertical = std::numeric_limits<double>::infinity();
+  /// From configuration values where 0 means "unknown" (the node's ~scene_envelope/*).
+  static SceneEnvelope from_parameters(double horizontal, double vertical) {
+    constexpr double kUnknown = std::numeric_limits<double>::infinity();
+    return {horizontal > 0.0 ? horizontal : kUnknown, vertical > 0.0 ? vertical : kUnknown};
+  }
   bool contains(double ax, double ay) const {
     return !(ax > horizontal || -ax > horizontal || ay > vertical || -ay > vertical);
   }
