@@ -11,12 +11,12 @@
 
 #include <time.h>
 
-#include "rocking_monitor/core/body.hpp"
-#include "rocking_monitor/core/constants.hpp"
-#include "rocking_monitor/core/ground_motion.hpp"
-#include "rocking_monitor/core/record_reader.hpp"
-#include "rocking_monitor/core/rocking_model.hpp"
-#include "rocking_monitor/core/solver_settings.hpp"
+#include "rocking_monitor/physics/body.hpp"
+#include "rocking_monitor/constants.hpp"
+#include "rocking_monitor/motion/ground_motion.hpp"
+#include "rocking_monitor/motion/record_reader.hpp"
+#include "rocking_monitor/model/rocking_model.hpp"
+#include "rocking_monitor/integrate/solver_settings.hpp"
 
 #include <cstdio>
 #include <cstdlib>

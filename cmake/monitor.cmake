@@ -41,7 +41,7 @@ if(CATKIN_ENABLE_TESTING)
   add_executable(test_monitor_historical EXCLUDE_FROM_ALL test/ros/test_monitor_historical.cpp)
   target_link_libraries(test_monitor_historical rocking_monitor_ros ${catkin_LIBRARIES} GTest::gtest
                         nlohmann_json::nlohmann_json)
-  target_include_directories(test_monitor_historical PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/core)
+  target_include_directories(test_monitor_historical PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/support)
   add_dependencies(tests test_monitor_historical)
   if(TARGET record_to_bag)
     add_dependencies(test_monitor_historical record_to_bag rocking_sim)

@@ -58,13 +58,13 @@ if(CATKIN_ENABLE_TESTING AND BUILD_TESTING)
   find_package(rostest REQUIRED)
 
   # record_to_bag end to end, read back with rosbag::View (no ROS master needed): RecordToBag.*
-  add_executable(records_ros_tests EXCLUDE_FROM_ALL test/records/test_record_to_bag.cpp)
+  add_executable(records_ros_tests EXCLUDE_FROM_ALL test/tools/test_record_to_bag.cpp)
   target_link_libraries(records_ros_tests PRIVATE rocking_records_ros GTest::gtest_main)
   target_compile_definitions(records_ros_tests PRIVATE
     ROCKING_RECORDS_DIR="${ROCKING_RECORDS_DIR}"
     RECORD_TO_BAG_EXE="$<TARGET_FILE:record_to_bag>"
     ROCKING_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
-  target_include_directories(records_ros_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/core)
+  target_include_directories(records_ros_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/support)
   add_dependencies(records_ros_tests record_to_bag)
   if(TARGET tests)
     add_dependencies(tests records_ros_tests)
@@ -72,13 +72,13 @@ if(CATKIN_ENABLE_TESTING AND BUILD_TESTING)
   gtest_discover_tests(records_ros_tests DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
 
   # The live player under rostest: rate, content, end signal (wall time and sim time), and hztest.
-  add_rostest_gtest(test_ground_motion_player test/records/player.test test/records/test_ground_motion_player.cpp)
+  add_rostest_gtest(test_ground_motion_player test/ros/player.test test/ros/test_ground_motion_player.cpp)
   if(TARGET test_ground_motion_player)
     target_link_libraries(test_ground_motion_player rocking_records_ros ${catkin_LIBRARIES})
     target_compile_definitions(test_ground_motion_player PRIVATE ROCKING_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
     add_dependencies(test_ground_motion_player ground_motion_player)
-    add_rostest(test/records/player_sim_time.test DEPENDENCIES test_ground_motion_player ground_motion_player)
-    add_rostest(test/records/player_bad_param.test DEPENDENCIES test_ground_motion_player ground_motion_player)
+    add_rostest(test/ros/player_sim_time.test DEPENDENCIES test_ground_motion_player ground_motion_player)
+    add_rostest(test/ros/player_bad_param.test DEPENDENCIES test_ground_motion_player ground_motion_player)
   endif()
-  add_rostest(test/records/player_hztest.test DEPENDENCIES ground_motion_player)
+  add_rostest(test/ros/player_hztest.test DEPENDENCIES ground_motion_player)
 endif()

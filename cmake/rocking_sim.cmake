@@ -6,10 +6,18 @@ set_target_properties(rocking_sim PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_
 if(BUILD_TESTING)
   find_package(GTest REQUIRED)
   include(GoogleTest)
-  file(GLOB ROCKING_CORE_TESTS CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/test/core/*.cpp)
+  # One executable for the core's suites; the sources mirror the layers (test/<layer>/).
+  set(ROCKING_CORE_TESTS "")
+  foreach(dir physics integrate model motion monitoring study tools)
+    file(GLOB tests CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/test/${dir}/*.cpp)
+    list(APPEND ROCKING_CORE_TESTS ${tests})
+  endforeach()
+  # command-line tests with their own executables (they need rocking_study / ROS tools)
+  list(FILTER ROCKING_CORE_TESTS EXCLUDE REGEX "/test_(study_cli|record_to_bag)\\.cpp$")
   add_executable(core_tests ${ROCKING_CORE_TESTS})
   target_link_libraries(core_tests PRIVATE rocking_monitor_core GTest::gtest_main
                         nlohmann_json::nlohmann_json)
+  target_include_directories(core_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/support)
   target_compile_definitions(core_tests PRIVATE
     ROCKING_RECORDS_DIR="${ROCKING_RECORDS_DIR}"
     ROCKING_SIM_EXE="$<TARGET_FILE:rocking_sim>"

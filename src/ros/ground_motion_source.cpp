@@ -14,8 +14,8 @@
 #include <memory>
 #include <stdexcept>
 
-#include "rocking_monitor/core/constants.hpp"
-#include "rocking_monitor/core/synthetic_motion.hpp"
+#include "rocking_monitor/constants.hpp"
+#include "rocking_monitor/motion/synthetic_motion.hpp"
 
 namespace rocking_monitor::records {
 

@@ -13,7 +13,7 @@
 #include <tbb/parallel_for.h>
 #include <visualization_msgs/MarkerArray.h>
 
-#include "rocking_monitor/core/solver_settings.hpp"
+#include "rocking_monitor/integrate/solver_settings.hpp"
 
 namespace rocking_monitor::live {
 namespace {

@@ -1,4 +1,4 @@
-#include "rocking_monitor/core/study_io.hpp"
+#include "rocking_monitor/study/study_io.hpp"
 
 #include <cmath>
 #include <limits>

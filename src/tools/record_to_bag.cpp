@@ -22,10 +22,10 @@
 #include <string>
 #include <vector>
 
-#include "rocking_monitor/core/constants.hpp"
-#include "rocking_monitor/core/record_reader.hpp"
-#include "rocking_monitor/core/sensor_frame.hpp"
-#include "rocking_monitor/core/station.hpp"
+#include "rocking_monitor/constants.hpp"
+#include "rocking_monitor/motion/record_reader.hpp"
+#include "rocking_monitor/motion/sensor_frame.hpp"
+#include "rocking_monitor/motion/station.hpp"
 #include "rocking_monitor/ros/ground_motion_source.hpp"
 
 namespace fs = std::filesystem;

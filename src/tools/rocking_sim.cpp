@@ -12,11 +12,11 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "rocking_monitor/core/adaptive_model.hpp"
-#include "rocking_monitor/core/criteria.hpp"
-#include "rocking_monitor/core/ground_motion.hpp"
-#include "rocking_monitor/core/record_reader.hpp"
-#include "rocking_monitor/core/simulation.hpp"
+#include "rocking_monitor/model/adaptive_model.hpp"
+#include "rocking_monitor/physics/criteria.hpp"
+#include "rocking_monitor/motion/ground_motion.hpp"
+#include "rocking_monitor/motion/record_reader.hpp"
+#include "rocking_monitor/monitoring/simulation.hpp"
 
 namespace rm = rocking_monitor::core;
 using nlohmann::json;

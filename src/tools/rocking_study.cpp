@@ -1,5 +1,5 @@
 // rocking_study: the paper's study (Boroschek & Romo) over every record of a directory.
-// Thin command-line layer over rocking_monitor/core/study.hpp (grid, records, cases, summary) and
+// Thin command-line layer over rocking_monitor/study/study.hpp (grid, records, cases, summary) and
 // study_io.hpp (YAML bodies, JSON summary). See docs/study.md.
 #include <unistd.h>
 
@@ -18,9 +18,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "rocking_monitor/core/record_reader.hpp"
-#include "rocking_monitor/core/study.hpp"
-#include "rocking_monitor/core/study_io.hpp"
+#include "rocking_monitor/motion/record_reader.hpp"
+#include "rocking_monitor/study/study.hpp"
+#include "rocking_monitor/study/study_io.hpp"
 
 #ifndef ROCKING_RECORDS_DIR
 #define ROCKING_RECORDS_DIR "../shared/records"

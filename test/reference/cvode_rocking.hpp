@@ -31,10 +31,10 @@
 #include <string>
 #include <vector>
 
-#include "rocking_monitor/core/body.hpp"
-#include "rocking_monitor/core/constants.hpp"
-#include "rocking_monitor/core/dynamics.hpp"
-#include "rocking_monitor/core/ground_motion.hpp"
+#include "rocking_monitor/physics/body.hpp"
+#include "rocking_monitor/constants.hpp"
+#include "rocking_monitor/physics/dynamics.hpp"
+#include "rocking_monitor/motion/ground_motion.hpp"
 
 namespace rocking_monitor::reference {
 

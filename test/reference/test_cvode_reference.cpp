@@ -25,7 +25,7 @@
 
 #include "bench_common.hpp"
 #include "cvode_rocking.hpp"
-#include "rocking_monitor/core/rocking_model.hpp"
+#include "rocking_monitor/model/rocking_model.hpp"
 
 #ifndef ROCKING_RECORDS_DIR
 #define ROCKING_RECORDS_DIR "../shared/records"

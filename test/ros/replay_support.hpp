@@ -12,9 +12,9 @@
 #include <Eigen/Geometry>
 #include <ros/ros.h>
 
-#include "rocking_monitor/core/gravity_baseline.hpp"
-#include "rocking_monitor/core/item_monitor.hpp"
-#include "rocking_monitor/core/sample_timing.hpp"
+#include "rocking_monitor/motion/gravity_baseline.hpp"
+#include "rocking_monitor/monitoring/item_monitor.hpp"
+#include "rocking_monitor/motion/sample_timing.hpp"
 #include "rocking_monitor/ros/catalogue.hpp"
 
 namespace rocking_monitor::test {

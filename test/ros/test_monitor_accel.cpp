@@ -9,8 +9,8 @@
 
 #include "rocking_monitor/OverturnAlarm.h"
 #include "rocking_monitor/RockingStateArray.h"
-#include "rocking_monitor/core/record_reader.hpp"
-#include "rocking_monitor/core/simulation.hpp"
+#include "rocking_monitor/motion/record_reader.hpp"
+#include "rocking_monitor/monitoring/simulation.hpp"
 
 namespace core = rocking_monitor::core;
 

@@ -6,7 +6,7 @@
 
 #include <XmlRpcValue.h>
 
-#include "rocking_monitor/core/item_monitor.hpp"
+#include "rocking_monitor/monitoring/item_monitor.hpp"
 
 namespace rocking_monitor::live {
 

@@ -14,7 +14,7 @@
 
 #include <ros/ros.h>
 
-#include "rocking_monitor/core/sensor_frame.hpp"
+#include "rocking_monitor/motion/sensor_frame.hpp"
 #include "rocking_monitor/ros/ground_motion_source.hpp"
 
 namespace rocking_monitor::records {

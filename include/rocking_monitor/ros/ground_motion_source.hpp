@@ -13,9 +13,9 @@
 #include <ros/time.h>
 #include <sensor_msgs/Imu.h>
 
-#include "rocking_monitor/core/record_reader.hpp"
-#include "rocking_monitor/core/sensor_frame.hpp"
-#include "rocking_monitor/core/station.hpp"
+#include "rocking_monitor/motion/record_reader.hpp"
+#include "rocking_monitor/motion/sensor_frame.hpp"
+#include "rocking_monitor/motion/station.hpp"
 
 namespace rocking_monitor::records {
 

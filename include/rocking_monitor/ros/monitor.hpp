@@ -21,9 +21,9 @@
 #include "rocking_monitor/CriterionExceedance.h"
 #include "rocking_monitor/OverturnAlarm.h"
 #include "rocking_monitor/RockingStateArray.h"
-#include "rocking_monitor/core/gravity_baseline.hpp"
-#include "rocking_monitor/core/item_monitor.hpp"
-#include "rocking_monitor/core/sample_timing.hpp"
+#include "rocking_monitor/motion/gravity_baseline.hpp"
+#include "rocking_monitor/monitoring/item_monitor.hpp"
+#include "rocking_monitor/motion/sample_timing.hpp"
 #include "rocking_monitor/ros/catalogue.hpp"
 
 namespace rocking_monitor::live {

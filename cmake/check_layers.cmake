@@ -1,0 +1,42 @@
+# Fails (exit 1, one line per offence: file:line: what) when a core file includes a header of a
+# layer it may not use, or any ROS header. Run by the check_layers target on every build and by ctest.
+#   cmake -DROOT=<package root> -P cmake/check_layers.cmake
+cmake_policy(SET CMP0057 NEW)  # IN_LIST
+if(NOT ROOT)
+  message(FATAL_ERROR "check_layers: pass -DROOT=<package root>")
+endif()
+include(${CMAKE_CURRENT_LIST_DIR}/layers_rules.cmake)
+
+# ROS and its messages (generated rocking_monitor/*.h included) have no place below src/ros/.
+set(ros_pattern "^(ros|rosbag|roslib|rostest|nodelet|pluginlib|tf2|tf2_ros|tf2_eigen|tf2_msgs|diagnostic_updater|message_filters|dynamic_reconfigure|[a-z0-9_]+_msgs|[a-z0-9_]+_srvs)/|^rocking_monitor/[A-Za-z0-9_]+\\.h$")
+set(offences 0)
+foreach(layer ${ROCKING_CORE_LAYER_NAMES})
+  file(GLOB_RECURSE files ${ROOT}/src/${layer}/*.cpp ${ROOT}/src/${layer}/*.hpp
+                          ${ROOT}/include/rocking_monitor/${layer}/*.hpp)
+  set(allowed ${layer} ${ROCKING_LAYER_ALLOWS_${layer}})
+  foreach(file ${files})
+    file(STRINGS ${file} lines)
+    set(n 0)
+    foreach(line IN LISTS lines)
+      math(EXPR n "${n} + 1")
+      if(line MATCHES "^[ \t]*#[ \t]*include[ \t]*[<\"]([^>\"]+)[>\"]")
+        set(header "${CMAKE_MATCH_1}")
+        file(RELATIVE_PATH rel ${ROOT} ${file})
+        if(header MATCHES "${ros_pattern}")
+          message("${rel}:${n}: ROS header <${header}> in the ROS-free core (layer ${layer})")
+          math(EXPR offences "${offences} + 1")
+        elseif(header MATCHES "^rocking_monitor/([a-z_]+)/")
+          set(used "${CMAKE_MATCH_1}")
+          if(NOT used IN_LIST allowed)
+            message("${rel}:${n}: layer ${layer} includes ${header}: ${layer} may use only: ${allowed} (cmake/layers_rules.cmake)")
+            math(EXPR offences "${offences} + 1")
+          endif()
+        endif()
+      endif()
+    endforeach()
+  endforeach()
+endforeach()
+if(offences GREATER 0)
+  message(FATAL_ERROR "check_layers: ${offences} wrong-way include(s); see docs/architecture.md")
+endif()
+message(STATUS "check_layers: the core's layering holds")

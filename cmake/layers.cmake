@@ -1,0 +1,54 @@
+# The ROS-free core as one static library per layer (folder), linked in one direction only.
+#
+#   layer        folder (src/, include/rocking_monitor/)   may include / link
+#   physics      physics/      the paper's equations     constants.hpp
+#   integrate    integrate/    steppers, event location  physics
+#   model        model/        rocking, contact, adaptive integrate, physics
+#   csv          csv/          CSV reading and writing   (nothing)
+#   motion       motion/       ground motion, records    csv
+#   monitoring   monitoring/   per-item monitor, offline model, motion and below
+#   study        study/        the paper's study         model, motion and below
+#
+include(${CMAKE_CURRENT_LIST_DIR}/layers_rules.cmake)  # who may include whom
+
+# g and pi, shared by every layer (header only).
+add_library(rocking_monitor_constants INTERFACE)
+target_include_directories(rocking_monitor_constants INTERFACE
+  $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>)
+
+# Runs on every build before any core source compiles: a wrong-way include stops the build.
+add_custom_target(check_layers ALL
+  COMMAND ${CMAKE_COMMAND} -DROOT=${CMAKE_CURRENT_SOURCE_DIR} -P ${CMAKE_CURRENT_SOURCE_DIR}/cmake/check_layers.cmake
+  COMMENT "Checking the core's layering (cmake/layers.cmake)"
+  VERBATIM)
+
+foreach(layer ${ROCKING_CORE_LAYER_NAMES})
+  set(target rocking_monitor_${layer})
+  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/src/${layer}/*.cpp)
+  add_library(${target} STATIC ${sources})
+  target_include_directories(${target} PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>)
+  target_link_libraries(${target} PUBLIC rocking_monitor_constants Eigen3::Eigen)
+  foreach(below ${ROCKING_LAYER_ALLOWS_${layer}})
+    target_link_libraries(${target} PUBLIC rocking_monitor_${below})
+  endforeach()
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic)
+  set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  add_dependencies(${target} check_layers)
+endforeach()
+
+# The study runs its cases on std::thread workers and reads YAML bodies / writes a JSON summary.
+find_package(yaml-cpp REQUIRED)
+target_link_libraries(rocking_monitor_study PUBLIC Threads::Threads PRIVATE nlohmann_json::nlohmann_json)
+# Debian's yaml-cpp 0.7 exports the plain target name `yaml-cpp` (later versions: yaml-cpp::yaml-cpp).
+if(TARGET yaml-cpp::yaml-cpp)
+  target_link_libraries(rocking_monitor_study PRIVATE yaml-cpp::yaml-cpp)
+else()
+  target_link_libraries(rocking_monitor_study PRIVATE yaml-cpp)
+endif()
+
+# Umbrella: the whole core, for tools, tests and the ROS layer.
+add_library(rocking_monitor_core INTERFACE)
+foreach(layer ${ROCKING_CORE_LAYER_NAMES})
+  target_link_libraries(rocking_monitor_core INTERFACE rocking_monitor_${layer})
+endforeach()
+target_link_libraries(rocking_monitor_core INTERFACE Threads::Threads)

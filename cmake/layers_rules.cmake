@@ -1,0 +1,10 @@
+# Which core layer may include (and link) which: the one list of rules, read by cmake/layers.cmake
+# (link lines) and cmake/check_layers.cmake (include check). Lowest layer first.
+set(ROCKING_LAYER_ALLOWS_physics "")
+set(ROCKING_LAYER_ALLOWS_integrate physics)
+set(ROCKING_LAYER_ALLOWS_model integrate physics)
+set(ROCKING_LAYER_ALLOWS_motion "")
+set(ROCKING_LAYER_ALLOWS_monitoring model integrate physics motion)
+set(ROCKING_LAYER_ALLOWS_study model integrate physics motion)
+set(ROCKING_CORE_LAYER_NAMES physics integrate model motion monitoring study)
+

@@ -1,0 +1,116 @@
+#include "rocking_monitor/motion/streaming_intensity.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "rocking_monitor/constants.hpp"
+
+namespace rocking_monitor::core {
+
+namespace {
+
+/// Pre-warped bilinear Butterworth coefficients shared by both filters: K = tan(pi fc dt).
+struct ButterworthDenominator {
+  double norm;  // 1 + sqrt(2) K + K^2
+  double a1;    // 2 (K^2 - 1) / norm
+  double a2;    // (1 - sqrt(2) K + K^2) / norm
+};
+
+ButterworthDenominator butterworth_denominator(double corner_hz, double dt) {
+  const double k = std::tan(kPi * corner_hz * dt);
+  const double sqrt2 = std::sqrt(2.0);
+  const double norm = 1.0 + sqrt2 * k + k * k;
+  return {norm, 2.0 * (k * k - 1.0) / norm, (1.0 - sqrt2 * k + k * k) / norm};
+}
+
+void check_corner(double corner_hz, double dt, const char* name) {
+  if (!(std::isfinite(corner_hz) && corner_hz > 0.0 && corner_hz * dt < 0.5)) {
+    throw std::invalid_argument(std::string("StreamingIntensity: ") + name +
+                                " must be > 0 and below the Nyquist frequency, got " + std::to_string(corner_hz));
+  }
+}
+
+}  // namespace
+
+StreamingIntensity::StreamingIntensity(StreamingIntensityConfig config) : config_(std::move(config)) {
+  const double dt = config_.dt;
+  if (!(std::isfinite(dt) && dt > 0.0)) {
+    throw std::invalid_argument("StreamingIntensity: dt must be finite and > 0, got " + std::to_string(dt));
+  }
+  check_corner(config_.velocity_highpass_hz, dt, "velocity_highpass_hz");
+  if (config_.oscillator_highpass_hz != 0.0) check_corner(config_.oscillator_highpass_hz, dt, "oscillator_highpass_hz");
+
+  // Velocity: bilinear image of (1/s) * s^2 / (s^2 + sqrt(2) wc s + wc^2); numerator
+  // (dt/2)(1 + z^-1) * (1 - z^-1)^2 / (1 - z^-1) = (dt/2)(1 - z^-2), over the Butterworth denominator.
+  const ButterworthDenominator vd = butterworth_denominator(config_.velocity_highpass_hz, dt);
+  velocity_filter_.b0 = 0.5 * dt / vd.norm;
+  velocity_filter_.b1 = 0.0;
+  velocity_filter_.b2 = -0.5 * dt / vd.norm;
+  velocity_filter_.a1 = vd.a1;
+  velocity_filter_.a2 = vd.a2;
+
+  filter_oscillators_ = config_.oscillator_highpass_hz > 0.0;
+  if (filter_oscillators_) {
+    const ButterworthDenominator od = butterworth_denominator(config_.oscillator_highpass_hz, dt);
+    oscillator_filter_.b0 = 1.0 / od.norm;
+    oscillator_filter_.b1 = -2.0 / od.norm;
+    oscillator_filter_.b2 = 1.0 / od.norm;
+    oscillator_filter_.a1 = od.a1;
+    oscillator_filter_.a2 = od.a2;
+  }
+
+  oscillators_.reserve(config_.periods.size());
+  for (double period : config_.periods) oscillators_.emplace_back(period, config_.damping, dt);  // validates
+  max_u_.assign(config_.periods.size(), 0.0);
+  psv_.assign(config_.periods.size(), 0.0);
+}
+
+void StreamingIntensity::reset() {
+  for (auto& osc : oscillators_) osc.reset();
+  for (std::size_t j = 0; j < psv_.size(); ++j) max_u_[j] = psv_[j] = 0.0;
+  velocity_filter_.prime(0.0);
+  oscillator_filter_.prime(0.0);
+  count_ = 0;
+  prev_drive_ = 0.0;
+  pga_ = pga_time_ = 0.0;
+  vel_ = pgv_ = pgv_time_ = 0.0;
+}
+
+void StreamingIntensity::push(double accel) {
+  if (!std::isfinite(accel)) throw std::invalid_argument("StreamingIntensity::push: non-finite acceleration sample");
+
+  if (count_ == 0) {
+    velocity_filter_.prime(accel);
+    oscillator_filter_.prime(accel);
+  }
+  const double t = config_.dt * static_cast<double>(count_);
+
+  vel_ = velocity_filter_.step(accel);
+  const double drive = filter_oscillators_ ? oscillator_filter_.step(accel) : accel;
+  if (count_ > 0) {
+    for (std::size_t j = 0; j < oscillators_.size(); ++j) {
+      NigamJenningsOscillator& osc = oscillators_[j];
+      osc.step(prev_drive_, drive);
+      const double u = std::abs(osc.displacement());
+      if (u > max_u_[j]) {
+        max_u_[j] = u;
+        psv_[j] = osc.coefficients().omega * u;
+      }
+    }
+  }
+  prev_drive_ = drive;
+
+  if (std::abs(accel) > pga_) {
+    pga_ = std::abs(accel);
+    pga_time_ = t;
+  }
+  if (std::abs(vel_) > pgv_) {
+    pgv_ = std::abs(vel_);
+    pgv_time_ = t;
+  }
+  ++count_;
+}
+
+}  // namespace rocking_monitor::core

@@ -1,0 +1,209 @@
+// ground_motion_player under rostest (launch files next to this file):
+//  * GroundMotionPlayerWall (player.test): the one-sine pulse at 4x real time: every sample arrives once,
+//    in order, with the record's values (REP 145: z = g, covariances), AccelStamped without gravity,
+//    stamps from ros::Time::now() spaced at the record's dt / 4 without drift, and ~finished = true.
+//  * GroundMotionPlayerSimTime (player_sim_time.test): /use_sim_time with this test publishing /clock
+//    at 4x wall speed: the player follows /clock (stamps exactly on the record's schedule with
+//    ~stamp_source = schedule, never published before they are due) and signals the end.
+//  * GroundMotionPlayerBadParam (player_bad_param.test): a bad parameter makes the node exit at once
+//    without advertising anything.
+
+#include <gtest/gtest.h>
+
+#include <geometry_msgs/AccelStamped.h>
+#include <ros/ros.h>
+#include <rosgraph_msgs/Clock.h>
+#include <sensor_msgs/Imu.h>
+#include <std_msgs/Bool.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "rocking_monitor/constants.hpp"
+#include "rocking_monitor/motion/record_reader.hpp"
+
+namespace {
+
+using rocking_monitor::core::kGravity;
+
+const std::string kPulseCsv = std::string(ROCKING_SOURCE_DIR) + "/bags/one_sine_pulse.csv";
+
+struct Received {
+  std::mutex mutex;
+  std::vector<sensor_msgs::Imu> imu;
+  std::vector<double> imu_arrival_wall;  ///< steady clock, s
+  std::vector<ros::Time> imu_arrival_ros;
+  std::vector<geometry_msgs::AccelStamped> accel;
+  std::vector<bool> finished;
+};
+
+double steady_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+/// Latest sim time published on /clock by the sim-time test (ns); 0 when not publishing. The player
+/// cannot have seen a later time than this when it published.
+std::atomic<std::int64_t> g_last_clock_ns{0};
+
+struct Listener {
+  Received r;
+  ros::Subscriber imu_sub, accel_sub, finished_sub;
+  explicit Listener(ros::NodeHandle& nh) {
+    imu_sub = nh.subscribe<sensor_msgs::Imu>("/ground/imu", 20000, [this](const sensor_msgs::Imu::ConstPtr& m) {
+      std::lock_guard<std::mutex> lock(r.mutex);
+      r.imu.push_back(*m);
+      r.imu_arrival_wall.push_back(steady_s());
+      const std::int64_t clock_ns = g_last_clock_ns.load();
+      ros::Time arrival = ros::Time::now();
+      if (clock_ns > 0) arrival.fromNSec(static_cast<std::uint64_t>(clock_ns));
+      r.imu_arrival_ros.push_back(arrival);
+    });
+    accel_sub = nh.subscribe<geometry_msgs::AccelStamped>("/ground/accel", 20000, [this](const geometry_msgs::AccelStamped::ConstPtr& m) {
+      std::lock_guard<std::mutex> lock(r.mutex);
+      r.accel.push_back(*m);
+    });
+    finished_sub = nh.subscribe<std_msgs::Bool>("/player/finished", 10, [this](const std_msgs::Bool::ConstPtr& m) {
+      std::lock_guard<std::mutex> lock(r.mutex);
+      r.finished.push_back(m->data);
+    });
+  }
+  /// Waits (wall time) until ~finished = true and `count` samples arrived, or the timeout.
+  bool wait(std::size_t count, double timeout_s) {
+    const double end = steady_s() + timeout_s;
+    while (steady_s() < end && ros::ok()) {
+      {
+        std::lock_guard<std::mutex> lock(r.mutex);
+        const bool done = !r.finished.empty() && r.finished.back();
+        if (done && r.imu.size() >= count) return true;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return false;
+  }
+};
+
+/// Content checks shared by the wall and sim-time cases: every sample once, in order, exact values.
+void expect_content(const Received& r, const rocking_monitor::core::Component& pulse, bool with_accel) {
+  ASSERT_EQ(r.imu.size(), pulse.accel.size());
+  if (with_accel) ASSERT_EQ(r.accel.size(), pulse.accel.size());
+  for (std::size_t i = 0; i < r.imu.size(); ++i) {
+    SCOPED_TRACE(i);
+    const sensor_msgs::Imu& m = r.imu[i];
+    ASSERT_EQ(m.linear_acceleration.x, pulse.accel[i]);
+    ASSERT_EQ(m.linear_acceleration.y, 0.0);
+    ASSERT_EQ(m.linear_acceleration.z, kGravity);
+    ASSERT_EQ(m.header.frame_id, "accelerometer");
+    ASSERT_EQ(m.orientation_covariance[0], -1.0);
+    ASSERT_EQ(m.angular_velocity_covariance[0], -1.0);
+    ASSERT_DOUBLE_EQ(m.linear_acceleration_covariance[0], 2.5e-4 * 2.5e-4 * 100.0);
+    ASSERT_DOUBLE_EQ(m.linear_acceleration_covariance[8], 2.5e-4 * 2.5e-4 * 100.0);
+    if (i > 0) ASSERT_GT(m.header.stamp, r.imu[i - 1].header.stamp);
+    if (with_accel) {
+      ASSERT_EQ(r.accel[i].accel.linear.x, pulse.accel[i]);
+      ASSERT_EQ(r.accel[i].accel.linear.z, 0.0);
+      ASSERT_EQ(r.accel[i].header.stamp, m.header.stamp);
+    }
+  }
+  ASSERT_FALSE(r.finished.empty());
+  EXPECT_TRUE(r.finished.back());
+}
+
+TEST(GroundMotionPlayerWall, PublishesEverySampleAtTheScaledRateAndSignalsTheEnd) {
+  ros::NodeHandle nh;
+  const double factor = 4.0;
+  const rocking_monitor::core::Component pulse = rocking_monitor::core::read_record(kPulseCsv).at(0);
+  Listener l(nh);
+  ASSERT_TRUE(l.wait(pulse.accel.size(), 45.0)) << "received " << l.r.imu.size() << " samples, finished signals " << l.r.finished.size();
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // AccelStamped may trail the end signal
+  std::lock_guard<std::mutex> lock(l.r.mutex);
+  expect_content(l.r, pulse, true);
+
+  // Rate: 200 Hz x 4 = 800 Hz, from the stamps (ros::Time::now() at publish) and from the arrivals.
+  const std::size_t n = l.r.imu.size();
+  const double span = (l.r.imu.back().header.stamp - l.r.imu.front().header.stamp).toSec();
+  const double expected_span = 8.0 / factor;
+  EXPECT_NEAR(span, expected_span, 0.03) << "no drift: the last sample is due 2 s after the first";
+  EXPECT_NEAR(static_cast<double>(n - 1) / span, 800.0, 800.0 * 0.015);
+  const double arrival_span = l.r.imu_arrival_wall.back() - l.r.imu_arrival_wall.front();
+  EXPECT_NEAR(arrival_span, expected_span, 0.1);
+  // Every stamp is close to its place on the schedule (jitter, not accumulated error).
+  double worst = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double due = static_cast<double>(i) * pulse.dt / factor;
+    worst = std::max(worst, std::fabs((l.r.imu[i].header.stamp - l.r.imu.front().header.stamp).toSec() - due));
+  }
+  EXPECT_LT(worst, 0.05) << "largest departure of a stamp from the schedule, s";
+  // ~finished is latched: false when the player starts, true at the end.
+  EXPECT_TRUE(l.r.finished.back());
+}
+
+TEST(GroundMotionPlayerSimTime, FollowsClockAndStampsOnSchedule) {
+  ros::NodeHandle nh;
+  ASSERT_TRUE(ros::Time::isSimTime()) << "player_sim_time.test sets /use_sim_time";
+  ros::Publisher clock_pub = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  const rocking_monitor::core::Component pulse = rocking_monitor::core::read_record(kPulseCsv).at(0);
+  Listener l(nh);
+  // Sim time starts at 100 s and runs at 4x wall speed in 1 ms steps.
+  std::atomic<bool> stop{false};
+  std::thread clock([&] {
+    std::int64_t ns = 100'000'000'000LL;
+    while (!stop && ros::ok()) {
+      rosgraph_msgs::Clock c;
+      c.clock.fromNSec(static_cast<std::uint64_t>(ns));
+      g_last_clock_ns = ns;
+      clock_pub.publish(c);
+      ns += 1'000'000;
+      std::this_thread::sleep_for(std::chrono::microseconds(250));
+    }
+  });
+  const double wall0 = steady_s();
+  const bool done = l.wait(pulse.accel.size(), 45.0);
+  const double wall = steady_s() - wall0;
+  stop = true;
+  clock.join();
+  ASSERT_TRUE(done) << "received " << l.r.imu.size() << " samples";
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  std::lock_guard<std::mutex> lock(l.r.mutex);
+  expect_content(l.r, pulse, false);
+  const ros::Time first = l.r.imu.front().header.stamp;
+  EXPECT_GE(first.toSec(), 100.0) << "stamps are sim time";
+  for (std::size_t i = 0; i < l.r.imu.size(); ++i) {
+    // ~stamp_source = schedule: exactly first + t_i (the record's 5 ms grid), to the nanosecond
+    ASSERT_EQ(static_cast<std::int64_t>((l.r.imu[i].header.stamp - first).toNSec()), static_cast<std::int64_t>(i) * 5'000'000LL) << i;
+    // not published before it was due on /clock (the latest /clock published when it arrived >= stamp)
+    ASSERT_GE(l.r.imu_arrival_ros[i], l.r.imu[i].header.stamp) << i;
+  }
+  // 8 s of sim time at 4x took about 2 s of wall time (it follows /clock, not the wall clock)
+  EXPECT_LT(wall, 6.0);
+}
+
+TEST(GroundMotionPlayerBadParam, ExitsWithoutAdvertising) {
+  // The node (rate_factor -1) must exit at once: it never shows up as a publisher of /ground/imu, and
+  // it is gone from the master within a few seconds.
+  std::this_thread::sleep_for(std::chrono::seconds(3));
+  ros::master::V_TopicInfo topics;
+  ASSERT_TRUE(ros::master::getTopics(topics));
+  for (const auto& t : topics) EXPECT_NE(t.name, "/ground/imu");
+  std::vector<std::string> nodes;
+  ASSERT_TRUE(ros::master::getNodes(nodes));
+  for (const auto& n : nodes) EXPECT_NE(n, "/player_bad") << "the node should have exited";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_ground_motion_player");
+  ros::NodeHandle nh;
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  const int result = RUN_ALL_TESTS();
+  ros::shutdown();
+  return result;
+}

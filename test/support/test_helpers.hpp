@@ -1,0 +1,61 @@
+#pragma once
+// Small builders shared by the core tests.
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "rocking_monitor/physics/body.hpp"
+#include "rocking_monitor/constants.hpp"
+#include "rocking_monitor/motion/ground_motion.hpp"
+
+namespace rocking_monitor::core::testing {
+
+/// Homogeneous symmetric rectangle with given p (rad/s) and alpha (rad): for a rectangle
+/// I_O = (4/3) m R^2, so p^2 = 3 g / (4 R).
+inline BodyParameters rectangle_with(double p, double alpha) {
+  const double r = 3.0 * kGravity / (4.0 * p * p);
+  BodyParameters b;
+  b.width = 2.0 * r * std::sin(alpha);
+  b.cg_height = r * std::cos(alpha);
+  return b;
+}
+
+/// One-sine pulse a_p sin(w t) for 0 <= t <= 2 pi / w, then zeros until t_end; sampled at dt.
+inline GroundMotion one_sine_pulse(double a_p, double w, double dt, double t_end) {
+  GroundMotion g;
+  g.dt = dt;
+  const double tp = 2.0 * kPi / w;
+  const auto n = static_cast<std::size_t>(std::llround(t_end / dt)) + 1;
+  g.horizontal.resize(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = static_cast<double>(i) * dt;
+    g.horizontal[i] = t <= tp ? a_p * std::sin(w * t) : 0.0;
+  }
+  return g;
+}
+
+inline double deg(double d) { return d * kPi / 180.0; }
+
+/// Runs a shell command (tests of the command-line tools); `out` is its standard output (append
+/// 2>&1 to the command to capture errors too), `status` its exit status (-1 if it did not exit).
+struct CommandResult {
+  int status = -1;
+  std::string out;
+};
+inline CommandResult run_command(const std::string& cmd) {
+  CommandResult r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (pipe == nullptr) return r;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), pipe) != nullptr) r.out += buf.data();
+  const int st = pclose(pipe);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+}  // namespace rocking_monitor::core::testing
