@@ -36,6 +36,15 @@ foreach(layer ${ROCKING_CORE_LAYER_NAMES})
   add_dependencies(${target} check_layers)
 endforeach()
 
+# CSV is parsed by libcsv (Debian libcsv-dev: csv.h, libcsv.so).
+find_path(ROCKING_LIBCSV_INCLUDE csv.h)
+find_library(ROCKING_LIBCSV csv)
+if(NOT ROCKING_LIBCSV_INCLUDE OR NOT ROCKING_LIBCSV)
+  message(FATAL_ERROR "libcsv not found: apt-get install libcsv-dev (scripts/install_deps.sh)")
+endif()
+target_include_directories(rocking_monitor_csv PRIVATE ${ROCKING_LIBCSV_INCLUDE})
+target_link_libraries(rocking_monitor_csv PRIVATE ${ROCKING_LIBCSV})
+
 # The study runs its cases on std::thread workers and reads YAML bodies / writes a JSON summary.
 find_package(yaml-cpp REQUIRED)
 target_link_libraries(rocking_monitor_study PUBLIC Threads::Threads PRIVATE nlohmann_json::nlohmann_json)

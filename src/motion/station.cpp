@@ -18,6 +18,7 @@
 #include <utility>
 
 #include "rocking_monitor/constants.hpp"
+#include "rocking_monitor/csv/csv_reader.hpp"
 
 namespace rocking_monitor::core {
 
@@ -96,90 +97,13 @@ double azimuth_difference(double a, double b) {
 
 // ------------------------------------------------------------------ MANIFEST.csv
 
-struct CsvRecord {
-  std::vector<std::string> fields;
-  std::size_t line = 0;  // line where the record starts
-};
-
-/// RFC 4180: fields separated by ',', optionally enclosed in '"' (then commas, line breaks and doubled
-/// quotes "" are allowed inside). Records end at LF or CRLF outside quotes. Blank lines are skipped.
-std::vector<CsvRecord> parse_csv(const std::string& data, const std::string& path) {
-  std::vector<CsvRecord> out;
-  std::size_t i = 0;
-  std::size_t line = 1;
-  const std::size_t n = data.size();
-  if (n >= 3 && data.compare(0, 3, "\xEF\xBB\xBF") == 0) i = 3;
-  while (i < n) {
-    // skip blank lines
-    if (data[i] == '\n') {
-      ++line;
-      ++i;
-      continue;
-    }
-    if (data[i] == '\r' && i + 1 < n && data[i + 1] == '\n') {
-      ++line;
-      i += 2;
-      continue;
-    }
-    CsvRecord rec;
-    rec.line = line;
-    std::string field;
-    bool end_of_record = false;
-    while (!end_of_record) {
-      field.clear();
-      if (i < n && data[i] == '"') {
-        const std::size_t open_line = line;
-        ++i;
-        bool closed = false;
-        while (i < n) {
-          const char c = data[i];
-          if (c == '"') {
-            if (i + 1 < n && data[i + 1] == '"') {
-              field.push_back('"');
-              i += 2;
-              continue;
-            }
-            ++i;
-            closed = true;
-            break;
-          }
-          if (c == '\n') ++line;
-          field.push_back(c);
-          ++i;
-        }
-        if (!closed) fail(path, open_line, "unterminated quoted field (a '\"' is never closed)");
-        if (i < n && data[i] != ',' && data[i] != '\n' && data[i] != '\r') {
-          fail(path, line, "unexpected character " + squote(std::string(1, data[i])) + " after a quoted field");
-        }
-      } else {
-        while (i < n && data[i] != ',' && data[i] != '\n' && data[i] != '\r') {
-          if (data[i] == '"') fail(path, line, "'\"' inside an unquoted field (quote the whole field)");
-          field.push_back(data[i]);
-          ++i;
-        }
-      }
-      rec.fields.push_back(field);
-      if (i >= n) {
-        end_of_record = true;
-      } else if (data[i] == ',') {
-        ++i;
-      } else if (data[i] == '\n') {
-        ++i;
-        ++line;
-        end_of_record = true;
-      } else if (data[i] == '\r') {
-        if (i + 1 < n && data[i + 1] == '\n') {
-          i += 2;
-        } else {
-          fail(path, line, "lone carriage return (line endings must be LF or CRLF)");
-        }
-        ++line;
-        end_of_record = true;
-      }
-    }
-    out.push_back(std::move(rec));
+/// The manifest's rows (csv layer); its errors become StationErrors with the same file:line text.
+std::vector<csv::Row> parse_manifest(const std::string& data, const std::string& path) {
+  try {
+    return csv::parse(data, path);
+  } catch (const csv::CsvError& e) {
+    throw StationError(e.what());
   }
-  return out;
 }
 
 std::string read_text_file(const std::string& path) {
@@ -242,11 +166,10 @@ void add_component(StationInfo& st, StationComponent c, const std::string& where
 }
 
 StationListing list_from_manifest(const std::string& dir, const std::string& manifest) {
-  const std::vector<CsvRecord> rows = parse_csv(read_text_file(manifest), manifest);
+  const std::vector<csv::Row> rows = parse_manifest(read_text_file(manifest), manifest);
   if (rows.empty()) fail(manifest, 0, "empty manifest (no header line)");
   const std::vector<std::string>& header = rows[0].fields;
-  std::map<std::string, std::size_t> col;
-  for (std::size_t k = 0; k < header.size(); ++k) col[lower(trim(header[k]))] = k;
+  const std::map<std::string, std::size_t> col = csv::column_index(rows[0], true);
   for (const char* required : {"event", "station", "component", "file"}) {
     if (col.count(required) == 0) fail(manifest, rows[0].line, std::string("missing column '") + required + "' in the header");
   }
@@ -255,7 +178,7 @@ StationListing list_from_manifest(const std::string& dir, const std::string& man
   listing.source = StationSource::Manifest;
   std::map<std::pair<std::string, std::string>, std::size_t> index;  // (event, station) -> position
   for (std::size_t r = 1; r < rows.size(); ++r) {
-    const CsvRecord& row = rows[r];
+    const csv::Row& row = rows[r];
     if (row.fields.size() != header.size()) {
       fail(manifest, row.line,
            "expected " + std::to_string(header.size()) + " fields like the header, found " + std::to_string(row.fields.size()) +

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "rocking_monitor/constants.hpp"
+#include "rocking_monitor/csv/csv_writer.hpp"
 #include "rocking_monitor/motion/record_reader.hpp"
 #include "rocking_monitor/motion/sensor_frame.hpp"
 #include "rocking_monitor/motion/station.hpp"
@@ -91,16 +92,6 @@ void print_notes(const core::SensorFrameMotion& m, const std::string& prefix = "
   for (const std::string& n : m.notes) std::cerr << kProgram << ": note: " << prefix << n << "\n";
 }
 
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) {
-    if (c == '"') q += '"';
-    q += c;
-  }
-  return q + "\"";
-}
-
 void write_csv(const core::SensorFrameMotion& m, const std::string& path) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path + ": cannot open for writing (--csv-out)");
@@ -137,6 +128,7 @@ int all_mode(const rec::SourceSpec& base, const std::string& out_dir, std::size_
   std::ofstream index(index_path);
   if (!index) throw std::runtime_error(index_path + ": cannot open for writing");
   index << "bag,station_id,event,station,samples,rate_hz,duration_s,x_azimuth_deg,x,y,z,notes\n";
+  core::csv::Writer index_row(index);
   std::size_t bags = 0;
   std::size_t skipped = 0;
   std::size_t failed = 0;
@@ -158,11 +150,14 @@ int all_mode(const rec::SourceSpec& base, const std::string& out_dir, std::size_
       bytes += st.bytes;
       std::string notes;
       for (const std::string& n : m.notes) notes += (notes.empty() ? "" : " | ") + n;
-      char nums[128];
-      std::snprintf(nums, sizeof nums, "%zu,%.6g,%.6g,", m.size(), 1.0 / m.dt, m.duration());
-      index << csv_field(bag_name) << "," << csv_field(s.id) << "," << csv_field(s.event) << "," << csv_field(s.station) << "," << nums
-            << (m.x_azimuth_deg ? core::format_azimuth_label(*m.x_azimuth_deg) : std::string()) << "," << csv_field(m.source[0]) << ","
-            << csv_field(m.source[1]) << "," << csv_field(m.source[2]) << "," << csv_field(notes) << "\n";
+      char rate[32], duration[32];
+      std::snprintf(rate, sizeof rate, "%.6g", 1.0 / m.dt);
+      std::snprintf(duration, sizeof duration, "%.6g", m.duration());
+      index_row.text(bag_name).text(s.id).text(s.event).text(s.station).value(std::to_string(m.size()));
+      index_row.value(rate).value(duration);
+      index_row.value(m.x_azimuth_deg ? core::format_azimuth_label(*m.x_azimuth_deg) : std::string());
+      index_row.text(m.source[0]).text(m.source[1]).text(m.source[2]).text(notes);
+      index_row.end_row();
       if (!quiet) {
         std::printf("%s: %s\n", bag_name.c_str(), rec::describe(m).c_str());
         print_notes(m, bag_name + ": ");
