@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "bench_common.hpp"
+#include "command_line.hpp"
 
 namespace rb = rocking_monitor::bench;
 using namespace rocking_monitor::core;
@@ -599,29 +600,15 @@ int main(int argc, char** argv) {
   int jobs = 2;
   bool quick = false;
   std::vector<std::string> parts;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "rocking_accuracy: %s needs a value\n", a.c_str());
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    if (a == "--out") out = value();
-    else if (a == "--records") records = value();
-    else if (a == "--jobs") jobs = std::max(1, std::atoi(value().c_str()));
-    else if (a == "--quick") quick = true;
-    else if (a == "work-precision" || a == "overturn" || a == "stability") parts.push_back(a);
-    else if (a == "-h" || a == "--help") {
-      std::printf("usage: rocking_accuracy [--out DIR] [--records DIR] [--jobs N] [--quick] "
-                  "[work-precision] [overturn] [stability]\n");
-      return 0;
-    } else {
-      std::fprintf(stderr, "rocking_accuracy: unknown argument '%s'\n", a.c_str());
-      return 2;
-    }
-  }
+  CLI::App app{"rocking_accuracy: work-precision, overturn-agreement and stability-map tables (docs/performance)",
+                "rocking_accuracy"};
+  app.add_option("--out", out, "Output directory")->default_val(out);
+  app.add_option("--records", records, "Strong-motion records directory")->default_val(records);
+  app.add_option("--jobs", jobs, "Worker threads")->default_val(jobs)->check(CLI::PositiveNumber);
+  app.add_flag("--quick", quick, "Fewer cases (a smoke run)");
+  app.add_option("parts", parts, "work-precision | overturn | stability (default: all)")
+      ->check(CLI::IsMember({"work-precision", "overturn", "stability"}));
+  if (const auto status = rocking_monitor::tools::parse_command_line(app, argc, argv, "rocking_accuracy")) return *status;
   if (parts.empty()) parts = {"work-precision", "overturn", "stability"};
   std::filesystem::create_directories(out);
   for (const std::string& p : parts) {

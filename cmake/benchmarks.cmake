@@ -15,8 +15,9 @@ endif()
 
 # ---------------------------------------------------------------- accuracy / stability driver
 add_executable(rocking_accuracy bench/rocking_accuracy.cpp)
-target_include_directories(rocking_accuracy PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/bench ${CMAKE_CURRENT_SOURCE_DIR}/test/support)
-target_link_libraries(rocking_accuracy PRIVATE rocking_monitor_core)
+target_include_directories(rocking_accuracy PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/bench ${CMAKE_CURRENT_SOURCE_DIR}/test/support
+                           ${CMAKE_CURRENT_SOURCE_DIR}/src/tools)
+target_link_libraries(rocking_accuracy PRIVATE rocking_monitor_core CLI11::CLI11)
 target_compile_definitions(rocking_accuracy PRIVATE ROCKING_RECORDS_DIR="${ROCKING_RECORDS_DIR}")
 target_compile_options(rocking_accuracy PRIVATE -Wall -Wextra)
 set_target_properties(rocking_accuracy PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_TOOL_DIR})

@@ -28,6 +28,7 @@
 #include "rocking_monitor/motion/sensor_frame.hpp"
 #include "rocking_monitor/motion/station.hpp"
 #include "rocking_monitor/ros/ground_motion_source.hpp"
+#include "command_line.hpp"
 
 namespace fs = std::filesystem;
 namespace core = rocking_monitor::core;
@@ -234,14 +235,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"none", "lz4", "bz2"}));
   app.add_option("--csv-out", csv_out, "Also write the ground acceleration on the sensor axes as CSV (time_s,x,y,z in m/s^2)");
   app.add_flag("-q,--quiet", quiet, "Print only errors and notes");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::cerr << kProgram << ": error: " << e.what() << "\n";
-    return 2;
-  }
+  if (const auto status = rocking_monitor::tools::parse_command_line(app, argc, argv, kProgram)) return *status;
 
   try {
     rec::SourceSpec spec;

@@ -17,6 +17,7 @@
 #include "rocking_monitor/motion/ground_motion.hpp"
 #include "rocking_monitor/motion/record_reader.hpp"
 #include "rocking_monitor/monitoring/simulation.hpp"
+#include "command_line.hpp"
 
 namespace rm = rocking_monitor::core;
 using nlohmann::json;
@@ -182,11 +183,7 @@ int main(int argc, char** argv) {
       ->default_val(settings.substeps);
   app.add_option("--history", history_path, "Write the time history (CSV) to this file");
   app.add_flag("--json", as_json, "Print one JSON object instead of a text summary");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
+  if (const auto status = rocking_monitor::tools::parse_command_line(app, argc, argv, "rocking_sim")) return *status;
 
   try {
     rm::parse_method(method_text, settings.method);

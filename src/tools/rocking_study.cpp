@@ -21,6 +21,7 @@
 #include "rocking_monitor/motion/record_reader.hpp"
 #include "rocking_monitor/study/study.hpp"
 #include "rocking_monitor/study/study_io.hpp"
+#include "command_line.hpp"
 
 #ifndef ROCKING_RECORDS_DIR
 #define ROCKING_RECORDS_DIR "../shared/records"
@@ -200,11 +201,7 @@ int main(int argc, char** argv) {
                  "summarize; nothing is simulated");
   app.add_flag("--quiet", quiet, "No progress bar");
   app.add_flag("--dry-run", dry_run, "Load bodies and records, print the plan and exit");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
+  if (const auto status = rocking_monitor::tools::parse_command_line(app, argc, argv, "rocking_study")) return *status;
 
   try {
     if (!merge_files.empty()) return merge(merge_files, out_dir);

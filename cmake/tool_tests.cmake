@@ -1,0 +1,23 @@
+# Tests of the package as a whole: the core's layering and every executable's voice on a bad flag.
+if(NOT BUILD_TESTING)
+  return()
+endif()
+
+add_test(NAME layers.core_keeps_its_layering
+         COMMAND ${CMAKE_COMMAND} -DROOT=${CMAKE_CURRENT_SOURCE_DIR} -P ${CMAKE_CURRENT_SOURCE_DIR}/cmake/check_layers.cmake)
+add_test(NAME layers.check_names_wrong_way_includes
+         COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/check_layers_detects.sh ${CMAKE_CURRENT_SOURCE_DIR})
+
+foreach(tool rocking_sim rocking_study record_to_bag rocking_accuracy rocking_benchmarks)
+  if(TARGET ${tool})
+    add_test(NAME cli.${tool}.unknown_flag_is_one_error_line
+             COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/unknown_flag.sh ${tool} $<TARGET_FILE:${tool}>)
+  endif()
+endforeach()
+
+# The study writes the same bytes as before the layout change (needs the shared records).
+if(TARGET rocking_study)
+  add_test(NAME study.small_grid_byte_identical
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/study_byte_identical.sh $<TARGET_FILE:rocking_study>
+                   ${ROCKING_RECORDS_DIR} ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/expected/study_small_grid.sha256)
+endif()
