@@ -32,7 +32,7 @@
 // Filters start in the steady state for a constant input equal to the first sample (the input history
 // is primed with it, outputs with zero), so a constant offset present at switch-on causes no transient.
 //
-// Agreement with the offline functions, measured in test/core/test_ground_motion_processing.cpp on
+// Agreement with the offline functions, measured in test/motion/test_ground_motion_processing.cpp on
 // synthetic records with a quiet start (first sample ~0, so oscillators and filters start as offline):
 //  * PGA and its time: identical.
 //  * PSV with oscillator_highpass_hz = 0 (default): identical to response_spectrum() up to rounding
