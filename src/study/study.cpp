@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
-#include <fstream>
+#include <initializer_list>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -20,6 +20,8 @@
 #include <tuple>
 #include <utility>
 
+#include "rocking_monitor/csv/csv_reader.hpp"
+#include "rocking_monitor/csv/csv_writer.hpp"
 #include "rocking_monitor/motion/ground_motion_integration.hpp"
 #include "rocking_monitor/motion/peak_ground_motion.hpp"
 #include "rocking_monitor/motion/record_reader.hpp"
@@ -36,63 +38,13 @@ std::string format_number(const char* fmt, double v) {
   return buf;
 }
 
-// ------------------------------------------------------------------ CSV helpers (RFC 4180 quoting)
-
-std::string csv_quote(const std::string& s) {
-  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) {
-    if (c == '"') q += '"';
-    q += c;
+// A CSV file of the study (csv layer); its errors become StudyErrors with the same file:line text.
+std::vector<csv::Row> read_csv(const std::string& path) {
+  try {
+    return csv::read_file(path);
+  } catch (const csv::CsvError& e) {
+    throw StudyError(e.what());
   }
-  q += '"';
-  return q;
-}
-
-// Splits one CSV line; false on an unterminated quote.
-bool split_csv(const std::string& line, std::vector<std::string>& out) {
-  out.clear();
-  std::string field;
-  bool quoted = false, was_quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted) {
-      if (c == '"') {
-        if (i + 1 < line.size() && line[i + 1] == '"') {
-          field += '"';
-          ++i;
-        } else {
-          quoted = false;
-        }
-      } else {
-        field += c;
-      }
-    } else if (c == '"' && field.empty() && !was_quoted) {
-      quoted = was_quoted = true;
-    } else if (c == ',') {
-      out.push_back(field);
-      field.clear();
-      was_quoted = false;
-    } else if (c != '\r') {
-      field += c;
-    }
-  }
-  if (quoted) return false;
-  out.push_back(field);
-  return true;
-}
-
-// Reads a text file as lines (LF or CRLF).
-std::vector<std::string> read_lines(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw StudyError(path + ": cannot open");
-  std::vector<std::string> lines;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    lines.push_back(line);
-  }
-  return lines;
 }
 
 std::string strip_label(const std::string& s) {
@@ -255,14 +207,12 @@ const Component& pick_component(const std::vector<Component>& comps, const std::
 
 StudyRecords load_from_manifest(const fs::path& root, const RecordSelection& sel) {
   const std::string manifest = (root / "MANIFEST.csv").string();
-  const std::vector<std::string> lines = read_lines(manifest);
-  if (lines.empty()) throw StudyError(manifest + ": empty");
-  std::vector<std::string> f;
-  if (!split_csv(lines[0], f)) throw StudyError(manifest + ":1: unterminated quote");
-  std::map<std::string, std::size_t> col;
-  for (std::size_t i = 0; i < f.size(); ++i) col[f[i]] = i;
+  const std::vector<csv::Row> rows = read_csv(manifest);
+  if (rows.empty()) throw StudyError(manifest + ": empty");
+  const std::map<std::string, std::size_t> col = csv::column_index(rows[0]);
+  const std::string header_at = manifest + ":" + std::to_string(rows[0].line) + ": ";
   for (const char* need : {"event", "station", "component", "file"})
-    if (!col.count(need)) throw StudyError(manifest + ":1: no column '" + need + "'");
+    if (!col.count(need)) throw StudyError(header_at + "no column '" + need + "'");
   struct Row {
     std::string event, station, label, file;
     bool vertical;
@@ -270,14 +220,13 @@ StudyRecords load_from_manifest(const fs::path& root, const RecordSelection& sel
   };
   std::vector<Row> horizontals;
   std::map<std::pair<std::string, std::string>, Row> verticals;
-  for (std::size_t ln = 1; ln < lines.size(); ++ln) {
-    if (lines[ln].empty()) continue;
-    if (!split_csv(lines[ln], f))
-      throw StudyError(manifest + ":" + std::to_string(ln + 1) + ": unterminated quote");
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const std::vector<std::string>& f = rows[i].fields;
     if (f.size() < col.size())
-      throw StudyError(manifest + ":" + std::to_string(ln + 1) + ": " + std::to_string(f.size()) +
+      throw StudyError(manifest + ":" + std::to_string(rows[i].line) + ": " + std::to_string(f.size()) +
                        " fields, header has " + std::to_string(col.size()));
-    Row r{f[col["event"]], f[col["station"]], f[col["component"]], f[col["file"]], false, ln + 1};
+    Row r{f[col.at("event")], f[col.at("station")], f[col.at("component")], f[col.at("file")], false,
+          rows[i].line};
     if (r.label.size() >= 2 && (r.label[0] == 'V' || r.label[0] == 'H') && r.label[1] == ':') {
       r.vertical = r.label[0] == 'V';
       r.label = r.label.substr(2);
@@ -608,14 +557,21 @@ const std::vector<std::string>& case_csv_columns() {
 }
 
 void write_case_csv_header(std::ostream& out) {
-  const auto& cols = case_csv_columns();
-  for (std::size_t i = 0; i < cols.size(); ++i) out << (i ? "," : "") << cols[i];
-  out << '\n';
+  csv::Writer row(out);
+  for (const std::string& column : case_csv_columns()) row.text(column);
+  row.end_row();
 }
 
 namespace {
 
 std::string num(double v) { return std::isnan(v) ? std::string() : format_number("%.9g", v); }
+
+const char* flag(bool on) { return on ? "1" : "0"; }
+
+void header(csv::Writer& row, std::initializer_list<const char*> columns) {
+  for (const char* column : columns) row.text(column);
+  row.end_row();
+}
 
 std::string violation_names(std::uint8_t mask) {
   std::string s;
@@ -632,102 +588,73 @@ std::string violation_names(std::uint8_t mask) {
 
 void write_case_csv_rows(std::ostream& out, const std::vector<CaseResult>& results,
                          const std::vector<StudyBody>& bodies, const std::vector<StudyRecord>& records) {
-  std::string line;
+  csv::Writer row(out);
   for (const CaseResult& c : results) {
     const BodyParameters& b = bodies.at(c.body).parameters;
     const StudyRecord& r = records.at(c.record);
     const RockingOutcome& o = c.outcome;
     const ScreeningThresholds& t = c.thresholds;
-    line.clear();
-    auto put = [&line](const std::string& s) {
-      if (!line.empty()) line += ',';
-      line += s;
-    };
-    put(std::to_string(c.index));
-    put(std::to_string(c.body));
-    put(csv_quote(bodies[c.body].name));
-    put(num(b.width));
-    put(num(b.cg_height));
-    put(num(b.nu1));
-    put(num(eccentricity_of(b)));
-    put(num(b.radius_of_gyration));
-    put(std::to_string(c.record));
-    put(csv_quote(r.event));
-    put(csv_quote(r.station));
-    put(csv_quote(r.component));
-    put(csv_quote(r.file));
-    put(std::to_string(c.polarity));
-    put(c.vertical ? "1" : "0");
-    put(c.vertical ? csv_quote(r.vertical_component) : std::string());
-    put(o.overturned ? "1" : "0");
-    put(o.committed ? "1" : "0");
-    put(o.beyond_tipping ? "1" : "0");
-    put(core::to_string(c.final_mode));
-    put(num(o.max_rotation_ratio));
-    put(num(c.max_theta));
-    put(std::to_string(o.max_rotation_side));
-    put(std::to_string(o.impacts));
-    put(num(o.uplift_time));
-    put(num(o.beyond_tipping_time));
-    put(num(o.committed_time));
-    put(num(o.overturn_time));
-    put(std::to_string(o.rest_captures));
-    put(std::to_string(o.forced_rest_captures));
-    put(violation_names(c.violations));
-    put(num(c.first_violation_time));
-    put(num(r.pga));
-    put(num(r.pgv));
-    put(c.vertical ? num(r.pga_vertical) : std::string());
-    put(num(c.housner_period));
-    put(num(c.housner_psv));
-    put(num(t.housner_pseudo_velocity));
-    put(num(t.ishiyama.velocity));
-    put(num(t.ishiyama.acceleration));
-    put(num(t.ishiyama_equivalent.velocity));
-    put(num(t.ishiyama_equivalent.acceleration));
-    put(num(t.proposed.velocity));
-    put(num(t.proposed.acceleration));
-    put(c.prediction.housner ? "1" : "0");
-    put(c.prediction.ishiyama ? "1" : "0");
-    put(c.prediction.ishiyama_equivalent ? "1" : "0");
-    put(c.prediction.proposed ? "1" : "0");
-    put(std::to_string(o.integrator_steps));
-    line += '\n';
-    out << line;
+    row.value(std::to_string(c.index)).value(std::to_string(c.body)).text(bodies[c.body].name);
+    row.value(num(b.width)).value(num(b.cg_height)).value(num(b.nu1)).value(num(eccentricity_of(b)));
+    row.value(num(b.radius_of_gyration));
+    row.value(std::to_string(c.record)).text(r.event).text(r.station).text(r.component).text(r.file);
+    row.value(std::to_string(c.polarity)).value(flag(c.vertical)).text(c.vertical ? r.vertical_component : "");
+    row.value(flag(o.overturned)).value(flag(o.committed)).value(flag(o.beyond_tipping));
+    row.value(core::to_string(c.final_mode));
+    row.value(num(o.max_rotation_ratio)).value(num(c.max_theta)).value(std::to_string(o.max_rotation_side));
+    row.value(std::to_string(o.impacts));
+    row.value(num(o.uplift_time)).value(num(o.beyond_tipping_time)).value(num(o.committed_time));
+    row.value(num(o.overturn_time));
+    row.value(std::to_string(o.rest_captures)).value(std::to_string(o.forced_rest_captures));
+    row.value(violation_names(c.violations)).value(num(c.first_violation_time));
+    row.value(num(r.pga)).value(num(r.pgv)).value(c.vertical ? num(r.pga_vertical) : "");
+    row.value(num(c.housner_period)).value(num(c.housner_psv)).value(num(t.housner_pseudo_velocity));
+    row.value(num(t.ishiyama.velocity)).value(num(t.ishiyama.acceleration));
+    row.value(num(t.ishiyama_equivalent.velocity)).value(num(t.ishiyama_equivalent.acceleration));
+    row.value(num(t.proposed.velocity)).value(num(t.proposed.acceleration));
+    row.value(flag(c.prediction.housner)).value(flag(c.prediction.ishiyama));
+    row.value(flag(c.prediction.ishiyama_equivalent)).value(flag(c.prediction.proposed));
+    row.value(std::to_string(o.integrator_steps));
+    row.end_row();
   }
 }
 
 void write_bodies_csv(std::ostream& out, const std::vector<StudyBody>& bodies) {
-  out << "body,body_name,width_m,cg_height_m,nu1,eccentricity,radius_of_gyration_m,alpha1_rad,"
-         "alpha2_rad,p1_radps,p2_radps,restitution_to_1,restitution_to_2,housner_period_s,"
-         "housner_threshold_mps,ishiyama_v_mps,ishiyama_a_mps2,ishiyama_equivalent_v_mps,"
-         "ishiyama_equivalent_a_mps2,proposed_v_mps,proposed_a_mps2\n";
+  csv::Writer row(out);
+  header(row, {"body", "body_name", "width_m", "cg_height_m", "nu1", "eccentricity", "radius_of_gyration_m",
+               "alpha1_rad", "alpha2_rad", "p1_radps", "p2_radps", "restitution_to_1", "restitution_to_2",
+               "housner_period_s", "housner_threshold_mps", "ishiyama_v_mps", "ishiyama_a_mps2",
+               "ishiyama_equivalent_v_mps", "ishiyama_equivalent_a_mps2", "proposed_v_mps", "proposed_a_mps2"});
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const Body body(bodies[i].parameters);
     const ScreeningThresholds t = screening_thresholds(body);
     const Pivot& p1 = body.pivot(1);
     const Pivot& p2 = body.pivot(-1);
-    out << i << ',' << csv_quote(bodies[i].name) << ',' << num(body.width()) << ','
-        << num(body.cg_height()) << ',' << num(body.nu1()) << ',' << num(eccentricity_of(body.parameters()))
-        << ',' << num(body.radius_of_gyration()) << ',' << num(p1.alpha) << ',' << num(p2.alpha) << ','
-        << num(p1.p) << ',' << num(p2.p) << ',' << num(p1.restitution) << ',' << num(p2.restitution)
-        << ',' << num(housner_period(body)) << ',' << num(t.housner_pseudo_velocity) << ','
-        << num(t.ishiyama.velocity) << ',' << num(t.ishiyama.acceleration) << ','
-        << num(t.ishiyama_equivalent.velocity) << ',' << num(t.ishiyama_equivalent.acceleration) << ','
-        << num(t.proposed.velocity) << ',' << num(t.proposed.acceleration) << '\n';
+    row.value(std::to_string(i)).text(bodies[i].name);
+    row.value(num(body.width())).value(num(body.cg_height())).value(num(body.nu1()));
+    row.value(num(eccentricity_of(body.parameters()))).value(num(body.radius_of_gyration()));
+    row.value(num(p1.alpha)).value(num(p2.alpha)).value(num(p1.p)).value(num(p2.p));
+    row.value(num(p1.restitution)).value(num(p2.restitution));
+    row.value(num(housner_period(body))).value(num(t.housner_pseudo_velocity));
+    row.value(num(t.ishiyama.velocity)).value(num(t.ishiyama.acceleration));
+    row.value(num(t.ishiyama_equivalent.velocity)).value(num(t.ishiyama_equivalent.acceleration));
+    row.value(num(t.proposed.velocity)).value(num(t.proposed.acceleration));
+    row.end_row();
   }
 }
 
 void write_records_csv(std::ostream& out, const std::vector<StudyRecord>& records) {
-  out << "record,event,station,component,file,vertical_component,vertical_file,dt_s,samples,"
-         "duration_s,pga_mps2,pgv_mps,pga_vertical_mps2\n";
+  csv::Writer row(out);
+  header(row, {"record", "event", "station", "component", "file", "vertical_component", "vertical_file", "dt_s",
+               "samples", "duration_s", "pga_mps2", "pgv_mps", "pga_vertical_mps2"});
   for (std::size_t i = 0; i < records.size(); ++i) {
     const StudyRecord& r = records[i];
-    out << i << ',' << csv_quote(r.event) << ',' << csv_quote(r.station) << ','
-        << csv_quote(r.component) << ',' << csv_quote(r.file) << ',' << csv_quote(r.vertical_component)
-        << ',' << csv_quote(r.vertical_file) << ',' << num(r.dt) << ',' << r.horizontal.size() << ','
-        << num(r.dt * static_cast<double>(r.horizontal.size() - 1)) << ',' << num(r.pga) << ','
-        << num(r.pgv) << ',' << (r.has_vertical() ? num(r.pga_vertical) : std::string()) << '\n';
+    row.value(std::to_string(i)).text(r.event).text(r.station).text(r.component).text(r.file);
+    row.text(r.vertical_component).text(r.vertical_file);
+    row.value(num(r.dt)).value(std::to_string(r.horizontal.size()));
+    row.value(num(r.dt * static_cast<double>(r.horizontal.size() - 1))).value(num(r.pga)).value(num(r.pgv));
+    row.value(r.has_vertical() ? num(r.pga_vertical) : "");
+    row.end_row();
   }
 }
 
@@ -992,32 +919,24 @@ std::string format_summary(const StudySummary& s) {
 // ==================================================================== reading cases.csv
 
 CaseFile read_case_csv(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw StudyError(path + ": cannot open");
+  const std::vector<csv::Row> rows = read_csv(path);
+  if (rows.empty()) throw StudyError(path + ": empty (no header)");
   CaseFile file;
-  std::string line;
-  if (!std::getline(in, line)) throw StudyError(path + ": empty (no header)");
-  if (!line.empty() && line.back() == '\r') line.pop_back();
-  file.header = line;
-  std::vector<std::string> f;
-  split_csv(line, f);
-  std::map<std::string, std::size_t> col;
-  for (std::size_t i = 0; i < f.size(); ++i) col[f[i]] = i;
+  file.header = rows[0].text;
+  const std::map<std::string, std::size_t> col = csv::column_index(rows[0]);
   const char* needed[] = {"case", "body", "record", "width_m", "cg_height_m", "nu1", "pgv_mps", "polarity",
                           "vertical", "overturned", "committed", "beyond_tipping", "predicts_housner",
                           "predicts_ishiyama", "predicts_ishiyama_equivalent", "predicts_proposed"};
   for (const char* n : needed)
-    if (!col.count(n)) throw StudyError(path + ":1: no column '" + n + "' (not a rocking_study cases.csv)");
-  std::size_t ln = 1;
-  while (std::getline(in, line)) {
-    ++ln;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) continue;
-    const std::string where = path + ":" + std::to_string(ln) + ": ";
-    if (!split_csv(line, f)) throw StudyError(where + "unterminated quote");
+    if (!col.count(n))
+      throw StudyError(path + ":" + std::to_string(rows[0].line) + ": no column '" + n +
+                       "' (not a rocking_study cases.csv)");
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const std::vector<std::string>& f = rows[i].fields;
+    const std::string where = path + ":" + std::to_string(rows[i].line) + ": ";
     if (f.size() != col.size())
       throw StudyError(where + std::to_string(f.size()) + " fields, header has " + std::to_string(col.size()));
-    auto get = [&](const char* name) -> const std::string& { return f[col[name]]; };
+    auto get = [&](const char* name) -> const std::string& { return f[col.at(name)]; };
     auto to_size = [&](const char* name) {
       try {
         std::size_t used = 0;
@@ -1062,7 +981,7 @@ CaseFile read_case_csv(const std::string& path) {
     r.predicted = {to_bool("predicts_housner"), to_bool("predicts_ishiyama"),
                    to_bool("predicts_ishiyama_equivalent"), to_bool("predicts_proposed")};
     file.rows.push_back(r);
-    file.lines.push_back(line);
+    file.lines.push_back(rows[i].text);
   }
   return file;
 }

@@ -303,11 +303,11 @@ StudySummary summarize(const std::vector<CaseRow>& rows);
 std::string format_summary(const StudySummary& summary);
 
 /// Reads the rows of one or more cases.csv files (header required; columns found by name), for
-/// merging shards. Throws StudyError "<file>:<line>: ...".
+/// merging shards. Throws StudyError "<file>:<line>: ..." (malformed CSV included, csv layer).
 struct CaseFile {
   std::vector<CaseRow> rows;
-  std::vector<std::string> lines;  ///< the raw data lines, same order as rows
-  std::string header;
+  std::vector<std::string> lines;  ///< the data rows as written (csv::Row::text), same order as rows
+  std::string header;              ///< the header row as written
 };
 CaseFile read_case_csv(const std::string& path);
 
