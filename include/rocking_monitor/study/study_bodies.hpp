@@ -1,0 +1,43 @@
+#pragma once
+
+// The bodies of the study: the paper's grid of rectangles (or a list read by study_io.hpp).
+
+#include <string>
+#include <vector>
+
+#include "rocking_monitor/physics/body.hpp"
+#include "rocking_monitor/study/study_error.hpp"
+
+namespace rocking_monitor::core::study {
+
+struct StudyBody {
+  std::string name;           ///< unique label, e.g. "h0.630_B0.252_nu0.30"
+  BodyParameters parameters;  ///< radius_of_gyration always set explicitly (finite)
+};
+
+/// The paper's grid (section "Overturning criteria validation for symmetric bodies"): `heights`
+/// centre-of-mass heights log-spaced over [min_height, max_height]; for each, `widths` base widths
+/// geometrically spaced over [max(min_width, min_width_ratio h), min(max_width, max_width_ratio h)];
+/// homogeneous rectangles B x 2h; each eccentricity nu (CoM at nu B from corner 1) keeps the radius
+/// of gyration of its symmetric twin (the paper: "the same moment of inertia").
+struct StudyGrid {
+  int heights = 4;
+  double min_height = 0.25, max_height = 4.0;  ///< m
+  int widths = 12;
+  double min_width = 0.08, max_width = 3.5;    ///< m
+  double min_width_ratio = 0.16, max_width_ratio = 1.2;  ///< B / h limits
+  std::vector<double> eccentricities{0.5, 0.4, 0.3, 0.2};
+};
+
+/// Bodies of the grid, ordered eccentricity-major, then height, then width. Throws StudyError for an
+/// empty or inconsistent grid (counts < 1, limits not positive, empty width range, nu outside (0, 1)).
+std::vector<StudyBody> grid_bodies(const StudyGrid& grid = {});
+
+/// n values from lo to hi inclusive with constant ratio (n == 1 gives {lo}).
+std::vector<double> geometric_spacing(double lo, double hi, int n);
+
+/// Eccentricity class of a body: min(nu1, 1 - nu1) (a body with nu1 = 0.7 is the mirror image of
+/// nu1 = 0.3; both polarities of every record are run, so the two give the same set of cases).
+double eccentricity_of(const BodyParameters& body);
+
+}  // namespace rocking_monitor::core::study

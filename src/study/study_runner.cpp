@@ -1,0 +1,210 @@
+#include "rocking_monitor/study/study_runner.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include "rocking_monitor/motion/response_spectrum.hpp"
+
+namespace rocking_monitor::core::study {
+
+std::vector<StudyInput> study_inputs(const std::vector<StudyRecord>& records,
+                                     const StudyPlanOptions& options) {
+  std::vector<StudyInput> inputs;
+  for (std::size_t r = 0; r < records.size(); ++r) {
+    for (int polarity : {1, -1}) {
+      if (polarity < 0 && !options.both_polarities) continue;
+      inputs.push_back({r, polarity, false});
+      if (options.verticals && records[r].has_vertical()) inputs.push_back({r, polarity, true});
+    }
+  }
+  return inputs;
+}
+
+std::size_t study_case_count(std::size_t bodies, const std::vector<StudyRecord>& records,
+                             const StudyPlanOptions& plan) {
+  return bodies * study_inputs(records, plan).size();
+}
+
+CaseRange shard_range(std::size_t total, int k, int n) {
+  if (n < 1 || k < 1 || k > n)
+    throw StudyError("invalid shard " + std::to_string(k) + "/" + std::to_string(n) +
+                     " (need 1 <= k <= n)");
+  const auto nn = static_cast<std::size_t>(n);
+  const auto kk = static_cast<std::size_t>(k);
+  // total * k may overflow only beyond 1e18 cases.
+  return {total * (kk - 1) / nn, total * kk / nn};
+}
+
+std::pair<int, int> parse_shard(const std::string& text) {
+  const auto slash = text.find('/');
+  int k = 0, n = 0;
+  std::size_t used_k = 0, used_n = 0;
+  try {
+    if (slash == std::string::npos) throw std::invalid_argument("no slash");
+    k = std::stoi(text.substr(0, slash), &used_k);
+    n = std::stoi(text.substr(slash + 1), &used_n);
+  } catch (const std::exception&) {
+    throw StudyError("invalid shard '" + text + "' (expected k/n, e.g. 2/8)");
+  }
+  if (used_k != slash || used_n != text.size() - slash - 1)
+    throw StudyError("invalid shard '" + text + "' (expected k/n, e.g. 2/8)");
+  shard_range(1, k, n);  // range check
+  return {k, n};
+}
+
+double pseudo_velocity_at(const std::vector<double>& accel, double dt, double period, double damping) {
+  NigamJenningsOscillator osc(period, damping, dt);
+  double peak = 0.0;
+  for (std::size_t i = 1; i < accel.size(); ++i) {
+    osc.step(accel[i - 1], accel[i]);
+    peak = std::max(peak, std::abs(osc.displacement()));
+  }
+  return 2.0 * kPi / period * peak;
+}
+
+CaseResult run_case(const Body& body, const StudyRecord& rec, int polarity, bool vertical,
+                    const SolverSettings& settings, double psv) {
+  CaseResult c;
+  c.polarity = polarity;
+  c.vertical = vertical && rec.has_vertical();
+  c.housner_period = housner_period(body);
+  c.housner_psv = std::isnan(psv) ? pseudo_velocity_at(rec.corrected, rec.dt, c.housner_period) : psv;
+  c.thresholds = screening_thresholds(body);
+  c.prediction = screening_prediction(c.thresholds, rec.pga, rec.pgv, c.housner_psv);
+
+  // Same loop as simulate() (rocking_sim), with the polarity applied to the horizontal only:
+  // multiplying by +-1 is exact, so the samples are those of a record written with that sign.
+  RockingModel model(body, settings);
+  const double s = polarity < 0 ? -1.0 : 1.0;
+  const std::vector<double>& ah = rec.horizontal;
+  const bool use_v = c.vertical;
+  const std::size_t n = ah.size();
+  if (n > 0) {
+    model.reset(rec.t0, s * ah[0], use_v ? rec.vertical[0] : 0.0);
+    for (std::size_t i = 1; i < n; ++i) {
+      const StepReport& r = model.step(s * ah[i], use_v ? rec.vertical[i] : 0.0, rec.dt);
+      if (r.violation_onsets != 0 && c.violations == 0) c.first_violation_time = model.time();
+      c.violations |= r.violation_onsets;
+    }
+  }
+  c.outcome = model.outcome();
+  c.final_mode = model.mode();
+  if (c.outcome.max_rotation_side != 0)
+    c.max_theta = c.outcome.max_rotation_ratio * body.pivot(c.outcome.max_rotation_side).alpha;
+  return c;
+}
+
+std::vector<CaseResult> run_study(const std::vector<StudyBody>& bodies,
+                                  const std::vector<StudyRecord>& records, const StudyOptions& options) {
+  if (const std::string e = validate(options.settings); !e.empty()) throw StudyError(e);
+  std::vector<Body> rigid;
+  rigid.reserve(bodies.size());
+  for (const auto& b : bodies) {
+    try {
+      rigid.emplace_back(b.parameters);
+    } catch (const std::exception& e) {
+      throw StudyError("body '" + b.name + "': " + e.what());
+    }
+  }
+  const std::vector<StudyInput> inputs = study_inputs(records, options.plan);
+  const std::size_t per_body = inputs.size();
+  const std::size_t total = bodies.size() * per_body;
+  CaseRange range = options.range;
+  if (range.end == std::numeric_limits<std::size_t>::max()) range.end = total;
+  if (range.begin > range.end || range.end > total)
+    throw StudyError("case range [" + std::to_string(range.begin) + ", " + std::to_string(range.end) +
+                     ") outside the " + std::to_string(total) + " cases");
+
+  // Work units: (body, record) -> its contiguous inputs [first[r], first[r + 1]).
+  // Every record has at least its (polarity +1, vertical off) input, and a record's inputs are
+  // contiguous, in record order.
+  std::vector<std::size_t> first(records.size() + 1, per_body);
+  for (std::size_t i = 0; i < inputs.size(); ++i)
+    if (i == 0 || inputs[i].record != inputs[i - 1].record) first[inputs[i].record] = i;
+  struct Unit {
+    std::size_t body, record, begin, end;  // global case indices
+  };
+  std::vector<Unit> units;
+  if (per_body > 0) {
+    for (std::size_t b = range.begin / per_body; b < bodies.size() && b * per_body < range.end; ++b) {
+      for (std::size_t r = 0; r < records.size(); ++r) {
+        const std::size_t lo = std::max(b * per_body + first[r], range.begin);
+        const std::size_t hi = std::min(b * per_body + first[r + 1], range.end);
+        if (lo < hi) units.push_back({b, r, lo, hi});
+      }
+    }
+  }
+
+  std::vector<CaseResult> results(range.size());
+  std::atomic<std::size_t> next{0}, done{0};
+  std::atomic<bool> stop{false};
+  std::exception_ptr error;
+  std::mutex mutex;
+  std::condition_variable finished_cv;
+  int running = 0;
+
+  auto worker = [&]() {
+    try {
+      for (;;) {
+        if (stop.load(std::memory_order_relaxed)) break;
+        const std::size_t u = next.fetch_add(1);
+        if (u >= units.size()) break;
+        const Unit& unit = units[u];
+        const Body& body = rigid[unit.body];
+        const StudyRecord& rec = records[unit.record];
+        const double psv = pseudo_velocity_at(rec.corrected, rec.dt, housner_period(body));
+        for (std::size_t idx = unit.begin; idx < unit.end; ++idx) {
+          const StudyInput& in = inputs[idx - unit.body * per_body];
+          CaseResult c = run_case(body, rec, in.polarity, in.vertical, options.settings, psv);
+          c.index = idx;
+          c.body = unit.body;
+          c.record = unit.record;
+          results[idx - range.begin] = c;
+        }
+        done.fetch_add(unit.end - unit.begin);
+      }
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (!error) error = std::current_exception();
+      stop = true;
+    }
+    std::lock_guard<std::mutex> lock(mutex);
+    --running;
+    finished_cv.notify_all();
+  };
+
+  int threads = options.threads > 0 ? options.threads
+                                    : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  threads = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(threads),
+                                                   std::max<std::size_t>(1, units.size())));
+  std::vector<std::thread> pool;
+  running = threads;
+  for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
+  {
+    std::unique_lock<std::mutex> lock(mutex);
+    const auto interval = std::chrono::duration<double>(std::max(0.01, options.progress_interval_s));
+    while (running > 0) {
+      finished_cv.wait_for(lock, interval);
+      if (options.progress && running > 0) {
+        lock.unlock();
+        options.progress(done.load(), range.size());
+        lock.lock();
+      }
+    }
+  }
+  for (auto& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+  if (options.progress) options.progress(done.load(), range.size());
+  return results;
+}
+
+}  // namespace rocking_monitor::core::study
