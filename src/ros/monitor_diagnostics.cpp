@@ -1,0 +1,91 @@
+// RockingMonitor's diagnostics: one status per sensor (samples received, dropped, rejected,
+// bridged; processing time) and one for the catalogue (items per mode, transforms, alarms).
+#include "rocking_monitor/ros/monitor.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "rocking_monitor/integrate/solver_settings.hpp"
+
+namespace rocking_monitor::live {
+namespace {
+
+using core::ItemMode;
+
+}  // namespace
+
+void RockingMonitor::sensor_diagnostics(std::size_t i, diagnostic_updater::DiagnosticStatusWrapper& st) {
+  const Sensor& s = sensors_[i];
+  const core::SampleTiming::Counters& c = s.timing.counters();
+  const std::uint64_t dropped = c.duplicates + c.out_of_order + s.zero_stamps;
+  const std::uint64_t rejected = s.rejected_nonfinite + s.rejected_limit;
+  if (s.received == 0) st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no data yet");
+  else if (s.mean_dt > 0.0 && s.last_processing_s > s.mean_dt)
+    st.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "processing slower than the sample rate");
+  else if (dropped + rejected > 0 || c.gaps > 0)
+    st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "samples dropped, rejected or bridged");
+  else st.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
+  st.add("topic", s.spec.topic);
+  st.add("received", s.received);
+  st.add("accepted", c.accepted);
+  st.add("dropped duplicate stamp", c.duplicates);
+  st.add("dropped out-of-order stamp", c.out_of_order);
+  st.add("dropped zero stamp", s.zero_stamps);
+  st.add("rejected non-finite", s.rejected_nonfinite);
+  st.add("rejected beyond max_abs_acceleration", s.rejected_limit);
+  st.add("gaps bridged", c.gaps);
+  st.add("longest gap (s)", c.longest_gap);
+  st.add("resets (time jumped back)", s.resets);
+  st.add("mean sample period (s)", s.mean_dt);
+  st.add("processing per sample, last (s)", s.last_processing_s);
+  st.add("processing per sample, max (s)", s.max_processing_s);
+  st.add("processing per sample, mean (s)", s.processed > 0 ? s.total_processing_s / s.processed : 0.0);
+  st.add("processing / sample period", s.mean_dt > 0.0 ? s.last_processing_s / s.mean_dt : 0.0);
+  st.add("gravity baseline (m/s^2)", std::to_string(s.baseline.baseline().x()) + " " +
+                                        std::to_string(s.baseline.baseline().y()) + " " +
+                                        std::to_string(s.baseline.baseline().z()));
+}
+
+void RockingMonitor::catalogue_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st) {
+  std::array<int, 5> counts{};
+  int without_tf = 0, invalid = 0;
+  std::uint64_t skipped = 0;
+  for (const Item& it : items_) {
+    skipped += it.samples_without_transform;
+    ++counts[static_cast<int>(it.monitor->mode())];
+    if (!it.has_rotation) ++without_tf;
+    if (it.monitor->violations() != 0) ++invalid;
+  }
+  if (without_tf > 0) st.summary(diagnostic_msgs::DiagnosticStatus::WARN, std::to_string(without_tf) + " items without transform");
+  else if (counts[4] > 0) st.summary(diagnostic_msgs::DiagnosticStatus::WARN, std::to_string(counts[4]) + " items overturned");
+  else st.summary(diagnostic_msgs::DiagnosticStatus::OK, "monitoring " + std::to_string(items_.size()) + " items");
+  st.add("items", items_.size());
+  for (int m = 0; m < 5; ++m) st.add(core::to_string(static_cast<ItemMode>(m)), counts[m]);
+  st.add("pure-rocking model not valid now", invalid);
+  st.add("items without transform", without_tf);
+  st.add("item-samples skipped for want of a transform", skipped);
+  st.add("alarms published", alarms_published_);
+  st.add("method", core::to_string(options_.solver.method));
+  st.add("fidelity", core::to_string(options_.fidelity));
+  int on_contact = 0;
+  for (const Item& it : items_) on_contact += std::string(it.monitor->active_model()) == "contact";
+  st.add("items on the contact model now", on_contact);
+  if (options_.fidelity == core::Fidelity::Adaptive) {
+    int ruled_out = 0;
+    long outside = 0;
+    for (const Item& it : items_) {
+      const core::AdaptiveModel& a = *it.monitor->adaptive();
+      ruled_out += a.initial_reason() == core::SwitchReason::SceneRulesOutContact;
+      outside = std::max(outside, a.outcome().samples_outside_scene);
+    }
+    st.add("items whose friction rules out the contact model in the scene envelope", ruled_out);
+    st.add("input samples outside the scene envelope", outside);
+    if (outside > 0 && without_tf == 0)
+      st.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN,
+                      "input outside ~scene_envelope: pre-check guarantee void, margins apply");
+  }
+}
+
+}  // namespace rocking_monitor::live

@@ -1,0 +1,183 @@
+// RockingMonitor's publication: criterion changes and overturn alarms, the item states (every
+// sample or on the state timer), and the markers and tf of each item's rotated body.
+#include "rocking_monitor/ros/monitor.hpp"
+
+#include <array>
+#include <cstdint>
+
+#include <geometry_msgs/TransformStamped.h>
+#include <tf2_eigen/tf2_eigen.h>
+#include <visualization_msgs/MarkerArray.h>
+
+namespace rocking_monitor::live {
+namespace {
+
+using core::ItemMode;
+
+std_msgs::ColorRGBA color(ItemMode m, bool valid) {
+  std_msgs::ColorRGBA c;
+  c.a = 0.85f;
+  switch (m) {
+    case ItemMode::Rest: c.r = 0.2f; c.g = 0.75f; c.b = 0.3f; break;
+    case ItemMode::Rocking: c.r = 0.95f; c.g = 0.85f; c.b = 0.1f; break;
+    case ItemMode::BeyondTipping: c.r = 1.0f; c.g = 0.5f; c.b = 0.0f; break;
+    case ItemMode::Committed: c.r = 0.95f; c.g = 0.1f; c.b = 0.1f; break;
+    case ItemMode::Overturned: c.r = 0.45f; c.g = 0.0f; c.b = 0.35f; break;
+  }
+  if (!valid) c.a = 0.45f;  // pure-rocking model not valid at the moment: drawn faded
+  return c;
+}
+
+constexpr std::array<core::CriterionId, core::kScreeningCount> kScreening = {
+    core::CriterionId::Housner, core::CriterionId::Ishiyama, core::CriterionId::IshiyamaEquivalent,
+    core::CriterionId::Proposed};
+
+}  // namespace
+
+void RockingMonitor::publish_events(Item& it, const core::ItemEvents& ev, const ::ros::Time& stamp) {
+  const core::ItemSpec& spec = it.entry.spec;
+  for (int i = 0; i < ev.change_count; ++i) {
+    const core::CriterionChange& c = ev.changes[i];
+    CriterionExceedance m;
+    m.header.stamp = stamp;
+    m.header.frame_id = spec.frame;
+    m.item_id = spec.id;
+    m.criterion = static_cast<std::uint8_t>(c.id);
+    m.criterion_name = core::to_string(c.id);
+    m.exceeded = c.exceeded;
+    m.value = c.value;
+    m.threshold = c.threshold;
+    m.second_value = c.second_value;
+    m.second_threshold = c.second_threshold;
+    criteria_pub_.publish(m);
+  }
+  for (int i = 0; i < ev.alarm_count; ++i) {
+    const core::AlarmEvent& a = ev.alarms[i];
+    OverturnAlarm m;
+    m.header.stamp = stamp;
+    m.header.frame_id = spec.frame;
+    m.item_id = spec.id;
+    m.description = spec.description;
+    m.level = static_cast<std::uint8_t>(a.level);
+    m.event_time = a.time;
+    m.rotation_ratio = a.rotation_ratio;
+    for (core::CriterionId id : kScreening)
+      (it.monitor->screening_exceeded(id) ? m.predicted_by : m.not_predicted_by).push_back(core::to_string(id));
+    alarms_pub_.publish(m);
+    ++alarms_published_;
+    if (a.level == ItemMode::Overturned) {
+      ROS_ERROR("rocking_monitor: OVERTURNED: %s (%s) at t = %.3f s", spec.id.c_str(), spec.description.c_str(), a.time);
+    } else {
+      ROS_WARN("rocking_monitor: %s: %s (%s) at t = %.3f s", core::to_string(a.level), spec.id.c_str(),
+               spec.description.c_str(), a.time);
+    }
+  }
+}
+
+void RockingMonitor::fill_state(const Item& it, RockingState& out) const {
+  const core::ItemMonitor& im = *it.monitor;
+  out.mode = static_cast<std::uint8_t>(im.mode());
+  out.pivot = static_cast<std::int8_t>(im.side());
+  out.theta = im.theta();
+  out.theta_dot = im.omega();
+  out.rotation_ratio = im.rotation_ratio();
+  out.energy_margin = im.margin().margin;
+  out.impacts = static_cast<std::uint32_t>(im.impacts());
+  out.violations = im.violations();
+  out.model_valid = out.violations == 0;
+  out.contact_mode = static_cast<std::uint8_t>(im.contact_mode());
+  out.slip = im.slip();
+  out.model = im.active_model();
+  out.input_stamp = it.stamp;
+}
+
+void RockingMonitor::publish_states() {
+  ::ros::Time newest;
+  for (std::size_t i = 0; i < items_.size(); ++i) {
+    fill_state(items_[i], states_msg_.items[i]);
+    if (items_[i].stamp > newest) newest = items_[i].stamp;
+  }
+  states_msg_.header.stamp = newest;
+  states_pub_.publish(states_msg_);
+}
+
+void RockingMonitor::on_state_timer(const ::ros::TimerEvent&) {
+  const ::ros::Time now = ::ros::Time::now();
+  if (!last_now_.isZero() && now + ::ros::Duration(timing_config_.backward_jump) < last_now_) {
+    reset_all("ROS time jumped back (sim time restarted?)");
+  }
+  last_now_ = now;
+  if (state_rate_ > 0.0) publish_states();  // else after every input sample
+  if (last_marker_time_.isZero() || (now - last_marker_time_).toSec() >= 1.0 / marker_rate_ ||
+      now < last_marker_time_) {
+    publish_markers_and_tf();
+    last_marker_time_ = now;
+  }
+  diagnostics_->update();
+}
+
+void RockingMonitor::publish_markers_and_tf() {
+  if (!publish_markers_ && !publish_tf_) return;
+  visualization_msgs::MarkerArray markers;
+  std::vector<geometry_msgs::TransformStamped> transforms;
+  const ::ros::Time now = ::ros::Time::now();
+  for (std::size_t i = 0; i < items_.size(); ++i) {
+    const Item& it = items_[i];
+    const core::Body& b = it.monitor->body();
+    const double theta = it.monitor->theta();
+    const int side = it.monitor->side();
+    // Item frame: origin on the floor below the centre of mass, x across the base, z up.
+    // Corner 1 at x = -nu1 B, corner 2 at x = +nu2 B; theta > 0 rotates about corner 1 (about -y).
+    const Eigen::Vector3d pivot(side >= 0 ? -b.nu1() * b.width() : b.nu2() * b.width(), 0.0, 0.0);
+    const Eigen::Matrix3d r = Eigen::AngleAxisd(-theta, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    const Eigen::Vector3d shift = pivot - r * pivot;
+    if (publish_tf_) {
+      geometry_msgs::TransformStamped t;
+      t.header.stamp = now;
+      t.header.frame_id = it.entry.spec.frame;
+      t.child_frame_id = it.entry.spec.frame + marker_frame_suffix_;
+      t.transform.translation.x = shift.x();
+      t.transform.translation.z = shift.z();
+      t.transform.rotation = tf2::toMsg(Eigen::Quaterniond(r));
+      transforms.push_back(t);
+    }
+    if (publish_markers_) {
+      visualization_msgs::Marker mk;
+      mk.header.stamp = now;
+      mk.header.frame_id = it.entry.spec.frame;
+      mk.ns = "items";
+      mk.id = static_cast<int>(i);
+      mk.type = visualization_msgs::Marker::CUBE;
+      mk.action = visualization_msgs::Marker::ADD;
+      const Eigen::Vector3d centre((b.nu2() - b.nu1()) * b.width() / 2.0, 0.0, b.cg_height());
+      const Eigen::Vector3d c = r * centre + shift;
+      mk.pose.position.x = c.x();
+      mk.pose.position.y = c.y();
+      mk.pose.position.z = c.z();
+      mk.pose.orientation = tf2::toMsg(Eigen::Quaterniond(r));
+      mk.scale.x = b.width();
+      mk.scale.y = 0.5 * b.width();
+      mk.scale.z = 2.0 * b.cg_height();
+      mk.color = color(it.monitor->mode(), it.monitor->violations() == 0);
+      markers.markers.push_back(mk);
+      visualization_msgs::Marker label = mk;
+      label.ns = "labels";
+      label.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
+      label.pose.orientation.w = 1.0;
+      label.pose.orientation.x = label.pose.orientation.y = label.pose.orientation.z = 0.0;
+      label.pose.position.z = 2.0 * b.cg_height() + 0.15;
+      label.scale.z = 0.1;
+      label.text = it.entry.spec.id + " " + core::to_string(it.monitor->mode());
+      label.color.r = label.color.g = label.color.b = label.color.a = 1.0f;
+      markers.markers.push_back(label);
+    }
+  }
+  // tf2 rejects a second transform with the same stamp (sim time may not have advanced).
+  if (publish_tf_ && !transforms.empty() && now > last_tf_stamp_) {
+    tf_broadcaster_->sendTransform(transforms);
+    last_tf_stamp_ = now;
+  }
+  if (publish_markers_) markers_pub_.publish(markers);
+}
+
+}  // namespace rocking_monitor::live
