@@ -1,0 +1,144 @@
+// Stations from file names when a directory has no MANIFEST.csv: PEER RSN names, older AT2 names
+// (station code + component), SMC and CSV files read for their station; one group per station.
+#include "rocking_monitor/motion/station.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <system_error>
+#include <utility>
+
+#include "rocking_monitor/constants.hpp"
+
+#include "station_internal.hpp"
+
+namespace rocking_monitor::core::station_io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct NameParts {
+  std::string code;   ///< station code ("CHY002", "H-BRA", "Rinaldi")
+  std::string label;  ///< component label ("N", "090", "UP")
+  std::string rsn;    ///< "1180" for RSN files, else empty
+};
+
+/// Splits an AT2 file stem into station code and component; false when the name has no component.
+bool split_at2_name(const std::string& stem, NameParts& out) {
+  static const std::regex rsn_re("^RSN([0-9]+)_(.+)_([^_]+)$", std::regex::icase);
+  static const std::regex vert_re("^(.*[^-])-?(UP|DWN|DOWN)$", std::regex::icase);
+  static const std::regex compass_re("^(.+)-([NESW])$", std::regex::icase);
+  static const std::regex digits_re("^(.+?)-?([0-9]{3})$", std::regex::icase);
+  std::string tail = stem;
+  std::smatch m;
+  out = NameParts{};
+  if (std::regex_match(stem, m, rsn_re)) {
+    out.rsn = m[1].str();
+    tail = m[3].str();
+  }
+  if (std::regex_match(tail, m, vert_re) || std::regex_match(tail, m, compass_re) || std::regex_match(tail, m, digits_re)) {
+    out.code = m[1].str();
+    out.label = upper(m[2].str());
+    return !out.code.empty();
+  }
+  return false;
+}
+
+}  // namespace
+
+StationListing list_from_file_names(const std::string& dir) {
+  StationListing listing;
+  listing.records_dir = dir;
+  listing.source = StationSource::FileNames;
+  std::map<std::string, StationInfo> groups;  // key -> station (sorted by key for a stable order)
+  std::vector<fs::path> files;
+  std::error_code ec;
+  for (fs::recursive_directory_iterator it(dir, fs::directory_options::follow_directory_symlink, ec), end; it != end;
+       it.increment(ec)) {
+    if (ec) break;
+    if (it->is_regular_file(ec)) files.push_back(it->path());
+  }
+  if (ec) fail(dir, 0, "cannot list directory (" + ec.message() + ")");
+  std::sort(files.begin(), files.end());
+  for (const fs::path& p : files) {
+    const std::string ext = lower(p.extension().string());
+    const std::string path = p.lexically_normal().string();
+    fs::path rel = p.lexically_relative(dir).parent_path();
+    const std::string event = rel.empty() ? fs::path(dir).filename().string() : rel.string();
+    const std::string stem = p.stem().string();
+    if (p.filename() == "MANIFEST.csv") {
+      listing.ignored_files.push_back(path);  // asked to ignore it (ignore_manifest)
+    } else if (ext == ".at2") {
+      NameParts parts;
+      StationComponent c;
+      c.file = path;
+      std::string key;
+      std::string name;
+      if (split_at2_name(stem, parts)) {
+        c.label = parts.label;
+        name = parts.code;
+        key = event + "|" + (parts.rsn.empty() ? "" : "RSN" + parts.rsn + "|") + upper(parts.code);
+      } else {
+        // no component in the name: a station of its own, label from the header
+        const std::vector<Component> comps = read_record(path);
+        c.label = comps.at(0).label;
+        name = stem;
+        key = event + "|file|" + stem;
+      }
+      c.vertical = label_is_vertical(c.label);
+      StationInfo& st = groups[key];
+      if (st.station.empty()) {
+        st.event = event;
+        st.station = name;
+        st.source = StationSource::FileNames;
+      }
+      add_component(st, std::move(c), path);
+    } else if (ext == ".bbp") {
+      StationInfo& st = groups[event + "|bbp|" + stem];
+      st.event = event;
+      st.station = stem;
+      st.source = StationSource::FileNames;
+      for (const char* label : {"N-S", "E-W", "U-D"}) {
+        StationComponent c;
+        c.file = path;
+        c.label = label;
+        c.vertical = label_is_vertical(label);
+        add_component(st, std::move(c), path);
+      }
+    } else if (ext == ".smc" || ext == ".v2" || ext == ".csv") {
+      // SMC names (0111a.smc) do not tell the station; CSV files are one station each: read them.
+      const std::vector<Component> comps = read_record(path);
+      const bool smc = ext != ".csv";
+      const std::string name = smc && !comps.at(0).station.empty() ? comps.at(0).station : stem;
+      StationInfo& st = groups[event + (smc ? "|smc|" : "|csv|") + (smc ? name : stem)];
+      st.event = event;
+      st.station = name;
+      st.source = StationSource::FileNames;
+      for (const Component& comp : comps) {
+        StationComponent c;
+        c.file = path;
+        c.label = comp.label;
+        c.vertical = comp.vertical;
+        add_component(st, std::move(c), path);
+      }
+    } else {
+      listing.ignored_files.push_back(path);
+    }
+  }
+  for (auto& kv : groups) listing.stations.push_back(std::move(kv.second));
+  assign_ids(listing.stations);
+  std::sort(listing.stations.begin(), listing.stations.end(),
+            [](const StationInfo& a, const StationInfo& b) { return a.id < b.id; });
+  return listing;
+}
+
+}  // namespace rocking_monitor::core::station_io
