@@ -204,13 +204,7 @@ std::vector<Component> read_at2(const std::string& path, std::string_view data) 
     });
     if (any) last_data_line = ln.number;
   }
-  if (c.accel.size() < want) {
-    fail(path, last_data_line,
-         "expected " + std::to_string(want) + " values (NPTS), found " + std::to_string(c.accel.size()));
-  }
-  std::vector<Component> out;
-  out.push_back(std::move(c));
-  return out;
+  return npts_checked(std::move(c), want, path, last_data_line);
 }
 
 }  // namespace rocking_monitor::core::record_io

@@ -61,6 +61,11 @@ bool csv_tokens(std::string_view line, std::vector<std::string_view>& out, std::
 std::string file_extension_lower(const std::string& path);
 std::string file_stem(const std::string& path);
 
+/// The one component of an AT2/SMC file once it holds `want` (NPTS) values; fewer is an error
+/// naming the last data line.
+std::vector<Component> npts_checked(Component c, std::size_t want, const std::string& path,
+                                    std::size_t last_data_line);
+
 // ------------------------------------------------------------------ numbers (record_numbers.cpp)
 
 enum class NumStatus { Ok, NonNumeric, NonFinite };

@@ -203,4 +203,15 @@ std::string file_stem(const std::string& path) {
   return name;
 }
 
+std::vector<Component> npts_checked(Component c, std::size_t want, const std::string& path,
+                                    std::size_t last_data_line) {
+  if (c.accel.size() < want) {
+    fail(path, last_data_line,
+         "expected " + std::to_string(want) + " values (NPTS), found " + std::to_string(c.accel.size()));
+  }
+  std::vector<Component> out;
+  out.push_back(std::move(c));
+  return out;
+}
+
 }  // namespace rocking_monitor::core::record_io

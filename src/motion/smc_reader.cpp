@@ -183,13 +183,7 @@ std::vector<Component> read_smc(const std::string& path, std::string_view data) 
       short_problem = "short data line (" + std::to_string(f.size()) + " of 8 values) before the end of the data";
     }
   }
-  if (c.accel.size() < want) {
-    fail(path, last_data_line,
-         "expected " + std::to_string(want) + " values (NPTS), found " + std::to_string(c.accel.size()));
-  }
-  std::vector<Component> out;
-  out.push_back(std::move(c));
-  return out;
+  return npts_checked(std::move(c), want, path, last_data_line);
 }
 
 }  // namespace rocking_monitor::core::record_io
