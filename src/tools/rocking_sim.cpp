@@ -12,12 +12,13 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "command_line.hpp"
+#include "rocking_monitor/csv/csv_writer.hpp"
 #include "rocking_monitor/model/adaptive_model.hpp"
-#include "rocking_monitor/physics/criteria.hpp"
+#include "rocking_monitor/monitoring/simulation.hpp"
 #include "rocking_monitor/motion/ground_motion.hpp"
 #include "rocking_monitor/motion/record_reader.hpp"
-#include "rocking_monitor/monitoring/simulation.hpp"
-#include "command_line.hpp"
+#include "rocking_monitor/physics/criteria.hpp"
 
 namespace rm = rocking_monitor::core;
 using nlohmann::json;
@@ -36,15 +37,23 @@ const rm::Component& first_horizontal(const std::vector<rm::Component>& comps) {
   return comps.front();
 }
 
+/// One number as a CSV field, printf-formatted.
+std::string number(const char* format, double value) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, format, value);
+  return buf;
+}
+
 void write_history(const std::string& path, const rm::SimulationResult& r) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path + ": cannot open for writing");
   out << "time_s,ax_mps2,ay_mps2,mode,pivot,theta_rad,omega_radps,rotation_ratio,energy_margin\n";
-  char line[256];
+  rm::csv::Writer row(out);
   for (const auto& h : r.history) {
-    std::snprintf(line, sizeof line, "%.6f,%.9g,%.9g,%s,%d,%.12g,%.12g,%.9g,%.9g\n", h.t, h.ax, h.ay,
-                  rm::to_string(h.mode), h.side, h.theta, h.omega, h.rotation_ratio, h.margin);
-    out << line;
+    row.value(number("%.6f", h.t)).value(number("%.9g", h.ax)).value(number("%.9g", h.ay));
+    row.text(rm::to_string(h.mode)).value(std::to_string(h.side)).value(number("%.12g", h.theta));
+    row.value(number("%.12g", h.omega)).value(number("%.9g", h.rotation_ratio)).value(number("%.9g", h.margin));
+    row.end_row();
   }
   if (!out) throw std::runtime_error(path + ": write failed");
 }
@@ -91,13 +100,14 @@ FidelityRun run_fidelity(const rm::Body& body, const rm::AdaptiveSettings& setti
     hist << "time_s,ax_mps2,ay_mps2,model,mode,pivot,theta_rad,omega_radps,slip_m\n";
   }
   auto ay = [&](std::size_t i) { return motion.vertical.empty() ? 0.0 : motion.vertical[i]; };
-  char line[256];
+  rm::csv::Writer writer(hist);
   auto row = [&](std::size_t i) {
     if (!hist.is_open()) return;
-    std::snprintf(line, sizeof line, "%.6f,%.9g,%.9g,%s,%s,%d,%.12g,%.12g,%.12g\n", model.time(),
-                  motion.horizontal[i], ay(i), rm::to_string(model.active()), model.mode_name(),
-                  model.side(), model.theta(), model.omega(), model.slip());
-    hist << line;
+    writer.value(number("%.6f", model.time())).value(number("%.9g", motion.horizontal[i]));
+    writer.value(number("%.9g", ay(i))).text(rm::to_string(model.active())).text(model.mode_name());
+    writer.value(std::to_string(model.side())).value(number("%.12g", model.theta()));
+    writer.value(number("%.12g", model.omega())).value(number("%.12g", model.slip()));
+    writer.end_row();
   };
   const std::clock_t start = std::clock();  // CPU time, as simulate()
   model.reset(0.0, motion.horizontal.front(), ay(0));
