@@ -60,6 +60,7 @@ bool RockingMonitor::load_parameters() {
             param(pnh_, "backward_jump", timing_config_.backward_jump, "number") &&
             param(pnh_, "max_abs_acceleration", max_abs_acceleration_, "number") &&
             param(pnh_, "state_rate", state_rate_, "number") &&
+            param(pnh_, "state_queue_size", state_queue_size_, "integer") &&
             param(pnh_, "publish_markers", publish_markers_, "bool") &&
             param(pnh_, "publish_tf", publish_tf_, "bool") && param(pnh_, "threads", threads_, "integer") &&
             param(pnh_, "marker_rate", marker_rate_, "number") &&
@@ -122,7 +123,8 @@ bool RockingMonitor::load_parameters() {
          positive(max_abs_acceleration_, "max_abs_acceleration", "m/s^2") &&
          positive(options_.velocity_highpass_hz, "velocity_highpass_hz", "Hz") &&
          positive(marker_rate_, "marker_rate", "Hz") &&
-         (state_rate_ >= 0.0 || positive(state_rate_, "state_rate", "Hz (0 = every input sample)"));
+         (state_rate_ >= 0.0 || positive(state_rate_, "state_rate", "Hz (0 = every input sample)")) &&
+         (state_queue_size_ >= 1 || positive(state_queue_size_, "state_queue_size", "messages"));
 }
 
 bool RockingMonitor::init() {
@@ -184,7 +186,7 @@ bool RockingMonitor::init() {
   tf_listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_buffer_, nh_);
   tf_broadcaster_ = std::make_unique<tf2_ros::TransformBroadcaster>();
 
-  states_pub_ = pnh_.advertise<RockingStateArray>("states", 10);
+  states_pub_ = pnh_.advertise<RockingStateArray>("states", static_cast<std::uint32_t>(state_queue_size_));
   criteria_pub_ = pnh_.advertise<CriterionExceedance>("criteria", 100);
   alarms_pub_ = pnh_.advertise<OverturnAlarm>("alarms", 1000, true);
   if (publish_markers_) markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 2);

@@ -95,6 +95,7 @@ class RockingMonitor {
   core::SampleTiming::Config timing_config_;
   double max_abs_acceleration_ = 50.0;
   double state_rate_ = 20.0;
+  int state_queue_size_ = 10;  // ~states messages kept per subscriber while it lags
   bool publish_markers_ = true, publish_tf_ = true;
   int threads_ = 1;
   double marker_rate_ = 5.0;
