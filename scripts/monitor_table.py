@@ -1,7 +1,15 @@
 #!/usr/bin/python3
-"""Prints a live per-item table of rocking_monitor states and, at shutdown, the alarm summary."""
+"""Prints a live per-item table of rocking_monitor states and, at shutdown, the alarm summary.
+
+Times are seconds since the first sample of the sensor (~imu; without it, since the first state
+received) with the UTC wall time of the stamp, as in the monitor's own log lines. With ~end_after_idle > 0 the table ends by itself (exit status 0) once states have stopped
+coming for that many wall-clock seconds: the end of a replayed record (scripts/run_demo.sh)."""
+import datetime
+import time
+
 import rospy
 from rocking_monitor.msg import RockingStateArray, OverturnAlarm
+from sensor_msgs.msg import Imu
 
 MODES = {0: "REST", 1: "ROCKING", 2: "BEYOND_TIPPING", 3: "COMMITTED", 4: "OVERTURNED"}
 LEVELS = {2: "BEYOND_TIPPING", 3: "COMMITTED", 4: "OVERTURNED"}
@@ -13,14 +21,27 @@ class Table:
         self.latest = None
         self.alarms = []
         self.last_print = None
-        self.t0 = None  # input stamp of the first state received: times are printed relative to it
+        self.t0 = None  # stamp of the first sample (else of the first state): times are relative to it
+        self.t0_is_sample = False
+        self.end_after_idle = rospy.get_param("~end_after_idle", 0.0)  # wall s; 0 = run until shut down
+        self.last_state_wall = None
         rospy.Subscriber(rospy.get_param("~states", "/rocking_monitor/states"), RockingStateArray, self.on_states)
         rospy.Subscriber(rospy.get_param("~alarms", "/rocking_monitor/alarms"), OverturnAlarm, self.on_alarm,
                          queue_size=1000)
+        imu = rospy.get_param("~imu", "/ground/imu")
+        if imu:
+            self.imu_sub = rospy.Subscriber(imu, Imu, self.on_imu, queue_size=10)
         rospy.on_shutdown(self.summary)
+
+    def on_imu(self, msg):
+        if not self.t0_is_sample and not msg.header.stamp.is_zero():
+            self.t0 = msg.header.stamp.to_sec()
+            self.t0_is_sample = True
+            self.imu_sub.unregister()  # only the first sample is needed
 
     def on_states(self, msg):
         self.latest = msg
+        self.last_state_wall = time.monotonic()
         if self.t0 is None and not msg.header.stamp.is_zero():
             self.t0 = msg.header.stamp.to_sec()
         now = rospy.get_time()
@@ -34,8 +55,22 @@ class Table:
     def rel(self, t):
         return t - self.t0 if self.t0 is not None else t
 
+    @staticmethod
+    def utc(t):
+        """ISO 8601 UTC of a stamp, to the millisecond (as the monitor's log lines)."""
+        ms = round(t * 1000.0)
+        when = datetime.datetime(1970, 1, 1) + datetime.timedelta(milliseconds=ms)
+        return when.strftime("%Y-%m-%dT%H:%M:%S.") + "%03dZ" % (ms % 1000)
+
+    def idle(self):
+        """True once states came and then stopped for ~end_after_idle wall-clock seconds."""
+        return (self.end_after_idle > 0.0 and self.last_state_wall is not None and
+                time.monotonic() - self.last_state_wall > self.end_after_idle)
+
     def print_table(self, msg):
-        lines = ["", "t = %.2f s (input time since the first state received)" % self.rel(msg.header.stamp.to_sec()),
+        stamp = msg.header.stamp.to_sec()
+        since = "the first sample" if self.t0_is_sample else "the first state"
+        lines = ["", "t = %.2f s since %s (%s)" % (self.rel(stamp), since, self.utc(stamp)),
                  "%-18s %-15s %8s %9s %8s %7s %s" % ("item", "state", "theta", "|th|/alp", "margin", "impacts", "model")]
         for s in msg.items:
             lines.append("%-18s %-15s %8.4f %9.3f %8.3f %7d %s" % (
@@ -48,8 +83,9 @@ class Table:
             self.print_table(self.latest)
         print("\nAlarm summary (%d alarms):" % len(self.alarms))
         for a in self.alarms:
-            print("  t = %8.3f s  %-15s %-18s predicted by: %s; not by: %s" % (
-                self.rel(a.event_time), LEVELS.get(a.level, "?"), a.item_id, ", ".join(a.predicted_by) or "none",
+            print("  t = %8.3f s  %s  %-15s %-18s predicted by: %s; not by: %s" % (
+                self.rel(a.event_time), self.utc(a.event_time), LEVELS.get(a.level, "?"), a.item_id,
+                ", ".join(a.predicted_by) or "none",
                 ", ".join(a.not_predicted_by) or "none"), flush=True)
         if not self.alarms:
             print("  none: every item stayed within its tipping angle", flush=True)
@@ -57,5 +93,9 @@ class Table:
 
 if __name__ == "__main__":
     rospy.init_node("monitor_table")
-    Table()
-    rospy.spin()
+    table = Table()
+    while not rospy.is_shutdown():
+        if table.idle():
+            rospy.signal_shutdown("no states for %.1f s: the record has ended" % table.end_after_idle)
+            break
+        time.sleep(0.2)  # wall clock: under sim time /clock stops with the bag

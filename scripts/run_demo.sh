@@ -13,4 +13,17 @@ set +u
 source build/devel/setup.bash
 set -u
 export ROS_HOME=${ROS_HOME:-$PWD/build/ros_home}
-exec roslaunch rocking_monitor demo.launch "$@"
+# The monitor and the bag run under roslaunch in the background (their log: build/demo_launch.log);
+# the table runs here and ends by itself 3 s after the last state, so the demo ends with the alarm
+# summary and exit status 0 instead of roslaunch's "REQUIRED process has died" banner.
+log=build/demo_launch.log
+roslaunch rocking_monitor demo.launch table:=false required:=false "$@" >"$log" 2>&1 &
+launch_pid=$!
+stop_launch() { kill -INT "$launch_pid" 2>/dev/null || true; wait "$launch_pid" 2>/dev/null || true; }
+trap stop_launch EXIT
+for _ in $(seq 100); do rostopic list >/dev/null 2>&1 && break; sleep 0.2; done
+python3 scripts/monitor_table.py __name:=monitor_table _end_after_idle:=3.0
+echo
+echo "Monitor log (times since the first sample, and UTC):"
+grep -aoE 'rocking_monitor: (BEYOND_TIPPING|COMMITTED|OVERTURNED): .*' "$log" | sed 's/\x1b\[[0-9;]*m//g; s/^/  /' || true
+echo "(full log: $log)"

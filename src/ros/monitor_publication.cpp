@@ -9,6 +9,8 @@
 #include <tf2_eigen/tf2_eigen.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "rocking_monitor/monitoring/event_clock.hpp"
+
 namespace rocking_monitor::live {
 namespace {
 
@@ -65,11 +67,12 @@ void RockingMonitor::publish_events(Item& it, const core::ItemEvents& ev, const 
       (it.monitor->screening_exceeded(id) ? m.predicted_by : m.not_predicted_by).push_back(core::to_string(id));
     alarms_pub_.publish(m);
     ++alarms_published_;
+    const std::string when = core::event_time_text(a.time, sensors_[it.sensor].first_t);
     if (a.level == ItemMode::Overturned) {
-      ROS_ERROR("rocking_monitor: OVERTURNED: %s (%s) at t = %.3f s", spec.id.c_str(), spec.description.c_str(), a.time);
+      ROS_ERROR("rocking_monitor: OVERTURNED: %s (%s) %s", spec.id.c_str(), spec.description.c_str(), when.c_str());
     } else {
-      ROS_WARN("rocking_monitor: %s: %s (%s) at t = %.3f s", core::to_string(a.level), spec.id.c_str(),
-               spec.description.c_str(), a.time);
+      ROS_WARN("rocking_monitor: %s: %s (%s) %s", core::to_string(a.level), spec.id.c_str(),
+               spec.description.c_str(), when.c_str());
     }
   }
 }
