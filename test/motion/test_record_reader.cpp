@@ -1,4 +1,4 @@
-// Tests of the strong-motion record readers (src/core/record_reader.cpp).
+// Tests of the strong-motion record readers (src/motion/record_reader.cpp and one *_reader.cpp per format).
 //
 //  * RecordReaderAt2/Bbp/Smc/Csv/Detect: small synthetic files written to a temp dir
 //    (known values in -> known SI values out). They run without the records directory.

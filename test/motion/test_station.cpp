@@ -1,5 +1,5 @@
-// Tests of stations (src/core/station.cpp), the sensor-frame mapping (src/core/sensor_frame.cpp) and
-// the synthetic signals (src/core/synthetic_motion.cpp).
+// Tests of stations (src/motion/station_*.cpp), the sensor-frame mapping (src/motion/sensor_frame.cpp) and
+// the synthetic signals (src/motion/synthetic_motion.cpp).
 //
 //  * StationLabels / StationManifestParsing / StationFileNamesSynthetic / StationRotateSynthetic /
 //    StationSensorFrame / SyntheticMotion: small synthetic inputs, always run.
