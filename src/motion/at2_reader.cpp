@@ -6,14 +6,7 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
-#include <charconv>
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <string_view>
-#include <system_error>
 #include <utility>
 
 namespace rocking_monitor::core::record_io {

@@ -2,16 +2,7 @@
 // with the station; the first horizontal is N-S.
 #include "record_reader_internal.hpp"
 
-#include <algorithm>
-#include <cctype>
-#include <cerrno>
-#include <charconv>
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <string_view>
-#include <system_error>
 #include <utility>
 
 namespace rocking_monitor::core::record_io {

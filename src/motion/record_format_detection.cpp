@@ -2,17 +2,8 @@
 // unknown format is an error naming the file.
 #include "record_reader_internal.hpp"
 
-#include <algorithm>
 #include <cctype>
-#include <cerrno>
-#include <charconv>
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <string_view>
-#include <system_error>
-#include <utility>
 
 namespace rocking_monitor::core::record_io {
 

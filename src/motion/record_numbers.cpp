@@ -2,23 +2,15 @@
 // ("1.2.3", "0x10", "12abc"), FORTRAN "D" exponents are accepted, non-finite values are refused.
 #include "record_reader_internal.hpp"
 
-#include <algorithm>
-#include <cctype>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <string_view>
 #include <system_error>
-#include <utility>
 
 namespace rocking_monitor::core::record_io {
 
 // ------------------------------------------------------------------ numbers
-
-
 
 bool is_nonfinite_word(std::string_view t) {
   if (!t.empty() && (t[0] == '+' || t[0] == '-')) t.remove_prefix(1);

@@ -5,13 +5,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
-#include <charconv>
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <string_view>
-#include <system_error>
 #include <utility>
 
 namespace rocking_monitor::core::record_io {
@@ -93,8 +89,6 @@ std::string read_file_head(const std::string& path, std::size_t max_bytes, bool*
   *whole = got < max_bytes;
   return data;
 }
-
-
 
 /// Splits on LF, CRLF or a lone CR. A leading UTF-8 BOM is skipped.
 std::vector<Line> split_lines(std::string_view data) {

@@ -3,22 +3,12 @@
 #include "record_reader_internal.hpp"
 
 #include <algorithm>
-#include <cctype>
-#include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <string_view>
-#include <system_error>
-#include <utility>
 
 namespace rocking_monitor::core::record_io {
 
 // ------------------------------------------------------------------ time columns
-
-
 
 /// Checks that the time column is uniform and returns dt.
 ///

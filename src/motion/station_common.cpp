@@ -3,15 +3,12 @@
 // too many components and mismatched labels are errors).
 #include "rocking_monitor/motion/station.hpp"
 
-#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <map>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <system_error>
@@ -92,7 +89,6 @@ double azimuth_difference(double a, double b) {
   const double d = normalise_azimuth(a - b);
   return d > 180.0 ? 360.0 - d : d;
 }
-
 
 std::string read_text_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

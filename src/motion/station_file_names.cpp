@@ -3,16 +3,9 @@
 #include "rocking_monitor/motion/station.hpp"
 
 #include <algorithm>
-#include <cctype>
-#include <charconv>
-#include <cmath>
-#include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <regex>
-#include <set>
-#include <sstream>
 #include <system_error>
 #include <utility>
 

@@ -2,19 +2,10 @@
 // and the slugs that make station ids.
 #include "rocking_monitor/motion/station.hpp"
 
-#include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <map>
-#include <regex>
-#include <set>
-#include <sstream>
-#include <system_error>
-#include <utility>
 
 #include "rocking_monitor/constants.hpp"
 

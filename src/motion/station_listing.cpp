@@ -2,17 +2,7 @@
 // explicit files; finding one station by id, name, file name or a unique part of it.
 #include "rocking_monitor/motion/station.hpp"
 
-#include <algorithm>
-#include <cctype>
-#include <charconv>
-#include <cmath>
-#include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <map>
-#include <regex>
-#include <set>
-#include <sstream>
 #include <system_error>
 #include <utility>
 

@@ -2,18 +2,10 @@
 // labels), and ordering the horizontals right-handed with their azimuths.
 #include "rocking_monitor/motion/station.hpp"
 
-#include <algorithm>
-#include <cctype>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <regex>
-#include <set>
-#include <sstream>
-#include <system_error>
 #include <utility>
 
 #include "rocking_monitor/constants.hpp"

@@ -2,18 +2,8 @@
 // component file, its event, station, component label and optional dt/npts checks.
 #include "rocking_monitor/motion/station.hpp"
 
-#include <algorithm>
-#include <cctype>
-#include <charconv>
-#include <cmath>
-#include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <regex>
-#include <set>
-#include <sstream>
-#include <system_error>
 #include <utility>
 
 #include "rocking_monitor/constants.hpp"

@@ -17,11 +17,7 @@ namespace rocking_monitor::tools {
 inline std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv, const std::string& program) {
   try {
     app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
+  } catch (const CLI::Success& e) {  // --help, --help-all, --version: CLI11 prints them
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // CLI11 checks required options before unknown ones; a mistyped flag is the better first

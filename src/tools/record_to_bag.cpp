@@ -151,11 +151,8 @@ int all_mode(const rec::SourceSpec& base, const std::string& out_dir, std::size_
       bytes += st.bytes;
       std::string notes;
       for (const std::string& n : m.notes) notes += (notes.empty() ? "" : " | ") + n;
-      char rate[32], duration[32];
-      std::snprintf(rate, sizeof rate, "%.6g", 1.0 / m.dt);
-      std::snprintf(duration, sizeof duration, "%.6g", m.duration());
       index_row.text(bag_name).text(s.id).text(s.event).text(s.station).value(std::to_string(m.size()));
-      index_row.value(rate).value(duration);
+      index_row.number("%.6g", 1.0 / m.dt).number("%.6g", m.duration());
       index_row.value(m.x_azimuth_deg ? core::format_azimuth_label(*m.x_azimuth_deg) : std::string());
       index_row.text(m.source[0]).text(m.source[1]).text(m.source[2]).text(notes);
       index_row.end_row();

@@ -37,22 +37,15 @@ const rm::Component& first_horizontal(const std::vector<rm::Component>& comps) {
   return comps.front();
 }
 
-/// One number as a CSV field, printf-formatted.
-std::string number(const char* format, double value) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, format, value);
-  return buf;
-}
-
 void write_history(const std::string& path, const rm::SimulationResult& r) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path + ": cannot open for writing");
   out << "time_s,ax_mps2,ay_mps2,mode,pivot,theta_rad,omega_radps,rotation_ratio,energy_margin\n";
   rm::csv::Writer row(out);
   for (const auto& h : r.history) {
-    row.value(number("%.6f", h.t)).value(number("%.9g", h.ax)).value(number("%.9g", h.ay));
-    row.text(rm::to_string(h.mode)).value(std::to_string(h.side)).value(number("%.12g", h.theta));
-    row.value(number("%.12g", h.omega)).value(number("%.9g", h.rotation_ratio)).value(number("%.9g", h.margin));
+    row.number("%.6f", h.t).number("%.9g", h.ax).number("%.9g", h.ay);
+    row.text(rm::to_string(h.mode)).value(std::to_string(h.side)).number("%.12g", h.theta);
+    row.number("%.12g", h.omega).number("%.9g", h.rotation_ratio).number("%.9g", h.margin);
     row.end_row();
   }
   if (!out) throw std::runtime_error(path + ": write failed");
@@ -103,10 +96,10 @@ FidelityRun run_fidelity(const rm::Body& body, const rm::AdaptiveSettings& setti
   rm::csv::Writer writer(hist);
   auto row = [&](std::size_t i) {
     if (!hist.is_open()) return;
-    writer.value(number("%.6f", model.time())).value(number("%.9g", motion.horizontal[i]));
-    writer.value(number("%.9g", ay(i))).text(rm::to_string(model.active())).text(model.mode_name());
-    writer.value(std::to_string(model.side())).value(number("%.12g", model.theta()));
-    writer.value(number("%.12g", model.omega())).value(number("%.12g", model.slip()));
+    writer.number("%.6f", model.time()).number("%.9g", motion.horizontal[i]);
+    writer.number("%.9g", ay(i)).text(rm::to_string(model.active())).text(model.mode_name());
+    writer.value(std::to_string(model.side())).number("%.12g", model.theta());
+    writer.number("%.12g", model.omega()).number("%.12g", model.slip());
     writer.end_row();
   };
   const std::clock_t start = std::clock();  // CPU time, as simulate()

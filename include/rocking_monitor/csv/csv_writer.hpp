@@ -21,6 +21,8 @@ class Writer {
   Writer& text(std::string_view field);
   /// A field written as is: a formatted number, a code, or an empty field.
   Writer& value(std::string_view field);
+  /// A number formatted with a printf format for one double ("%.9g"); written in place.
+  Writer& number(const char* format, double field);
   /// Ends the row: writes it and starts the next.
   void end_row();
 
