@@ -16,7 +16,7 @@ for n in "${counts[@]}"; do
   cat=$(mktemp --suffix=.yaml)
   /usr/bin/python3 scripts/make_catalogue.py "$n" "$cat"
   log=$(mktemp)
-  roslaunch rocking_monitor replay.launch bag:="$bag" catalogue:="$cat" required:=true start_delay:=3 threads:="${THREADS:-1}" fidelity:="${FIDELITY:-rocking}" \
+  roslaunch rocking_monitor replay.launch bag:="$bag" catalogue:="$cat" required:=true start_delay:=3 threads:="${THREADS:-1}" fidelity:="${FIDELITY:-adaptive}" \
     > "$log" 2>&1 &
   pid=$!
   diag=""

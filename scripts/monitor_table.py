@@ -2,7 +2,8 @@
 """Prints a live per-item table of rocking_monitor states and, at shutdown, the alarm summary.
 
 Times are seconds since the first sample of the sensor (~imu; without it, since the first state
-received) with the UTC wall time of the stamp, as in the monitor's own log lines. With ~end_after_idle > 0 the table ends by itself (exit status 0) once states have stopped
+received; alarms carry the monitor's own count) with the UTC wall time of the stamp, as in the
+monitor's own log lines. Each item shows its worse rocking plane ("y/2": plane y of two). With ~end_after_idle > 0 the table ends by itself (exit status 0) once states have stopped
 coming for that many wall-clock seconds: the end of a replayed record (scripts/run_demo.sh)."""
 import datetime
 import time
@@ -71,11 +72,15 @@ class Table:
         stamp = msg.header.stamp.to_sec()
         since = "the first sample" if self.t0_is_sample else "the first state"
         lines = ["", "t = %.2f s since %s (%s)" % (self.rel(stamp), since, self.utc(stamp)),
-                 "%-18s %-15s %8s %9s %8s %7s %s" % ("item", "state", "theta", "|th|/alp", "margin", "impacts", "model")]
+                 "%-18s %-15s %-5s %8s %9s %8s %7s %8s %s" % (
+                     "item", "state", "plane", "theta", "|th|/alp", "margin", "impacts", "slip_mm", "model")]
         for s in msg.items:
-            lines.append("%-18s %-15s %8.4f %9.3f %8.3f %7d %s" % (
-                s.id, MODES.get(s.mode, "?"), s.theta, s.rotation_ratio, s.energy_margin, s.impacts,
-                "ok" if s.model_valid else "violated (%d)" % s.violations))
+            # The item's fields are those of its worse plane; "x/2" = plane x of an item with two planes.
+            plane = "%s/%d" % (s.plane or "x", s.plane_count or 1)
+            model = s.model if s.model_valid else "%s, violated (%d)" % (s.model, s.violations)
+            lines.append("%-18s %-15s %-5s %8.4f %9.3f %8.3f %7d %8.1f %s" % (
+                s.id, MODES.get(s.mode, "?"), plane, s.theta, s.rotation_ratio, s.energy_margin, s.impacts,
+                1000.0 * s.slip, model))
         print("\n".join(lines), flush=True)
 
     def summary(self):
@@ -83,8 +88,8 @@ class Table:
             self.print_table(self.latest)
         print("\nAlarm summary (%d alarms):" % len(self.alarms))
         for a in self.alarms:
-            print("  t = %8.3f s  %s  %-15s %-18s predicted by: %s; not by: %s" % (
-                self.rel(a.event_time), self.utc(a.event_time), LEVELS.get(a.level, "?"), a.item_id,
+            print("  t = %8.3f s  %s  %-15s %-18s plane %s  predicted by: %s; not by: %s" % (
+                a.time_since_first_sample, self.utc(a.event_time), LEVELS.get(a.level, "?"), a.item_id, a.plane,
                 ", ".join(a.predicted_by) or "none",
                 ", ".join(a.not_predicted_by) or "none"), flush=True)
         if not self.alarms:

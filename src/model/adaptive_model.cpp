@@ -284,6 +284,9 @@ void AdaptiveModel::contact_step(double ax, double ay, double dt) {
 
 SwitchReason AdaptiveModel::check_rocking(const RockingModel& rock, const StepReport& r) const {
   if (rock.mode() == Mode::Overturned && !r.overturned) return SwitchReason::None;
+  // No friction given: the body is the paper's pure-rocking body, unchanged (a free-flight onset
+  // stays a flagged violation, as under Fidelity::Rocking).
+  if (std::isinf(body_.mu_s())) return SwitchReason::None;
   const std::uint8_t v = static_cast<std::uint8_t>(r.violation_onsets | rock.violations());
   auto has = [v](Criterion c) { return (v >> static_cast<int>(c)) & 1u; };
   if (has(Criterion::FreeFlight)) return SwitchReason::FreeFlight;

@@ -1,265 +1,82 @@
 #include "rocking_monitor/monitoring/item_monitor.hpp"
 
-#include <array>
-#include <cmath>
-#include <utility>
 #include <stdexcept>
 
 namespace rocking_monitor::core {
 namespace {
-
-constexpr std::uint8_t bit(Criterion c) { return static_cast<std::uint8_t>(1u << static_cast<int>(c)); }
 
 const ItemSpec& checked(const ItemSpec& spec) {
   if (const std::string e = validate(spec); !e.empty()) throw std::invalid_argument(e);
   return spec;
 }
 
+int level_index(ItemMode m) { return static_cast<int>(m) - static_cast<int>(ItemMode::BeyondTipping); }
+
 }  // namespace
 
-std::string validate(const ItemSpec& spec) {
-  if (spec.id.empty()) return "item without an 'id'";
-  const std::string who = "item '" + spec.id + "': ";
-  if (spec.sensor.empty()) return who + "sensor: missing (name of the sensor that feeds the item)";
-  if (spec.frame.empty()) return who + "frame: missing (tf frame of the item)";
-  std::string body = validate(spec.body);
-  if (!body.empty()) {
-    const std::string prefix = "invalid body: ";
-    if (body.rfind(prefix, 0) == 0) body = body.substr(prefix.size());
-    return who + body;
-  }
-  try {
-    Body b(spec.body);
-  } catch (const std::exception& e) {
-    return who + e.what();
-  }
-  return {};
+ItemMonitor::ItemMonitor(const ItemSpec& spec, const Options& options) : spec_(checked(spec)) {
+  planes_[0] = std::make_unique<PlaneMonitor>(spec_.body, options);
+  if (spec_.two_planes()) planes_[1] = std::make_unique<PlaneMonitor>(y_plane_body(spec_.body, spec_.depth), options);
 }
 
-const char* to_string(ItemMode mode) {
-  switch (mode) {
-    case ItemMode::Rest: return "REST";
-    case ItemMode::Rocking: return "ROCKING";
-    case ItemMode::BeyondTipping: return "BEYOND_TIPPING";
-    case ItemMode::Committed: return "COMMITTED";
-    case ItemMode::Overturned: return "OVERTURNED";
-  }
-  return "UNKNOWN";
-}
-
-const char* to_string(CriterionId id) {
-  switch (id) {
-    case CriterionId::Housner: return "housner";
-    case CriterionId::Ishiyama: return "ishiyama";
-    case CriterionId::IshiyamaEquivalent: return "ishiyama_equivalent";
-    case CriterionId::Proposed: return "proposed";
-    case CriterionId::FreeFlight: return "free_flight";
-    case CriterionId::SlideFromRest: return "slide_from_rest";
-    case CriterionId::SlideAtUplift: return "slide_at_uplift";
-    case CriterionId::SlideWhileRocking: return "slide_while_rocking";
-  }
-  return "unknown";
-}
-
-ItemMonitor::ItemMonitor(const ItemSpec& spec, const Options& options)
-    : spec_(checked(spec)),
-      options_(options),
-      model_(Body(spec.body), options.solver),
-      thresholds_(screening_thresholds(model_.body())) {
-  if (options.fidelity != Fidelity::Rocking) {
-    AdaptiveSettings a;
-    a.fidelity = options.fidelity;
-    a.rocking = options.solver;
-    a.scene = options.scene;
-    a.linearized_max_alpha = options.linearized_max_alpha;
-    adaptive_ = std::make_unique<AdaptiveModel>(model_.body(), a);
-  }
-}
-
-void ItemMonitor::start(double t, double ax, double ay, double dt_nominal) {
-  model_.reset(t, ax, ay);
-  if (adaptive_) adaptive_->reset(t, ax, ay);
-  StreamingIntensityConfig cfg;
-  cfg.dt = dt_nominal;
-  cfg.periods = {housner_period(model_.body())};
-  cfg.velocity_highpass_hz = std::min(options_.velocity_highpass_hz, 0.4 / dt_nominal);
-  intensity_ = std::make_unique<StreamingIntensity>(cfg);
-  intensity_->push(ax);
-  exceeded_.fill(false);
-  slid_at_uplift_ = false;
+void ItemMonitor::start(double t, double ax, double ay, double az, double dt_nominal) {
+  planes_[0]->start(t, ax, az, dt_nominal);
+  if (planes_[1]) planes_[1]->start(t, ay, az, dt_nominal);
+  alarmed_.fill(false);
   events_ = ItemEvents{};
   started_ = true;
 }
 
-std::uint8_t ItemMonitor::violations() const {
-  if (adaptive_) return 0;  // sliding and flight are modelled, not flagged
-  std::uint8_t v = model_.violations();
-  if (slid_at_uplift_) v |= bit(Criterion::SlideAtUplift);
-  return v;
+const ItemEvents& ItemMonitor::step(double ax, double ay, double az, double dt) {
+  events_.change_count = 0;
+  events_.alarm_count = 0;
+  const PlaneEvents* ev[kPlaneCount] = {&planes_[0]->step(ax, az, dt), nullptr};
+  if (planes_[1]) ev[1] = &planes_[1]->step(ay, az, dt);
+  for (int p = 0; p < kPlaneCount; ++p) {
+    if (ev[p] == nullptr) continue;
+    for (int i = 0; i < ev[p]->change_count; ++i) {
+      CriterionChange& c = events_.changes[events_.change_count++];
+      c = ev[p]->changes[i];
+      c.plane = static_cast<Plane>(p);
+    }
+  }
+  // Item-level alarms: each level once, from the plane that reached it first in this sample (tie: x).
+  for (ItemMode level : {ItemMode::BeyondTipping, ItemMode::Committed, ItemMode::Overturned}) {
+    const int l = level_index(level);
+    if (alarmed_[l]) continue;
+    const AlarmEvent* first = nullptr;
+    Plane first_plane = Plane::X;
+    for (int p = 0; p < kPlaneCount; ++p) {
+      if (ev[p] == nullptr) continue;
+      for (int i = 0; i < ev[p]->alarm_count; ++i) {
+        const AlarmEvent& a = ev[p]->alarms[i];
+        if (a.level == level && (first == nullptr || a.time < first->time)) {
+          first = &a;
+          first_plane = static_cast<Plane>(p);
+        }
+      }
+    }
+    if (first == nullptr) continue;
+    alarmed_[l] = true;
+    AlarmEvent& out = events_.alarms[events_.alarm_count++];
+    out = *first;
+    out.plane = first_plane;
+  }
+  return events_;
 }
 
 ItemMode ItemMonitor::mode() const {
-  if (adaptive_) {
-    if (adaptive_->outcome().overturned) return ItemMode::Overturned;
-    if (side() == 0) return ItemMode::Rest;  // at rest or sliding on both corners
-  } else {
-    switch (model_.mode()) {
-      case Mode::Rest: return ItemMode::Rest;
-      case Mode::Overturned: return ItemMode::Overturned;
-      case Mode::Rocking: break;
-    }
-  }
-  if (margin().committed) return ItemMode::Committed;
-  if (rotation_ratio() > 1.0) return ItemMode::BeyondTipping;
-  return ItemMode::Rocking;
+  const ItemMode x = planes_[0]->mode();
+  if (!planes_[1]) return x;
+  const ItemMode y = planes_[1]->mode();
+  return y > x ? y : x;
 }
 
-int ItemMonitor::side() const { return adaptive_ ? adaptive_->side() : model_.side(); }
-double ItemMonitor::theta() const { return adaptive_ ? adaptive_->theta() : model_.theta(); }
-double ItemMonitor::omega() const { return adaptive_ ? adaptive_->omega() : model_.omega(); }
-double ItemMonitor::slip() const { return adaptive_ ? adaptive_->slip() : 0.0; }
-long ItemMonitor::impacts() const { return adaptive_ ? adaptive_->outcome().impacts : model_.outcome().impacts; }
-const char* ItemMonitor::active_model() const {
-  if (!adaptive_) return "rocking";
-  if (adaptive_->active() == ActiveModel::Contact) return "contact";
-  return adaptive_->linearized() ? "rocking_linearized" : "rocking";
-}
-
-double ItemMonitor::rotation_ratio() const {
-  const int s = side();
-  return s == 0 ? 0.0 : std::abs(theta()) / model_.body().pivot(s).alpha;
-}
-
-OverturnMargin ItemMonitor::margin() const {
-  if (!adaptive_) return model_.margin();
-  if (adaptive_->outcome().overturned) return {-1.0, true};
-  const int s = side();
-  if (s == 0) return {1.0, false};
-  return overturn_margin(model_.body().pivot(s), s, ModelKind::Nonlinear, theta(), omega());
-}
-
-ContactMode ItemMonitor::contact_mode() const {
-  if (adaptive_) return adaptive_->mode();
-  switch (model_.mode()) {
-    case Mode::Rest: return ContactMode::Rest;
-    case Mode::Rocking: return ContactMode::Rock;
-    case Mode::Overturned: return ContactMode::Overturned;
-  }
-  return ContactMode::Rest;
-}
-
-void ItemMonitor::record_change(CriterionId id, bool exceeded, double value, double threshold,
-                                double second_value, double second_threshold) {
-  exceeded_[static_cast<int>(id)] = exceeded;
-  CriterionChange& c = events_.changes[events_.change_count++];
-  c.id = id;
-  c.exceeded = exceeded;
-  c.value = value;
-  c.threshold = threshold;
-  c.second_value = second_value;
-  c.second_threshold = second_threshold;
-}
-
-void ItemMonitor::evaluate_criteria(double ax, double ay) {
-  // Screening criteria on the running intensity (monotone: once exceeded they stay so).
-  const double pga = intensity_->pga(), pgv = intensity_->pgv(), sv = intensity_->psv()[0];
-  const ScreeningPrediction p = screening_prediction(thresholds_, pga, pgv, sv);
-  auto screen = [&](CriterionId id, bool now, const IshiyamaThreshold* t) {
-    if (now == exceeded_[static_cast<int>(id)]) return;
-    if (t == nullptr) record_change(id, now, sv, thresholds_.housner_pseudo_velocity);
-    else record_change(id, now, pgv, t->velocity, pga, t->acceleration);
-  };
-  screen(CriterionId::Housner, p.housner, nullptr);
-  screen(CriterionId::Ishiyama, p.ishiyama, &thresholds_.ishiyama);
-  screen(CriterionId::IshiyamaEquivalent, p.ishiyama_equivalent, &thresholds_.ishiyama_equivalent);
-  screen(CriterionId::Proposed, p.proposed, &thresholds_.proposed);
-
-  if (adaptive_) return;  // validity criteria are reported as model switches (report_switch)
-  // Model validity: the model's bitmask at the end of the sample. The values reported with a change
-  // need the contact reaction; compute it only when some validity criterion changed state.
-  const std::uint8_t v = violations();
-  constexpr std::array<std::pair<CriterionId, Criterion>, 4> kValidity = {{
-      {CriterionId::FreeFlight, Criterion::FreeFlight},
-      {CriterionId::SlideFromRest, Criterion::SlideFromRest},
-      {CriterionId::SlideAtUplift, Criterion::SlideAtUplift},
-      {CriterionId::SlideWhileRocking, Criterion::SlideWhileRocking},
-  }};
-  bool changed = false;
-  for (const auto& [id, c] : kValidity) changed |= ((v & bit(c)) != 0) != exceeded_[static_cast<int>(id)];
-  if (!changed) return;
-  const Body& body = model_.body();
-  const double mu = body.mu_s();
-  double normal = ay + kGravity, ratio = std::abs(ax) / std::max(normal, 1e-12);
-  double required_mu = 0.0;
-  if (model_.mode() == Mode::Rocking) {
-    const Pivot& pv = body.pivot(model_.side());
-    const ContactReaction r = model_.reaction();  // at this sample: (ax, ay) are its inputs
-    normal = r.ry;
-    ratio = std::abs(r.rx) / std::max(r.ry, 1e-12);
-    required_mu = rock_without_slip_friction(body, pv, std::abs(ax) / std::max(ay + kGravity, 1e-12));
-  }
-  for (const auto& [id, c] : kValidity) {
-    const bool now = (v & bit(c)) != 0;
-    if (now == exceeded_[static_cast<int>(id)]) continue;
-    switch (id) {
-      case CriterionId::FreeFlight: record_change(id, now, -normal, 0.0); break;
-      case CriterionId::SlideAtUplift: record_change(id, now, required_mu, mu); break;
-      default: record_change(id, now, ratio, mu); break;
-    }
-  }
-}
-
-// With adaptive fidelity the validity criteria are why the contact model runs: a switch up is reported
-// as the criterion that caused it becoming exceeded, the switch down as it clearing.
-void ItemMonitor::report_switch(SwitchReason reason, bool to_contact) {
-  CriterionId id;
-  switch (reason) {
-    case SwitchReason::SlideFromRest: id = CriterionId::SlideFromRest; break;
-    case SwitchReason::SlideAtUplift: id = CriterionId::SlideAtUplift; break;
-    case SwitchReason::FreeFlight:
-    case SwitchReason::NearLiftOff: id = CriterionId::FreeFlight; break;
-    case SwitchReason::SlideWhileRocking:
-    case SwitchReason::SlipAtImpact:
-    case SwitchReason::FrictionNearLimit: id = CriterionId::SlideWhileRocking; break;
-    default: id = last_switch_criterion_; break;  // switch down: clear what switched up
-  }
-  if (to_contact) last_switch_criterion_ = id;
-  if (exceeded_[static_cast<int>(id)] == to_contact) return;
-  record_change(id, to_contact, 0.0, model_.body().mu_s());
-}
-
-const ItemEvents& ItemMonitor::step(double ax, double ay, double dt) {
-  events_.change_count = 0;
-  events_.alarm_count = 0;
-  auto alarm = [&](ItemMode level, double time) {
-    AlarmEvent& a = events_.alarms[events_.alarm_count++];
-    a.level = level;
-    a.time = time;
-    a.rotation_ratio = rotation_ratio();
-  };
-  if (adaptive_) {
-    const AdaptiveOutcome& o = adaptive_->outcome();
-    const bool tipped = o.beyond_tipping, committed = o.committed, overturned = o.overturned;
-    const AdaptiveReport& rep = adaptive_->step(ax, ay, dt);
-    intensity_->push(ax);
-    evaluate_criteria(ax, ay);
-    if (rep.switched) report_switch(rep.reason, adaptive_->active() == ActiveModel::Contact);
-    if (!tipped && o.beyond_tipping) alarm(ItemMode::BeyondTipping, o.beyond_tipping_time);
-    if (!committed && o.committed) alarm(ItemMode::Committed, o.committed_time);
-    if (!overturned && o.overturned) alarm(ItemMode::Overturned, o.overturn_time);
-    return events_;
-  }
-  const StepReport& r = model_.step(ax, ay, dt);
-  intensity_->push(ax);
-  if (r.violation_onsets & bit(Criterion::SlideAtUplift)) slid_at_uplift_ = true;
-  if (model_.mode() == Mode::Rest) slid_at_uplift_ = false;
-  evaluate_criteria(ax, ay);
-
-  const RockingOutcome& o = model_.outcome();
-  if (r.beyond_tipping_entered) alarm(ItemMode::BeyondTipping, o.beyond_tipping_time);
-  if (r.committed_entered) alarm(ItemMode::Committed, o.committed_time);
-  if (r.overturned) alarm(ItemMode::Overturned, o.overturn_time);
-  return events_;
+Plane ItemMonitor::worst_plane() const {
+  if (!planes_[1]) return Plane::X;
+  const ItemMode x = planes_[0]->mode(), y = planes_[1]->mode();
+  if (y != x) return y > x ? Plane::Y : Plane::X;
+  return planes_[1]->rotation_ratio() > planes_[0]->rotation_ratio() ? Plane::Y : Plane::X;
 }
 
 }  // namespace rocking_monitor::core

@@ -111,8 +111,9 @@ Catalogue parse_catalogue(const XmlRpcValue& sensors, const XmlRpcValue& items) 
   for (int i = 0; i < items.size(); ++i) {
     const XmlRpcValue& v = const_cast<XmlRpcValue&>(items)[i];
     const Entry e(v, label("items", i, name_of(v, "id")));
-    e.only({"id", "description", "sensor", "frame", "shape", "width", "cg_height", "eccentricity",
-            "radius_of_gyration", "mu_s", "mu_k", "restitution", "overturn_angle", "pose"});
+    e.only({"id", "description", "sensor", "frame", "shape", "width", "depth", "cg_height", "eccentricity",
+            "eccentricity_y", "radius_of_gyration", "radius_of_gyration_y", "mu_s", "mu_k", "restitution",
+            "overturn_angle", "pose"});
     CatalogueItem item;
     core::ItemSpec& s = item.spec;
     s.id = e.text("id", true);
@@ -126,13 +127,24 @@ Catalogue parse_catalogue(const XmlRpcValue& sensors, const XmlRpcValue& items) 
     b.cg_height = e.number("cg_height", true, 0.0, "height h of the centre of mass, m");
     b.nu1 = e.number("eccentricity", false, 0.5, "nu1, dimensionless");
     const std::string shape = e.text("shape", false, "box");
+    core::DepthParameters& d = s.depth;
+    if (e.has("depth")) {
+      d.depth = e.number("depth", true, 0.0, "base depth D along the item's y, m");
+      d.eccentricity_y = e.number("eccentricity_y", false, 0.5, "nu1 of the y-z plane, dimensionless");
+      if (e.has("radius_of_gyration_y")) d.radius_of_gyration_y = e.number("radius_of_gyration_y", false, 0.0, "m");
+    } else {
+      for (const char* key : {"eccentricity_y", "radius_of_gyration_y"})
+        if (e.has(key)) e.fail(key, "needs depth (the base along the item's y): without it the item rocks in x only");
+    }
+    // Solid cylinder of diameter B and height 2h rocking about a horizontal diameter.
+    auto cylinder = [&](double diameter) { return std::sqrt(diameter * diameter / 16.0 + b.cg_height * b.cg_height / 3.0); };
     if (e.has("radius_of_gyration")) {
       b.radius_of_gyration = e.number("radius_of_gyration", false, 0.0, "m");
     } else if (shape == "box") {
-      // homogeneous rectangle B x 2h: the core's default
+      // homogeneous block B x D x 2h: the core's default in both planes
     } else if (shape == "cylinder") {
-      // Solid cylinder of diameter B and height 2h rocking about a horizontal diameter.
-      b.radius_of_gyration = std::sqrt(b.width * b.width / 16.0 + b.cg_height * b.cg_height / 3.0);
+      b.radius_of_gyration = cylinder(b.width);
+      if (d.given() && !e.has("radius_of_gyration_y") && std::isfinite(d.depth)) d.radius_of_gyration_y = cylinder(d.depth);
     } else {
       e.fail("shape", "'" + shape + "' is not one of: box, cylinder (or give radius_of_gyration)");
     }

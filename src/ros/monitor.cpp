@@ -47,7 +47,7 @@ RockingMonitor::RockingMonitor(::ros::NodeHandle nh, ::ros::NodeHandle pnh) : nh
 RockingMonitor::~RockingMonitor() = default;
 
 bool RockingMonitor::load_parameters() {
-  std::string method = "dopri5", model = "nonlinear", baseline = "tracked", fidelity = "rocking";
+  std::string method = "dopri5", model = "nonlinear", baseline = "tracked", fidelity = "adaptive";
   int substeps = options_.solver.substeps;
   bool ok = param(pnh_, "method", method, "string") && param(pnh_, "model", model, "string") &&
             param(pnh_, "tol", options_.solver.tol, "number") && param(pnh_, "substeps", substeps, "integer") &&
@@ -231,6 +231,15 @@ bool RockingMonitor::init() {
            items_.size(), sensors_.size(), core::to_string(options_.solver.method),
            core::to_string(options_.solver.model), options_.solver.tol, options_.solver.substeps,
            core::to_string(options_.fidelity));
+  std::size_t single = 0;
+  std::string names;
+  for (const Item& it : items_) {
+    if (it.monitor->two_planes()) continue;
+    if (++single <= 10) names += (names.empty() ? "'" : ", '") + it.entry.spec.id + "'";
+  }
+  if (single > 0)
+    ROS_INFO("rocking_monitor: %zu of %zu items have no depth in the catalogue and rock in their x-z plane only "
+             "(give depth to add the y-z plane): %s%s", single, items_.size(), names.c_str(), single > 10 ? ", ..." : "");
   log_initial_models();
   return true;
 }
@@ -241,17 +250,24 @@ void RockingMonitor::log_initial_models() const {
   if (options_.fidelity != core::Fidelity::Adaptive) return;
   std::map<std::string, int> per_reason;
   for (const Item& it : items_) {
-    const core::AdaptiveModel& a = *it.monitor->adaptive();
-    const double need = a.sliding_bound().required_mu();
-    if (items_.size() <= 50) {
-      ROS_INFO("rocking_monitor: item '%s' starts on the rocking model: %s (mu_s %g; friction the scene can "
-               "demand: %s)",
-               it.entry.spec.id.c_str(), core::to_string(a.initial_reason()), a.body().mu_s(),
-               std::isinf(need) ? "unbounded" : std::to_string(need).c_str());
+    for (int p = 0; p < it.monitor->plane_count(); ++p) {
+      const core::Plane plane = static_cast<core::Plane>(p);
+      if (it.monitor->plane(plane).adaptive() == nullptr) {  // no mu_s: pure rocking
+        ++per_reason["pure rocking: no mu_s in the catalogue (sliding not checked, flight flagged)"];
+        continue;
+      }
+      const core::AdaptiveModel& a = *it.monitor->plane(plane).adaptive();
+      const double need = a.sliding_bound().required_mu();
+      if (items_.size() <= 50) {
+        ROS_INFO("rocking_monitor: item '%s' plane %s starts on the rocking model: %s (mu_s %g; friction the scene "
+                 "can demand: %s)",
+                 it.entry.spec.id.c_str(), core::to_string(plane), core::to_string(a.initial_reason()),
+                 a.body().mu_s(), std::isinf(need) ? "unbounded" : std::to_string(need).c_str());
+      }
+      ++per_reason[core::to_string(a.initial_reason())];
     }
-    ++per_reason[core::to_string(a.initial_reason())];
   }
-  for (const auto& [reason, n] : per_reason) ROS_INFO("rocking_monitor: %d items: %s", n, reason.c_str());
+  for (const auto& [reason, n] : per_reason) ROS_INFO("rocking_monitor: %d item planes: %s", n, reason.c_str());
 }
 
 void RockingMonitor::reset_all(const std::string& why) {

@@ -56,7 +56,8 @@ void RockingMonitor::catalogue_diagnostics(diagnostic_updater::DiagnosticStatusW
     skipped += it.samples_without_transform;
     ++counts[static_cast<int>(it.monitor->mode())];
     if (!it.has_rotation) ++without_tf;
-    if (it.monitor->violations() != 0) ++invalid;
+    for (int p = 0; p < it.monitor->plane_count(); ++p)
+      if (it.monitor->plane(static_cast<core::Plane>(p)).violations() != 0) { ++invalid; break; }
   }
   if (without_tf > 0) st.summary(diagnostic_msgs::DiagnosticStatus::WARN, std::to_string(without_tf) + " items without transform");
   else if (counts[4] > 0) st.summary(diagnostic_msgs::DiagnosticStatus::WARN, std::to_string(counts[4]) + " items overturned");
@@ -70,17 +71,23 @@ void RockingMonitor::catalogue_diagnostics(diagnostic_updater::DiagnosticStatusW
   st.add("method", core::to_string(options_.solver.method));
   st.add("fidelity", core::to_string(options_.fidelity));
   int on_contact = 0;
-  for (const Item& it : items_) on_contact += std::string(it.monitor->active_model()) == "contact";
-  st.add("items on the contact model now", on_contact);
+  for (const Item& it : items_)
+    for (int p = 0; p < it.monitor->plane_count(); ++p)
+      on_contact += std::string(it.monitor->plane(static_cast<core::Plane>(p)).active_model()) == "contact";
+  st.add("item planes on the contact model now", on_contact);
   if (options_.fidelity == core::Fidelity::Adaptive) {
     int ruled_out = 0;
     long outside = 0;
     for (const Item& it : items_) {
-      const core::AdaptiveModel& a = *it.monitor->adaptive();
-      ruled_out += a.initial_reason() == core::SwitchReason::SceneRulesOutContact;
-      outside = std::max(outside, a.outcome().samples_outside_scene);
+      for (int p = 0; p < it.monitor->plane_count(); ++p) {
+        const core::AdaptiveModel* pa = it.monitor->plane(static_cast<core::Plane>(p)).adaptive();
+        if (pa == nullptr) continue;  // no mu_s: pure rocking
+        const core::AdaptiveModel& a = *pa;
+        ruled_out += a.initial_reason() == core::SwitchReason::SceneRulesOutContact;
+        outside = std::max(outside, a.outcome().samples_outside_scene);
+      }
     }
-    st.add("items whose friction rules out the contact model in the scene envelope", ruled_out);
+    st.add("item planes whose friction rules out the contact model in the scene envelope", ruled_out);
     st.add("input samples outside the scene envelope", outside);
     if (outside > 0 && without_tf == 0)
       st.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN,

@@ -5,6 +5,8 @@
 #include <array>
 #include <cstdint>
 
+#include <Eigen/Geometry>
+
 #include <geometry_msgs/TransformStamped.h>
 #include <tf2_eigen/tf2_eigen.h>
 #include <visualization_msgs/MarkerArray.h>
@@ -44,6 +46,7 @@ void RockingMonitor::publish_events(Item& it, const core::ItemEvents& ev, const 
     m.header.stamp = stamp;
     m.header.frame_id = spec.frame;
     m.item_id = spec.id;
+    m.plane = core::to_string(c.plane);
     m.criterion = static_cast<std::uint8_t>(c.id);
     m.criterion_name = core::to_string(c.id);
     m.exceeded = c.exceeded;
@@ -61,36 +64,61 @@ void RockingMonitor::publish_events(Item& it, const core::ItemEvents& ev, const 
     m.item_id = spec.id;
     m.description = spec.description;
     m.level = static_cast<std::uint8_t>(a.level);
-    m.event_time = a.time;
+    m.plane = core::to_string(a.plane);
+    const double epoch = sensors_[it.sensor].epoch.toSec();
+    m.event_time = epoch + a.time;
+    m.time_since_first_sample = a.time;
     m.rotation_ratio = a.rotation_ratio;
     for (core::CriterionId id : kScreening)
-      (it.monitor->screening_exceeded(id) ? m.predicted_by : m.not_predicted_by).push_back(core::to_string(id));
+      (it.monitor->screening_exceeded(a.plane, id) ? m.predicted_by : m.not_predicted_by).push_back(core::to_string(id));
     alarms_pub_.publish(m);
     ++alarms_published_;
-    const std::string when = core::event_time_text(a.time, sensors_[it.sensor].first_t);
+    const std::string when = core::event_time_text(epoch + a.time, epoch);
+    const char* across = a.plane == core::Plane::X ? "across its width" : "across its depth";
     if (a.level == ItemMode::Overturned) {
-      ROS_ERROR("rocking_monitor: OVERTURNED: %s (%s) %s", spec.id.c_str(), spec.description.c_str(), when.c_str());
+      ROS_ERROR("rocking_monitor: OVERTURNED: %s (%s), %s (plane %s), %s", spec.id.c_str(), spec.description.c_str(),
+                across, m.plane.c_str(), when.c_str());
     } else {
-      ROS_WARN("rocking_monitor: %s: %s (%s) %s", core::to_string(a.level), spec.id.c_str(),
-               spec.description.c_str(), when.c_str());
+      ROS_WARN("rocking_monitor: %s: %s (%s), %s (plane %s), %s", core::to_string(a.level), spec.id.c_str(),
+               spec.description.c_str(), across, m.plane.c_str(), when.c_str());
     }
   }
 }
 
+void RockingMonitor::fill_plane(const core::PlaneMonitor& pm, PlaneState& out) {
+  out.mode = static_cast<std::uint8_t>(pm.mode());
+  out.pivot = static_cast<std::int8_t>(pm.side());
+  out.theta = pm.theta();
+  out.theta_dot = pm.omega();
+  out.rotation_ratio = pm.rotation_ratio();
+  out.energy_margin = pm.margin().margin;
+  out.impacts = static_cast<std::uint32_t>(pm.impacts());
+  out.violations = pm.violations();
+  out.contact_mode = static_cast<std::uint8_t>(pm.contact_mode());
+  out.slip = pm.slip();
+  out.model = pm.active_model();
+}
+
 void RockingMonitor::fill_state(const Item& it, RockingState& out) const {
   const core::ItemMonitor& im = *it.monitor;
+  fill_plane(im.plane(core::Plane::X), out.x);
+  if (im.two_planes()) fill_plane(im.plane(core::Plane::Y), out.y);
+  const core::Plane worst = im.worst_plane();
+  const PlaneState& w = worst == core::Plane::X ? out.x : out.y;
   out.mode = static_cast<std::uint8_t>(im.mode());
-  out.pivot = static_cast<std::int8_t>(im.side());
-  out.theta = im.theta();
-  out.theta_dot = im.omega();
-  out.rotation_ratio = im.rotation_ratio();
-  out.energy_margin = im.margin().margin;
-  out.impacts = static_cast<std::uint32_t>(im.impacts());
-  out.violations = im.violations();
+  out.plane_count = static_cast<std::uint8_t>(im.plane_count());
+  out.plane = core::to_string(worst);
+  out.pivot = w.pivot;
+  out.theta = w.theta;
+  out.theta_dot = w.theta_dot;
+  out.rotation_ratio = w.rotation_ratio;
+  out.energy_margin = w.energy_margin;
+  out.impacts = w.impacts;
+  out.violations = out.x.violations | out.y.violations;
   out.model_valid = out.violations == 0;
-  out.contact_mode = static_cast<std::uint8_t>(im.contact_mode());
-  out.slip = im.slip();
-  out.model = im.active_model();
+  out.contact_mode = w.contact_mode;
+  out.slip = w.slip;
+  out.model = w.model;
   out.input_stamp = it.stamp;
 }
 
@@ -126,20 +154,42 @@ void RockingMonitor::publish_markers_and_tf() {
   const ::ros::Time now = ::ros::Time::now();
   for (std::size_t i = 0; i < items_.size(); ++i) {
     const Item& it = items_[i];
-    const core::Body& b = it.monitor->body();
-    const double theta = it.monitor->theta();
-    const int side = it.monitor->side();
-    // Item frame: origin on the floor below the centre of mass, x across the base, z up.
-    // Corner 1 at x = -nu1 B, corner 2 at x = +nu2 B; theta > 0 rotates about corner 1 (about -y).
-    const Eigen::Vector3d pivot(side >= 0 ? -b.nu1() * b.width() : b.nu2() * b.width(), 0.0, 0.0);
-    const Eigen::Matrix3d r = Eigen::AngleAxisd(-theta, Eigen::Vector3d::UnitY()).toRotationMatrix();
-    const Eigen::Vector3d shift = pivot - r * pivot;
+    const core::PlaneMonitor& px = it.monitor->plane(core::Plane::X);
+    const core::Body& b = px.body();
+    // Item frame: origin on the floor below the centre of mass, x across the width, y across the
+    // depth, z up. x plane: corner 1 at x = -nu1 B, corner 2 at x = +nu2 B, theta > 0 about -y. y plane:
+    // corner 1 at y = -nu1_y D, corner 2 at y = +nu2_y D, theta > 0 about +x. The body drawn is tilted
+    // by the y plane's rotation, then the x plane's (the planes are independent: a picture, not a model).
+    auto about_pivot = [](const Eigen::Vector3d& pivot, const Eigen::Matrix3d& r) {
+      Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+      t.linear() = r;
+      t.translation() = pivot - r * pivot;
+      return t;
+    };
+    const int sx = px.side();
+    Eigen::Isometry3d pose = about_pivot(Eigen::Vector3d(sx >= 0 ? -b.nu1() * b.width() : b.nu2() * b.width(), 0.0, 0.0),
+                                         Eigen::AngleAxisd(-px.theta(), Eigen::Vector3d::UnitY()).toRotationMatrix());
+    double depth = 0.5 * b.width(), centre_y = 0.0;  // no depth given: drawn half as deep as wide
+    bool valid = px.violations() == 0;
+    if (it.monitor->two_planes()) {
+      const core::PlaneMonitor& py = it.monitor->plane(core::Plane::Y);
+      const core::Body& d = py.body();
+      const int sy = py.side();
+      pose = pose * about_pivot(Eigen::Vector3d(0.0, sy >= 0 ? -d.nu1() * d.width() : d.nu2() * d.width(), 0.0),
+                                Eigen::AngleAxisd(py.theta(), Eigen::Vector3d::UnitX()).toRotationMatrix());
+      depth = d.width();
+      valid = valid && py.violations() == 0;
+      centre_y = (d.nu2() - d.nu1()) * d.width() / 2.0;
+    }
+    const Eigen::Matrix3d r = pose.linear();
+    const Eigen::Vector3d shift = pose.translation();
     if (publish_tf_) {
       geometry_msgs::TransformStamped t;
       t.header.stamp = now;
       t.header.frame_id = it.entry.spec.frame;
       t.child_frame_id = it.entry.spec.frame + marker_frame_suffix_;
       t.transform.translation.x = shift.x();
+      t.transform.translation.y = shift.y();
       t.transform.translation.z = shift.z();
       t.transform.rotation = tf2::toMsg(Eigen::Quaterniond(r));
       transforms.push_back(t);
@@ -152,16 +202,16 @@ void RockingMonitor::publish_markers_and_tf() {
       mk.id = static_cast<int>(i);
       mk.type = visualization_msgs::Marker::CUBE;
       mk.action = visualization_msgs::Marker::ADD;
-      const Eigen::Vector3d centre((b.nu2() - b.nu1()) * b.width() / 2.0, 0.0, b.cg_height());
-      const Eigen::Vector3d c = r * centre + shift;
+      const Eigen::Vector3d centre((b.nu2() - b.nu1()) * b.width() / 2.0, centre_y, b.cg_height());
+      const Eigen::Vector3d c = pose * centre;
       mk.pose.position.x = c.x();
       mk.pose.position.y = c.y();
       mk.pose.position.z = c.z();
       mk.pose.orientation = tf2::toMsg(Eigen::Quaterniond(r));
       mk.scale.x = b.width();
-      mk.scale.y = 0.5 * b.width();
+      mk.scale.y = depth;
       mk.scale.z = 2.0 * b.cg_height();
-      mk.color = color(it.monitor->mode(), it.monitor->violations() == 0);
+      mk.color = color(it.monitor->mode(), valid);
       markers.markers.push_back(mk);
       visualization_msgs::Marker label = mk;
       label.ns = "labels";
@@ -171,6 +221,8 @@ void RockingMonitor::publish_markers_and_tf() {
       label.pose.position.z = 2.0 * b.cg_height() + 0.15;
       label.scale.z = 0.1;
       label.text = it.entry.spec.id + " " + core::to_string(it.monitor->mode());
+      if (it.monitor->two_planes() && it.monitor->mode() != ItemMode::Rest)
+        label.text += std::string(" (") + core::to_string(it.monitor->worst_plane()) + ")";
       label.color.r = label.color.g = label.color.b = label.color.a = 1.0f;
       markers.markers.push_back(label);
     }

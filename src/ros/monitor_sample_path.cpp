@@ -49,8 +49,8 @@ void RockingMonitor::start_items(Sensor& s, double t, const Eigen::Vector3d& a) 
     Item& it = items_[idx];
     if (!it.has_rotation && !lookup_rotation(it, s.frame)) continue;
     const Eigen::Vector3d ai = it.rotation * a;
-    it.monitor->start(t, ai.x(), ai.z(), s.dt_nominal);
-    it.stamp.fromSec(t);
+    it.monitor->start(t, ai.x(), ai.y(), ai.z(), s.dt_nominal);
+    it.stamp = s.epoch + ::ros::Duration(t);
   }
 }
 
@@ -76,20 +76,19 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
                       s.spec.name.c_str(), reading.norm(), max_abs_acceleration_);
     return;
   }
-  const double t = header.stamp.toSec();
   double dt = 0.0;
   using V = core::SampleTiming::Verdict;
-  const V verdict = s.timing.classify(t, dt);
+  const V verdict = s.timing.classify(header.stamp.toSec(), dt);
   switch (verdict) {
     case V::Duplicate:
     case V::OutOfOrder:
       ROS_WARN_THROTTLE(5.0, "rocking_monitor: sensor '%s': %s stamp %.6f dropped (last %.6f)", s.spec.name.c_str(),
-                        verdict == V::Duplicate ? "duplicate" : "out-of-order", t, s.timing.last_stamp());
+                        verdict == V::Duplicate ? "duplicate" : "out-of-order", header.stamp.toSec(), s.timing.last_stamp());
       return;
     case V::BackwardJump:
       ++s.resets;
       ROS_WARN("rocking_monitor: sensor '%s': time jumped back to %.3f s: restarting its %zu items",
-               s.spec.name.c_str(), t, s.items.size());
+               s.spec.name.c_str(), header.stamp.toSec(), s.items.size());
       s.baseline.reset();
       for (std::size_t idx : s.items) {
         items_[idx].monitor = std::make_unique<core::ItemMonitor>(items_[idx].entry.spec, options_);
@@ -100,6 +99,15 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
                         s.spec.name.c_str(), dt, static_cast<unsigned long>(s.timing.counters().gaps));
       break;
     default: break;
+  }
+  if (verdict == V::First || verdict == V::BackwardJump) {
+    s.epoch = header.stamp;
+    s.last_t = 0.0;
+  }
+  const double t = (header.stamp - s.epoch).toSec();
+  if (verdict == V::Accept || verdict == V::AcceptGap) {
+    dt = t - s.last_t;
+    s.last_t = t;
   }
   s.frame = s.spec.frame_id.empty() ? header.frame_id : s.spec.frame_id;
   const Eigen::Vector3d a = s.baseline.remove(reading, dt);
@@ -127,7 +135,7 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
     }
     if (!it.monitor->started()) {  // its transform arrived late: start now
       const Eigen::Vector3d ai = it.rotation * a;
-      it.monitor->start(t, ai.x(), ai.z(), s.dt_nominal);
+      it.monitor->start(t, ai.x(), ai.y(), ai.z(), s.dt_nominal);
       it.stamp = header.stamp;
       continue;
     }
@@ -139,7 +147,7 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
       Item& it = items_[s.items[k]];
       if (!it.ready) continue;
       const Eigen::Vector3d ai = it.rotation * a;
-      it.monitor->step(ai.x(), ai.z(), dt);
+      it.monitor->step(ai.x(), ai.y(), ai.z(), dt);
       it.stamp = header.stamp;
     }
   };

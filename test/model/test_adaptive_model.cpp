@@ -216,16 +216,9 @@ TEST(AdaptiveModel, InfiniteFrictionNeverSwitchesAndEqualsRockingModelBitForBit)
         ref_flight |= (r.violation_onsets & (1u << int(rm::Criterion::FreeFlight))) != 0;
         theta.push_back(ref.theta());
       }
-      if (ref_flight) {
-        ++flight;
-        ASSERT_GE(a.o.model_switches, 1);
-        for (const auto& sw : a.switches)
-          if (sw.to == rm::ActiveModel::Contact)
-            EXPECT_TRUE(sw.reason == rm::SwitchReason::FreeFlight ||
-                        sw.reason == rm::SwitchReason::NearLiftOff)
-                << rm::to_string(sw.reason);
-        continue;
-      }
+      // No friction given: pure rocking, unchanged (issue 11), also where the rocking model flags a
+      // free-flight onset (the contact model is not asked to resolve flight for such a body).
+      flight += ref_flight;
       ++identical;
       ASSERT_EQ(a.o.model_switches, 0) << in.name << " B " << b << " h " << h;
       EXPECT_EQ(0, std::memcmp(theta.data(), a.theta.data(), theta.size() * sizeof(double)));
@@ -243,9 +236,10 @@ TEST(AdaptiveModel, InfiniteFrictionNeverSwitchesAndEqualsRockingModelBitForBit)
       EXPECT_EQ(a.o.rocking_steps, o.integrator_steps);
     }
   }
-  std::printf("[ measured ] %d runs bit-identical to RockingModel, %d switched for free flight\n",
+  std::printf("[ measured ] %d runs bit-identical to RockingModel, %d of them with a flagged free-flight onset\n",
               identical, flight);
-  EXPECT_GE(identical, 8);
+  EXPECT_EQ(identical, 12);
+  EXPECT_GE(flight, 1) << "the inputs must include a free-flight onset, or the rule is untested";
 }
 
 TEST(AdaptiveModel, SlidingAndFlightScenesGiveTheContactModelAlarms) {

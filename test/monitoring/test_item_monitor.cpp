@@ -1,102 +1,218 @@
-// ItemMonitor (the live node's per-item engine) against the models it wraps and an independent
-// running intensity.
+// ItemMonitor: an item rocking in its two principal planes (planar decomposition). Oracles: a plane
+// run alone (PlaneMonitor), symmetry of the planes, a 90 degree yaw of the item, and combine().
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <vector>
 
+#include <Eigen/Geometry>
+
+#include "rocking_monitor/constants.hpp"
 #include "rocking_monitor/monitoring/item_monitor.hpp"
+#include "rocking_monitor/monitoring/item_verdict.hpp"
 #include "rocking_monitor/motion/record_reader.hpp"
-#include "rocking_monitor/monitoring/simulation.hpp"
 
 namespace rocking_monitor::core {
 namespace {
 
 const std::string kPulse = std::string(ROCKING_SOURCE_DIR) + "/bags/one_sine_pulse.csv";
 
-ItemSpec spec(double b, double h, double mu = std::numeric_limits<double>::infinity()) {
+ItemSpec item(double width, double depth, double h, double nu = 0.5, double nu_y = 0.5) {
   ItemSpec s;
   s.id = "item";
   s.sensor = "floor";
   s.frame = "item";
-  s.body.width = b;
+  s.body.width = width;
   s.body.cg_height = h;
-  s.body.mu_s = mu;
+  s.body.nu1 = nu;
+  s.body.mu_s = 0.8;  // adaptive fidelity: friction high enough that these items rock
+  if (depth > 0.0) {
+    s.depth.depth = depth;
+    s.depth.eccentricity_y = nu_y;
+  }
   return s;
 }
 
-TEST(ItemMonitor, AlarmsEqualTheRockingModelAndScreeningFollowsTheRunningIntensity) {
-  const Component c = read_record(kPulse).front();
-  const ItemSpec s = spec(0.15, 0.35);
-  ItemMonitor im(s, ItemMonitor::Options{});
-  im.start(0.0, c.accel[0], 0.0, c.dt);
-  // Independent running PGA / PGV / PSV at the Housner period.
-  StreamingIntensityConfig cfg;
-  cfg.dt = c.dt;
-  cfg.periods = {housner_period(Body(s.body))};
-  cfg.velocity_highpass_hz = 0.05;
-  StreamingIntensity ref(cfg);
-  ref.push(c.accel[0]);
-  const ScreeningThresholds th = screening_thresholds(Body(s.body));
+std::vector<double> pulse() { return read_record(kPulse).front().accel; }
+double pulse_dt() { return read_record(kPulse).front().dt; }
+
+struct Track {
+  std::vector<double> theta[kPlaneCount];
   std::vector<AlarmEvent> alarms;
-  bool ishiyama = false;
-  for (std::size_t i = 1; i < c.accel.size(); ++i) {
-    const ItemEvents& ev = im.step(c.accel[i], 0.0, c.dt);
-    ref.push(c.accel[i]);
-    for (int k = 0; k < ev.alarm_count; ++k) alarms.push_back(ev.alarms[k]);
-    for (int k = 0; k < ev.change_count; ++k) {
-      if (ev.changes[k].id != CriterionId::Ishiyama) continue;
-      EXPECT_FALSE(ishiyama) << "a running criterion is exceeded once";
-      ishiyama = true;
-      // It flips exactly at the first sample where both conditions of eq. 2 hold.
-      EXPECT_GT(ref.pgv(), th.ishiyama.velocity);
-      EXPECT_GE(ref.pga(), th.ishiyama.acceleration);
-      EXPECT_DOUBLE_EQ(ev.changes[k].value, ref.pgv());
-      EXPECT_DOUBLE_EQ(ev.changes[k].second_value, ref.pga());
-    }
+};
+
+// Runs the item over (ax[i], ay[i], 0) and records each plane's theta after every sample.
+Track run(ItemMonitor& im, const std::vector<double>& ax, const std::vector<double>& ay, double dt) {
+  Track t;
+  im.start(0.0, ax[0], ay[0], 0.0, dt);
+  for (std::size_t i = 1; i < ax.size(); ++i) {
+    const ItemEvents& ev = im.step(ax[i], ay[i], 0.0, dt);
+    for (int k = 0; k < ev.alarm_count; ++k) t.alarms.push_back(ev.alarms[k]);
+    for (int p = 0; p < im.plane_count(); ++p) t.theta[p].push_back(im.plane(static_cast<Plane>(p)).theta());
   }
-  EXPECT_TRUE(ishiyama);
-  const SimulationResult off = simulate(Body(s.body), SolverSettings{}, make_ground_motion(c, nullptr, 1.0));
-  ASSERT_TRUE(off.outcome.overturned);
-  ASSERT_EQ(alarms.size(), 3u);
-  EXPECT_EQ(alarms.back().level, ItemMode::Overturned);
-  EXPECT_DOUBLE_EQ(alarms.back().time, off.outcome.overturn_time);
-  EXPECT_EQ(im.mode(), ItemMode::Overturned);
+  return t;
 }
 
-TEST(ItemMonitor, AdaptiveFidelityModelsSlidingAndMatchesTheAdaptiveModel) {
-  const Component c = read_record(kPulse).front();
-  const ItemSpec s = spec(0.55, 0.75, 0.3);  // mu_s < tan(alpha) = 0.37: slides before it rocks
-  ItemMonitor::Options o;
-  o.fidelity = Fidelity::Adaptive;
-  ItemMonitor im(s, o);
-  AdaptiveModel direct(Body(s.body), AdaptiveSettings{});
-  im.start(0.0, c.accel[0], 0.0, c.dt);
-  direct.reset(0.0, c.accel[0], 0.0);
-  bool slid = false;
-  double max_slip = 0.0;
-  int slide_changes = 0;
-  bool slide_exceeded = false;
-  for (std::size_t i = 1; i < c.accel.size(); ++i) {
-    const ItemEvents& ev = im.step(c.accel[i], 0.0, c.dt);
-    direct.step(c.accel[i], 0.0, c.dt);
-    ASSERT_EQ(im.theta(), direct.theta());
-    ASSERT_EQ(im.slip(), direct.slip());
-    slid |= im.contact_mode() == ContactMode::Slide;
-    max_slip = std::max(max_slip, std::abs(im.slip()));
-    EXPECT_EQ(im.violations(), 0) << "sliding is modelled, not flagged";
-    for (int k = 0; k < ev.change_count; ++k) {
-      if (ev.changes[k].id != CriterionId::SlideFromRest) continue;
-      // Reported when the model switches: up to the contact model, and back down once at rest.
-      EXPECT_NE(ev.changes[k].exceeded, slide_exceeded);
-      slide_exceeded = ev.changes[k].exceeded;
-      EXPECT_EQ(slide_exceeded, std::string(im.active_model()) == "contact");
-      ++slide_changes;
-    }
+// One plane alone: theta after every sample and when each level was reached.
+std::vector<double> run_plane(const BodyParameters& b, const std::vector<double>& a, double dt, LevelTimes* levels) {
+  PlaneMonitor pm(b, PlaneMonitor::Options{});
+  pm.start(0.0, a[0], 0.0, dt);
+  std::vector<double> theta;
+  for (std::size_t i = 1; i < a.size(); ++i) {
+    const PlaneEvents& ev = pm.step(a[i], 0.0, dt);
+    for (int k = 0; k < ev.alarm_count; ++k)
+      levels->time[static_cast<int>(ev.alarms[k].level) - 2] = ev.alarms[k].time;
+    theta.push_back(pm.theta());
   }
-  EXPECT_TRUE(slid);
-  EXPECT_EQ(slide_changes, 2);  // slide from rest at 0.08 s, back to the rocking model at rest later
-  EXPECT_GT(max_slip, 5e-3);  // about 12 mm out and back under the full sine
-  EXPECT_EQ(im.impacts(), direct.outcome().impacts);
+  return theta;
+}
+
+TEST(ItemMonitor, WithoutDepthItIsTheSinglePlaneMonitor) {
+  const std::vector<double> a = pulse(), zero(a.size(), 0.0);
+  ItemMonitor im(item(0.15, 0.0, 0.35), ItemMonitor::Options{});
+  EXPECT_FALSE(im.two_planes());
+  const Track t = run(im, a, zero, pulse_dt());
+  LevelTimes alone;
+  const std::vector<double> theta = run_plane(item(0.15, 0.0, 0.35).body, a, pulse_dt(), &alone);
+  EXPECT_EQ(t.theta[0], theta);
+  ASSERT_EQ(t.alarms.size(), 3u);
+  for (const AlarmEvent& e : t.alarms) {
+    EXPECT_EQ(e.plane, Plane::X);
+    EXPECT_EQ(e.time, alone.at(static_cast<Level>(static_cast<int>(e.level) - 2)));
+  }
+}
+
+TEST(ItemMonitor, MotionAlongYTipsOnlyTheYPlane) {
+  const std::vector<double> a = pulse(), zero(a.size(), 0.0);
+  const ItemSpec s = item(0.60, 0.15, 0.35);  // wide along x, slender along y
+  ItemMonitor im(s, ItemMonitor::Options{});
+  ASSERT_TRUE(im.two_planes());
+  const Track t = run(im, zero, a, pulse_dt());
+  for (double th : t.theta[0]) ASSERT_EQ(th, 0.0) << "no x motion: the x plane never uplifts";
+  EXPECT_EQ(im.plane(Plane::X).mode(), ItemMode::Rest);
+  EXPECT_EQ(im.plane(Plane::X).impacts(), 0);
+  LevelTimes alone;
+  EXPECT_EQ(t.theta[1], run_plane(y_plane_body(s.body, s.depth), a, pulse_dt(), &alone));
+  ASSERT_TRUE(alone.reached(Level::Overturned));
+  ASSERT_EQ(t.alarms.size(), 3u);
+  for (const AlarmEvent& e : t.alarms) EXPECT_EQ(e.plane, Plane::Y);
+  EXPECT_EQ(im.mode(), ItemMode::Overturned);
+  EXPECT_EQ(im.worst_plane(), Plane::Y);
+}
+
+TEST(ItemMonitor, SquareSymmetricItemAt45DegreesRocksAlikeInBothPlanesAsASinglePlaneUnderAOverSqrt2) {
+  const std::vector<double> a = pulse();
+  const double az = 45.0 * kPi / 180.0;
+  std::vector<double> ax(a.size()), ay(a.size()), reduced(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ax[i] = a[i] * std::cos(az);
+    ay[i] = a[i] * std::sin(az);
+    reduced[i] = a[i] / std::sqrt(2.0);
+  }
+  const ItemSpec s = item(0.20, 0.20, 0.45);
+  ItemMonitor im(s, ItemMonitor::Options{});
+  const Track t = run(im, ax, ay, pulse_dt());
+  LevelTimes alone;
+  const std::vector<double> single = run_plane(s.body, reduced, pulse_dt(), &alone);
+  double max_theta = 0.0;
+  for (std::size_t i = 0; i < single.size(); ++i) {
+    ASSERT_NEAR(t.theta[0][i], t.theta[1][i], 1e-12) << "sample " << i;
+    ASSERT_NEAR(t.theta[0][i], single[i], 1e-12) << "sample " << i;
+    max_theta = std::max(max_theta, std::abs(single[i]));
+  }
+  EXPECT_GT(max_theta, 0.05) << "the case must rock, or the test proves nothing";
+}
+
+TEST(ItemMonitor, SwappingWidthAndDepthWithA90DegreeYawSwapsThePlanes) {
+  const std::vector<double> a = pulse();
+  // Ground motion at azimuth 30 deg in the frame of item A.
+  std::vector<double> ax(a.size()), ay(a.size());
+  const double az = 30.0 * kPi / 180.0;
+  for (std::size_t i = 0; i < a.size(); ++i) { ax[i] = a[i] * std::cos(az); ay[i] = a[i] * std::sin(az); }
+  const ItemSpec sa = item(0.20, 0.14, 0.40, 0.40, 0.35);
+  // B is A yawed by +90 deg: x_B = y_A, y_B = -x_A. Its width lies along y_A, its depth along x_A,
+  // and its -y corner is A's +x corner, so eccentricity_y_B = 1 - eccentricity_A.
+  const ItemSpec sb = item(0.14, 0.20, 0.40, 0.35, 1.0 - 0.40);
+  const Eigen::Matrix3d b_from_a = Eigen::AngleAxisd(kPi / 2.0, Eigen::Vector3d::UnitZ()).toRotationMatrix().transpose();
+  std::vector<double> bx(a.size()), by(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const Eigen::Vector3d v = b_from_a * Eigen::Vector3d(ax[i], ay[i], 0.0);
+    bx[i] = v.x();
+    by[i] = v.y();
+  }
+  ItemMonitor ia(sa, ItemMonitor::Options{}), ib(sb, ItemMonitor::Options{});
+  const Track ta = run(ia, ax, ay, pulse_dt()), tb = run(ib, bx, by, pulse_dt());
+  double max_theta = 0.0;
+  for (std::size_t i = 0; i < ta.theta[0].size(); ++i) {
+    ASSERT_NEAR(tb.theta[0][i], ta.theta[1][i], 1e-12) << "sample " << i;
+    ASSERT_NEAR(tb.theta[1][i], -ta.theta[0][i], 1e-12) << "mirrored: sample " << i;
+    max_theta = std::max({max_theta, std::abs(ta.theta[0][i]), std::abs(ta.theta[1][i])});
+  }
+  EXPECT_GT(max_theta, 0.05);
+  ASSERT_EQ(ta.alarms.size(), tb.alarms.size());
+  for (std::size_t k = 0; k < ta.alarms.size(); ++k) {
+    EXPECT_EQ(ta.alarms[k].level, tb.alarms[k].level);
+    EXPECT_NE(ta.alarms[k].plane, tb.alarms[k].plane);
+    EXPECT_NEAR(ta.alarms[k].time, tb.alarms[k].time, 1e-12);
+  }
+}
+
+TEST(ItemMonitor, ItemAlarmsAreTheEarliestPlaneOfEachLevel) {
+  // The same pulse along both axes: both planes overturn, the more slender y plane first.
+  const std::vector<double> a = pulse();
+  const ItemSpec s = item(0.22, 0.17, 0.35);
+  ItemMonitor im(s, ItemMonitor::Options{});
+  const Track t = run(im, a, a, pulse_dt());
+  LevelTimes x, y;
+  run_plane(s.body, a, pulse_dt(), &x);
+  run_plane(y_plane_body(s.body, s.depth), a, pulse_dt(), &y);
+  ASSERT_TRUE(x.reached(Level::Overturned) && y.reached(Level::Overturned));
+  const ItemVerdict v = combine(x, &y);
+  ASSERT_EQ(t.alarms.size(), 3u) << "each level once per item, not once per plane";
+  for (const AlarmEvent& e : t.alarms) {
+    const Level l = static_cast<Level>(static_cast<int>(e.level) - 2);
+    EXPECT_EQ(e.time, v.levels.at(l));
+    EXPECT_EQ(e.plane, v.plane[static_cast<int>(l)]);
+  }
+  EXPECT_EQ(t.alarms.back().plane, Plane::Y);
+  EXPECT_LT(y.at(Level::Overturned), x.at(Level::Overturned));
+}
+
+TEST(ItemMonitor, BadDepthFieldsNameTheItemAndTheField) {
+  struct Case { double depth, nu_y, ig_y; const char* field; };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const Case& c : {Case{-0.4, 0.5, nan, "depth"}, Case{0.0, 0.5, nan, "depth"},
+                        Case{std::numeric_limits<double>::infinity(), 0.5, nan, "depth"},
+                        Case{0.4, 0.0, nan, "eccentricity_y"}, Case{0.4, 1.0, nan, "eccentricity_y"},
+                        Case{0.4, nan, nan, "eccentricity_y"}, Case{0.4, 0.5, -1.0, "radius_of_gyration_y"}}) {
+    ItemSpec s = item(0.5, 0.4, 0.9);
+    s.id = "cabinet";
+    s.depth.depth = c.depth;
+    s.depth.eccentricity_y = c.nu_y;
+    s.depth.radius_of_gyration_y = c.ig_y;
+    const std::string e = validate(s);
+    EXPECT_EQ(e.rfind("item 'cabinet': ", 0), 0u) << e;
+    EXPECT_NE(e.find(std::string(c.field) + " = "), std::string::npos) << e;
+    EXPECT_THROW(ItemMonitor(s, ItemMonitor::Options{}), std::invalid_argument);
+  }
+}
+
+TEST(ItemMonitor, YPlaneRadiusOfGyrationFollowsThePlanUniformRule) {
+  BodyParameters x;
+  x.width = 0.6;
+  x.cg_height = 0.95;
+  DepthParameters d;
+  d.depth = 1.0;
+  // Homogeneous box: both planes homogeneous, the y plane with the depth.
+  EXPECT_DOUBLE_EQ(Body(y_plane_body(x, d)).radius_of_gyration(), Body::homogeneous_radius_of_gyration(1.0, 0.95));
+  // A given i_x keeps its height distribution: i_y^2 - i_x^2 = (D^2 - B^2) / 12 (exact for a box).
+  x.radius_of_gyration = Body::homogeneous_radius_of_gyration(0.6, 0.95);
+  EXPECT_NEAR(y_plane_body(x, d).radius_of_gyration, Body::homogeneous_radius_of_gyration(1.0, 0.95), 1e-15);
+  x.radius_of_gyration = 0.6;
+  EXPECT_NEAR(std::pow(y_plane_body(x, d).radius_of_gyration, 2) - 0.36, (1.0 - 0.36) / 12.0, 1e-15);
+  d.radius_of_gyration_y = 0.7;
+  EXPECT_EQ(y_plane_body(x, d).radius_of_gyration, 0.7);
 }
 
 }  // namespace

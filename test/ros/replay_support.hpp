@@ -21,14 +21,16 @@ namespace rocking_monitor::test {
 
 struct OfflineState {
   std::uint8_t mode = 0;
-  double theta = 0.0;
-  std::uint32_t impacts = 0;
+  double theta[core::kPlaneCount] = {0.0, 0.0};  // x, y plane
+  std::uint32_t impacts[core::kPlaneCount] = {0, 0};
 };
 
 struct OfflineAlarm {
   std::string item;
   std::uint8_t level = 0;
   double stamp = 0.0;  // input stamp, s
+  std::string plane;   // "x" or "y"
+  double time_since_first_sample = 0.0;  // s
 };
 
 /// Reads the monitor's catalogue and solver parameters from `ns` and replays samples through
@@ -46,7 +48,7 @@ class OfflineMonitor {
     core::parse_method(method, options_.solver.method);
     options_.solver.tol = number(nh, "tol", options_.solver.tol);
     nh.getParam("substeps", options_.solver.substeps);
-    std::string fidelity = "rocking";
+    std::string fidelity = "adaptive";
     nh.getParam("fidelity", fidelity);
     core::parse_fidelity(fidelity.c_str(), options_.fidelity);
     const double scene_h = number(nh, "scene_envelope/horizontal", 0.0);
@@ -80,15 +82,24 @@ class OfflineMonitor {
     }
   }
 
-  /// One Imu reading (specific force, m/s^2) stamped t (s).
-  void push(double t, const Eigen::Vector3d& f) {
+  /// One Imu reading (specific force, m/s^2) with its stamp. Time as the node keeps it: seconds
+  /// since the first sample, from integer-nanosecond stamp differences.
+  void push(const ::ros::Time& stamp, const Eigen::Vector3d& f) {
     double dt = 0.0;
-    const auto v = timing_.classify(t, dt);
+    const auto v = timing_.classify(stamp.toSec(), dt);
     using V = core::SampleTiming::Verdict;
     if (v == V::Duplicate || v == V::OutOfOrder) return;
+    if (v == V::First || v == V::BackwardJump) {
+      epoch_ = stamp;
+      last_t_ = 0.0;
+    }
+    const double t = (stamp - epoch_).toSec();
+    if (v == V::Accept || v == V::AcceptGap) {
+      dt = t - last_t_;
+      last_t_ = t;
+    }
     const Eigen::Vector3d a = baseline_.remove(f, dt);
     if (v == V::First || v == V::BackwardJump) {
-      first_t_ = t;
       first_a_ = a;
       have_first_ = true;
       return;
@@ -96,20 +107,24 @@ class OfflineMonitor {
     if (have_first_) {
       for (std::size_t i = 0; i < items_.size(); ++i) {
         const Eigen::Vector3d ai = rotations_[i] * first_a_;
-        items_[i].start(first_t_, ai.x(), ai.z(), dt);
+        items_[i].start(0.0, ai.x(), ai.y(), ai.z(), dt);
       }
       have_first_ = false;
     }
-    std::vector<OfflineState>& row = states_[stamp_key(t)];
+    std::vector<OfflineState>& row = states_[stamp_key(stamp.toSec())];
     for (std::size_t i = 0; i < items_.size(); ++i) {
       const Eigen::Vector3d ai = rotations_[i] * a;
-      const core::ItemEvents& ev = items_[i].step(ai.x(), ai.z(), dt);
+      const core::ItemEvents& ev = items_[i].step(ai.x(), ai.y(), ai.z(), dt);
       for (int k = 0; k < ev.alarm_count; ++k)
-        alarms_.push_back({items_[i].spec().id, static_cast<std::uint8_t>(ev.alarms[k].level), t});
+        alarms_.push_back({items_[i].spec().id, static_cast<std::uint8_t>(ev.alarms[k].level), stamp.toSec(),
+                           core::to_string(ev.alarms[k].plane), ev.alarms[k].time});
       OfflineState s;
       s.mode = static_cast<std::uint8_t>(items_[i].mode());
-      s.theta = items_[i].theta();
-      s.impacts = static_cast<std::uint32_t>(items_[i].impacts());
+      for (int p = 0; p < items_[i].plane_count(); ++p) {
+        const core::PlaneMonitor& pm = items_[i].plane(static_cast<core::Plane>(p));
+        s.theta[p] = pm.theta();
+        s.impacts[p] = static_cast<std::uint32_t>(pm.impacts());
+      }
       row.push_back(s);
     }
   }
@@ -137,7 +152,8 @@ class OfflineMonitor {
   std::vector<core::ItemMonitor> items_;
   std::vector<Eigen::Matrix3d> rotations_;
   bool have_first_ = false;
-  double first_t_ = 0.0;
+  ::ros::Time epoch_;
+  double last_t_ = 0.0;
   Eigen::Vector3d first_a_ = Eigen::Vector3d::Zero();
   std::map<long long, std::vector<OfflineState>> states_;
   std::vector<OfflineAlarm> alarms_;

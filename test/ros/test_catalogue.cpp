@@ -1,6 +1,10 @@
 // Catalogue parsing: every bad field gives one line naming the entry and the field (no ROS master).
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <initializer_list>
+#include <utility>
+
 #include "rocking_monitor/ros/catalogue.hpp"
 
 namespace rocking_monitor::live {
@@ -50,6 +54,45 @@ TEST(Catalogue, CylinderShapeSetsItsRadiusOfGyration) {
   const Catalogue c = parse_catalogue(sensors(), i);
   // Solid cylinder, diameter B, length 2h, about a transverse axis: i^2 = B^2/16 + h^2/3.
   EXPECT_NEAR(c.items[0].spec.body.radius_of_gyration, std::sqrt(0.25 / 16 + 0.81 / 3), 1e-15);
+}
+
+TEST(Catalogue, DepthAddsTheYPlane) {
+  const Catalogue single = parse_catalogue(sensors(), one_item());
+  EXPECT_FALSE(single.items[0].spec.two_planes());
+  XmlRpcValue i = one_item();
+  i[0]["depth"] = 0.4;
+  const Catalogue c = parse_catalogue(sensors(), i);
+  const core::ItemSpec& s = c.items[0].spec;
+  ASSERT_TRUE(s.two_planes());
+  EXPECT_DOUBLE_EQ(s.depth.depth, 0.4);
+  EXPECT_DOUBLE_EQ(s.depth.eccentricity_y, 0.5);
+  EXPECT_TRUE(std::isnan(s.depth.radius_of_gyration_y));  // homogeneous block in both planes
+  // A cylinder with a depth (an elliptic base): each plane with its own diameter.
+  i[0]["shape"] = "cylinder";
+  i[0]["eccentricity_y"] = 0.45;
+  const Catalogue cyl = parse_catalogue(sensors(), i);
+  EXPECT_NEAR(cyl.items[0].spec.depth.radius_of_gyration_y, std::sqrt(0.16 / 16 + 0.81 / 3), 1e-15);
+  EXPECT_DOUBLE_EQ(cyl.items[0].spec.depth.eccentricity_y, 0.45);
+}
+
+TEST(Catalogue, BadDepthFieldsAreNamed) {
+  auto with = [](std::initializer_list<std::pair<const char*, XmlRpcValue>> kv) {
+    XmlRpcValue i = one_item();
+    for (const auto& [k, v] : kv) i[0][k] = v;
+    return error_of(sensors(), i);
+  };
+  EXPECT_EQ(with({{"depth", -0.4}}), "items[0] 'cabinet': depth = -0.4 (must be a finite length > 0 m)");
+  EXPECT_EQ(with({{"depth", 0.0}}), "items[0] 'cabinet': depth = 0 (must be a finite length > 0 m)");
+  EXPECT_EQ(with({{"depth", std::nan("")}}), "items[0] 'cabinet': depth: must be finite");
+  EXPECT_NE(with({{"depth", "deep"}}).find("items[0] 'cabinet': depth: must be a number"), std::string::npos);
+  EXPECT_EQ(with({{"depth", 0.4}, {"eccentricity_y", 1.0}}),
+            "items[0] 'cabinet': eccentricity_y = 1 (must lie strictly between 0 and 1)");
+  EXPECT_EQ(with({{"depth", 0.4}, {"eccentricity_y", 0.0}}),
+            "items[0] 'cabinet': eccentricity_y = 0 (must lie strictly between 0 and 1)");
+  EXPECT_EQ(with({{"depth", 0.4}, {"eccentricity_y", -std::nan("")}}), "items[0] 'cabinet': eccentricity_y: must be finite");
+  EXPECT_EQ(with({{"depth", 0.4}, {"radius_of_gyration_y", -0.1}}),
+            "items[0] 'cabinet': radius_of_gyration_y = -0.1 (must be a finite length > 0 m)");
+  EXPECT_NE(with({{"eccentricity_y", 0.4}}).find("items[0] 'cabinet': eccentricity_y: needs depth"), std::string::npos);
 }
 
 TEST(Catalogue, BadFieldsAreNamed) {

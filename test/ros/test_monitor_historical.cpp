@@ -71,10 +71,11 @@ TEST(MonitorHistorical, AlarmsEqualRockingSimForEveryItem) {
   for (const auto& item : cat.items) {
     const auto& b = item.spec.body;
     std::string cmd = tools + "/rocking_sim --record " + h.string() + " --vertical " + v.string() +
-                      " --json --tol " + num(tol) + " --width " + num(b.width) + " --cg-height " +
+                      " --json --fidelity adaptive --scene unknown --tol " + num(tol) + " --width " + num(b.width) + " --cg-height " +
                       num(b.cg_height) + " --eccentricity " + num(b.nu1);
     if (!std::isnan(b.radius_of_gyration)) cmd += " --radius-of-gyration " + num(b.radius_of_gyration);
     if (!std::isnan(b.restitution)) cmd += " --restitution " + num(b.restitution);
+    if (!std::isinf(b.mu_s)) cmd += " --mu-s " + num(b.mu_s);
     const std::string json = run(cmd + " 2>/dev/null", status);
     ASSERT_EQ(status, 0) << cmd;
     offline[item.spec.id] = nlohmann::json::parse(json);

@@ -40,7 +40,7 @@ TEST(MonitorReplay, LiveEqualsOfflineSampleForSample) {
   ASSERT_GT(samples.size(), 100u);
   OfflineMonitor offline(ns, frame);
   for (const auto& s : samples)
-    offline.push(s.header.stamp.toSec(),
+    offline.push(s.header.stamp,
                  Eigen::Vector3d(s.linear_acceleration.x, s.linear_acceleration.y, s.linear_acceleration.z));
 
   // Live: collect every state (state_rate 0 = one per input sample) and every alarm.
@@ -75,8 +75,15 @@ TEST(MonitorReplay, LiveEqualsOfflineSampleForSample) {
     for (std::size_t i = 0; i < off.size(); ++i) {
       const RockingState& s = it->second.items[i];
       ASSERT_EQ(s.mode, off[i].mode) << s.id << " at " << key;
-      ASSERT_EQ(s.theta, off[i].theta) << s.id << " at " << key;  // same code, same inputs: identical
-      ASSERT_EQ(s.impacts, off[i].impacts) << s.id << " at " << key;
+      // Same code, same inputs: identical, in both planes.
+      ASSERT_EQ(s.x.theta, off[i].theta[0]) << s.id << " at " << key;
+      ASSERT_EQ(s.y.theta, off[i].theta[1]) << s.id << " at " << key;
+      ASSERT_EQ(s.x.impacts, off[i].impacts[0]) << s.id << " at " << key;
+      ASSERT_EQ(s.y.impacts, off[i].impacts[1]) << s.id << " at " << key;
+      // The item-level fields repeat the worse plane.
+      const PlaneState& worse = s.plane == "y" ? s.y : s.x;
+      ASSERT_EQ(s.theta, worse.theta) << s.id;
+      ASSERT_TRUE(s.plane == "x" || (s.plane == "y" && s.plane_count == 2)) << s.id << " plane " << s.plane;
       ASSERT_EQ(OfflineMonitor::stamp_key(s.input_stamp.toSec()), key) << s.id;
     }
     ++compared;
@@ -88,6 +95,8 @@ TEST(MonitorReplay, LiveEqualsOfflineSampleForSample) {
   for (std::size_t i = 0; i < alarms.size(); ++i) {
     EXPECT_EQ(alarms[i].item_id, offline.alarms()[i].item);
     EXPECT_EQ(alarms[i].level, offline.alarms()[i].level);
+    EXPECT_EQ(alarms[i].plane, offline.alarms()[i].plane);
+    EXPECT_EQ(alarms[i].time_since_first_sample, offline.alarms()[i].time_since_first_sample);
     EXPECT_EQ(OfflineMonitor::stamp_key(alarms[i].header.stamp.toSec()),
               OfflineMonitor::stamp_key(offline.alarms()[i].stamp));
   }
@@ -104,6 +113,16 @@ TEST(MonitorReplay, LiveEqualsOfflineSampleForSample) {
         slid |= st.id == must_slide && st.model == "contact" &&
                 (st.contact_mode == RockingState::CONTACT_SLIDE || st.contact_mode == RockingState::CONTACT_SLIDE_ROCK);
     EXPECT_TRUE(slid) << must_slide << " must slide";
+    // ... and does not rock: in neither plane does a corner lift (no rocking contact mode, no impact).
+    for (const auto& [key, msg] : live)
+      for (const RockingState& st : msg.items) {
+        if (st.id != must_slide) continue;
+        for (const PlaneState* p : {&st.x, &st.y}) {
+          ASSERT_NE(p->contact_mode, RockingState::CONTACT_ROCK) << must_slide << " rocks at " << key;
+          ASSERT_NE(p->contact_mode, RockingState::CONTACT_SLIDE_ROCK) << must_slide << " rocks at " << key;
+          ASSERT_EQ(p->impacts, 0u) << must_slide << " at " << key;
+        }
+      }
     // ... and the node says why it switched to the contact model.
     bool why = false;
     for (const auto& c : criteria)
@@ -115,10 +134,11 @@ TEST(MonitorReplay, LiveEqualsOfflineSampleForSample) {
     for (const auto& item : offline.items()) {
       if (item.spec().id != must_rule_out) continue;
       known = true;
-      ASSERT_NE(item.adaptive(), nullptr);
-      EXPECT_EQ(item.adaptive()->initial_reason(), core::SwitchReason::SceneRulesOutContact);
-      EXPECT_EQ(item.adaptive()->outcome().samples_contact_model, 0);
-      EXPECT_FALSE(std::isnan(item.adaptive()->outcome().uplift_time)) << must_rule_out << " must rock";
+      const core::AdaptiveModel* a = item.plane(core::Plane::X).adaptive();
+      ASSERT_NE(a, nullptr);
+      EXPECT_EQ(a->initial_reason(), core::SwitchReason::SceneRulesOutContact);
+      EXPECT_EQ(a->outcome().samples_contact_model, 0);
+      EXPECT_FALSE(std::isnan(a->outcome().uplift_time)) << must_rule_out << " must rock";
     }
     EXPECT_TRUE(known) << must_rule_out;
     for (const auto& [key, msg] : live)

@@ -61,7 +61,11 @@ class RockingMonitor {
     std::vector<std::size_t> items;
     std::string frame;                // frame of the last message
     bool have_first = false;          // a first sample is stored, models not started yet
-    double first_t = 0.0;
+    // The models run on seconds since the first sample of the run, from integer-nanosecond stamp
+    // differences: exact to 1e-16 s relative where seconds since 1970 in a double keep 0.1 us.
+    ::ros::Time epoch;                // stamp of the first sample of the run
+    double last_t = 0.0;              // s since epoch of the last accepted sample
+    double first_t = 0.0;             // s since epoch of the stored first sample (0)
     Eigen::Vector3d first_a = Eigen::Vector3d::Zero();
     double dt_nominal = 0.0;
     std::uint64_t received = 0, rejected_nonfinite = 0, rejected_limit = 0, zero_stamps = 0, resets = 0;
@@ -85,6 +89,7 @@ class RockingMonitor {
   void on_startup_timer(const ::ros::WallTimerEvent&);
   bool on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response&);
   void fill_state(const Item& item, RockingState& out) const;
+  static void fill_plane(const core::PlaneMonitor& plane, PlaneState& out);
   void publish_markers_and_tf();
   void sensor_diagnostics(std::size_t sensor, diagnostic_updater::DiagnosticStatusWrapper& stat);
   void catalogue_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& stat);

@@ -1,0 +1,91 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "rocking_monitor/model/adaptive_model.hpp"
+#include "rocking_monitor/monitoring/item_modes.hpp"
+#include "rocking_monitor/physics/criteria.hpp"
+#include "rocking_monitor/model/rocking_model.hpp"
+#include "rocking_monitor/motion/streaming_intensity.hpp"
+
+namespace rocking_monitor::core {
+
+/// One rocking plane of a live item: the planar rocking model plus its running screening criteria
+/// (Housner from the running 5 %-damped pseudo-velocity at housner_period(), Ishiyama and variants from
+/// running PGA and high-pass PGV of the plane's own horizontal input) and the model-validity criteria.
+/// ItemMonitor holds one per plane. ROS-free, so the node and an offline replay give the same numbers.
+class PlaneMonitor {
+ public:
+  struct Options {
+    SolverSettings solver;
+    double velocity_highpass_hz = 0.05;  ///< PGV high-pass corner, Hz (see StreamingIntensity)
+    /// Adaptive (default): pure rocking while valid, sliding and free flight modelled when needed
+    /// (AdaptiveModel, docs/fidelity.md); the validity criteria are then reported as model switches.
+    /// Rocking: pure rocking only, violations flagged (the speed option). Contact: always the contact model.
+    Fidelity fidelity = Fidelity::Adaptive;
+    /// Adaptive: scene envelope of the static pre-check (AdaptiveSettings::scene; inf = unknown).
+    SceneEnvelope scene{};
+    /// Adaptive: linearized tier for slender items (AdaptiveSettings::linearized_max_alpha, rad; 0 = off).
+    double linearized_max_alpha = 0.0;
+  };
+
+  /// Throws BodyError (naming the field) for a bad body.
+  PlaneMonitor(const BodyParameters& body, const Options& options);
+
+  /// (Re)starts at time t (s) at rest with the first sample (m/s^2); dt_nominal (s) sizes the
+  /// running spectrum. Allocates (once); not for the per-sample path.
+  void start(double t, double ax, double ay, double dt_nominal);
+  bool started() const { return started_; }
+
+  /// One sample: horizontal ax along the item's x and vertical ay (m/s^2), dt seconds after the
+  /// previous one. No allocation.
+  const PlaneEvents& step(double ax, double ay, double dt);
+
+  /// Events of the last step().
+  const PlaneEvents& events() const { return events_; }
+  ItemMode mode() const;
+  /// The pure-rocking model (the one that runs with Fidelity::Rocking).
+  const RockingModel& model() const { return model_; }
+  /// Present with Fidelity::Adaptive or Contact.
+  const AdaptiveModel* adaptive() const { return adaptive_.get(); }
+  // The state of whichever model runs:
+  int side() const;
+  double theta() const;                ///< rad
+  double omega() const;                ///< rad/s
+  double rotation_ratio() const;       ///< |theta| / alpha of the active pivot
+  OverturnMargin margin() const;
+  long impacts() const;
+  double slip() const;                 ///< m, base displacement relative to the floor
+  ContactMode contact_mode() const;    ///< REST, SLIDE, ROCK, SLIDE_ROCK, FLIGHT, OVERTURNED
+  const char* active_model() const;    ///< "rocking" or "contact"
+  const Body& body() const { return model_.body(); }
+  const ScreeningThresholds& thresholds() const { return thresholds_; }
+  /// Screening criteria exceeded so far (they are running maxima, so they stay exceeded).
+  bool screening_exceeded(CriterionId id) const { return exceeded_[static_cast<int>(id)]; }
+  std::uint8_t violations() const;  ///< RockingState VIOLATION_* bitmask
+  double pga() const { return intensity_ ? intensity_->pga() : 0.0; }
+  double pgv() const { return intensity_ ? intensity_->pgv() : 0.0; }
+  double housner_demand() const { return intensity_ ? intensity_->psv()[0] : 0.0; }
+
+ private:
+  void evaluate_criteria(double ax, double ay);
+  void report_switch(SwitchReason reason, bool to_contact);
+  void record_change(CriterionId id, bool exceeded, double value, double threshold,
+                     double second_value = 0.0, double second_threshold = 0.0);
+
+  Options options_;
+  RockingModel model_;
+  std::unique_ptr<AdaptiveModel> adaptive_;
+  ScreeningThresholds thresholds_;
+  std::unique_ptr<StreamingIntensity> intensity_;
+  bool started_ = false;
+  bool slid_at_uplift_ = false;  // latched from the onset until the body is back at rest
+  CriterionId last_switch_criterion_ = CriterionId::SlideFromRest;  // adaptive: why it went up
+  std::array<bool, kCriterionIdCount> exceeded_{};
+  PlaneEvents events_;
+};
+
+}  // namespace rocking_monitor::core
