@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """Writes a synthetic catalogue of N items (for load tests of the live monitor).
 
-Usage: make_catalogue.py N OUT.yaml [--topic /ground/imu] [--frame accelerometer] [--seed 1]
-Items get random but plausible geometry (B 0.15-0.8 m, h 0.2-1.2 m, nu1 0.25-0.5, mu_s 0.3-0.8)
-and random yaw, all fed by one Imu sensor.
+Usage: make_catalogue.py N OUT.yaml [--topic /ground/imu] [--frame accelerometer] [--seed 1] [--single-plane]
+Items get random but plausible geometry (B 0.15-0.8 m, depth D 0.15-1.0 m, h 0.2-1.2 m, nu1 and
+eccentricity_y 0.25-0.5, mu_s 0.3-0.8) and random yaw, all fed by one Imu sensor. --single-plane
+leaves the depth out (items rocking in their x-z plane only).
 """
 import argparse
 import math
@@ -16,6 +17,7 @@ p.add_argument("--topic", default="/ground/imu")
 p.add_argument("--frame", default="accelerometer")
 p.add_argument("--seed", type=int, default=1)
 p.add_argument("--rate", type=float, default=200.0)
+p.add_argument("--single-plane", action="store_true", help="no depth: x-z plane only")
 a = p.parse_args()
 rng = random.Random(a.seed)
 with open(a.out, "w") as f:
@@ -24,7 +26,11 @@ with open(a.out, "w") as f:
     for i in range(a.n):
         h = rng.uniform(0.2, 1.2)
         b = rng.uniform(0.15, min(0.8, 1.5 * h))
-        f.write("  - {id: item%05d, sensor: floor, width: %.3f, cg_height: %.3f, eccentricity: %.2f, "
+        # The second plane's numbers are drawn after the first's, so --single-plane keeps the same widths.
+        nu, mu, x, y, yaw = (rng.uniform(0.25, 0.5), rng.uniform(0.3, 0.8), rng.uniform(0, 50),
+                             rng.uniform(0, 50), rng.uniform(-math.pi, math.pi))
+        d, nu_y = rng.uniform(0.15, min(1.0, 1.5 * h)), rng.uniform(0.25, 0.5)
+        depth = "" if a.single_plane else "depth: %.3f, eccentricity_y: %.2f, " % (d, nu_y)
+        f.write("  - {id: item%05d, sensor: floor, width: %.3f, %scg_height: %.3f, eccentricity: %.2f, "
                 "mu_s: %.2f, pose: {parent_frame: %s, x: %.2f, y: %.2f, yaw: %.3f}}\n" % (
-                    i, b, h, rng.uniform(0.25, 0.5), rng.uniform(0.3, 0.8), a.frame,
-                    rng.uniform(0, 50), rng.uniform(0, 50), rng.uniform(-math.pi, math.pi)))
+                    i, b, depth, h, nu, mu, a.frame, x, y, yaw))
