@@ -21,7 +21,7 @@ LAYERS = {
     "tools": ((2.0, 9.0), 3.4, ROS, "rocking_sim, rocking_study,\nrecord_to_bag"),
     "ros": ((6.0, 9.0), 3.4, ROS, "monitor node / nodelet (one class),\nplayer, catalogue"),
     "study": ((2.0, 7.2), 3.4, CORE, "grid, records, runner,\ncase tables, summary, report"),
-    "monitoring": ((6.0, 7.2), 3.4, CORE, "ItemMonitor (one item, live),\nsimulation (one body, offline)"),
+    "monitoring": ((6.0, 7.2), 3.4, CORE, "ItemMonitor (two planes, live),\nsimulation (one body, offline)"),
     "model": ((2.0, 5.4), 3.4, CORE, "RockingModel, ContactModel,\nAdaptiveModel"),
     "motion": ((6.0, 5.4), 3.4, CORE, "records (AT2, BBP, SMC, CSV), stations,\nspectra, intensity, baseline"),
     "integrate": ((2.0, 3.6), 3.4, CORE, "dopri5, rk4, analytic steppers,\nevent location, settings"),
@@ -38,7 +38,7 @@ USES = [("tools", "study"), ("tools", "monitoring"), ("ros", "monitoring"), ("ro
 PATH = [
     ("sensor_msgs/Imu or AccelStamped", "ros/monitor_sample_path.cpp"),
     ("stamps checked, rotated (tf2), baseline off", "motion/sample_timing, sensor_frame, gravity_baseline"),
-    ("item monitor: criteria, intensity", "monitoring/item_monitor"),
+    ("item monitor: x and y planes, criteria", "monitoring/item_monitor, plane_monitor"),
     ("adaptive model: rocking or contact", "model/adaptive_model"),
     ("stepper: one input sample", "integrate/dopri5_stepper (rk4, analytic)"),
     ("events: uplift, impact, overturn", "integrate/event_location, physics/impact, criteria"),
