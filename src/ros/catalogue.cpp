@@ -1,6 +1,8 @@
 #include "rocking_monitor/ros/catalogue.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <set>
 #include <sstream>
 
@@ -79,6 +81,31 @@ std::string name_of(const XmlRpcValue& v, const char* key) {
 }
 
 }  // namespace
+
+int shard_of(const std::string& id, int n) {
+  std::uint64_t h = 14695981039346656037ull;  // FNV-1a, 64 bit
+  for (unsigned char c : id) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return static_cast<int>(h % static_cast<std::uint64_t>(n)) + 1;
+}
+
+std::pair<int, int> parse_shard(const std::string& text) {
+  int k = 0, n = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%d/%d%c", &k, &n, &tail) != 2 || n < 1 || k < 1 || k > n)
+    throw CatalogueError("shard: '" + text + "' is not k/n with 1 <= k <= n (e.g. 2/3)");
+  return {k, n};
+}
+
+Catalogue select_shard(const Catalogue& catalogue, int k, int n) {
+  Catalogue out;
+  out.sensors = catalogue.sensors;
+  for (const CatalogueItem& item : catalogue.items)
+    if (shard_of(item.spec.id, n) == k) out.items.push_back(item);
+  return out;
+}
 
 Catalogue parse_catalogue(const XmlRpcValue& sensors, const XmlRpcValue& items) {
   Catalogue cat;

@@ -64,7 +64,7 @@ bool RockingMonitor::load_parameters() {
             param(pnh_, "publish_markers", publish_markers_, "bool") &&
             param(pnh_, "publish_tf", publish_tf_, "bool") && param(pnh_, "threads", threads_, "integer") &&
             param(pnh_, "marker_rate", marker_rate_, "number") &&
-            param(pnh_, "fidelity", fidelity, "string");
+            param(pnh_, "fidelity", fidelity, "string") && param(pnh_, "shard", shard_, "string (k/n)");
   double scene_h = 0.0, scene_v = 0.0;
   ok = ok && param(pnh_, "linearized_max_alpha", options_.linearized_max_alpha, "number") &&
        param(pnh_, "scene_envelope/horizontal", scene_h, "number") &&
@@ -140,6 +140,19 @@ bool RockingMonitor::init() {
     cat = parse_catalogue(sensors, items);
   } catch (const CatalogueError& e) {
     ROS_FATAL("rocking_monitor: bad catalogue: %s", e.what());
+    return false;
+  }
+  try {
+    const auto [k, n] = parse_shard(shard_);
+    if (n > 1) {
+      const std::size_t all = cat.items.size();
+      cat = select_shard(cat, k, n);
+      ROS_INFO("rocking_monitor: shard %d/%d: %zu of the catalogue's %zu items (by a stable hash of the id)", k, n,
+               cat.items.size(), all);
+      if (cat.items.empty()) ROS_WARN("rocking_monitor: shard %d/%d holds no item of this catalogue", k, n);
+    }
+  } catch (const CatalogueError& e) {
+    ROS_FATAL("rocking_monitor: ~%s", e.what());
     return false;
   }
 

@@ -63,6 +63,7 @@ void RockingMonitor::catalogue_diagnostics(diagnostic_updater::DiagnosticStatusW
   else if (counts[4] > 0) st.summary(diagnostic_msgs::DiagnosticStatus::WARN, std::to_string(counts[4]) + " items overturned");
   else st.summary(diagnostic_msgs::DiagnosticStatus::OK, "monitoring " + std::to_string(items_.size()) + " items");
   st.add("items", items_.size());
+  st.add("shard (k/n of the catalogue)", shard_);
   for (int m = 0; m < 5; ++m) st.add(core::to_string(static_cast<ItemMode>(m)), counts[m]);
   st.add("pure-rocking model not valid now", invalid);
   st.add("items without transform", without_tf);

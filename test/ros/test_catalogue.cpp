@@ -95,6 +95,38 @@ TEST(Catalogue, BadDepthFieldsAreNamed) {
   EXPECT_NE(with({{"eccentricity_y", 0.4}}).find("items[0] 'cabinet': eccentricity_y: needs depth"), std::string::npos);
 }
 
+TEST(Catalogue, ShardsByAStableHashOfTheId) {
+  // FNV-1a 64-bit test vectors (Fowler, Noll, Vo): "a" -> 0xaf63dc4c8601ec8c, "foobar" -> 0x85944171f73967e8.
+  EXPECT_EQ(shard_of("a", 1000), static_cast<int>(0xaf63dc4c8601ec8cull % 1000) + 1);
+  EXPECT_EQ(shard_of("foobar", 7), static_cast<int>(0x85944171f73967e8ull % 7) + 1);
+  // 10,000 ids in 4 shards: each in exactly one, the shards within 10 % of n/4.
+  XmlRpcValue items;
+  for (int i = 0; i < 10000; ++i) {
+    items[i]["id"] = "item" + std::to_string(i);
+    items[i]["sensor"] = "floor";
+    items[i]["width"] = 0.5;
+    items[i]["cg_height"] = 0.9;
+  }
+  const Catalogue all = parse_catalogue(sensors(), items);
+  std::size_t total = 0;
+  for (int k = 1; k <= 4; ++k) {
+    const Catalogue part = select_shard(all, k, 4);
+    EXPECT_NEAR(static_cast<double>(part.items.size()), 2500.0, 250.0) << "shard " << k;
+    for (const CatalogueItem& it : part.items) EXPECT_EQ(shard_of(it.spec.id, 4), k);
+    total += part.items.size();
+  }
+  EXPECT_EQ(total, all.items.size());
+  EXPECT_EQ(parse_shard("2/3"), std::make_pair(2, 3));
+  for (const char* bad : {"0/2", "3/2", "2", "1/0", "a/b", "1/2x", "-1/2"}) {
+    try {
+      parse_shard(bad);
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const CatalogueError& e) {
+      EXPECT_EQ(std::string(e.what()), std::string("shard: '") + bad + "' is not k/n with 1 <= k <= n (e.g. 2/3)");
+    }
+  }
+}
+
 TEST(Catalogue, BadFieldsAreNamed) {
   auto with = [](const char* key, XmlRpcValue v) {
     XmlRpcValue i = one_item();

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <XmlRpcValue.h>
@@ -43,6 +44,17 @@ class CatalogueError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+/// Which of n shards an item belongs to (1..n): FNV-1a hash of its id, modulo n. Stable across
+/// machines, runs and catalogue order, so n monitors on n machines split one catalogue without
+/// talking to each other.
+int shard_of(const std::string& id, int n);
+
+/// Parses "k/n" (1 <= k <= n); throws CatalogueError naming the text otherwise.
+std::pair<int, int> parse_shard(const std::string& text);
+
+/// The items of shard k of n (catalogue order kept; sensors all kept).
+Catalogue select_shard(const Catalogue& catalogue, int k, int n);
 
 /// Parses the `sensors` and `items` lists (as loaded by rosparam from config/catalogue_example.yaml).
 /// Validates every field (types, units, ranges, unique ids, known sensors).

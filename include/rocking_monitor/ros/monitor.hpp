@@ -103,6 +103,7 @@ class RockingMonitor {
   int state_queue_size_ = 10;  // ~states messages kept per subscriber while it lags
   bool publish_markers_ = true, publish_tf_ = true;
   int threads_ = 1;
+  std::string shard_ = "1/1";  // this monitor's part of the catalogue: shard k of n by hash of the id
   double marker_rate_ = 5.0;
   ::ros::Time last_marker_time_;
   std::unique_ptr<tbb::task_arena> arena_;
