@@ -2,6 +2,8 @@
 
 // The verdict for a whole item from the verdicts of its rocking planes: the item is at the more
 // severe level of its planes, and reaches each level when its first plane does.
+// In physics/ (not monitoring/) because it is a pure rule over plane verdicts, which both the live
+// monitor and the offline study (which may not include monitoring/) apply.
 
 #include <array>
 #include <limits>
