@@ -480,5 +480,59 @@ TEST(TwoPlaneItems, CaseOrderTableAndSummaryDoNotDependOnThreads) {
   EXPECT_EQ(header, expected);
 }
 
+// The same on a real station whose horizontals are not north and east (Rinaldi 228 and 318, with its
+// vertical): at azimuth 228 the x plane is the 228 component's single-plane case with the vertical,
+// bit for bit, and at 318 the x plane is the 318 component's and the y plane (318 - 90 = 228) the
+// 228 component's.
+TEST(TwoPlaneItemsRealRecords, RinaldiPlanesAtItsComponentsAzimuthsAreItsSinglePlaneCases) {
+  const fs::path dir(ROCKING_RECORDS_DIR);
+  if (!fs::exists(dir / "MANIFEST.csv")) GTEST_SKIP() << "no records at " << dir;
+  const StudyRecords recs = load_study_records(dir.string(), {{"Rinaldi"}, {}});
+  ASSERT_EQ(recs.records.size(), 2u);
+  ASSERT_EQ(recs.records[0].component, "228");
+  const StationPairs pairs = pair_stations(recs.records);
+  ASSERT_EQ(pairs.pairs.size(), 1u);
+  EXPECT_EQ(pairs.zero_padded, 0);
+  const StudyItem item = make_item("cab", 0.35, 0.5, 0.8, 0.4, 0.45);
+  const std::vector<StudyBody> bodies{{"x", item.x}, {"y", item.y}};
+  StudyOptions single;
+  single.threads = 2;
+  const std::vector<CaseResult> cases = run_study(bodies, recs.records, single);
+  auto single_case = [&](std::size_t body, std::size_t record, int polarity) -> const CaseResult& {
+    for (const auto& c : cases)
+      if (c.body == body && c.record == record && c.polarity == polarity && c.vertical) return c;
+    throw std::runtime_error("no such case");
+  };
+  const std::vector<ItemCaseResult> r = run_item_study({item}, recs.records, pairs, options({228.0, 318.0}));
+  long rocked = 0;
+  for (int p : {1, -1}) {
+    const std::string s = " polarity " + std::to_string(p);
+    expect_same(find(r, 0, 228.0, p).planes[0], single_case(0, 0, p), "x at 228" + s);
+    expect_same(find(r, 0, 318.0, p).planes[0], single_case(0, 1, p), "x at 318" + s);
+    expect_same(find(r, 0, 318.0, p).planes[1], single_case(1, 0, p), "y at 318 = 228" + s);
+    rocked += find(r, 0, 228.0, p).planes[0].outcome.impacts > 0 || find(r, 0, 228.0, p).planes[0].outcome.overturned;
+  }
+  EXPECT_GT(rocked, 0);
+}
+
+// --one-polarity and --no-vertical apply to the items too.
+TEST(TwoPlaneItems, OnePolarityAndNoVerticalOptions) {
+  const Component up = pulse("UP", 1.5, 2.0, 0.0, true);
+  const std::vector<StudyRecord> records = station({pulse("000", 3.0, 1.0), pulse("090", 2.0, 1.3)}, &up);
+  const StationPairs pairs = pair_stations(records);
+  ItemStudyOptions o = options({0.0, 45.0, 90.0});
+  o.both_polarities = false;
+  o.verticals = false;
+  const std::vector<ItemCaseResult> r =
+      run_item_study({make_item("a", 0.3, 0.3, 0.6, 0.4, 0.4)}, records, pairs, o);
+  ASSERT_EQ(r.size(), 3u);
+  EXPECT_EQ(item_case_count(1, 1, o), 3u);
+  for (const auto& c : r) {
+    EXPECT_EQ(c.polarity, 1);
+    EXPECT_FALSE(c.vertical);
+    EXPECT_FALSE(c.planes[0].vertical);
+  }
+}
+
 }  // namespace
 }  // namespace rocking_monitor::core::study
