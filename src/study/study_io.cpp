@@ -91,7 +91,128 @@ json set_json(const SetSummary& s) {
 
 }  // namespace
 
-std::vector<StudyBody> load_bodies_yaml(const std::string& path) {
+namespace {
+
+// One entry of a body file. `catalogue`: an `items:` entry of a monitor catalogue (id, eccentricity,
+// shape, ...; the live node's own keys are ignored), else a study body (name, nu1 list).
+void load_entry(const YAML::Node& item, std::size_t i, const std::string& path, const std::string& prefix,
+                bool catalogue, BodyFile& out, std::set<std::string>& names) {
+  std::string where = path + ": " + prefix + "[" + std::to_string(i) + "]";
+  if (!item.IsMap()) throw StudyError(where + ": expected a map with width, cg_height, ...");
+  const char* name_key = catalogue ? "id" : "name";
+  std::string name = (catalogue ? "item" : "body") + std::to_string(i);
+  if (item[name_key]) {
+    if (!item[name_key].IsScalar() || item[name_key].Scalar().empty())
+      throw StudyError(where + ": " + name_key + ": expected a non-empty string");
+    name = item[name_key].Scalar();
+  } else if (catalogue) {
+    throw StudyError(where + ": id: missing (required)");
+  }
+  where += " (" + name + "): ";
+  // Keys the live monitor uses (which sensor, tf frame, pose, alarm text): no meaning offline.
+  static const std::set<std::string> ignored{"sensor", "frame", "pose", "description"};
+  static const std::set<std::string> body_keys{"name", "width", "cg_height", "nu1", "radius_of_gyration",
+                                               "restitution", "mu_s", "depth", "eccentricity_y",
+                                               "radius_of_gyration_y"};
+  static const std::set<std::string> item_keys{"id", "width", "cg_height", "eccentricity", "depth",
+                                               "eccentricity_y", "radius_of_gyration", "radius_of_gyration_y",
+                                               "shape", "mu_s", "mu_k", "restitution", "overturn_angle"};
+  const std::set<std::string>& known = catalogue ? item_keys : body_keys;
+  for (const auto& kv : item) {
+    const std::string key = kv.first.as<std::string>();
+    if (catalogue && ignored.count(key)) continue;
+    if (!known.count(key)) {
+      std::string list;
+      for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+      throw StudyError(where + key + ": unknown field (known: " + list + ")");
+    }
+  }
+  BodyParameters p;
+  for (const char* req : {"width", "cg_height"})
+    if (!item[req]) throw StudyError(where + req + ": missing (required, m)");
+  p.width = scalar(item["width"], where, "width");
+  p.cg_height = scalar(item["cg_height"], where, "cg_height");
+  if (item["radius_of_gyration"]) p.radius_of_gyration = scalar(item["radius_of_gyration"], where, "radius_of_gyration");
+  if (item["restitution"]) p.restitution = scalar(item["restitution"], where, "restitution");
+  if (item["mu_s"]) p.mu_s = scalar(item["mu_s"], where, "mu_s");
+  if (item["mu_k"]) p.mu_k = scalar(item["mu_k"], where, "mu_k");
+  if (item["overturn_angle"]) p.overturn_angle = scalar(item["overturn_angle"], where, "overturn_angle");
+  DepthParameters depth;
+  if (item["depth"]) depth.depth = scalar(item["depth"], where, "depth");
+  if (item["eccentricity_y"]) depth.eccentricity_y = scalar(item["eccentricity_y"], where, "eccentricity_y");
+  if (item["radius_of_gyration_y"])
+    depth.radius_of_gyration_y = scalar(item["radius_of_gyration_y"], where, "radius_of_gyration_y");
+  if (!depth.given()) {
+    for (const char* y : {"eccentricity_y", "radius_of_gyration_y"})
+      if (item[y]) throw StudyError(where + y + ": given without depth (the y plane needs its depth)");
+  }
+  std::vector<double> nus{0.5};
+  bool nu_list = false;
+  if (catalogue) {
+    if (item["eccentricity"]) nus = {scalar(item["eccentricity"], where, "eccentricity")};
+  } else if (const YAML::Node nu = item["nu1"]) {
+    nus.clear();
+    if (nu.IsSequence()) {
+      nu_list = true;
+      if (nu.size() == 0) throw StudyError(where + "nu1: empty list");
+      for (std::size_t k = 0; k < nu.size(); ++k)
+        nus.push_back(scalar(nu[k], where, "nu1[" + std::to_string(k) + "]"));
+    } else {
+      nus.push_back(scalar(nu, where, "nu1"));
+    }
+  }
+  // Validate the geometry before computing the default radius of gyration from it.
+  {
+    BodyParameters probe = p;
+    probe.nu1 = 0.5;
+    if (const std::string e = validate(probe); !e.empty()) throw StudyError(where + e);
+    if (const std::string e = validate(depth); !e.empty()) throw StudyError(where + e);
+  }
+  if (std::isnan(p.radius_of_gyration)) {
+    std::string shape = "box";
+    if (item["shape"]) {
+      if (!item["shape"].IsScalar()) throw StudyError(where + "shape: expected box or cylinder");
+      shape = item["shape"].Scalar();
+    }
+    if (shape == "box") {
+      p.radius_of_gyration = Body::homogeneous_radius_of_gyration(p.width, p.cg_height);
+    } else if (shape == "cylinder") {
+      // As the catalogue: a solid cylinder of diameter B and height 2h about a horizontal diameter.
+      p.radius_of_gyration = std::sqrt(p.width * p.width / 16.0 + p.cg_height * p.cg_height / 3.0);
+    } else {
+      throw StudyError(where + "shape: '" + shape + "' is not one of: box, cylinder (or give radius_of_gyration)");
+    }
+  }
+  for (double nu : nus) {
+    BodyParameters b = p;
+    b.nu1 = nu;
+    const std::string body_name = nu_list ? name + "_nu" + format_value(nu) : name;
+    const std::string nu_where =
+        where + (nu_list ? "nu1 = " + format_value(nu) + ": " : std::string());
+    if (const std::string e = validate(b); !e.empty()) throw StudyError(nu_where + e);
+    if (!names.insert(body_name).second)
+      throw StudyError(where + name_key + ": '" + body_name + "' used twice");
+    if (!depth.given()) {
+      out.bodies.push_back({body_name, b});
+      continue;
+    }
+    StudyItem it;
+    it.name = body_name;
+    it.x = b;
+    it.depth = depth;
+    try {
+      it.y = y_plane_body(b, depth);  // radius of gyration derived from x's when not given
+    } catch (const std::exception& e) {
+      throw StudyError(nu_where + e.what());
+    }
+    if (const std::string e = validate(it.y); !e.empty()) throw StudyError(nu_where + "y plane: " + e);
+    out.items.push_back(std::move(it));
+  }
+}
+
+}  // namespace
+
+BodyFile load_body_file(const std::string& path) {
   YAML::Node root;
   try {
     root = YAML::LoadFile(path);
@@ -103,83 +224,91 @@ std::vector<StudyBody> load_bodies_yaml(const std::string& path) {
   }
   YAML::Node list = root;
   std::string prefix = "bodies";
+  bool catalogue = false;
   if (root.IsMap()) {
+    catalogue = static_cast<bool>(root["items"]);
+    if (catalogue && root["bodies"])
+      throw StudyError(path + ": both 'bodies' and 'items' (give one list)");
     for (const auto& kv : root) {
       const std::string key = kv.first.as<std::string>();
-      if (key != "bodies") throw StudyError(path + ": unknown top-level key '" + key + "' (expected 'bodies')");
+      // A monitor catalogue's sensors feed the live node; the study brings its own records.
+      if (key == "bodies" || key == "items" || (catalogue && key == "sensors")) continue;
+      throw StudyError(path + ": unknown top-level key '" + key + "' (expected 'bodies' or 'items')");
     }
-    list = root["bodies"];
+    prefix = catalogue ? "items" : "bodies";
+    list = root[prefix];
   } else {
     prefix = "";
   }
   if (!list || !list.IsSequence() || list.size() == 0)
-    throw StudyError(path + ": expected a non-empty list of bodies (under 'bodies:')");
-
-  static const std::set<std::string> known{"name", "width", "cg_height", "nu1",
-                                           "radius_of_gyration", "restitution", "mu_s"};
-  std::vector<StudyBody> bodies;
+    throw StudyError(path + ": expected a non-empty list of bodies (under 'bodies:' or 'items:')");
+  BodyFile out;
   std::set<std::string> names;
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const YAML::Node item = list[i];
-    std::string where = path + ": " + prefix + "[" + std::to_string(i) + "]";
-    if (!item.IsMap()) throw StudyError(where + ": expected a map with width, cg_height, ...");
-    std::string name = "body" + std::to_string(i);
-    if (item["name"]) {
-      if (!item["name"].IsScalar() || item["name"].Scalar().empty())
-        throw StudyError(where + ": name: expected a non-empty string");
-      name = item["name"].Scalar();
-    }
-    where += " (" + name + "): ";
-    for (const auto& kv : item) {
-      const std::string key = kv.first.as<std::string>();
-      if (!known.count(key))
-        throw StudyError(where + key + ": unknown field (known: name, width, cg_height, nu1, "
-                                       "radius_of_gyration, restitution, mu_s)");
-    }
-    BodyParameters p;
-    for (const char* req : {"width", "cg_height"})
-      if (!item[req]) throw StudyError(where + req + ": missing (required, m)");
-    p.width = scalar(item["width"], where, "width");
-    p.cg_height = scalar(item["cg_height"], where, "cg_height");
-    if (item["radius_of_gyration"]) p.radius_of_gyration = scalar(item["radius_of_gyration"], where, "radius_of_gyration");
-    if (item["restitution"]) p.restitution = scalar(item["restitution"], where, "restitution");
-    if (item["mu_s"]) p.mu_s = scalar(item["mu_s"], where, "mu_s");
-    std::vector<double> nus{0.5};
-    bool nu_list = false;
-    if (const YAML::Node nu = item["nu1"]) {
-      nus.clear();
-      if (nu.IsSequence()) {
-        nu_list = true;
-        if (nu.size() == 0) throw StudyError(where + "nu1: empty list");
-        for (std::size_t k = 0; k < nu.size(); ++k)
-          nus.push_back(scalar(nu[k], where, "nu1[" + std::to_string(k) + "]"));
-      } else {
-        nus.push_back(scalar(nu, where, "nu1"));
-      }
-    }
-    // Validate the geometry before computing the default radius of gyration from it.
-    {
-      BodyParameters probe = p;
-      probe.nu1 = 0.5;
-      if (const std::string e = validate(probe); !e.empty()) throw StudyError(where + e);
-    }
-    if (std::isnan(p.radius_of_gyration))
-      p.radius_of_gyration = Body::homogeneous_radius_of_gyration(p.width, p.cg_height);
-    for (double nu : nus) {
-      StudyBody b;
-      b.parameters = p;
-      b.parameters.nu1 = nu;
-      b.name = nu_list ? name + "_nu" + format_value(nu) : name;
-      if (const std::string e = validate(b.parameters); !e.empty())
-        throw StudyError(where + (nu_list ? "nu1 = " + format_value(nu) + ": " : std::string()) + e);
-      if (!names.insert(b.name).second) throw StudyError(where + "name: '" + b.name + "' used twice");
-      bodies.push_back(std::move(b));
-    }
-  }
-  return bodies;
+  for (std::size_t i = 0; i < list.size(); ++i) load_entry(list[i], i, path, prefix, catalogue, out, names);
+  return out;
 }
 
-std::string summary_json(const StudySummary& s, const StudyRunInfo& run) {
+std::vector<StudyBody> load_bodies_yaml(const std::string& path) {
+  BodyFile f = load_body_file(path);
+  if (!f.items.empty())
+    throw StudyError(path + ": '" + f.items.front().name +
+                     "' has a depth (a two-plane item): read this file with load_body_file()");
+  return std::move(f.bodies);
+}
+
+namespace {
+
+json item_tally_json(const ItemTally& t) {
+  return {{"cases", t.cases},
+          {"overturned", t.overturned},
+          {"overturned_percent", nullable(t.cases ? 100.0 * t.overturned / t.cases : NAN)},
+          {"committed", t.committed},
+          {"beyond_tipping", t.beyond_tipping},
+          {"overturned_decided_by_y", t.overturned_decided_by_y},
+          {"decided_by_y_percent_of_overturned",
+           nullable(t.overturned ? 100.0 * t.overturned_decided_by_y / t.overturned : NAN)},
+          {"overturned_x_plane_only", t.overturned_x_only},
+          {"overturned_y_plane_only", t.overturned_y_only},
+          {"overturned_both_planes", t.overturned_both}};
+}
+
+json items_json(const ItemSummary& s) {
+  json by_az = json::array();
+  for (std::size_t a = 0; a < s.azimuths.size(); ++a) {
+    json t = item_tally_json(s.by_azimuth[a]);
+    t["azimuth_deg"] = s.azimuths[a];
+    by_az.push_back(t);
+  }
+  json by_item = json::array();
+  for (std::size_t i = 0; i < s.by_item.size(); ++i) {
+    json t = item_tally_json(s.by_item[i]);
+    t["item"] = s.item_names[i];
+    by_item.push_back(t);
+  }
+  const StationPairs& k = s.skipped;
+  return {{"description",
+           "items with a depth: x plane (width) and y plane (depth) run separately with the station's two "
+           "horizontals rotated to each azimuth (x along it, y 90 deg counter-clockwise), both polarities, "
+           "the station's vertical when present; an item reaches a level when its first plane does"},
+          {"model", "pure rocking (paper), the two planes uncoupled"},
+          {"items", s.items},
+          {"station_pairs", s.pairs},
+          {"azimuths_deg", s.azimuths},
+          {"all", item_tally_json(s.all)},
+          {"by_azimuth", by_az},
+          {"by_item", by_item},
+          {"stations_not_run",
+           {{"single_horizontal", k.single_horizontal},
+            {"different_dt", k.different_dt},
+            {"no_azimuth", k.no_azimuth},
+            {"not_resolvable", k.not_resolvable}}},
+          {"pairs_zero_padded", k.zero_padded},
+          {"notes", k.notes}};
+}
+
+}  // namespace
+
+std::string summary_json(const StudySummary& s, const StudyRunInfo& run, const ItemSummary* items) {
   json out;
   out["tool"] = "rocking_study";
   out["paper"] = "Boroschek & Romo, Overturning criteria for non-anchored non-symmetric rigid bodies";
@@ -188,6 +317,7 @@ std::string summary_json(const StudySummary& s, const StudyRunInfo& run) {
                 {"bodies", run.bodies_source},
                 {"method", run.method},
                 {"model", run.model},
+                {"rocking_model", kStudyRockingModel},
                 {"tol", run.tol},
                 {"substeps", run.substeps},
                 {"threads", run.threads},
@@ -230,6 +360,7 @@ std::string summary_json(const StudySummary& s, const StudyRunInfo& run) {
                   {"overturn_only_without_vertical", v.only_without[e]}});
   }
   out["vertical_effect"] = ve;
+  if (items != nullptr) out["two_plane_items"] = items_json(*items);
   return out.dump(2) + "\n";
 }
 

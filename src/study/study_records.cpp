@@ -30,6 +30,7 @@ StudyRecord make_study_record(const Component& h, const Component* v, std::strin
   r.event = std::move(event);
   r.station = std::move(station);
   r.component = std::move(component);
+  r.header_label = h.label;
   r.file = std::move(file);
   r.dt = h.dt;
   r.t0 = h.t0;

@@ -162,11 +162,13 @@ int main(int argc, char** argv) {
   CLI::App app{
       "rocking_study: the overturning study of Boroschek & Romo over every horizontal record component "
       "of a directory (both polarities, with and without the station's vertical), for the paper's "
-      "body grid or your own bodies. Writes cases.csv, bodies.csv, records.csv and summary.json to "
+      "body grid or your own bodies; bodies with a depth (two-plane items) run on both horizontals of each "
+      "station rotated to --azimuth. Writes cases.csv, bodies.csv, records.csv, summary.json (and with "
+      "--bodies item_cases.csv) to "
       "--out and prints the summary. See docs/study.md."};
   std::string records_dir = ROCKING_RECORDS_DIR, bodies_file, out_dir = "study_out", shard_text = "1/1";
   std::string method_text = "dopri5", model_text = "nonlinear", eccentricities_text = "0.5,0.4,0.3,0.2";
-  std::vector<std::string> only, exclude, merge_files;
+  std::vector<std::string> only, exclude, merge_files, azimuth_texts{"0,90"};
   st::StudyGrid grid;
   rm::SolverSettings settings;
   int threads = 0;
@@ -175,7 +177,13 @@ int main(int argc, char** argv) {
   app.add_option("--records", records_dir,
                  "Records directory (MANIFEST.csv if present, else every AT2/BBP/SMC/CSV file below it)")
       ->default_val(records_dir);
-  app.add_option("--bodies", bodies_file, "YAML file of bodies (replaces the paper's grid; see docs/study.md)");
+  app.add_option("--bodies", bodies_file,
+                 "YAML file of bodies or a monitor catalogue (items:); replaces the paper's grid. Bodies "
+                 "with a depth are two-plane items, run on station pairs (see docs/study.md)");
+  app.add_option("--azimuth", azimuth_texts,
+                 "Two-plane items: azimuths of the item's x axis, degrees clockwise from north (repeatable "
+                 "or a comma list; y is 90 deg counter-clockwise of x)")
+      ->default_val("0,90");
   app.add_option("--heights", grid.heights, "Grid: number of centre-of-mass heights, log-spaced 0.25-4 m")
       ->default_val(grid.heights)->check(CLI::Range(1, 1000));
   app.add_option("--widths", grid.widths, "Grid: base widths per height, geometric in [max(0.08,0.16h), min(3.5,1.2h)]")
@@ -212,8 +220,15 @@ int main(int argc, char** argv) {
     const auto [shard_k, shard_n] = st::parse_shard(shard_text);
 
     std::vector<st::StudyBody> bodies;
+    std::vector<st::StudyItem> items;
+    const std::vector<double> azimuths = st::parse_azimuths(azimuth_texts);
     if (!bodies_file.empty()) {
-      bodies = st::load_bodies_yaml(bodies_file);
+      st::BodyFile file = st::load_body_file(bodies_file);
+      bodies = std::move(file.bodies);
+      items = std::move(file.items);
+      // Item cases are numbered apart from the body cases and have no merge step yet.
+      if (!items.empty() && shard_n != 1)
+        throw st::StudyError(bodies_file + ": two-plane items (bodies with a depth) cannot be run with --shard yet");
     } else {
       grid.eccentricities = parse_list(eccentricities_text, "--eccentricities");
       bodies = st::grid_bodies(grid);
@@ -244,12 +259,36 @@ int main(int argc, char** argv) {
                  bodies.size(), records.records.size(), with_v, events.size(), samples, load_s,
                  records_dir.c_str(), records.from_manifest ? "/MANIFEST.csv" : "", total, shard_k, shard_n,
                  options.range.begin, options.range.end);
+    st::StationPairs pairs;
+    st::ItemStudyOptions item_options;
+    if (!items.empty()) {
+      pairs = st::pair_stations(records.records);
+      item_options.settings = settings;
+      item_options.azimuths = azimuths;
+      item_options.both_polarities = !one_polarity;
+      item_options.verticals = !no_vertical;
+      item_options.threads = threads;
+      for (const auto& n : pairs.notes) std::cerr << "rocking_study: note: " << n << "\n";
+      std::fprintf(stderr,
+                   "rocking_study: %zu two-plane items x %zu station pairs x %zu azimuths x %d polarities = %zu "
+                   "item cases (stations not run: %ld with one horizontal, %ld different dt, %ld without "
+                   "direction, %ld not resolvable; %ld pairs zero-padded)\n",
+                   items.size(), pairs.pairs.size(), azimuths.size(), one_polarity ? 1 : 2,
+                   st::item_case_count(items.size(), pairs.pairs.size(), item_options), pairs.single_horizontal,
+                   pairs.different_dt, pairs.no_azimuth, pairs.not_resolvable, pairs.zero_padded);
+    }
     if (dry_run) return 0;
 
     ProgressBar bar(!quiet);
     options.progress = [&bar](std::size_t done, std::size_t n) { bar(done, n); };
     const auto t0 = std::chrono::steady_clock::now();
     const std::vector<st::CaseResult> results = st::run_study(bodies, records.records, options);
+    std::vector<st::ItemCaseResult> item_results;
+    if (!items.empty()) {
+      ProgressBar item_bar(!quiet);
+      item_options.progress = [&item_bar](std::size_t done, std::size_t n) { item_bar(done, n); };
+      item_results = st::run_item_study(items, records.records, pairs, item_options);
+    }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
     const fs::path out(out_dir);
@@ -287,11 +326,32 @@ int main(int argc, char** argv) {
     run.total_cases = total;
     run.wall_time_s = wall;
     run.notes = records.notes;
-    write_file(out / "summary.json", st::summary_json(summary, run));
-    std::cout << st::format_summary(summary);
-    std::fprintf(stderr, "rocking_study: %zu cases in %.1f s (%.0f cases/s); wrote %s/{cases.csv,bodies.csv,"
-                 "records.csv,summary.json}\n",
-                 results.size(), wall, wall > 0 ? results.size() / wall : 0.0, out_dir.c_str());
+    if (!bodies_file.empty()) {
+      // Written for every body file (header only without two-plane items), so that a script over a
+      // catalogue always finds it; the grid runs keep their files.
+      std::ostringstream ic;
+      st::write_item_cases_csv(ic, item_results, items, records.records, pairs);
+      write_file(out / "item_cases.csv", ic.str());
+    }
+    if (items.empty()) {
+      write_file(out / "summary.json", st::summary_json(summary, run));
+    } else {
+      const st::ItemSummary item_summary = st::summarize_items(item_results, items, pairs, azimuths);
+      write_file(out / "summary.json", st::summary_json(summary, run, &item_summary));
+    }
+    if (!bodies.empty()) std::cout << st::format_summary(summary);
+    if (!items.empty()) {
+      const st::ItemTally t = st::summarize_items(item_results, items, pairs, azimuths).all;
+      std::printf("Two-plane items (pure rocking, planes uncoupled): %ld item cases, %ld overturned "
+                  "(%ld decided by the y plane; x only %ld, y only %ld, both %ld)\n",
+                  t.cases, t.overturned, t.overturned_decided_by_y, t.overturned_x_only, t.overturned_y_only,
+                  t.overturned_both);
+    }
+    std::fprintf(stderr, "rocking_study: %zu cases%s in %.1f s (%.0f cases/s); wrote %s/{cases.csv,bodies.csv,"
+                 "records.csv,summary.json%s}\n",
+                 results.size(), items.empty() ? "" : (" + " + std::to_string(item_results.size()) + " item cases").c_str(),
+                 wall, wall > 0 ? (results.size() + item_results.size()) / wall : 0.0, out_dir.c_str(),
+                 bodies_file.empty() ? "" : ",item_cases.csv");
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "rocking_study: error: " << e.what() << "\n";

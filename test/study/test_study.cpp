@@ -598,7 +598,8 @@ TEST(StudyBodiesYaml, ErrorsNameTheFileItemAndField) {
       {"bodies:\n  - {name: a, width: 0.5, cg_height: 1}\n  - {name: a, width: 0.4, cg_height: 1}\n",
        {"bodies[1] (a)", "used twice"}},
       {"bodies:\n  - name: a\n   width: [\n", {"bodies.yaml:"}},
-      {"items: []\n", {"unknown top-level key 'items'"}},
+      {"things: []\n", {"unknown top-level key 'things'"}},
+      {"items: []\n", {"non-empty list"}},
       {"bodies: []\n", {"non-empty list"}},
   };
   for (std::size_t i = 0; i < cases.size(); ++i) {

@@ -13,6 +13,9 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <map>
+#include <regex>
+#include <set>
 
 #include "test_helpers.hpp"
 #include <sstream>
@@ -88,7 +91,7 @@ TEST(StudyCli, HelpListsTheOptions) {
   ASSERT_EQ(r.status, 0) << r.out;
   for (const char* opt : {"--records", "--bodies", "--method", "--tol", "--substeps", "--model", "--threads",
                           "--shard", "--out", "--merge", "--heights", "--widths", "--eccentricities", "--only",
-                          "--no-vertical", "--quiet"})
+                          "--no-vertical", "--quiet", "--azimuth"})
     EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
 }
 
@@ -196,6 +199,98 @@ TEST(StudyCli, ReducedRunOverRealRecordsAndFigures) {
   const CliRun pv = run(std::string(ROCKING_PYTHON) + " " + ROCKING_SOURCE_DIR + "/scripts/plot_study.py " +
                      out.string() + " --vertical --formats png --out " + (root() / "figures_v").string());
   EXPECT_EQ(pv.status, 0) << pv.out;
+}
+
+// Lines of a text file, without the trailing newline.
+long line_count(const std::string& text) { return static_cast<long>(std::count(text.begin(), text.end(), '\n')); }
+
+// Stations of `event` in ../shared/records/MANIFEST.csv with exactly two horizontals (an independent
+// count of the station pairs: a plain split is enough for the rows of this event).
+long manifest_pairs(const fs::path& records, const std::string& event) {
+  std::ifstream in(records / "MANIFEST.csv");
+  std::string line;
+  std::map<std::string, int> horizontals;
+  while (std::getline(in, line)) {
+    if (line.rfind(event + ",", 0) != 0) continue;
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    std::string field;
+    while (std::getline(ss, field, ',')) f.push_back(field);
+    if (f.size() > 3 && f[3].rfind("H:", 0) == 0) ++horizontals[f[2]];
+  }
+  long pairs = 0;
+  for (const auto& h : horizontals) pairs += h.second == 2;
+  return pairs;
+}
+
+// Entries with a depth in a catalogue file (comments stripped): the two-plane items it holds.
+long depth_entries(const fs::path& yaml) {
+  std::ifstream in(yaml);
+  std::string line;
+  long n = 0;
+  const std::regex key(R"((^|[\s{,])depth\s*:)");
+  while (std::getline(in, line)) {
+    const std::string code = line.substr(0, line.find('#'));
+    n += static_cast<long>(std::distance(std::sregex_iterator(code.begin(), code.end(), key), std::sregex_iterator()));
+  }
+  return n;
+}
+
+// Two-plane items on the station pairs of a small real event: the repository's own catalogue as is
+// (its items with a depth, if any, give the rows), then our own items with repeated --azimuth.
+TEST(StudyCli, TwoPlaneItemsRunOnStationPairsRotatedToAzimuths) {
+  const fs::path records(ROCKING_RECORDS_DIR);
+  if (!fs::exists(records / "MANIFEST.csv")) GTEST_SKIP() << "no records at " << records;
+  const std::string event = "north_palm_springs_1986";
+  const long pairs = manifest_pairs(records, event);
+  ASSERT_EQ(pairs, 2);  // Anza - Red Mountain and Indio (see the records README)
+  const fs::path catalogue = fs::path(ROCKING_SOURCE_DIR) / "config" / "catalogue_example.yaml";
+  const fs::path out = root() / "catalogue";
+  CliRun r = study("--records " + records.string() + " --bodies " + catalogue.string() + " --only " + event +
+                   " --azimuth 0,90 --quiet --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(line_count(slurp(out / "item_cases.csv")), 1 + depth_entries(catalogue) * pairs * 2 * 2) << r.out;
+
+  const fs::path yaml = root() / "two_plane.yaml";
+  std::ofstream(yaml) << "sensors:\n  - {name: g, topic: /g/imu}\n"
+                         "items:\n"
+                         "  - {id: cabinet, sensor: g, width: 0.3, depth: 0.5, cg_height: 0.9, eccentricity: 0.4,\n"
+                         "     pose: {parent_frame: a, x: 1}, description: \"a cabinet\"}\n"
+                         "  - {id: vase, shape: cylinder, width: 0.1, depth: 0.1, cg_height: 0.35}\n"
+                         "  - {id: cart, width: 0.5, cg_height: 0.7}\n";
+  const fs::path mine = root() / "two_plane";
+  r = study("--records " + records.string() + " --bodies " + yaml.string() + " --only " + event +
+            " --azimuth 0 --azimuth 45,90 --quiet --out " + mine.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  const std::string table = slurp(mine / "item_cases.csv");
+  EXPECT_EQ(line_count(table), 1 + 2 * pairs * 3 * 2);
+  EXPECT_EQ(line_count(slurp(mine / "cases.csv")), 1 + 1 * 2 * pairs * 2);  // the cart: 4 components x 2
+  EXPECT_NE(table.find(",vase,"), std::string::npos);
+  EXPECT_EQ(table.find(",cart,"), std::string::npos);
+  const auto j = nlohmann::json::parse(slurp(mine / "summary.json"));
+  EXPECT_EQ(j["two_plane_items"]["all"]["cases"].get<long>(), 2 * pairs * 3 * 2);
+  EXPECT_EQ(j["two_plane_items"]["station_pairs"].get<long>(), pairs);
+  EXPECT_EQ(j["two_plane_items"]["azimuths_deg"], nlohmann::json({0.0, 45.0, 90.0}));
+  EXPECT_EQ(j["two_plane_items"]["pairs_zero_padded"].get<long>(), 2);  // both pairs differ in length
+  EXPECT_NE(j["run"]["rocking_model"].get<std::string>().find("pure rocking"), std::string::npos);
+  EXPECT_NE(r.out.find("zero-padded"), std::string::npos) << r.out;  // noted, not silent
+
+  // Errors: a bad azimuth, sharding items, a bad item field.
+  const fs::path bad = root() / "bad_items.yaml";
+  std::ofstream(bad) << "items:\n  - {id: shelf, width: 0.4, depth: -1, cg_height: 1}\n";
+  const std::string rec = " --records " + records.string() + " --only " + event + " --quiet --out " +
+                          (root() / "bad_items").string();
+  const std::vector<std::pair<std::string, std::vector<std::string>>> errors{
+      {"--bodies " + yaml.string() + " --azimuth 0,north" + rec, {"--azimuth", "'north'"}},
+      {"--bodies " + yaml.string() + " --shard 1/2" + rec, {yaml.string(), "--shard"}},
+      {"--bodies " + bad.string() + rec, {bad.string(), "items[0] (shelf)", "depth", "-1"}},
+  };
+  for (const auto& e : errors) {
+    const CliRun b = study(e.first);
+    EXPECT_EQ(b.status, 2) << e.first << "\n" << b.out;
+    EXPECT_NE(b.out.find("rocking_study: error: "), std::string::npos) << b.out;
+    for (const auto& s : e.second) EXPECT_NE(b.out.find(s), std::string::npos) << b.out << " lacks " << s;
+  }
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 //   study_bodies.hpp       the body grid
 //   study_records.hpp      loading the records (MANIFEST.csv or a directory scan)
 //   study_runner.hpp       the cases, their numbering and shards, running them
+//   study_items.hpp        two-plane items on station pairs rotated to azimuths (item_cases.csv)
 //   case_table.hpp         writing cases.csv, bodies.csv, records.csv
 //   study_summary.hpp      the summary numbers
 //   study_report.hpp       the summary as text
@@ -24,6 +25,7 @@
 #include "rocking_monitor/study/case_table_reader.hpp"
 #include "rocking_monitor/study/study_bodies.hpp"
 #include "rocking_monitor/study/study_error.hpp"
+#include "rocking_monitor/study/study_items.hpp"
 #include "rocking_monitor/study/study_records.hpp"
 #include "rocking_monitor/study/study_report.hpp"
 #include "rocking_monitor/study/study_runner.hpp"

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "rocking_monitor/physics/body.hpp"
+#include "rocking_monitor/physics/principal_planes.hpp"
 #include "rocking_monitor/study/study_error.hpp"
 
 namespace rocking_monitor::core::study {
@@ -13,6 +14,15 @@ namespace rocking_monitor::core::study {
 struct StudyBody {
   std::string name;           ///< unique label, e.g. "h0.630_B0.252_nu0.30"
   BodyParameters parameters;  ///< radius_of_gyration always set explicitly (finite)
+};
+
+/// A two-plane item (a body with a depth, issue 11): it rocks in its x-z plane as `x` and in its
+/// y-z plane as `y` = y_plane_body(x, depth), without coupling (study_items.hpp runs it).
+struct StudyItem {
+  std::string name;
+  BodyParameters x;        ///< width, eccentricity (nu1), ...; radius_of_gyration set explicitly
+  DepthParameters depth;   ///< depth, eccentricity_y, radius_of_gyration_y as given
+  BodyParameters y;        ///< the y plane's planar body (radius_of_gyration set explicitly)
 };
 
 /// The paper's grid (section "Overturning criteria validation for symmetric bodies"): `heights`

@@ -23,8 +23,25 @@ namespace rocking_monitor::core::study {
 ///         restitution: 0.9          # optional, measured angular-velocity ratio (default eq. 34)
 ///         mu_s: 0.5                 # optional, static friction (sliding onsets are reported)
 ///
-/// Unknown keys are errors (a typo must not silently fall back to a default). Throws StudyError
-/// "<file>: bodies[<i>] (<name>): <field>: <problem>" or "<file>:<line>:<col>: <YAML problem>".
+///         depth: 0.40               # optional, m: the body is then a two-plane item (below)
+///         eccentricity_y: 0.5       # optional with depth, default 0.5
+///         radius_of_gyration_y: 0.2 # optional with depth, m; default y_plane_body()'s
+///
+/// or a monitor catalogue (config/catalogue_example.yaml): `items:` entries with id (required),
+/// width, cg_height, eccentricity, depth, eccentricity_y, radius_of_gyration, radius_of_gyration_y,
+/// shape (box | cylinder), mu_s, mu_k, restitution, overturn_angle; the live node's sensor, frame,
+/// pose and description are ignored, as is a top-level `sensors:` list.
+///
+/// A body with a depth is a two-plane item (study_items.hpp), the others are single-plane bodies
+/// run per record component. Unknown keys are errors (a typo must not silently fall back to a
+/// default). Throws StudyError "<file>: bodies[<i>] (<name>): <field>: <problem>" (items[<i>] (<id>)
+/// for a catalogue) or "<file>:<line>:<col>: <YAML problem>".
+struct BodyFile {
+  std::vector<StudyBody> bodies;  ///< single-plane bodies, file order
+  std::vector<StudyItem> items;   ///< two-plane items, file order
+};
+BodyFile load_body_file(const std::string& path);
+/// The single-plane bodies of a file without two-plane items (throws StudyError if it has some).
 std::vector<StudyBody> load_bodies_yaml(const std::string& path);
 
 /// How a run was made (goes into summary.json under "run").
@@ -42,8 +59,15 @@ struct StudyRunInfo {
   std::vector<std::string> notes;
 };
 
+/// The rocking model every case of the study runs, named in summary.json's "run" (the live node
+/// defaults to adaptive fidelity; the study deliberately runs the paper's model).
+inline constexpr const char* kStudyRockingModel =
+    "pure rocking (paper): no sliding, no free flight; contact onsets only reported";
+
 /// summary.json: run info, the symmetric-body headline, per-set tallies by eccentricity and by
-/// eccentricity x height (Figure 7 percentages, Figure 8 ratios) and the vertical-component effect.
-std::string summary_json(const StudySummary& summary, const StudyRunInfo& run);
+/// eccentricity x height (Figure 7 percentages, Figure 8 ratios) and the vertical-component effect;
+/// with `items` (two-plane items were run) also "two_plane_items".
+std::string summary_json(const StudySummary& summary, const StudyRunInfo& run,
+                         const ItemSummary* items = nullptr);
 
 }  // namespace rocking_monitor::core::study

@@ -16,6 +16,7 @@ struct StudyRecord {
   std::string event;       ///< event slug (manifest) or directory name
   std::string station;     ///< station name
   std::string component;   ///< horizontal label, e.g. "228", "N-S"
+  std::string header_label;  ///< the label in the file's header (may differ from `component`)
   std::string file;        ///< path relative to the records directory
   std::string vertical_component;  ///< empty: the station has no vertical
   std::string vertical_file;

@@ -1,4 +1,4 @@
-#include "rocking_monitor/monitoring/item_verdict.hpp"
+#include "rocking_monitor/physics/item_verdict.hpp"
 
 namespace rocking_monitor::core {
 
