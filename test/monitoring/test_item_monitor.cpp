@@ -10,7 +10,7 @@
 
 #include "rocking_monitor/constants.hpp"
 #include "rocking_monitor/monitoring/item_monitor.hpp"
-#include "rocking_monitor/monitoring/item_verdict.hpp"
+#include "rocking_monitor/physics/item_verdict.hpp"
 #include "rocking_monitor/motion/record_reader.hpp"
 
 namespace rocking_monitor::core {
