@@ -1,13 +1,18 @@
 // rocking_sim: runs one body through one ground-motion record with the ROS-free core.
 // Thin command-line layer: parse, read, simulate, print. All physics lives in the core library.
+#include <algorithm>
 #include <cmath>
+#include <cstdarg>
 #include <ctime>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -120,6 +125,214 @@ FidelityRun run_fidelity(const rm::Body& body, const rm::AdaptiveSettings& setti
   return r;
 }
 
+// What both planes share: solver, fidelity and its settings, the scale.
+struct RunOptions {
+  rm::SolverSettings settings;
+  rm::Fidelity fidelity = rm::Fidelity::Adaptive;
+  std::string scene_text;
+  rm::ContactSettings contact;
+  double linearized_max_alpha = 0.0;
+  double scale = 1.0;
+};
+
+// One plane's answer: the single-plane JSON of its fidelity and its text summary lines.
+struct PlaneRun {
+  json out;
+  std::vector<std::string> lines;
+};
+
+std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+std::string format(const char* fmt, ...) {
+  char buf[1024];
+  va_list args;
+  va_start(args, fmt);
+  std::vsnprintf(buf, sizeof buf, fmt, args);
+  va_end(args);
+  return buf;
+}
+
+std::string when(double t) { return std::isnan(t) ? std::string("never") : std::to_string(t) + " s"; }
+
+json body_json(const rm::Body& rigid) {
+  const rm::Pivot& p1 = rigid.pivot(1);
+  const rm::Pivot& p2 = rigid.pivot(-1);
+  return {{"width_m", rigid.width()},
+          {"cg_height_m", rigid.cg_height()},
+          {"nu1", rigid.nu1()},
+          {"radius_of_gyration_m", rigid.radius_of_gyration()},
+          {"alpha1_rad", p1.alpha},
+          {"alpha2_rad", p2.alpha},
+          {"p1_radps", p1.p},
+          {"p2_radps", p2.p},
+          {"restitution_to_1", p1.restitution},
+          {"restitution_to_2", p2.restitution}};
+}
+
+// One plane through its record, exactly as the single-plane tool: simulate() for --fidelity rocking,
+// the AdaptiveModel loop for contact / adaptive.
+PlaneRun run_plane(const RunOptions& opt, const rm::BodyParameters& params,
+                   const rm::GroundMotion& motion, const std::string& history_path) {
+  const rm::Body rigid(params);
+  const rm::SolverSettings& settings = opt.settings;
+  double pga = 0.0;
+  for (double a : motion.horizontal) pga = std::max(pga, std::abs(a));
+  PlaneRun run;
+  const std::string record_line = format("record      %s (%zu samples, dt %.4g s, PGA %.3f m/s^2)",
+                                         motion.description.c_str(), motion.size(), motion.dt, pga);
+  if (opt.fidelity != rm::Fidelity::Rocking) {
+    rm::AdaptiveSettings as;
+    as.fidelity = opt.fidelity;
+    as.rocking = settings;
+    as.scene = parse_scene(opt.scene_text, motion);  // "auto": this plane's own record
+    as.contact = opt.contact;
+    as.linearized_max_alpha = opt.linearized_max_alpha;
+    const FidelityRun f = run_fidelity(rigid, as, motion, history_path);
+    const rm::AdaptiveOutcome& o = f.outcome;
+    json reasons = json::array();
+    for (const auto& sw : f.switches)
+      reasons.push_back({{"time_s", sw.time}, {"onset_time_s", sw.onset_time},
+                         {"to", rm::to_string(sw.to)}, {"reason", rm::to_string(sw.reason)}});
+    run.out = {{"overturned", o.overturned},
+               {"committed", o.committed},
+               {"beyond_tipping", o.beyond_tipping},
+               {"max_rotation_ratio", o.max_rotation_ratio},
+               {"impacts", o.impacts},
+               {"uplift_time_s", nullable(o.uplift_time)},
+               {"beyond_tipping_time_s", nullable(o.beyond_tipping_time)},
+               {"committed_time_s", nullable(o.committed_time)},
+               {"overturn_time_s", nullable(o.overturn_time)},
+               {"final_mode", f.final_mode},
+               {"slip_episodes", o.slip_episodes},
+               {"flight_episodes", o.flight_episodes},
+               {"first_slip_time_s", nullable(o.first_slip_time)},
+               {"first_flight_time_s", nullable(o.first_flight_time)},
+               {"max_abs_slip_m", o.max_abs_slip},
+               {"method", rm::to_string(settings.method)},
+               {"model", rm::to_string(settings.model)},
+               {"fidelity", rm::to_string(opt.fidelity)},
+               {"initial_model_reason", rm::to_string(f.initial)},
+               {"sliding_ruled_out", o.sliding_ruled_out},
+               {"scene",
+                {{"source", opt.scene_text},
+                 {"horizontal_mps2", nullable_inf(as.scene.horizontal)},
+                 {"vertical_mps2", nullable_inf(as.scene.vertical)},
+                 {"required_mu", nullable_inf(f.bound.required_mu())},
+                 {"samples_outside", o.samples_outside_scene}}},
+               {"samples_rocking_model", o.samples_rocking_model},
+               {"samples_contact_model", o.samples_contact_model},
+               {"samples_linearized_model", o.samples_linearized_model},
+               {"linearized_fallbacks", o.linearized_fallbacks},
+               {"replayed_samples", o.recomputed_samples},  // samples recomputed at up switches
+               {"model_switches", o.model_switches},
+               {"switch_reasons", reasons},
+               {"steps", o.rocking_steps + o.contact_steps},
+               {"steps_rocking_model", o.rocking_steps},
+               {"steps_contact_model", o.contact_steps},
+               {"samples", o.samples},
+               {"cpu_time_s", f.cpu_time_s},
+               {"record",
+                {{"description", motion.description},
+                 {"dt_s", motion.dt},
+                 {"samples", motion.size()},
+                 {"scale", opt.scale},
+                 {"pga_mps2", pga},
+                 {"has_vertical", !motion.vertical.empty()}}}};
+    auto& L = run.lines;
+    L.push_back(record_line);
+    L.push_back(format("fidelity    %s (start: %s)", rm::to_string(opt.fidelity), rm::to_string(f.initial)));
+    L.push_back(format("scene       %s: |a_h| <= %.4g, |a_v| <= %.4g m/s^2; friction needed to rule out "
+                       "sliding, slip at impact and flight: %.4g (mu_s %.4g)",
+                       opt.scene_text.c_str(), as.scene.horizontal, as.scene.vertical,
+                       f.bound.required_mu(), rigid.mu_s()));
+    L.push_back(format("result      %s, final mode %s", o.overturned ? "OVERTURNED" : "survived",
+                       f.final_mode.c_str()));
+    L.push_back(format("times       uplift %s, beyond tipping %s, committed %s, overturned %s, "
+                       "first slip %s, first flight %s",
+                       when(o.uplift_time).c_str(), when(o.beyond_tipping_time).c_str(),
+                       when(o.committed_time).c_str(), when(o.overturn_time).c_str(),
+                       when(o.first_slip_time).c_str(), when(o.first_flight_time).c_str()));
+    for (const auto& sw : f.switches)
+      L.push_back(format("switch      to %s at %.4f s (detected %.4f s): %s", rm::to_string(sw.to),
+                         sw.time, sw.onset_time, rm::to_string(sw.reason)));
+    L.push_back(format("cost        %ld rocking-model + %ld contact-model samples, %ld + %ld steps, "
+                       "%.4f s CPU",
+                       o.samples_rocking_model, o.samples_contact_model, o.rocking_steps,
+                       o.contact_steps, f.cpu_time_s));
+    return run;
+  }
+
+  const rm::SimulationResult r = rm::simulate(rigid, settings, motion, !history_path.empty());
+  if (!history_path.empty()) write_history(history_path, r);
+  const rm::RockingOutcome& o = r.outcome;
+  json violations = json::array();
+  for (const auto& v : r.violations)
+    violations.push_back({{"criterion", rm::to_string(v.criterion)}, {"time_s", v.time}});
+  run.out = {{"overturned", o.overturned},
+             {"committed", o.committed},
+             {"beyond_tipping", o.beyond_tipping},
+             {"max_rotation_ratio", o.max_rotation_ratio},
+             {"max_rotation_pivot", o.max_rotation_side},
+             {"impacts", o.impacts},
+             {"uplift_time_s", nullable(o.uplift_time)},
+             {"beyond_tipping_time_s", nullable(o.beyond_tipping_time)},
+             {"committed_time_s", nullable(o.committed_time)},
+             {"overturn_time_s", nullable(o.overturn_time)},
+             {"final_mode", rm::to_string(r.final_mode)},
+             {"violations", violations},
+             {"rest_captures", o.rest_captures},
+             {"forced_rest_captures", o.forced_rest_captures},
+             {"method", rm::to_string(settings.method)},
+             {"model", rm::to_string(settings.model)},
+             {"fidelity", "rocking"},
+             {"samples_rocking_model", o.samples},
+             {"samples_contact_model", 0},
+             {"model_switches", 0},
+             {"switch_reasons", json::array()},
+             {"tol", settings.tol},
+             {"substeps", settings.substeps},
+             {"steps", o.integrator_steps},
+             {"samples", o.samples},
+             {"cpu_time_s", r.cpu_time_s},
+             {"body", body_json(rigid)},
+             {"record",
+              {{"description", motion.description},
+               {"dt_s", motion.dt},
+               {"samples", motion.size()},
+               {"duration_s", motion.dt * static_cast<double>(motion.size() - 1)},
+               {"scale", opt.scale},
+               {"pga_mps2", pga},
+               {"has_vertical", !motion.vertical.empty()}}}};
+  auto& L = run.lines;
+  L.push_back(record_line);
+  L.push_back(format("body        B %.3f m, h %.3f m, nu1 %.3f, alpha1 %.4f rad, alpha2 %.4f rad",
+                     rigid.width(), rigid.cg_height(), rigid.nu1(), rigid.pivot(1).alpha,
+                     rigid.pivot(-1).alpha));
+  L.push_back(format("solver      %s, %s model", rm::to_string(settings.method),
+                     rm::to_string(settings.model)));
+  L.push_back(format("result      %s%s%s", o.overturned ? "OVERTURNED" : "survived",
+                     (!o.overturned && o.beyond_tipping) ? " (passed its tipping angle and came back)" : "",
+                     (!o.overturned && o.committed) ? " (was committed at some instant)" : ""));
+  L.push_back(format("max |theta|/alpha %.4f, impacts %ld", o.max_rotation_ratio, o.impacts));
+  L.push_back(format("times       uplift %s, beyond tipping %s, committed %s, overturned %s",
+                     when(o.uplift_time).c_str(), when(o.beyond_tipping_time).c_str(),
+                     when(o.committed_time).c_str(), when(o.overturn_time).c_str()));
+  for (const auto& v : r.violations)
+    L.push_back(format("violation   %s at %.4f s (pure rocking assumption broken)",
+                       rm::to_string(v.criterion), v.time));
+  L.push_back(format("cost        %ld steps, %.4f s CPU", o.integrator_steps, r.cpu_time_s));
+  return run;
+}
+
+// --units applies to CSV only: a PEER/BBP/SMC file states its own.
+rm::RecordFormat check_units(const std::string& file, const std::string& units_text) {
+  const rm::RecordFormat format = rm::detect_format(file);
+  if (!units_text.empty() && format != rm::RecordFormat::Csv) {
+    throw rm::RecordError(file + ": --units applies to CSV records only; this " +
+                          rm::to_string(format) + " file states its own units");
+  }
+  return format;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -128,9 +341,9 @@ int main(int argc, char** argv) {
       "under horizontal and vertical ground acceleration (Boroschek & Romo)."};
   std::string record, vertical_file, units_text, history_path, method_text = "dopri5",
                                                                   model_text = "nonlinear";
-  double scale = 1.0;
+  RunOptions opt;
   rm::BodyParameters body;
-  rm::SolverSettings settings;
+  rm::SolverSettings& settings = opt.settings;
   bool as_json = false;
   app.add_option("--record", record,
                  "Ground acceleration: PEER .AT2 (g), SCEC .bbp, USGS .smc, or CSV/whitespace rows "
@@ -139,7 +352,7 @@ int main(int argc, char** argv) {
   app.add_option("--vertical", vertical_file, "Separate vertical component file (positive up)");
   app.add_option("--units", units_text, "Units of CSV records: g | m/s2 | cm/s2 (default m/s2)")
       ->check(CLI::IsMember({"g", "m/s2", "cm/s2"}));
-  app.add_option("--scale", scale, "Multiply the ground acceleration by S")->default_val(1.0);
+  app.add_option("--scale", opt.scale, "Multiply the ground acceleration by S")->default_val(1.0);
   app.add_option("--width", body.width, "Base width B, m")->required();
   app.add_option("--cg-height", body.cg_height, "Height h of the centre of mass, m")->required();
   app.add_option("--eccentricity", body.nu1,
@@ -157,22 +370,20 @@ int main(int argc, char** argv) {
                  "model when needed; docs/fidelity.md)")
       ->check(CLI::IsMember({"rocking", "contact", "adaptive"}))
       ->default_val("rocking");
-  rm::ContactSettings contact_settings;
-  app.add_option("--contact-substeps", contact_settings.substeps,
+  app.add_option("--contact-substeps", opt.contact.substeps,
                  "RK4 sub-steps per input sample of the contact model (--fidelity contact|adaptive)")
-      ->default_val(contact_settings.substeps)
+      ->default_val(opt.contact.substeps)
       ->check(CLI::Range(1, 100000));
-  double linearized_max_alpha = 0.0;
-  app.add_option("--linearized-max-alpha", linearized_max_alpha,
+  app.add_option("--linearized-max-alpha", opt.linearized_max_alpha,
                  "--fidelity adaptive: items with both tipping angles <= this (rad) rock on the linearized "
                  "closed form while |theta|/alpha < 0.5 (0 = off; docs/fidelity.md)")
       ->default_val(0.0)
       ->check(CLI::NonNegativeNumber);
-  std::string scene_text = "auto";
-  app.add_option("--scene", scene_text,
+  opt.scene_text = "auto";
+  app.add_option("--scene", opt.scene_text,
                  "Scene envelope for the adaptive pre-check (docs/fidelity.md): auto = this record's "
                  "own peak |a_h|, |a_v| (the whole scene is known offline); unknown; or H,V in m/s^2")
-      ->default_val(scene_text);
+      ->default_val(opt.scene_text);
   app.add_option("--restitution", body.restitution,
                  "Measured angular-velocity ratio at impact, overrides eq. 34");
   app.add_option("--model", model_text, "nonlinear | linearized")
@@ -192,16 +403,13 @@ int main(int argc, char** argv) {
     rm::parse_method(method_text, settings.method);
     rm::parse_model(model_text, settings.model);
     if (const std::string e = rm::validate(settings); !e.empty()) throw std::invalid_argument(e);
-    const rm::Body rigid(body);
+    rm::parse_fidelity(fidelity_text.c_str(), opt.fidelity);
+    const rm::Body rigid(body);  // validates the body before any file is read
 
     rm::ReadOptions options;
     if (units_text == "g") options.csv_units = rm::AccelUnits::G;
     else if (units_text == "cm/s2") options.csv_units = rm::AccelUnits::CentimetersPerSecond2;
-    const rm::RecordFormat format = rm::detect_format(record);
-    if (!units_text.empty() && format != rm::RecordFormat::Csv) {
-      throw rm::RecordError(record + ": --units applies to CSV records only; this " +
-                            rm::to_string(format) + " file states its own units");
-    }
+    const rm::RecordFormat format = check_units(record, units_text);
     const std::vector<rm::Component> comps = rm::read_record(record, options);
     const rm::Component& horizontal = first_horizontal(comps);
     std::optional<rm::Component> vertical;
@@ -219,177 +427,14 @@ int main(int argc, char** argv) {
     }
     std::string notice;
     const rm::GroundMotion motion =
-        rm::make_ground_motion(horizontal, vertical ? &*vertical : nullptr, scale, &notice);
+        rm::make_ground_motion(horizontal, vertical ? &*vertical : nullptr, opt.scale, &notice);
     if (!notice.empty()) std::cerr << "rocking_sim: note: " << notice << "\n";
 
-    rm::Fidelity fidelity = rm::Fidelity::Rocking;
-    rm::parse_fidelity(fidelity_text.c_str(), fidelity);
-    double pga = 0.0;
-    for (double a : motion.horizontal) pga = std::max(pga, std::abs(a));
-    if (fidelity != rm::Fidelity::Rocking) {
-      rm::AdaptiveSettings as;
-      as.fidelity = fidelity;
-      as.rocking = settings;
-      as.scene = parse_scene(scene_text, motion);
-      as.contact = contact_settings;
-      as.linearized_max_alpha = linearized_max_alpha;
-      const FidelityRun f = run_fidelity(rigid, as, motion, history_path);
-      const rm::AdaptiveOutcome& o = f.outcome;
-      json reasons = json::array();
-      for (const auto& sw : f.switches)
-        reasons.push_back({{"time_s", sw.time}, {"onset_time_s", sw.onset_time},
-                           {"to", rm::to_string(sw.to)}, {"reason", rm::to_string(sw.reason)}});
-      if (as_json) {
-        json out = {{"overturned", o.overturned},
-                    {"committed", o.committed},
-                    {"beyond_tipping", o.beyond_tipping},
-                    {"max_rotation_ratio", o.max_rotation_ratio},
-                    {"impacts", o.impacts},
-                    {"uplift_time_s", nullable(o.uplift_time)},
-                    {"beyond_tipping_time_s", nullable(o.beyond_tipping_time)},
-                    {"committed_time_s", nullable(o.committed_time)},
-                    {"overturn_time_s", nullable(o.overturn_time)},
-                    {"final_mode", f.final_mode},
-                    {"slip_episodes", o.slip_episodes},
-                    {"flight_episodes", o.flight_episodes},
-                    {"first_slip_time_s", nullable(o.first_slip_time)},
-                    {"first_flight_time_s", nullable(o.first_flight_time)},
-                    {"max_abs_slip_m", o.max_abs_slip},
-                    {"method", rm::to_string(settings.method)},
-                    {"model", rm::to_string(settings.model)},
-                    {"fidelity", rm::to_string(fidelity)},
-                    {"initial_model_reason", rm::to_string(f.initial)},
-                    {"sliding_ruled_out", o.sliding_ruled_out},
-                    {"scene",
-                     {{"source", scene_text},
-                      {"horizontal_mps2", nullable_inf(as.scene.horizontal)},
-                      {"vertical_mps2", nullable_inf(as.scene.vertical)},
-                      {"required_mu", nullable_inf(f.bound.required_mu())},
-                      {"samples_outside", o.samples_outside_scene}}},
-                    {"samples_rocking_model", o.samples_rocking_model},
-                    {"samples_contact_model", o.samples_contact_model},
-                    {"samples_linearized_model", o.samples_linearized_model},
-                    {"linearized_fallbacks", o.linearized_fallbacks},
-                    {"replayed_samples", o.recomputed_samples},  // samples recomputed at up switches
-                    {"model_switches", o.model_switches},
-                    {"switch_reasons", reasons},
-                    {"steps", o.rocking_steps + o.contact_steps},
-                    {"steps_rocking_model", o.rocking_steps},
-                    {"steps_contact_model", o.contact_steps},
-                    {"samples", o.samples},
-                    {"cpu_time_s", f.cpu_time_s},
-                    {"record",
-                     {{"description", motion.description},
-                      {"dt_s", motion.dt},
-                      {"samples", motion.size()},
-                      {"scale", scale},
-                      {"pga_mps2", pga},
-                      {"has_vertical", !motion.vertical.empty()}}}};
-        std::cout << out.dump(2) << "\n";
-      } else {
-        auto when = [](double t) { return std::isnan(t) ? std::string("never") : std::to_string(t) + " s"; };
-        std::printf("record      %s (%zu samples, dt %.4g s, PGA %.3f m/s^2)\n",
-                    motion.description.c_str(), motion.size(), motion.dt, pga);
-        std::printf("fidelity    %s (start: %s)\n", rm::to_string(fidelity), rm::to_string(f.initial));
-        std::printf("scene       %s: |a_h| <= %.4g, |a_v| <= %.4g m/s^2; friction needed to rule out "
-                    "sliding, slip at impact and flight: %.4g (mu_s %.4g)\n",
-                    scene_text.c_str(), as.scene.horizontal, as.scene.vertical,
-                    f.bound.required_mu(), rigid.mu_s());
-        std::printf("result      %s, final mode %s\n", o.overturned ? "OVERTURNED" : "survived",
-                    f.final_mode.c_str());
-        std::printf("times       uplift %s, beyond tipping %s, committed %s, overturned %s, "
-                    "first slip %s, first flight %s\n",
-                    when(o.uplift_time).c_str(), when(o.beyond_tipping_time).c_str(),
-                    when(o.committed_time).c_str(), when(o.overturn_time).c_str(),
-                    when(o.first_slip_time).c_str(), when(o.first_flight_time).c_str());
-        for (const auto& sw : f.switches)
-          std::printf("switch      to %s at %.4f s (detected %.4f s): %s\n", rm::to_string(sw.to),
-                      sw.time, sw.onset_time, rm::to_string(sw.reason));
-        std::printf("cost        %ld rocking-model + %ld contact-model samples, %ld + %ld steps, "
-                    "%.4f s CPU\n",
-                    o.samples_rocking_model, o.samples_contact_model, o.rocking_steps,
-                    o.contact_steps, f.cpu_time_s);
-      }
-      return 0;
-    }
-
-    const rm::SimulationResult r = rm::simulate(rigid, settings, motion, !history_path.empty());
-    if (!history_path.empty()) write_history(history_path, r);
-
-    const rm::RockingOutcome& o = r.outcome;
+    const PlaneRun x = run_plane(opt, body, motion, history_path);
     if (as_json) {
-      json violations = json::array();
-      for (const auto& v : r.violations)
-        violations.push_back({{"criterion", rm::to_string(v.criterion)}, {"time_s", v.time}});
-      const rm::Pivot& p1 = rigid.pivot(1);
-      const rm::Pivot& p2 = rigid.pivot(-1);
-      json out = {
-          {"overturned", o.overturned},
-          {"committed", o.committed},
-          {"beyond_tipping", o.beyond_tipping},
-          {"max_rotation_ratio", o.max_rotation_ratio},
-          {"max_rotation_pivot", o.max_rotation_side},
-          {"impacts", o.impacts},
-          {"uplift_time_s", nullable(o.uplift_time)},
-          {"beyond_tipping_time_s", nullable(o.beyond_tipping_time)},
-          {"committed_time_s", nullable(o.committed_time)},
-          {"overturn_time_s", nullable(o.overturn_time)},
-          {"final_mode", rm::to_string(r.final_mode)},
-          {"violations", violations},
-          {"rest_captures", o.rest_captures},
-          {"forced_rest_captures", o.forced_rest_captures},
-          {"method", rm::to_string(settings.method)},
-          {"model", rm::to_string(settings.model)},
-          {"fidelity", "rocking"},
-          {"samples_rocking_model", o.samples},
-          {"samples_contact_model", 0},
-          {"model_switches", 0},
-          {"switch_reasons", json::array()},
-          {"tol", settings.tol},
-          {"substeps", settings.substeps},
-          {"steps", o.integrator_steps},
-          {"samples", o.samples},
-          {"cpu_time_s", r.cpu_time_s},
-          {"body",
-           {{"width_m", rigid.width()},
-            {"cg_height_m", rigid.cg_height()},
-            {"nu1", rigid.nu1()},
-            {"radius_of_gyration_m", rigid.radius_of_gyration()},
-            {"alpha1_rad", p1.alpha},
-            {"alpha2_rad", p2.alpha},
-            {"p1_radps", p1.p},
-            {"p2_radps", p2.p},
-            {"restitution_to_1", p1.restitution},
-            {"restitution_to_2", p2.restitution}}},
-          {"record",
-           {{"description", motion.description},
-            {"dt_s", motion.dt},
-            {"samples", motion.size()},
-            {"duration_s", motion.dt * static_cast<double>(motion.size() - 1)},
-            {"scale", scale},
-            {"pga_mps2", pga},
-            {"has_vertical", !motion.vertical.empty()}}}};
-      std::cout << out.dump(2) << "\n";
+      std::cout << x.out.dump(2) << "\n";
     } else {
-      std::printf("record      %s (%zu samples, dt %.4g s, PGA %.3f m/s^2)\n",
-                  motion.description.c_str(), motion.size(), motion.dt, pga);
-      std::printf("body        B %.3f m, h %.3f m, nu1 %.3f, alpha1 %.4f rad, alpha2 %.4f rad\n",
-                  rigid.width(), rigid.cg_height(), rigid.nu1(), rigid.pivot(1).alpha,
-                  rigid.pivot(-1).alpha);
-      std::printf("solver      %s, %s model\n", rm::to_string(settings.method),
-                  rm::to_string(settings.model));
-      std::printf("result      %s%s%s\n", o.overturned ? "OVERTURNED" : "survived",
-                  (!o.overturned && o.beyond_tipping) ? " (passed its tipping angle and came back)" : "",
-                  (!o.overturned && o.committed) ? " (was committed at some instant)" : "");
-      auto when = [](double t) { return std::isnan(t) ? std::string("never") : std::to_string(t) + " s"; };
-      std::printf("max |theta|/alpha %.4f, impacts %ld\n", o.max_rotation_ratio, o.impacts);
-      std::printf("times       uplift %s, beyond tipping %s, committed %s, overturned %s\n",
-                  when(o.uplift_time).c_str(), when(o.beyond_tipping_time).c_str(),
-                  when(o.committed_time).c_str(), when(o.overturn_time).c_str());
-      for (const auto& v : r.violations)
-        std::printf("violation   %s at %.4f s (pure rocking assumption broken)\n",
-                    rm::to_string(v.criterion), v.time);
-      std::printf("cost        %ld steps, %.4f s CPU\n", o.integrator_steps, r.cpu_time_s);
+      for (const std::string& line : x.lines) std::printf("%s\n", line.c_str());
     }
     return 0;
   } catch (const std::exception& e) {
