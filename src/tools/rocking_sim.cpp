@@ -1,4 +1,5 @@
-// rocking_sim: runs one body through one ground-motion record with the ROS-free core.
+// rocking_sim: runs one body through one ground-motion record (or two: its x and y rocking
+// planes, uncoupled) with the ROS-free core.
 // Thin command-line layer: parse, read, simulate, print. All physics lives in the core library.
 #include <algorithm>
 #include <cmath>
@@ -20,10 +21,12 @@
 #include "command_line.hpp"
 #include "rocking_monitor/csv/csv_writer.hpp"
 #include "rocking_monitor/model/adaptive_model.hpp"
+#include "rocking_monitor/monitoring/item_verdict.hpp"
 #include "rocking_monitor/monitoring/simulation.hpp"
 #include "rocking_monitor/motion/ground_motion.hpp"
 #include "rocking_monitor/motion/record_reader.hpp"
 #include "rocking_monitor/physics/criteria.hpp"
+#include "rocking_monitor/physics/principal_planes.hpp"
 
 namespace rm = rocking_monitor::core;
 using nlohmann::json;
@@ -135,10 +138,12 @@ struct RunOptions {
   double scale = 1.0;
 };
 
-// One plane's answer: the single-plane JSON of its fidelity and its text summary lines.
+// One plane's answer: the single-plane JSON of its fidelity, its text summary lines and its level
+// times for combine().
 struct PlaneRun {
   json out;
   std::vector<std::string> lines;
+  rm::LevelTimes levels;
 };
 
 std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
@@ -152,6 +157,15 @@ std::string format(const char* fmt, ...) {
 }
 
 std::string when(double t) { return std::isnan(t) ? std::string("never") : std::to_string(t) + " s"; }
+
+template <class Outcome>
+rm::LevelTimes level_times(const Outcome& o) {
+  rm::LevelTimes l;
+  l.time[static_cast<int>(rm::Level::BeyondTipping)] = o.beyond_tipping_time;
+  l.time[static_cast<int>(rm::Level::Committed)] = o.committed_time;
+  l.time[static_cast<int>(rm::Level::Overturned)] = o.overturn_time;
+  return l;
+}
 
 json body_json(const rm::Body& rigid) {
   const rm::Pivot& p1 = rigid.pivot(1);
@@ -188,6 +202,7 @@ PlaneRun run_plane(const RunOptions& opt, const rm::BodyParameters& params,
     as.linearized_max_alpha = opt.linearized_max_alpha;
     const FidelityRun f = run_fidelity(rigid, as, motion, history_path);
     const rm::AdaptiveOutcome& o = f.outcome;
+    run.levels = level_times(o);
     json reasons = json::array();
     for (const auto& sw : f.switches)
       reasons.push_back({{"time_s", sw.time}, {"onset_time_s", sw.onset_time},
@@ -230,6 +245,7 @@ PlaneRun run_plane(const RunOptions& opt, const rm::BodyParameters& params,
                {"steps_contact_model", o.contact_steps},
                {"samples", o.samples},
                {"cpu_time_s", f.cpu_time_s},
+               {"body", body_json(rigid)},
                {"record",
                 {{"description", motion.description},
                  {"dt_s", motion.dt},
@@ -264,6 +280,7 @@ PlaneRun run_plane(const RunOptions& opt, const rm::BodyParameters& params,
   const rm::SimulationResult r = rm::simulate(rigid, settings, motion, !history_path.empty());
   if (!history_path.empty()) write_history(history_path, r);
   const rm::RockingOutcome& o = r.outcome;
+  run.levels = level_times(o);
   json violations = json::array();
   for (const auto& v : r.violations)
     violations.push_back({{"criterion", rm::to_string(v.criterion)}, {"time_s", v.time}});
@@ -333,33 +350,57 @@ rm::RecordFormat check_units(const std::string& file, const std::string& units_t
   return format;
 }
 
+// --history-y default: the --history file with "_y" before its extension (h.csv -> h_y.csv).
+std::string y_history_path(const std::string& x_path) {
+  const std::string::size_type slash = x_path.find_last_of('/');
+  const std::string::size_type dot = x_path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash) || dot == slash + 1)
+    return x_path + "_y";
+  return x_path.substr(0, dot) + "_y" + x_path.substr(dot);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{
       "rocking_sim: rocking and overturning of a free-standing (optionally eccentric) rigid body "
-      "under horizontal and vertical ground acceleration (Boroschek & Romo)."};
-  std::string record, vertical_file, units_text, history_path, method_text = "dopri5",
-                                                                  model_text = "nonlinear";
+      "under horizontal and vertical ground acceleration (Boroschek & Romo). With --depth the item "
+      "rocks in two uncoupled principal planes: x-z (width, --record) and y-z (depth, --record-y)."};
+  std::string record, record_y, vertical_file, units_text, history_path, history_y_path,
+      method_text = "dopri5", model_text = "nonlinear";
   RunOptions opt;
   rm::BodyParameters body;
+  rm::DepthParameters depth;
   rm::SolverSettings& settings = opt.settings;
   bool as_json = false;
   app.add_option("--record", record,
-                 "Ground acceleration: PEER .AT2 (g), SCEC .bbp, USGS .smc, or CSV/whitespace rows "
-                 "'time_s accel' or 'time_s accel_h accel_v' (units from --units)")
+                 "Ground acceleration along the item's x: PEER .AT2 (g), SCEC .bbp, USGS .smc, or "
+                 "CSV/whitespace rows 'time_s accel' or 'time_s accel_h accel_v' (units from --units)")
       ->required();
-  app.add_option("--vertical", vertical_file, "Separate vertical component file (positive up)");
+  app.add_option("--record-y", record_y,
+                 "Ground acceleration along the item's y (needs --depth): same formats and --units "
+                 "rule as --record, its first horizontal component is used; same dt as --record");
+  app.add_option("--vertical", vertical_file,
+                 "Separate vertical component file (positive up), shared by both planes");
   app.add_option("--units", units_text, "Units of CSV records: g | m/s2 | cm/s2 (default m/s2)")
       ->check(CLI::IsMember({"g", "m/s2", "cm/s2"}));
   app.add_option("--scale", opt.scale, "Multiply the ground acceleration by S")->default_val(1.0);
-  app.add_option("--width", body.width, "Base width B, m")->required();
+  app.add_option("--width", body.width, "Base width B along x, m")->required();
   app.add_option("--cg-height", body.cg_height, "Height h of the centre of mass, m")->required();
   app.add_option("--eccentricity", body.nu1,
                  "nu1: CoM at nu1*B from corner 1, in (0,1); 0.5 = symmetric")
       ->default_val(0.5);
   app.add_option("--radius-of-gyration", body.radius_of_gyration,
                  "Central radius of gyration i_g, m (default: homogeneous rectangle B x 2h)");
+  app.add_option("--depth", depth.depth,
+                 "Base depth D along y, m: the item also rocks in its y-z plane (under --record-y and "
+                 "the vertical; without --record-y under the vertical only)");
+  app.add_option("--eccentricity-y", depth.eccentricity_y,
+                 "CoM at NU*D from the -y corner, in (0,1); 0.5 = symmetric (needs --depth)")
+      ->default_val(0.5);
+  app.add_option("--radius-of-gyration-y", depth.radius_of_gyration_y,
+                 "Central radius of gyration for rocking in the y-z plane, m (needs --depth; default: "
+                 "derived from --radius-of-gyration for a plan-uniform mass, else homogeneous D x 2h)");
   app.add_option("--mu-s", body.mu_s, "Static friction coefficient (default: not checked)");
   app.add_option("--mu-k", body.mu_k,
                  "Kinetic friction coefficient for --fidelity contact|adaptive (default mu_s)");
@@ -381,8 +422,8 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   opt.scene_text = "auto";
   app.add_option("--scene", opt.scene_text,
-                 "Scene envelope for the adaptive pre-check (docs/fidelity.md): auto = this record's "
-                 "own peak |a_h|, |a_v| (the whole scene is known offline); unknown; or H,V in m/s^2")
+                 "Scene envelope for the adaptive pre-check (docs/fidelity.md): auto = each plane's "
+                 "record's own peak |a_h|, |a_v| (the whole scene is known offline); unknown; or H,V in m/s^2")
       ->default_val(opt.scene_text);
   app.add_option("--restitution", body.restitution,
                  "Measured angular-velocity ratio at impact, overrides eq. 34");
@@ -395,7 +436,12 @@ int main(int argc, char** argv) {
   app.add_option("--tol", settings.tol, "dopri5 relative tolerance")->default_val(settings.tol);
   app.add_option("--substeps", settings.substeps, "rk4 sub-steps per input sample")
       ->default_val(settings.substeps);
-  app.add_option("--history", history_path, "Write the time history (CSV) to this file");
+  app.add_option("--history", history_path,
+                 "Write the time history (CSV) to this file; with --depth it holds the x plane (same "
+                 "columns as without) and the y plane goes to --history-y");
+  app.add_option("--history-y", history_y_path,
+                 "With --depth and --history: the y plane's history (default: the --history name "
+                 "with _y before its extension, h.csv -> h_y.csv)");
   app.add_flag("--json", as_json, "Print one JSON object instead of a text summary");
   if (const auto status = rocking_monitor::tools::parse_command_line(app, argc, argv, "rocking_sim")) return *status;
 
@@ -404,14 +450,35 @@ int main(int argc, char** argv) {
     rm::parse_model(model_text, settings.model);
     if (const std::string e = rm::validate(settings); !e.empty()) throw std::invalid_argument(e);
     rm::parse_fidelity(fidelity_text.c_str(), opt.fidelity);
-    const rm::Body rigid(body);  // validates the body before any file is read
+    const rm::Body rigid(body);  // validates the x plane's body
+
+    // The y plane: asked for by --depth (NaN in DepthParameters means "not given", so an explicit
+    // --depth nan is refused here rather than silently dropping the plane).
+    const bool two_planes = app.count("--depth") > 0;
+    if (two_planes && std::isnan(depth.depth))
+      throw rm::BodyError("invalid body: depth = nan (must be a finite length > 0 m)");
+    if (!two_planes) {
+      for (const char* flag : {"--record-y", "--eccentricity-y", "--radius-of-gyration-y", "--history-y"})
+        if (app.count(flag) > 0)
+          throw std::invalid_argument(std::string(flag) +
+                                      " needs --depth (the item's base depth along y, m)");
+    }
+    std::optional<rm::BodyParameters> body_y;
+    if (two_planes) {
+      body_y = rm::y_plane_body(body, depth);  // throws naming depth / eccentricity_y / radius_of_gyration_y
+      (void)rm::Body(*body_y);                 // and the y body as a whole, before any file is read
+    }
+    if (!history_y_path.empty() && history_path.empty())
+      throw std::invalid_argument("--history-y needs --history");
+    const bool derived_history_y = two_planes && !history_path.empty() && history_y_path.empty();
+    if (derived_history_y) history_y_path = y_history_path(history_path);
 
     rm::ReadOptions options;
     if (units_text == "g") options.csv_units = rm::AccelUnits::G;
     else if (units_text == "cm/s2") options.csv_units = rm::AccelUnits::CentimetersPerSecond2;
     const rm::RecordFormat format = check_units(record, units_text);
     const std::vector<rm::Component> comps = rm::read_record(record, options);
-    const rm::Component& horizontal = first_horizontal(comps);
+    rm::Component horizontal = first_horizontal(comps);
     std::optional<rm::Component> vertical;
     if (format == rm::RecordFormat::Csv && comps.size() > 1) vertical = comps[1];
     if (!vertical_file.empty()) {
@@ -425,16 +492,96 @@ int main(int argc, char** argv) {
         if (c.vertical) { pick = &c; break; }
       vertical = *pick;
     }
+
+    std::optional<rm::Component> horizontal_y;
+    if (two_planes && !record_y.empty()) {
+      const rm::RecordFormat format_y = check_units(record_y, units_text);
+      const std::vector<rm::Component> comps_y = rm::read_record(record_y, options);
+      horizontal_y = first_horizontal(comps_y);
+      if (format_y == rm::RecordFormat::Csv && comps_y.size() > 1)
+        std::cerr << "rocking_sim: note: " << record_y << ": its vertical column is not used (the "
+                  << "vertical comes from --record or --vertical and is shared by both planes)\n";
+      // Both planes run on one time grid.
+      if (std::abs(horizontal_y->dt - horizontal.dt) > 1e-6 * horizontal.dt) {
+        std::ostringstream os;
+        os << "--record-y " << record_y << " has dt = " << horizontal_y->dt << " s but --record "
+           << record << " has dt = " << horizontal.dt << " s (the two horizontals must share one sample interval)";
+        throw rm::RecordError(os.str());
+      }
+      // Different lengths: the common length, and say what was left out.
+      const std::size_t nx = horizontal.accel.size(), ny = horizontal_y->accel.size();
+      if (nx != ny) {
+        rm::Component& longer = nx > ny ? horizontal : *horizontal_y;
+        const std::size_t n = std::min(nx, ny);
+        std::cerr << "rocking_sim: note: --record " << record << " has " << nx << " samples, --record-y "
+                  << record_y << " " << ny << ": both planes use the common " << n << "; the last "
+                  << longer.accel.size() - n << " samples of " << longer.file << " are not used\n";
+        longer.accel.resize(n);
+      }
+    } else if (two_planes) {
+      // --depth without --record-y: no horizontal input along y, only the shared vertical.
+      horizontal_y = rm::Component{};
+      horizontal_y->file = "no y horizontal";
+      horizontal_y->dt = horizontal.dt;
+      horizontal_y->t0 = horizontal.t0;
+      horizontal_y->accel.assign(horizontal.accel.size(), 0.0);
+      std::cerr << "rocking_sim: note: --depth without --record-y: the y plane sees only the vertical"
+                << (vertical ? "" : " (none given: it stays at rest)") << "\n";
+    }
+
     std::string notice;
     const rm::GroundMotion motion =
         rm::make_ground_motion(horizontal, vertical ? &*vertical : nullptr, opt.scale, &notice);
     if (!notice.empty()) std::cerr << "rocking_sim: note: " << notice << "\n";
+    std::optional<rm::GroundMotion> motion_y;
+    if (horizontal_y) {
+      std::string notice_y;
+      motion_y = rm::make_ground_motion(*horizontal_y, vertical ? &*vertical : nullptr, opt.scale, &notice_y);
+      if (!notice_y.empty() && notice_y != notice) std::cerr << "rocking_sim: note: " << notice_y << "\n";
+    }
 
     const PlaneRun x = run_plane(opt, body, motion, history_path);
+    std::optional<PlaneRun> y;
+    if (body_y) y = run_plane(opt, *body_y, *motion_y, history_y_path);
+    if (derived_history_y)  // said once it is written, so a failed run still prints one error line
+      std::cerr << "rocking_sim: note: the y plane's history is in " << history_y_path
+                << " (--history-y to choose)\n";
+    const rm::ItemVerdict item = rm::combine(x.levels, y ? &y->levels : nullptr);
+
     if (as_json) {
-      std::cout << x.out.dump(2) << "\n";
+      json out = x.out;  // the top level stays the x plane's single-plane output
+      json planes = {{"x", x.out}};
+      planes["x"].erase("record");  // it is the top-level "record"
+      if (y) planes["y"] = y->out;  // its "record" is the y horizontal + the shared vertical
+      out["planes"] = planes;
+      json verdict = {{"plane_count", y ? 2 : 1}};
+      const std::pair<rm::Level, const char*> levels[] = {{rm::Level::BeyondTipping, "beyond_tipping"},
+                                                          {rm::Level::Committed, "committed"},
+                                                          {rm::Level::Overturned, "overturn"}};
+      for (const auto& [level, name] : levels) {
+        const bool reached = item.levels.reached(level);
+        // "overturned" as the top-level flag, "overturn_time_s" as the top-level time
+        verdict[level == rm::Level::Overturned ? std::string("overturned") : std::string(name)] = reached;
+        verdict[std::string(name) + "_time_s"] = nullable(item.levels.at(level));
+        verdict[std::string(name) + "_plane"] =
+            reached ? json(rm::to_string(item.plane[static_cast<int>(level)])) : json(nullptr);
+      }
+      out["item"] = verdict;
+      std::cout << out.dump(2) << "\n";
     } else {
-      for (const std::string& line : x.lines) std::printf("%s\n", line.c_str());
+      const std::string px = y ? "[x] " : "", py = "[y] ";
+      for (const std::string& line : x.lines) std::printf("%s%s\n", px.c_str(), line.c_str());
+      if (y)
+        for (const std::string& line : y->lines) std::printf("%s%s\n", py.c_str(), line.c_str());
+      auto level_text = [&](rm::Level level) {
+        const double t = item.levels.at(level);
+        if (std::isnan(t)) return std::string("never");
+        return std::to_string(t) + " s (" + rm::to_string(item.plane[static_cast<int>(level)]) + " plane)";
+      };
+      std::printf("%sitem        %s: beyond tipping %s, committed %s, overturned %s\n", y ? "    " : "",
+                  item.overturned() ? "OVERTURNED" : "survived",
+                  level_text(rm::Level::BeyondTipping).c_str(), level_text(rm::Level::Committed).c_str(),
+                  level_text(rm::Level::Overturned).c_str());
     }
     return 0;
   } catch (const std::exception& e) {
