@@ -404,13 +404,16 @@ int main(int argc, char** argv) {
   app.add_option("--mu-s", body.mu_s, "Static friction coefficient (default: not checked)");
   app.add_option("--mu-k", body.mu_k,
                  "Kinetic friction coefficient for --fidelity contact|adaptive (default mu_s)");
-  std::string fidelity_text = "rocking";
+  // adaptive by default: the cheapest valid model per sample; without --mu-s it is the pure-rocking
+  // model (until free flight), so only items given a friction coefficient can see the contact model.
+  std::string fidelity_text = "adaptive";
   app.add_option("--fidelity", fidelity_text,
-                 "rocking (pure-rocking model only, violations flagged) | contact (full contact "
-                 "model: slide, slide-rock, flight) | adaptive (rocking model while valid, contact "
-                 "model when needed; docs/fidelity.md)")
+                 "adaptive (default: rocking model while valid, contact model when needed; without "
+                 "--mu-s pure rocking) | rocking (the paper's pure-rocking model only, violations "
+                 "flagged; simulate()) | contact (full contact model: slide, slide-rock, flight); "
+                 "docs/fidelity.md")
       ->check(CLI::IsMember({"rocking", "contact", "adaptive"}))
-      ->default_val("rocking");
+      ->default_val("adaptive");
   app.add_option("--contact-substeps", opt.contact.substeps,
                  "RK4 sub-steps per input sample of the contact model (--fidelity contact|adaptive)")
       ->default_val(opt.contact.substeps)

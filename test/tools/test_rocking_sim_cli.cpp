@@ -43,7 +43,7 @@ fs::path temp_dir() {
 
 TEST(RockingSimCli, JsonHasTheDocumentedKeysAndMatchesTheLibrary) {
   for (const char* body : {"--width 0.15 --cg-height 0.35", "--width 0.5 --cg-height 0.9 --eccentricity 0.4"}) {
-    const CliRun r = run_sim("--record " + kPulse + " " + body + " --json");
+    const CliRun r = run_sim("--record " + kPulse + " " + body + " --fidelity rocking --json");
     ASSERT_EQ(r.status, 0) << r.out;
     const auto j = nlohmann::json::parse(r.out);
     for (const char* key : {"overturned", "committed", "beyond_tipping", "max_rotation_ratio", "impacts",
@@ -69,14 +69,14 @@ TEST(RockingSimCli, JsonHasTheDocumentedKeysAndMatchesTheLibrary) {
     }
   }
   // The slender vase falls, the stocky eccentric cabinet survives this pulse.
-  EXPECT_TRUE(nlohmann::json::parse(run_sim("--record " + kPulse + " --width 0.15 --cg-height 0.35 --json").out)["overturned"].get<bool>());
-  EXPECT_FALSE(nlohmann::json::parse(run_sim("--record " + kPulse + " --width 0.5 --cg-height 0.9 --eccentricity 0.4 --json").out)["overturned"].get<bool>());
+  EXPECT_TRUE(nlohmann::json::parse(run_sim("--record " + kPulse + " --width 0.15 --cg-height 0.35 --fidelity rocking --json").out)["overturned"].get<bool>());
+  EXPECT_FALSE(nlohmann::json::parse(run_sim("--record " + kPulse + " --width 0.5 --cg-height 0.9 --eccentricity 0.4 --fidelity rocking --json").out)["overturned"].get<bool>());
 }
 
 TEST(RockingSimCli, HistoryAndOptions) {
   const fs::path d = temp_dir();
   const std::string hist = (d / "h.csv").string();
-  const CliRun r = run_sim("--record " + kPulse + " --width 0.2 --cg-height 0.5 --method rk4 --substeps 8 --model linearized --scale 0.5 --history " + hist + " --json");
+  const CliRun r = run_sim("--record " + kPulse + " --width 0.2 --cg-height 0.5 --method rk4 --substeps 8 --model linearized --scale 0.5 --fidelity rocking --history " + hist + " --json");
   ASSERT_EQ(r.status, 0) << r.out;
   std::ifstream in(hist);
   std::string header, line;
@@ -317,6 +317,40 @@ TEST(RockingSimTwoPlanes, ItemVerdictIsCombineOfThePlanes) {
   EXPECT_NE(t.out.find("[y] result      OVERTURNED"), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("item        OVERTURNED"), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("(y plane)\n"), std::string::npos) << t.out;
+}
+
+// (d) The default fidelity is adaptive; --fidelity rocking is the previous default, the library's
+// simulate(); a body without mu_s that never leaves pure rocking gets the same alarms from both.
+TEST(RockingSimCli, DefaultFidelityIsAdaptiveAndRockingIsSimulate) {
+  const auto comps = read_record(kPulse);
+  const GroundMotion motion = make_ground_motion(comps[0], nullptr, 1.0);
+  for (const char* body : {"--width 0.15 --cg-height 0.35", "--width 0.5 --cg-height 0.9 --eccentricity 0.4"}) {
+    const std::string args = "--record " + kPulse + " " + body;
+    const auto plain = sim_json(args);
+    const auto adaptive = sim_json(args + " --fidelity adaptive");
+    const auto rocking = sim_json(args + " --fidelity rocking");
+    EXPECT_EQ(plain["fidelity"], "adaptive") << body;
+    EXPECT_EQ(physics_of(plain), physics_of(adaptive)) << body;
+    EXPECT_EQ(plain["item"], adaptive["item"]) << body;
+    // --fidelity rocking: what the default used to be, the library's simulate() on the same samples.
+    BodyParameters p;
+    p.width = rocking["body"]["width_m"];
+    p.cg_height = rocking["body"]["cg_height_m"];
+    p.nu1 = rocking["body"]["nu1"];
+    const SimulationResult lib = simulate(Body(p), SolverSettings{}, motion);
+    EXPECT_EQ(rocking["fidelity"], "rocking");
+    EXPECT_EQ(rocking["overturned"].get<bool>(), lib.outcome.overturned) << body;
+    EXPECT_EQ(rocking["impacts"].get<long>(), lib.outcome.impacts) << body;
+    EXPECT_EQ(rocking["steps"].get<long>(), lib.outcome.integrator_steps) << body;
+    EXPECT_EQ(rocking["max_rotation_ratio"].get<double>(), lib.outcome.max_rotation_ratio) << body;
+    EXPECT_EQ(rocking["violations"].size(), lib.violations.size()) << body;
+    if (!lib.violations.empty()) continue;  // free flight: the adaptive model leaves pure rocking
+    // Pure rocking valid throughout (no mu_s, no flight): the adaptive default keeps its answer.
+    EXPECT_EQ(plain["model_switches"], 0) << body;
+    for (const char* k : {"overturned", "committed", "beyond_tipping", "impacts", "max_rotation_ratio",
+                          "uplift_time_s", "beyond_tipping_time_s", "committed_time_s", "overturn_time_s"})
+      EXPECT_EQ(plain[k], rocking[k]) << body << " " << k;
+  }
 }
 
 // (e) Bad second-plane input: status 2 and one line naming the field or the files.
