@@ -387,19 +387,26 @@ TEST(AdaptiveModel, ImpactFrictionDemandAndReasons) {
   EXPECT_FALSE(rm::parse_fidelity("best", f));
 }
 
-// rocking_sim --fidelity: default unchanged (rocking, no switch), contact / adaptive agree.
-TEST(RockingSimFidelity, DefaultIsRockingAndAdaptiveMatchesContact) {
+// rocking_sim --fidelity: default adaptive (= --fidelity adaptive), rocking keeps the pure-rocking
+// keys and never switches, contact / adaptive agree.
+TEST(RockingSimFidelity, DefaultIsAdaptiveAndAdaptiveMatchesContact) {
   const std::string base = std::string(ROCKING_SIM_EXE) + " --record " + ROCKING_SOURCE_DIR +
                            "/bags/one_sine_pulse.csv --width 0.15 --cg-height 0.35 --json";
   const auto plain = rm::testing::run_command(base);
+  const auto explicit_adaptive = rm::testing::run_command(base + " --fidelity adaptive");
   const auto rocking = rm::testing::run_command(base + " --fidelity rocking");
   ASSERT_EQ(plain.status, 0);
-  auto jp = nlohmann::json::parse(plain.out), jr = nlohmann::json::parse(rocking.out);
-  EXPECT_EQ(jp["fidelity"], "rocking");
-  EXPECT_EQ(jp["model_switches"], 0);
-  EXPECT_EQ(jp["samples_contact_model"], 0);
-  EXPECT_EQ(jp["overturn_time_s"], jr["overturn_time_s"]);
-  EXPECT_TRUE(jp.contains("violations") && jp.contains("rest_captures") && jp.contains("body"));
+  ASSERT_EQ(rocking.status, 0);
+  auto jp = nlohmann::json::parse(plain.out), je = nlohmann::json::parse(explicit_adaptive.out),
+       jr = nlohmann::json::parse(rocking.out);
+  EXPECT_EQ(jp["fidelity"], "adaptive");
+  for (auto* j : {&jp, &je})
+    for (const char* k : {"cpu_time_s", "planes"}) j->erase(k);  // timings (planes.x repeats the top level)
+  EXPECT_EQ(jp, je);
+  EXPECT_EQ(jr["fidelity"], "rocking");
+  EXPECT_EQ(jr["model_switches"], 0);
+  EXPECT_EQ(jr["samples_contact_model"], 0);
+  EXPECT_TRUE(jr.contains("violations") && jr.contains("rest_captures") && jr.contains("body"));
   const auto adaptive = rm::testing::run_command(base + " --mu-s 0.6 --mu-k 0.5 --fidelity adaptive");
   const auto contact = rm::testing::run_command(base + " --mu-s 0.6 --mu-k 0.5 --fidelity contact");
   ASSERT_EQ(adaptive.status, 0);

@@ -263,7 +263,7 @@ TEST(StudyCases, AgreeWithRockingSimCaseByCase) {
       char args[512];
       std::snprintf(args, sizeof args,
                     " --record %s --width %.17g --cg-height %.17g --eccentricity %.17g "
-                    "--radius-of-gyration %.17g --method %s --json",
+                    "--radius-of-gyration %.17g --method %s --fidelity rocking --json",
                     file.c_str(), b.width, b.cg_height, b.nu1, b.radius_of_gyration, method);
       int status = -1;
       const std::string out = run_command(std::string(ROCKING_SIM_EXE) + args, &status);

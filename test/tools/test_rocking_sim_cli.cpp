@@ -1,5 +1,5 @@
 // The rocking_sim command line: JSON contract, agreement with the library, bad-input messages,
-// and every PEER .AT2 record in ../shared/records.
+// every PEER .AT2 record in ../shared/records, and the second rocking plane (--depth, --record-y).
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -13,9 +13,13 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
+#include "rocking_monitor/monitoring/item_verdict.hpp"
 #include "rocking_monitor/motion/record_reader.hpp"
 #include "rocking_monitor/monitoring/simulation.hpp"
+#include "rocking_monitor/physics/principal_planes.hpp"
 #include "test_helpers.hpp"
 
 namespace rocking_monitor::core {
@@ -39,7 +43,7 @@ fs::path temp_dir() {
 
 TEST(RockingSimCli, JsonHasTheDocumentedKeysAndMatchesTheLibrary) {
   for (const char* body : {"--width 0.15 --cg-height 0.35", "--width 0.5 --cg-height 0.9 --eccentricity 0.4"}) {
-    const CliRun r = run_sim("--record " + kPulse + " " + body + " --json");
+    const CliRun r = run_sim("--record " + kPulse + " " + body + " --fidelity rocking --json");
     ASSERT_EQ(r.status, 0) << r.out;
     const auto j = nlohmann::json::parse(r.out);
     for (const char* key : {"overturned", "committed", "beyond_tipping", "max_rotation_ratio", "impacts",
@@ -65,14 +69,14 @@ TEST(RockingSimCli, JsonHasTheDocumentedKeysAndMatchesTheLibrary) {
     }
   }
   // The slender vase falls, the stocky eccentric cabinet survives this pulse.
-  EXPECT_TRUE(nlohmann::json::parse(run_sim("--record " + kPulse + " --width 0.15 --cg-height 0.35 --json").out)["overturned"].get<bool>());
-  EXPECT_FALSE(nlohmann::json::parse(run_sim("--record " + kPulse + " --width 0.5 --cg-height 0.9 --eccentricity 0.4 --json").out)["overturned"].get<bool>());
+  EXPECT_TRUE(nlohmann::json::parse(run_sim("--record " + kPulse + " --width 0.15 --cg-height 0.35 --fidelity rocking --json").out)["overturned"].get<bool>());
+  EXPECT_FALSE(nlohmann::json::parse(run_sim("--record " + kPulse + " --width 0.5 --cg-height 0.9 --eccentricity 0.4 --fidelity rocking --json").out)["overturned"].get<bool>());
 }
 
 TEST(RockingSimCli, HistoryAndOptions) {
   const fs::path d = temp_dir();
   const std::string hist = (d / "h.csv").string();
-  const CliRun r = run_sim("--record " + kPulse + " --width 0.2 --cg-height 0.5 --method rk4 --substeps 8 --model linearized --scale 0.5 --history " + hist + " --json");
+  const CliRun r = run_sim("--record " + kPulse + " --width 0.2 --cg-height 0.5 --method rk4 --substeps 8 --model linearized --scale 0.5 --fidelity rocking --history " + hist + " --json");
   ASSERT_EQ(r.status, 0) << r.out;
   std::ifstream in(hist);
   std::string header, line;
@@ -142,6 +146,240 @@ TEST(RockingSimCli, RunsOnEveryAt2RecordAndRejectsACorruptedCopy) {
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.out.find("truncated.AT2"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("NPTS"), std::string::npos) << r.out;
+}
+
+// ---- Two rocking planes (issue 11) ----
+
+const fs::path kRecords = ROCKING_RECORDS_DIR;
+const std::string kRinaldi = (kRecords / "northridge_1994/Rinaldi228.AT2").string();
+const std::string kRinaldiUp = (kRecords / "northridge_1994/RinaldiUP.AT2").string();
+bool have_rinaldi() { return fs::is_regular_file(kRinaldi) && fs::is_regular_file(kRinaldiUp); }
+
+// The JSON object of a successful run (after any note lines).
+nlohmann::json sim_json(const std::string& args) {
+  const CliRun r = run_sim(args + " --json");
+  EXPECT_EQ(r.status, 0) << args << ": " << r.out;
+  const auto brace = r.out.find('{');
+  if (r.status != 0 || brace == std::string::npos) return nlohmann::json::object();
+  return nlohmann::json::parse(r.out.substr(brace));
+}
+
+// A plane's block without what legitimately differs between two runs of the same physics.
+nlohmann::json physics_of(nlohmann::json block) {
+  for (const char* k : {"cpu_time_s", "record", "planes", "item"}) block.erase(k);
+  return block;
+}
+
+// A CSV of zeros on the given time grid ('time_s accel' rows, m/s^2).
+std::string zeros_csv(const std::string& name, double dt, int samples) {
+  const fs::path file = temp_dir() / name;
+  std::ofstream out(file);
+  out << "time_s,accel_mps2\n";
+  for (int i = 0; i < samples; ++i) out << i * dt << ",0\n";
+  return file.string();
+}
+
+std::vector<std::string> read_lines(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+LevelTimes times_of(const nlohmann::json& plane) {
+  LevelTimes l;
+  const std::pair<Level, const char*> keys[] = {{Level::BeyondTipping, "beyond_tipping_time_s"},
+                                                {Level::Committed, "committed_time_s"},
+                                                {Level::Overturned, "overturn_time_s"}};
+  for (const auto& [level, key] : keys)
+    if (!plane[key].is_null()) l.time[static_cast<int>(level)] = plane[key].get<double>();
+  return l;
+}
+
+// (a) The same record in both planes and the same geometry across them: the y plane is the x plane.
+TEST(RockingSimTwoPlanes, SameRecordAndGeometryGiveIdenticalPlanes) {
+  std::vector<std::string> cases = {"--record " + kPulse + " --record-y " + kPulse +
+                                    " --width 0.15 --depth 0.15 --cg-height 0.35 --eccentricity 0.4"
+                                    " --eccentricity-y 0.4 --mu-s 0.6"};
+  if (have_rinaldi())
+    cases.push_back("--record " + kRinaldi + " --record-y " + kRinaldi + " --vertical " + kRinaldiUp +
+                    " --width 0.4 --depth 0.4 --cg-height 0.9 --eccentricity 0.3 --eccentricity-y 0.3"
+                    " --radius-of-gyration 0.5 --mu-s 0.5");
+  for (const std::string& args : cases) {
+    for (const char* fidelity : {"rocking", "contact", "adaptive"}) {
+      const auto j = sim_json(args + " --fidelity " + fidelity);
+      ASSERT_TRUE(j.contains("planes")) << args;
+      ASSERT_TRUE(j["planes"].contains("y")) << args;
+      EXPECT_EQ(physics_of(j["planes"]["y"]), physics_of(j["planes"]["x"])) << args << " " << fidelity;
+      EXPECT_EQ(j["planes"]["y"]["body"], j["planes"]["x"]["body"]);  // incl. the derived i_y = i_x
+      EXPECT_EQ(physics_of(j), physics_of(j["planes"]["x"])) << "top level = x plane";
+      EXPECT_EQ(j["item"]["plane_count"], 2);
+      // A tie names the x plane.
+      for (const char* level : {"beyond_tipping_plane", "committed_plane", "overturn_plane"})
+        if (!j["item"][level].is_null()) EXPECT_EQ(j["item"][level], "x") << level;
+    }
+  }
+}
+
+// (b) A y record of zeros: the y plane never uplifts and the x plane is the single-plane run, also
+// its history file; a longer --record is cut to the common length with a note.
+TEST(RockingSimTwoPlanes, ZeroYRecordLeavesTheXPlaneAsTheSinglePlaneRun) {
+  struct Case { std::string x_args; double dt; int samples; };
+  std::vector<Case> cases = {{"--record " + kPulse + " --width 0.15 --cg-height 0.35 --mu-s 0.6", 0.005, 1601},
+                             {"--record " + kPulse + " --width 0.5 --cg-height 0.9 --eccentricity 0.4", 0.005, 1601}};
+  if (have_rinaldi())
+    cases.push_back({"--record " + kRinaldi + " --vertical " + kRinaldiUp +
+                         " --width 0.4 --cg-height 0.9 --eccentricity 0.3 --mu-s 0.5", 0.01, 1991});
+  const fs::path d = temp_dir();
+  int n = 0;
+  for (const Case& c : cases) {
+    const std::string zeros = zeros_csv("zeros_" + std::to_string(n++) + ".csv", c.dt, c.samples);
+    for (const char* fidelity : {"rocking", "adaptive"}) {
+      const std::string single_hist = (d / "single.csv").string(), two_hist = (d / "two.csv").string();
+      const std::string f = std::string(" --fidelity ") + fidelity;
+      const auto single = sim_json(c.x_args + f + " --history " + single_hist);
+      const auto two = sim_json(c.x_args + f + " --record-y " + zeros + " --depth 0.3 --history " + two_hist);
+      EXPECT_EQ(physics_of(two["planes"]["x"]), physics_of(single)) << c.x_args << f;
+      EXPECT_EQ(physics_of(two), physics_of(single)) << c.x_args << f;
+      EXPECT_EQ(two["record"], single["record"]);
+      EXPECT_FALSE(single["planes"].contains("y"));
+      EXPECT_EQ(single["item"]["plane_count"], 1);
+      const auto& y = two["planes"]["y"];
+      EXPECT_TRUE(y["uplift_time_s"].is_null()) << y.dump();
+      EXPECT_EQ(y["impacts"], 0);
+      EXPECT_EQ(y["max_rotation_ratio"].get<double>(), 0.0);
+      EXPECT_FALSE(y["beyond_tipping"].get<bool>());
+      EXPECT_EQ(y["record"]["pga_mps2"].get<double>(), 0.0);
+      EXPECT_EQ(y["record"]["has_vertical"], single["record"]["has_vertical"]);
+      // The x history is the single-plane file (bar nothing); the y plane's goes next to it.
+      EXPECT_EQ(read_lines(two_hist), read_lines(single_hist)) << fidelity;
+      const auto y_hist = read_lines((d / "two_y.csv").string());
+      ASSERT_EQ(y_hist.size(), read_lines(single_hist).size());
+      EXPECT_EQ(y_hist.front(), read_lines(single_hist).front());
+    }
+  }
+  // A shorter --record-y: both planes run on its length, the note says what of --record was left.
+  const std::string short_zeros = zeros_csv("short_zeros.csv", 0.005, 1000);
+  const CliRun r = run_sim("--record " + kPulse + " --record-y " + short_zeros +
+                           " --width 0.3 --depth 0.3 --cg-height 0.6 --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("rocking_sim: note:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("601 samples of " + kPulse), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(r.out.substr(r.out.find('{')));
+  EXPECT_EQ(j["record"]["samples"], 1000);
+  EXPECT_EQ(j["planes"]["y"]["record"]["samples"], 1000);
+  // --depth alone: the y plane sees only the vertical, said in one note line.
+  const CliRun alone = run_sim("--record " + kPulse + " --width 0.3 --depth 0.3 --cg-height 0.6 --json");
+  ASSERT_EQ(alone.status, 0) << alone.out;
+  EXPECT_NE(alone.out.find("rocking_sim: note: --depth without --record-y"), std::string::npos) << alone.out;
+  EXPECT_EQ(nlohmann::json::parse(alone.out.substr(alone.out.find('{')))["planes"]["y"]["impacts"], 0);
+}
+
+// (c) The item's verdict is core combine() of the planes' times and names the plane.
+TEST(RockingSimTwoPlanes, ItemVerdictIsCombineOfThePlanes) {
+  struct Case { std::string args; const char* overturn_plane; };
+  // Deep-and-narrow: the narrow y plane falls, the wide x plane does not (and the mirror image).
+  std::vector<Case> cases = {
+      {"--record " + kPulse + " --record-y " + kPulse + " --width 0.5 --depth 0.15 --cg-height 0.35 --mu-s 0.6", "y"},
+      {"--record " + kPulse + " --record-y " + kPulse + " --width 0.15 --depth 0.5 --cg-height 0.35 --mu-s 0.6", "x"}};
+  if (have_rinaldi())
+    cases.push_back({"--record " + kRinaldi + " --record-y " + kRinaldi + " --width 0.6 --depth 0.2 --cg-height 0.5", "y"});
+  for (const Case& c : cases) {
+    for (const char* fidelity : {"rocking", "adaptive"}) {
+      const auto j = sim_json(c.args + " --fidelity " + fidelity);
+      const LevelTimes x = times_of(j["planes"]["x"]), y = times_of(j["planes"]["y"]);
+      const ItemVerdict v = combine(x, &y);
+      const auto& item = j["item"];
+      const std::pair<Level, std::string> levels[] = {{Level::BeyondTipping, "beyond_tipping"},
+                                                      {Level::Committed, "committed"},
+                                                      {Level::Overturned, "overturn"}};
+      for (const auto& [level, name] : levels) {
+        const std::string flag = level == Level::Overturned ? "overturned" : name;
+        EXPECT_EQ(item[flag].get<bool>(), v.levels.reached(level)) << c.args << " " << name;
+        if (v.levels.reached(level)) {
+          EXPECT_EQ(item[name + "_time_s"].get<double>(), v.levels.at(level)) << name;
+          EXPECT_EQ(item[name + "_plane"], to_string(v.plane[static_cast<int>(level)])) << name;
+        } else {
+          EXPECT_TRUE(item[name + "_time_s"].is_null()) << name;
+          EXPECT_TRUE(item[name + "_plane"].is_null()) << name;
+        }
+      }
+      EXPECT_EQ(item["overturn_plane"], c.overturn_plane) << c.args << " " << fidelity;
+      const char* other = std::string(c.overturn_plane) == "x" ? "y" : "x";
+      EXPECT_FALSE(j["planes"][other]["overturned"].get<bool>()) << c.args;
+      EXPECT_TRUE(j["planes"][c.overturn_plane]["overturned"].get<bool>()) << c.args;
+    }
+  }
+  // Text: every plane line labelled, one item line naming the plane.
+  const CliRun t = run_sim(cases[0].args + " --fidelity rocking");
+  ASSERT_EQ(t.status, 0) << t.out;
+  EXPECT_NE(t.out.find("[x] result      survived"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("[y] result      OVERTURNED"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("item        OVERTURNED"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("(y plane)\n"), std::string::npos) << t.out;
+}
+
+// (d) The default fidelity is adaptive; --fidelity rocking is the previous default, the library's
+// simulate(); a body without mu_s gets the same alarms from both (adaptive without friction is the
+// pure-rocking body, also when it flags a free-flight onset).
+TEST(RockingSimCli, DefaultFidelityIsAdaptiveAndRockingIsSimulate) {
+  struct Case { std::string record; std::string body; GroundMotion motion; };
+  const auto pulse = read_record(kPulse);
+  std::vector<Case> cases;
+  for (const char* body : {"--width 0.15 --cg-height 0.35", "--width 0.5 --cg-height 0.9 --eccentricity 0.4"})
+    cases.push_back({"--record " + kPulse, body, make_ground_motion(pulse[0], nullptr, 1.0)});
+  if (have_rinaldi()) {  // a cabinet whose fall the rocking model flags as a free-flight onset
+    const auto h = read_record(kRinaldi), v = read_record(kRinaldiUp);
+    cases.push_back({"--record " + kRinaldi + " --vertical " + kRinaldiUp,
+                     "--width 0.5 --cg-height 0.9 --eccentricity 0.4", make_ground_motion(h[0], &v[0], 1.0)});
+  }
+  for (const Case& c : cases) {
+    const std::string& body = c.body;
+    const GroundMotion& motion = c.motion;
+    const std::string args = c.record + " " + body;
+    const auto plain = sim_json(args);
+    const auto adaptive = sim_json(args + " --fidelity adaptive");
+    const auto rocking = sim_json(args + " --fidelity rocking");
+    EXPECT_EQ(plain["fidelity"], "adaptive") << body;
+    EXPECT_EQ(physics_of(plain), physics_of(adaptive)) << body;
+    EXPECT_EQ(plain["item"], adaptive["item"]) << body;
+    // --fidelity rocking: what the default used to be, the library's simulate() on the same samples.
+    BodyParameters p;
+    p.width = rocking["body"]["width_m"];
+    p.cg_height = rocking["body"]["cg_height_m"];
+    p.nu1 = rocking["body"]["nu1"];
+    const SimulationResult lib = simulate(Body(p), SolverSettings{}, motion);
+    EXPECT_EQ(rocking["fidelity"], "rocking");
+    EXPECT_EQ(rocking["overturned"].get<bool>(), lib.outcome.overturned) << body;
+    EXPECT_EQ(rocking["impacts"].get<long>(), lib.outcome.impacts) << body;
+    EXPECT_EQ(rocking["steps"].get<long>(), lib.outcome.integrator_steps) << body;
+    EXPECT_EQ(rocking["max_rotation_ratio"].get<double>(), lib.outcome.max_rotation_ratio) << body;
+    EXPECT_EQ(rocking["violations"].size(), lib.violations.size()) << body;
+    EXPECT_EQ(plain["model_switches"], 0) << body;
+    for (const char* k : {"overturned", "committed", "beyond_tipping", "impacts", "max_rotation_ratio",
+                          "uplift_time_s", "beyond_tipping_time_s", "committed_time_s", "overturn_time_s"})
+      EXPECT_EQ(plain[k], rocking[k]) << body << " " << k;
+  }
+}
+
+// (e) Bad second-plane input: status 2 and one line naming the field or the files.
+TEST(RockingSimTwoPlanes, BadInputGivesOneClearLine) {
+  const std::string base = "--record " + kPulse + " --width 0.3 --cg-height 0.6";
+  auto expect_status_2 = [](const std::string& args, const std::vector<std::string>& needles) {
+    const CliRun r = run_sim(args);
+    EXPECT_EQ(r.status, 2) << args << ": " << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+    EXPECT_EQ(r.out.rfind("rocking_sim: error: ", 0), 0u) << r.out;
+    for (const std::string& n : needles) EXPECT_NE(r.out.find(n), std::string::npos) << "'" << n << "' in " << r.out;
+  };
+  expect_status_2(base + " --depth -1", {"depth = -1"});
+  expect_status_2(base + " --depth nan", {"depth = nan"});
+  expect_status_2(base + " --depth 0.3 --eccentricity-y 1.2", {"eccentricity_y = 1.2"});
+  expect_status_2(base + " --depth 0.3 --radius-of-gyration-y -0.1", {"radius_of_gyration_y = -0.1"});
+  expect_status_2(base + " --record-y " + kPulse, {"--record-y needs --depth"});
+  expect_status_2(base + " --eccentricity-y 0.4", {"--eccentricity-y needs --depth"});
+  const std::string coarse = zeros_csv("coarse.csv", 0.01, 800);
+  expect_status_2(base + " --depth 0.3 --record-y " + coarse, {kPulse, coarse, "0.005", "0.01"});
 }
 
 }  // namespace
