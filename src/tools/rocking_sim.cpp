@@ -21,7 +21,7 @@
 #include "command_line.hpp"
 #include "rocking_monitor/csv/csv_writer.hpp"
 #include "rocking_monitor/model/adaptive_model.hpp"
-#include "rocking_monitor/monitoring/item_verdict.hpp"
+#include "rocking_monitor/physics/item_verdict.hpp"
 #include "rocking_monitor/monitoring/simulation.hpp"
 #include "rocking_monitor/motion/ground_motion.hpp"
 #include "rocking_monitor/motion/record_reader.hpp"

@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "rocking_monitor/monitoring/item_verdict.hpp"
+#include "rocking_monitor/physics/item_verdict.hpp"
 #include "rocking_monitor/motion/record_reader.hpp"
 #include "rocking_monitor/monitoring/simulation.hpp"
 #include "rocking_monitor/physics/principal_planes.hpp"
