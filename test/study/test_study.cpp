@@ -25,25 +25,16 @@
 #include "rocking_monitor/study/study.hpp"
 #include "rocking_monitor/study/study_io.hpp"
 
+#include "temp_root.hpp"
+
 namespace rocking_monitor::core::study {
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path& temp_root() {
-  static const fs::path root = fs::temp_directory_path() / ("rocking_study_test_" + std::to_string(::getpid()));
-  return root;
-}
-
-// Removes the test's temporary files when the test binary ends.
-class TempCleanup : public ::testing::Environment {
- public:
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(temp_root(), ec);
-  }
-};
-const auto* const kCleanup = ::testing::AddGlobalTestEnvironment(new TempCleanup);
+// Scratch files of this binary, removed when it ends.
+const rocking_monitor::core::testing::TempRoot& kTemp = rocking_monitor::core::testing::TempRoot::registered("rocking_study_test_");
+const fs::path& temp_root() { return kTemp.path(); }
 
 fs::path temp_dir(const std::string& tag) {
   const fs::path d = temp_root() / tag;

@@ -20,24 +20,16 @@
 #include "rocking_monitor/study/study.hpp"
 #include "rocking_monitor/study/study_io.hpp"
 
+#include "temp_root.hpp"
+
 namespace rocking_monitor::core::study {
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path& temp_root() {
-  static const fs::path root = fs::temp_directory_path() / ("rocking_two_planes_test_" + std::to_string(::getpid()));
-  return root;
-}
-
-class TempCleanup : public ::testing::Environment {
- public:
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(temp_root(), ec);
-  }
-};
-const auto* const kCleanup = ::testing::AddGlobalTestEnvironment(new TempCleanup);
+// Scratch files of this binary, removed when it ends.
+const rocking_monitor::core::testing::TempRoot& kTemp = rocking_monitor::core::testing::TempRoot::registered("rocking_two_planes_test_");
+const fs::path& temp_root() { return kTemp.path(); }
 
 fs::path write_yaml(const std::string& tag, const std::string& text) {
   const fs::path d = temp_root() / tag;

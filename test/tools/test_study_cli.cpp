@@ -22,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include "temp_root.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -39,19 +41,9 @@ std::string slurp(const fs::path& p) {
   return os.str();
 }
 
-const fs::path& root() {
-  static const fs::path r = fs::temp_directory_path() / ("rocking_study_cli_" + std::to_string(::getpid()));
-  return r;
-}
-
-class Cleanup : public ::testing::Environment {
- public:
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(root(), ec);
-  }
-};
-const auto* const kCleanup = ::testing::AddGlobalTestEnvironment(new Cleanup);
+// Scratch files of this binary, removed when it ends.
+const rocking_monitor::core::testing::TempRoot& kTemp = rocking_monitor::core::testing::TempRoot::registered("rocking_study_cli_");
+const fs::path& root() { return kTemp.path(); }
 
 // Three one-sine pulses (one with a vertical column) and a YAML body list.
 fs::path fixture() {
