@@ -9,7 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libsundials-dev
   python3-matplotlib python3-numpy
   catkin ros-core-dev libroscpp-dev librosbag-dev librostest-dev python3-rostest
-  python3-roslaunch python3-rosmaster python3-rosbag python3-rostopic rosbash ros-message-generation
+  python3-roslaunch python3-rosmaster python3-rosbag python3-rostopic python3-diagnostic-msgs rosbash ros-message-generation
   ros-std-msgs ros-std-srvs libstd-srvs-dev ros-geometry-msgs ros-sensor-msgs
   ros-visualization-msgs ros-diagnostic-msgs libdiagnostic-updater-dev libnodeletlib-dev libnodeletlib-tools
   libtf2-ros-dev libtf2-eigen-dev tf2-tools python3-sensor-msgs

@@ -167,6 +167,16 @@ rm::LevelTimes level_times(const Outcome& o) {
   return l;
 }
 
+json record_json(const rm::GroundMotion& motion, double scale, double pga) {
+  return {{"description", motion.description},
+          {"dt_s", motion.dt},
+          {"samples", motion.size()},
+          {"duration_s", motion.dt * static_cast<double>(motion.size() - 1)},
+          {"scale", scale},
+          {"pga_mps2", pga},
+          {"has_vertical", !motion.vertical.empty()}};
+}
+
 json body_json(const rm::Body& rigid) {
   const rm::Pivot& p1 = rigid.pivot(1);
   const rm::Pivot& p2 = rigid.pivot(-1);
@@ -246,13 +256,7 @@ PlaneRun run_plane(const RunOptions& opt, const rm::BodyParameters& params,
                {"samples", o.samples},
                {"cpu_time_s", f.cpu_time_s},
                {"body", body_json(rigid)},
-               {"record",
-                {{"description", motion.description},
-                 {"dt_s", motion.dt},
-                 {"samples", motion.size()},
-                 {"scale", opt.scale},
-                 {"pga_mps2", pga},
-                 {"has_vertical", !motion.vertical.empty()}}}};
+               {"record", record_json(motion, opt.scale, pga)}};
     auto& L = run.lines;
     L.push_back(record_line);
     L.push_back(format("fidelity    %s (start: %s)", rm::to_string(opt.fidelity), rm::to_string(f.initial)));
@@ -311,14 +315,7 @@ PlaneRun run_plane(const RunOptions& opt, const rm::BodyParameters& params,
              {"samples", o.samples},
              {"cpu_time_s", r.cpu_time_s},
              {"body", body_json(rigid)},
-             {"record",
-              {{"description", motion.description},
-               {"dt_s", motion.dt},
-               {"samples", motion.size()},
-               {"duration_s", motion.dt * static_cast<double>(motion.size() - 1)},
-               {"scale", opt.scale},
-               {"pga_mps2", pga},
-               {"has_vertical", !motion.vertical.empty()}}}};
+             {"record", record_json(motion, opt.scale, pga)}};
   auto& L = run.lines;
   L.push_back(record_line);
   L.push_back(format("body        B %.3f m, h %.3f m, nu1 %.3f, alpha1 %.4f rad, alpha2 %.4f rad",
