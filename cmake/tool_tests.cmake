@@ -20,4 +20,9 @@ if(TARGET rocking_study)
   add_test(NAME study.small_grid_byte_identical
            COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/study_byte_identical.sh $<TARGET_FILE:rocking_study>
                    ${ROCKING_RECORDS_DIR} ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/expected/study_small_grid.sha256)
+  # ... and so does it in shards, under GNU parallel and as a Slurm array job, merged.
+  add_test(NAME study.sharded_byte_identical
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/study_sharded_byte_identical.sh $<TARGET_FILE:rocking_study>
+                   ${ROCKING_RECORDS_DIR} ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/expected/study_small_grid.sha256
+                   ${CMAKE_CURRENT_SOURCE_DIR}/scripts)
 endif()
