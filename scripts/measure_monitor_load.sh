@@ -11,7 +11,7 @@ set +u; source build/devel/setup.bash; set -u
 bag=$(realpath "$1"); shift
 counts=("$@"); [ ${#counts[@]} -gt 0 ] || counts=(1 100 10000)
 export ROS_HOME=${ROS_HOME:-/tmp/rocking_monitor_ros_home}
-printf "%8s %14s %14s %10s\n" items "mean (ms)" "max (ms)" "samples"
+printf "%8s %14s %14s %10s %16s %16s\n" items "mean (ms)" "max (ms)" "samples" "states (ms)" "markers+tf (ms)"
 for n in "${counts[@]}"; do
   cat=$(mktemp --suffix=.yaml)
   single=(); [ "${PLANES:-2}" = 1 ] && single=(--single-plane)
@@ -29,7 +29,9 @@ for n in "${counts[@]}"; do
   mean=$(echo "$diag" | grep -A1 'processing per sample, mean' | sed -n 's/.*value: "\(.*\)"/\1/p' | head -1)
   max=$(echo "$diag" | grep -A1 'processing per sample, max' | sed -n 's/.*value: "\(.*\)"/\1/p' | head -1)
   samples=$(echo "$diag" | grep -A1 '"accepted"' | sed -n 's/.*value: "\(.*\)"/\1/p' | head -1)
-  /usr/bin/python3 -c "import sys; print('%8d %14.4f %14.4f %10s' % (int(sys.argv[1]), float(sys.argv[2])*1e3, float(sys.argv[3])*1e3, sys.argv[4]))" \
-    "$n" "${mean:-nan}" "${max:-nan}" "${samples:-?}"
+  states=$(echo "$diag" | grep -A1 'states publication, mean' | sed -n 's/.*value: "\(.*\)"/\1/p' | head -1)
+  markers=$(echo "$diag" | grep -A1 'markers and tf publication, mean' | sed -n 's/.*value: "\(.*\)"/\1/p' | head -1)
+  /usr/bin/python3 -c "import sys; print('%8d %14.4f %14.4f %10s %16.3f %16.3f' % (int(sys.argv[1]), float(sys.argv[2])*1e3, float(sys.argv[3])*1e3, sys.argv[4], float(sys.argv[5])*1e3, float(sys.argv[6])*1e3))" \
+    "$n" "${mean:-nan}" "${max:-nan}" "${samples:-?}" "${states:-nan}" "${markers:-nan}"
   rm -f "$cat" "$log"
 done

@@ -69,6 +69,13 @@ void RockingMonitor::catalogue_diagnostics(diagnostic_updater::DiagnosticStatusW
   st.add("items without transform", without_tf);
   st.add("item-samples skipped for want of a transform", skipped);
   st.add("alarms published", alarms_published_);
+  // Off the per-sample path (timers, same thread): what publishing costs besides the stepping.
+  st.add("states publication, mean (s)", states_cost_.mean());
+  st.add("states publication, max (s)", states_cost_.max_s);
+  st.add("states publications", states_cost_.count);
+  st.add("markers and tf publication, mean (s)", markers_cost_.mean());
+  st.add("markers and tf publication, max (s)", markers_cost_.max_s);
+  st.add("markers and tf publications", markers_cost_.count);
   st.add("method", core::to_string(options_.solver.method));
   st.add("fidelity", core::to_string(options_.fidelity));
   int on_contact = 0;

@@ -3,6 +3,7 @@
 #include "rocking_monitor/ros/monitor.hpp"
 
 #include <array>
+#include <chrono>
 #include <cstdint>
 
 #include <Eigen/Geometry>
@@ -123,6 +124,7 @@ void RockingMonitor::fill_state(const Item& it, RockingState& out) const {
 }
 
 void RockingMonitor::publish_states() {
+  const auto wall_start = std::chrono::steady_clock::now();
   ::ros::Time newest;
   for (std::size_t i = 0; i < items_.size(); ++i) {
     fill_state(items_[i], states_msg_.items[i]);
@@ -130,6 +132,7 @@ void RockingMonitor::publish_states() {
   }
   states_msg_.header.stamp = newest;
   states_pub_.publish(states_msg_);
+  states_cost_.add(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
 }
 
 void RockingMonitor::on_state_timer(const ::ros::TimerEvent&) {
@@ -149,6 +152,7 @@ void RockingMonitor::on_state_timer(const ::ros::TimerEvent&) {
 
 void RockingMonitor::publish_markers_and_tf() {
   if (!publish_markers_ && !publish_tf_) return;
+  const auto wall_start = std::chrono::steady_clock::now();
   visualization_msgs::MarkerArray markers;
   std::vector<geometry_msgs::TransformStamped> transforms;
   const ::ros::Time now = ::ros::Time::now();
@@ -233,6 +237,7 @@ void RockingMonitor::publish_markers_and_tf() {
     last_tf_stamp_ = now;
   }
   if (publish_markers_) markers_pub_.publish(markers);
+  markers_cost_.add(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
 }
 
 }  // namespace rocking_monitor::live

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -126,6 +127,14 @@ class RockingMonitor {
   std::unique_ptr<tf2_ros::StaticTransformBroadcaster> static_broadcaster_;
   std::unique_ptr<diagnostic_updater::Updater> diagnostics_;
   std::uint64_t alarms_published_ = 0;
+  // Wall time of the publication off the per-sample path (timers): ~states, and markers with tf.
+  struct Cost {
+    double total_s = 0.0, max_s = 0.0;
+    std::uint64_t count = 0;
+    void add(double s) { total_s += s; max_s = std::max(max_s, s); ++count; }
+    double mean() const { return count > 0 ? total_s / static_cast<double>(count) : 0.0; }
+  };
+  Cost states_cost_, markers_cost_;
 };
 
 }  // namespace rocking_monitor::live
