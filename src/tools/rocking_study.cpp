@@ -19,6 +19,8 @@
 #include <CLI/CLI.hpp>
 
 #include "rocking_monitor/motion/record_reader.hpp"
+#include "rocking_monitor/study/fragility_io.hpp"
+#include "rocking_monitor/study/fragility_study.hpp"
 #include "rocking_monitor/study/study.hpp"
 #include "rocking_monitor/study/study_io.hpp"
 #include "command_line.hpp"
@@ -207,6 +209,20 @@ int main(int argc, char** argv) {
   app.add_option("--merge", merge_files,
                  "Merge the cases.csv files of shards into --out (checks every case is there once) and "
                  "summarize; nothing is simulated");
+  bool fragility = false;
+  std::string im_text = "pgv", pgv_range_text = "0.02,2";
+  int levels = 12, bootstrap = 200;
+  app.add_flag("--fragility", fragility,
+               "Fragility curves instead of the study: every body (and each plane of a two-plane item) under "
+               "every record component scaled to --levels PGVs over --pgv-range; writes fragility_runs.csv and "
+               "fragility.json (lognormal fit, bootstrap band); plot with scripts/plot_fragility.py");
+  app.add_option("--im", im_text, "--fragility: intensity measure of the fit: pgv | pga | psv (at the body's Housner period)")
+      ->check(CLI::IsMember({"pgv", "pga", "psv"}))->default_val(im_text);
+  app.add_option("--levels", levels, "--fragility: intensity levels per record")->default_val(levels)->check(CLI::Range(2, 1000));
+  app.add_option("--pgv-range", pgv_range_text, "--fragility: PGV range the records are scaled over, m/s (lo,hi)")
+      ->default_val(pgv_range_text);
+  app.add_option("--bootstrap", bootstrap, "--fragility: bootstrap resamples of each fit")->default_val(bootstrap)
+      ->check(CLI::Range(10, 100000));
   app.add_flag("--quiet", quiet, "No progress bar");
   app.add_flag("--dry-run", dry_run, "Load bodies and records, print the plan and exit");
   if (const auto status = rocking_monitor::tools::parse_command_line(app, argc, argv, "rocking_study")) return *status;
@@ -238,6 +254,39 @@ int main(int argc, char** argv) {
     const st::StudyRecords records = st::load_study_records(records_dir, selection);
     const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_load).count();
     for (const auto& n : records.notes) std::cerr << "rocking_study: note: " << n << "\n";
+    if (fragility) {
+      // Each plane of a two-plane item is its own planar body here (planar decomposition).
+      for (const st::StudyItem& it : items) {
+        bodies.push_back({it.name + " (x)", it.x});
+        bodies.push_back({it.name + " (y)", it.y});
+      }
+      st::FragilityOptions fo;
+      fo.settings = settings;
+      fo.im = st::parse_intensity_measure(im_text);
+      fo.levels = levels;
+      const std::vector<double> range = parse_list(pgv_range_text, "--pgv-range");
+      if (range.size() != 2) throw st::StudyError("--pgv-range '" + pgv_range_text + "': expected lo,hi in m/s");
+      fo.pgv_min = range[0];
+      fo.pgv_max = range[1];
+      fo.both_polarities = !one_polarity;
+      fo.vertical = !no_vertical;
+      fo.bootstrap = bootstrap;
+      fo.threads = threads;
+      std::fprintf(stderr, "rocking_study: fragility of %zu bodies x %zu record components x %d levels x %d polarities\n",
+                   bodies.size(), records.records.size(), levels, one_polarity ? 1 : 2);
+      if (dry_run) return 0;
+      const st::FragilityResult fr = st::run_fragility(bodies, records.records, fo);
+      const fs::path out(out_dir);
+      fs::create_directories(out);
+      std::ostringstream runs_csv, json;
+      st::write_fragility_runs_csv(runs_csv, fr, bodies, records.records, fo);
+      st::write_fragility_json(json, fr, bodies, fo);
+      write_file(out / "fragility_runs.csv", runs_csv.str());
+      write_file(out / "fragility.json", json.str());
+      std::cout << st::format_fragility(fr, bodies, fo);
+      std::cerr << "rocking_study: wrote " << out.string() << "/{fragility_runs.csv,fragility.json}\n";
+      return 0;
+    }
 
     st::StudyOptions options;
     options.settings = settings;

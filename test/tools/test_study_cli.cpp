@@ -132,6 +132,30 @@ TEST(StudyCli, ThreadCountShardsAndMergeGiveIdenticalFiles) {
   EXPECT_NE(r.out.find("is missing"), std::string::npos) << r.out;
 }
 
+TEST(StudyCli, FragilityWritesRunsAndFitsAndRefusesBadOptions) {
+  const fs::path dir = fixture(), out = root() / "fragility";
+  const std::string common = "--records " + (dir / "records").string() + " --bodies " +
+                             (dir / "bodies.yaml").string() + " --quiet --fragility --levels 5 --bootstrap 20";
+  const CliRun r = study(common + " --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  // 7 bodies (the nu1 lists expand) x 3 pulses x 5 levels x 2 polarities, plus the header.
+  const std::string runs = slurp(out / "fragility_runs.csv");
+  EXPECT_EQ(std::count(runs.begin(), runs.end(), '\n'), 1 + 7 * 3 * 5 * 2);
+  const nlohmann::json j = nlohmann::json::parse(slurp(out / "fragility.json"));
+  EXPECT_EQ(j.at("intensity_measure"), "pgv");
+  ASSERT_EQ(j.at("bodies").size(), 7u);
+  for (const auto& b : j.at("bodies")) {
+    EXPECT_EQ(b.at("runs"), 30);
+    if (b.at("fitted").get<bool>()) EXPECT_GT(b.at("median").get<double>(), 0.0);
+    else EXPECT_FALSE(b.at("note").get<std::string>().empty());
+  }
+  for (const char* bad : {"--im sa", "--pgv-range 2,0.02", "--pgv-range 0.1", "--levels 1"}) {
+    const CliRun e = study(common + " --out " + (root() / "bad").string() + " " + bad);
+    EXPECT_EQ(e.status, 2) << bad << ": " << e.out;
+    EXPECT_NE(e.out.find("rocking_study: error"), std::string::npos) << e.out;
+  }
+}
+
 TEST(StudyCli, BadInputExitsWithStatus2AndOneLineNamingTheProblem) {
   const fs::path dir = fixture();
   const fs::path bad = root() / "bad.yaml";
