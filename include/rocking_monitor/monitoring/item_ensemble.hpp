@@ -1,0 +1,63 @@
+#pragma once
+
+// An item whose parameters are uncertain, as an ensemble of members (each an ItemMonitor with its own
+// drawn parameters, all under the same ground motion): the fraction of members that have reached
+// each overturning level is the probability of that level given this record, with a Wilson interval.
+
+#include <array>
+#include <vector>
+
+#include "rocking_monitor/monitoring/item_monitor.hpp"
+#include "rocking_monitor/physics/item_verdict.hpp"
+
+namespace rocking_monitor::core {
+
+/// Wilson score interval of a binomial proportion k / n (z = 1.96: 95 %). n = 0 gives [0, 1].
+struct WilsonInterval {
+  double lower = 0.0, upper = 1.0;
+};
+WilsonInterval wilson_interval(long k, long n, double z = 1.959963984540054);
+
+/// A probability of a level crossed `threshold` during a sample.
+struct ProbabilityCrossing {
+  Level level = Level::Committed;
+  double time = 0.0;         ///< s: when the member that made the fraction reach the threshold got there
+  double probability = 0.0;  ///< the fraction at the end of that sample (members at the level / size)
+};
+
+struct EnsembleEvents {
+  int count = 0;
+  std::array<ProbabilityCrossing, kLevelCount> crossings;
+};
+
+class ItemEnsemble {
+ public:
+  /// members: one ItemSpec per member (e.g. draw_members()); at least one. Throws std::invalid_argument
+  /// for an empty list or a bad member (the message names it). `threshold` in (0, 1].
+  ItemEnsemble(const std::vector<ItemSpec>& members, const ItemMonitor::Options& options, double threshold = 0.5);
+
+  void start(double t, double ax, double ay, double az, double dt_nominal);
+  /// Steps every member with the same sample. No allocation.
+  const EnsembleEvents& step(double ax, double ay, double az, double dt);
+  const EnsembleEvents& events() const { return events_; }
+
+  int size() const { return static_cast<int>(members_.size()); }
+  const ItemMonitor& member(int i) const { return members_[static_cast<std::size_t>(i)]; }
+  long reached(Level l) const { return reached_[static_cast<int>(l)]; }
+  double probability(Level l) const { return static_cast<double>(reached(l)) / static_cast<double>(size()); }
+  WilsonInterval interval(Level l) const { return wilson_interval(reached(l), size()); }
+  double threshold() const { return threshold_; }
+  /// Whether P(level) has crossed the threshold (latched).
+  bool crossed(Level l) const { return crossed_[static_cast<int>(l)]; }
+
+ private:
+  std::vector<ItemMonitor> members_;
+  double threshold_;
+  std::array<long, kLevelCount> reached_{};
+  std::array<bool, kLevelCount> crossed_{};
+  std::vector<std::array<bool, kLevelCount>> member_reached_;
+  std::vector<double> times_;  // scratch: this sample's member times of one level (sized once)
+  EnsembleEvents events_;
+};
+
+}  // namespace rocking_monitor::core

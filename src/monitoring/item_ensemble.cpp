@@ -1,0 +1,79 @@
+#include "rocking_monitor/monitoring/item_ensemble.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace rocking_monitor::core {
+
+WilsonInterval wilson_interval(long k, long n, double z) {
+  if (n <= 0) return {0.0, 1.0};
+  const double nn = static_cast<double>(n), p = static_cast<double>(k) / nn, z2 = z * z;
+  const double centre = (p + z2 / (2.0 * nn)) / (1.0 + z2 / nn);
+  const double half = z * std::sqrt(p * (1.0 - p) / nn + z2 / (4.0 * nn * nn)) / (1.0 + z2 / nn);
+  // Exact at the ends (k = 0: lower 0; k = n: upper 1), where rounding would leave 1e-17.
+  return {k == 0 ? 0.0 : std::max(0.0, centre - half), k == n ? 1.0 : std::min(1.0, centre + half)};
+}
+
+ItemEnsemble::ItemEnsemble(const std::vector<ItemSpec>& members, const ItemMonitor::Options& options, double threshold)
+    : threshold_(threshold) {
+  if (members.empty()) throw std::invalid_argument("ensemble: no member");
+  if (!(threshold > 0.0 && threshold <= 1.0))
+    throw std::invalid_argument("ensemble: alarm probability " + std::to_string(threshold) + " is not in (0, 1]");
+  members_.reserve(members.size());
+  for (std::size_t i = 0; i < members.size(); ++i) {
+    try {
+      members_.emplace_back(members[i], options);
+    } catch (const std::exception& e) {
+      throw std::invalid_argument("ensemble member " + std::to_string(i) + ": " + e.what());
+    }
+  }
+  member_reached_.resize(members.size());
+  times_.reserve(members.size());
+}
+
+void ItemEnsemble::start(double t, double ax, double ay, double az, double dt_nominal) {
+  for (ItemMonitor& m : members_) m.start(t, ax, ay, az, dt_nominal);
+  reached_.fill(0);
+  crossed_.fill(false);
+  for (auto& r : member_reached_) r.fill(false);
+  events_ = EnsembleEvents{};
+}
+
+const EnsembleEvents& ItemEnsemble::step(double ax, double ay, double az, double dt) {
+  events_.count = 0;
+  for (ItemMonitor& m : members_) m.step(ax, ay, az, dt);
+  for (int l = 0; l < kLevelCount; ++l) {
+    // Member times of this level in this sample, in order, to find the one that crossed.
+    times_.clear();
+    for (std::size_t i = 0; i < members_.size(); ++i) {
+      const ItemEvents& ev = members_[i].events();
+      for (int k = 0; k < ev.alarm_count; ++k) {
+        if (static_cast<int>(ev.alarms[k].level) - static_cast<int>(ItemMode::BeyondTipping) != l) continue;
+        if (!member_reached_[i][l]) {
+          member_reached_[i][l] = true;
+          times_.push_back(ev.alarms[k].time);
+        }
+      }
+    }
+    if (times_.empty()) continue;
+    std::sort(times_.begin(), times_.end());
+    const long before = reached_[l];
+    reached_[l] += static_cast<long>(times_.size());
+    if (crossed_[l]) continue;
+    // Smallest count that reaches the threshold: ceil(threshold * n), robust to rounding.
+    const double n = static_cast<double>(members_.size());
+    long needed = static_cast<long>(std::ceil(threshold_ * n - 1e-9));
+    needed = std::max(needed, 1L);
+    if (reached_[l] < needed) continue;
+    crossed_[l] = true;
+    ProbabilityCrossing& c = events_.crossings[events_.count++];
+    c.level = static_cast<Level>(l);
+    c.time = times_[static_cast<std::size_t>(needed - before - 1)];
+    c.probability = static_cast<double>(reached_[l]) / n;
+  }
+  return events_;
+}
+
+}  // namespace rocking_monitor::core
