@@ -5,6 +5,9 @@
 #include <string>
 #include <initializer_list>
 #include <utility>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
 
 #include "rocking_monitor/ros/catalogue.hpp"
 
@@ -176,6 +179,53 @@ XmlRpcValue law(const char* name, XmlRpcValue params) {
   XmlRpcValue v;
   v[name] = params;
   return v;
+}
+
+// A YAML node as rosparam loads it: integers, numbers, strings, lists, maps.
+XmlRpcValue to_xmlrpc(const YAML::Node& n) {
+  XmlRpcValue v;
+  if (n.IsMap()) {
+    for (const auto& kv : n) v[kv.first.as<std::string>()] = to_xmlrpc(kv.second);
+  } else if (n.IsSequence()) {
+    for (std::size_t i = 0; i < n.size(); ++i) v[static_cast<int>(i)] = to_xmlrpc(n[i]);
+  } else if (n.IsScalar()) {
+    const std::string text = n.Scalar();
+    int i;
+    double d;
+    if (n.Tag() != "!" && YAML::convert<int>::decode(n, i) && text.find_first_of(".eE") == std::string::npos) v = i;
+    else if (n.Tag() != "!" && YAML::convert<double>::decode(n, d)) v = d;
+    else v = text;
+  }
+  return v;
+}
+
+Catalogue load_example(const std::string& file) {
+  const YAML::Node root = YAML::LoadFile(std::string(ROCKING_SOURCE_DIR) + "/config/" + file);
+  return parse_catalogue(to_xmlrpc(root["sensors"]), to_xmlrpc(root["items"]));
+}
+
+TEST(Catalogue, ExampleCataloguesParse) {
+  // The demo's catalogue keeps plain numbers: nothing uncertain, the nominal item is the item.
+  const Catalogue plain = load_example("catalogue_example.yaml");
+  ASSERT_EQ(plain.items.size(), 6u);
+  for (const CatalogueItem& item : plain.items) EXPECT_FALSE(item.uncertain.uncertain()) << item.spec.id;
+  EXPECT_EQ(plain.items[1].spec.id, "monitor_cart");
+  EXPECT_EQ(plain.items[1].spec.body.mu_s, 0.3);
+  // The uncertain example: every item uncertain, its members valid.
+  const Catalogue uncertain = load_example("catalogue_uncertain_example.yaml");
+  ASSERT_EQ(uncertain.items.size(), 3u);
+  const CatalogueItem& cart = uncertain.items[0];
+  EXPECT_EQ(cart.spec.body.mu_s, 0.3);  // nominal: 0.3
+  EXPECT_EQ(cart.uncertain.law(core::UncertainField::MuS).a(), 0.25);
+  EXPECT_EQ(cart.spec.body.cg_height, 0.75);
+  EXPECT_EQ(uncertain.items[1].spec.body.cg_height, 0.9 * std::exp(0.5 * 0.1 * 0.1));
+  for (const CatalogueItem& item : uncertain.items) {
+    EXPECT_TRUE(item.uncertain.uncertain()) << item.spec.id;
+    std::vector<int> pulled;
+    for (const core::ItemSpec& m : core::draw_members(item.uncertain, 32, 13, &pulled))
+      EXPECT_EQ(core::validate(m), "") << item.spec.id;
+    EXPECT_TRUE(pulled.empty()) << item.spec.id;
+  }
 }
 
 TEST(Catalogue, DistributionsGiveTheUncertainSpec) {
