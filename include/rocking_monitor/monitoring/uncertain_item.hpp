@@ -86,6 +86,8 @@ std::uint64_t item_seed(std::uint64_t global_seed, const std::string& id);
 /// Such a member is never dropped: its uncertain fields are pulled toward the nominal item on the
 /// straight line nominal + t (draw - nominal), t the largest valid value found by bisection (60 halvings)
 /// in [0, 1) (t = 0 is the nominal, valid). Its index is appended to *pulled when pulled != nullptr.
+/// The spec must be valid (validate(spec) empty, as parse_catalogue guarantees). Cost: about 1 us per
+/// member (100 items x 32 members with four uncertain fields: 2.6 ms on this machine).
 std::vector<ItemSpec> draw_members(const UncertainItemSpec& spec, int n, std::uint64_t global_seed,
                                    std::vector<int>* pulled = nullptr);
 
