@@ -26,6 +26,13 @@ install(DIRECTORY launch config bags DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINAT
 if(CATKIN_ENABLE_TESTING)
   catkin_add_gtest(catalogue_tests test/ros/test_catalogue.cpp)
   target_link_libraries(catalogue_tests rocking_monitor_ros)
+  # The example catalogues are read as rosparam would (yaml-cpp into XmlRpc) and parsed.
+  if(TARGET yaml-cpp::yaml-cpp)
+    target_link_libraries(catalogue_tests yaml-cpp::yaml-cpp)
+  else()
+    target_link_libraries(catalogue_tests yaml-cpp)
+  endif()
+  target_compile_definitions(catalogue_tests PRIVATE ROCKING_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
 
   find_package(rostest REQUIRED)
   add_rostest_gtest(test_monitor_replay test/ros/monitor_replay.test test/ros/test_monitor_replay.cpp)

@@ -54,12 +54,64 @@ class Entry {
     if (!std::isfinite(d)) fail(f, "must be finite");
     return d;
   }
+  // A numeric key that may also be a distribution map ({uniform: [lo, hi]}, {normal: [mean, sd]},
+  // {lognormal: [median, beta]}, optionally with nominal: x). Returns the nominal value; the law (if
+  // any) goes into u.
+  double quantity(const std::string& f, core::UncertainField field, bool required, double fallback, const char* unit,
+                  core::UncertainItemSpec& u) const {
+    if (!has(f) || v_[f].getType() != XmlRpcValue::TypeStruct) return number(f, required, fallback, unit);
+    const core::Distribution d = distribution(f, field);
+    u.law(field) = d;
+    return d.nominal();
+  }
+  core::Distribution distribution(const std::string& f, core::UncertainField field) const {
+    XmlRpcValue& m = v_[f];
+    std::string law;
+    XmlRpcValue* params = nullptr;
+    bool nominal_given = false;
+    double nominal = 0.0;
+    for (auto it = m.begin(); it != m.end(); ++it) {
+      const std::string& key = it->first;
+      if (key == "nominal") {
+        nominal = scalar(it->second, f, "nominal");
+        nominal_given = true;
+      } else if (key == "uniform" || key == "normal" || key == "lognormal") {
+        if (!law.empty()) fail(f, "two distributions (" + law + ", " + key + "): give one");
+        law = key;
+        params = &it->second;
+      } else {
+        fail(f, "'" + key + "' is not a distribution (uniform, normal, lognormal) nor nominal");
+      }
+    }
+    if (law.empty())
+      fail(f, "a map must give a distribution: {uniform: [lo, hi]}, {normal: [mean, sd]} or "
+              "{lognormal: [median, beta]}, optionally with nominal: x");
+    const char* first = law == "uniform" ? "lo" : law == "normal" ? "mean" : "median";
+    const char* second = law == "uniform" ? "hi" : law == "normal" ? "sd" : "beta";
+    const std::string shape = law + ": must be a list [" + first + ", " + second + "] of 2 numbers, found ";
+    if (params->getType() != XmlRpcValue::TypeArray) fail(f, shape + type_name(params->getType()));
+    if (params->size() != 2) fail(f, shape + std::to_string(params->size()) + (params->size() == 1 ? " entry" : " entries"));
+    const double a = scalar((*params)[0], f, law + ": " + first), b = scalar((*params)[1], f, law + ": " + second);
+    const core::ValueRange range = core::valid_range(field);
+    core::Distribution d = law == "uniform"  ? core::Distribution::uniform(a, b, range)
+                           : law == "normal" ? core::Distribution::normal(a, b, range)
+                                             : core::Distribution::lognormal(a, b, range);
+    if (nominal_given) d = d.with_nominal(nominal);
+    if (const std::string error = core::validate(d, f); !error.empty()) throw CatalogueError(where_ + ": " + error);
+    return d;
+  }
   const XmlRpcValue& member(const std::string& f) const { return v_[f]; }
   void only(const std::set<std::string>& known) const {
     for (auto it = v_.begin(); it != v_.end(); ++it)
       if (!known.count(it->first)) fail(it->first, "unknown key (a typo?)");
   }
   const std::string& where() const { return where_; }
+  // A number inside a distribution map ("<field>: <what>: must be a number, found ...").
+  double scalar(XmlRpcValue& x, const std::string& f, const std::string& what) const {
+    if (x.getType() == XmlRpcValue::TypeDouble) return static_cast<double>(x);
+    if (x.getType() == XmlRpcValue::TypeInt) return static_cast<int>(x);
+    fail(f, what + ": must be a number, found " + type_name(x.getType()));
+  }
 
  private:
   XmlRpcValue& v_;
@@ -149,39 +201,47 @@ Catalogue parse_catalogue(const XmlRpcValue& sensors, const XmlRpcValue& items) 
     s.sensor = e.text("sensor", true);
     if (!sensor_names.count(s.sensor)) e.fail("sensor", "'" + s.sensor + "' is not a sensor of this catalogue");
     s.frame = e.text("frame", false, s.id);
+    core::UncertainItemSpec& u = item.uncertain;
+    using F = core::UncertainField;
     core::BodyParameters& b = s.body;
-    b.width = e.number("width", true, 0.0, "base width B, m");
-    b.cg_height = e.number("cg_height", true, 0.0, "height h of the centre of mass, m");
-    b.nu1 = e.number("eccentricity", false, 0.5, "nu1, dimensionless");
+    b.width = e.quantity("width", F::Width, true, 0.0, "base width B, m", u);
+    b.cg_height = e.quantity("cg_height", F::CgHeight, true, 0.0, "height h of the centre of mass, m", u);
+    b.nu1 = e.quantity("eccentricity", F::Eccentricity, false, 0.5, "nu1, dimensionless", u);
     const std::string shape = e.text("shape", false, "box");
     core::DepthParameters& d = s.depth;
     if (e.has("depth")) {
-      d.depth = e.number("depth", true, 0.0, "base depth D along the item's y, m");
-      d.eccentricity_y = e.number("eccentricity_y", false, 0.5, "nu1 of the y-z plane, dimensionless");
-      if (e.has("radius_of_gyration_y")) d.radius_of_gyration_y = e.number("radius_of_gyration_y", false, 0.0, "m");
+      d.depth = e.quantity("depth", F::Depth, true, 0.0, "base depth D along the item's y, m", u);
+      d.eccentricity_y = e.quantity("eccentricity_y", F::EccentricityY, false, 0.5, "nu1 of the y-z plane, dimensionless", u);
+      if (e.has("radius_of_gyration_y"))
+        d.radius_of_gyration_y = e.quantity("radius_of_gyration_y", F::RadiusOfGyrationY, false, 0.0, "m", u);
     } else {
       for (const char* key : {"eccentricity_y", "radius_of_gyration_y"})
         if (e.has(key)) e.fail(key, "needs depth (the base along the item's y): without it the item rocks in x only");
     }
-    // Solid cylinder of diameter B and height 2h rocking about a horizontal diameter.
-    auto cylinder = [&](double diameter) { return std::sqrt(diameter * diameter / 16.0 + b.cg_height * b.cg_height / 3.0); };
+    // Solid cylinder of diameter B and height 2h rocking about a horizontal diameter; an ensemble member
+    // re-derives it from its own B (D) and h.
     if (e.has("radius_of_gyration")) {
-      b.radius_of_gyration = e.number("radius_of_gyration", false, 0.0, "m");
+      b.radius_of_gyration = e.quantity("radius_of_gyration", F::RadiusOfGyration, false, 0.0, "m", u);
     } else if (shape == "box") {
       // homogeneous block B x D x 2h: the core's default in both planes
     } else if (shape == "cylinder") {
-      b.radius_of_gyration = cylinder(b.width);
-      if (d.given() && !e.has("radius_of_gyration_y") && std::isfinite(d.depth)) d.radius_of_gyration_y = cylinder(d.depth);
+      b.radius_of_gyration = core::cylinder_radius_of_gyration(b.width, b.cg_height);
+      u.cylinder_radius_x = true;
+      if (d.given() && !e.has("radius_of_gyration_y") && std::isfinite(d.depth)) {
+        d.radius_of_gyration_y = core::cylinder_radius_of_gyration(d.depth, b.cg_height);
+        u.cylinder_radius_y = true;
+      }
     } else {
       e.fail("shape", "'" + shape + "' is not one of: box, cylinder (or give radius_of_gyration)");
     }
-    b.mu_s = e.number("mu_s", false, b.mu_s, "static friction coefficient");
+    b.mu_s = e.quantity("mu_s", F::MuS, false, b.mu_s, "static friction coefficient", u);
     if (e.has("mu_k")) b.mu_k = e.number("mu_k", false, 0.0, "kinetic friction coefficient");
-    if (e.has("restitution")) b.restitution = e.number("restitution", false, 0.0, "angular-velocity ratio");
+    if (e.has("restitution")) b.restitution = e.quantity("restitution", F::Restitution, false, 0.0, "angular-velocity ratio", u);
     if (e.has("overturn_angle")) b.overturn_angle = e.number("overturn_angle", false, 0.0, "rad");
-    if (const std::string err = core::validate(s); !err.empty()) {
-      // core messages read "item '<id>': <field> = <value> (...)"; keep the list position too.
-      throw CatalogueError(e.where() + ": " + err.substr(err.find(": ") + 2));
+    u.nominal = s;
+    for (const std::string& err : {core::validate(s), core::validate(u)}) {
+      // core messages read "item '<id>': <field> ..."; keep the list position too.
+      if (!err.empty()) throw CatalogueError(e.where() + ": " + err.substr(err.find(": ") + 2));
     }
     if (e.has("pose")) {
       const Entry p(e.member("pose"), e.where() + ": pose");

@@ -2,8 +2,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <initializer_list>
 #include <utility>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
 
 #include "rocking_monitor/ros/catalogue.hpp"
 
@@ -162,6 +166,154 @@ TEST(Catalogue, BadFieldsAreNamed) {
   XmlRpcValue pose = one_item();
   pose[0]["pose"]["x"] = 1.0;
   EXPECT_EQ(error_of(sensors(), pose), "items[0] 'cabinet': pose: parent_frame: missing");
+}
+
+XmlRpcValue pair(XmlRpcValue a, XmlRpcValue b) {
+  XmlRpcValue v;
+  v[0] = a;
+  v[1] = b;
+  return v;
+}
+
+XmlRpcValue law(const char* name, XmlRpcValue params) {
+  XmlRpcValue v;
+  v[name] = params;
+  return v;
+}
+
+// A YAML node as rosparam loads it: integers, numbers, strings, lists, maps.
+XmlRpcValue to_xmlrpc(const YAML::Node& n) {
+  XmlRpcValue v;
+  if (n.IsMap()) {
+    for (const auto& kv : n) v[kv.first.as<std::string>()] = to_xmlrpc(kv.second);
+  } else if (n.IsSequence()) {
+    for (std::size_t i = 0; i < n.size(); ++i) v[static_cast<int>(i)] = to_xmlrpc(n[i]);
+  } else if (n.IsScalar()) {
+    const std::string text = n.Scalar();
+    int i;
+    double d;
+    if (n.Tag() != "!" && YAML::convert<int>::decode(n, i) && text.find_first_of(".eE") == std::string::npos) v = i;
+    else if (n.Tag() != "!" && YAML::convert<double>::decode(n, d)) v = d;
+    else v = text;
+  }
+  return v;
+}
+
+Catalogue load_example(const std::string& file) {
+  const YAML::Node root = YAML::LoadFile(std::string(ROCKING_SOURCE_DIR) + "/config/" + file);
+  return parse_catalogue(to_xmlrpc(root["sensors"]), to_xmlrpc(root["items"]));
+}
+
+TEST(Catalogue, ExampleCataloguesParse) {
+  // The demo's catalogue keeps plain numbers: nothing uncertain, the nominal item is the item.
+  const Catalogue plain = load_example("catalogue_example.yaml");
+  ASSERT_EQ(plain.items.size(), 6u);
+  for (const CatalogueItem& item : plain.items) EXPECT_FALSE(item.uncertain.uncertain()) << item.spec.id;
+  EXPECT_EQ(plain.items[1].spec.id, "monitor_cart");
+  EXPECT_EQ(plain.items[1].spec.body.mu_s, 0.3);
+  // The uncertain example: every item uncertain, its members valid.
+  const Catalogue uncertain = load_example("catalogue_uncertain_example.yaml");
+  ASSERT_EQ(uncertain.items.size(), 3u);
+  const CatalogueItem& cart = uncertain.items[0];
+  EXPECT_EQ(cart.spec.body.mu_s, 0.3);  // nominal: 0.3
+  EXPECT_EQ(cart.uncertain.law(core::UncertainField::MuS).a(), 0.25);
+  EXPECT_EQ(cart.spec.body.cg_height, 0.75);
+  EXPECT_EQ(uncertain.items[1].spec.body.cg_height, 0.9 * std::exp(0.5 * 0.1 * 0.1));
+  for (const CatalogueItem& item : uncertain.items) {
+    EXPECT_TRUE(item.uncertain.uncertain()) << item.spec.id;
+    std::vector<int> pulled;
+    for (const core::ItemSpec& m : core::draw_members(item.uncertain, 32, 13, &pulled))
+      EXPECT_EQ(core::validate(m), "") << item.spec.id;
+    EXPECT_TRUE(pulled.empty()) << item.spec.id;
+  }
+}
+
+TEST(Catalogue, DistributionsGiveTheUncertainSpec) {
+  XmlRpcValue i = one_item();
+  XmlRpcValue mu = law("uniform", pair(0.25, 0.4));
+  mu["nominal"] = 0.3;
+  i[0]["mu_s"] = mu;
+  i[0]["cg_height"] = law("lognormal", pair(0.9, 0.1));
+  i[0]["depth"] = law("normal", pair(0.4, 0));  // an integer sd: accepted as a number
+  i[0]["restitution"] = law("normal", pair(0.9, 0.05));
+  const Catalogue c = parse_catalogue(sensors(), i);
+  const CatalogueItem& item = c.items[0];
+  using F = core::UncertainField;
+  ASSERT_TRUE(item.uncertain.uncertain());
+  EXPECT_EQ(item.spec.body.mu_s, 0.3);                                    // the given nominal
+  EXPECT_EQ(item.spec.body.cg_height, 0.9 * std::exp(0.5 * 0.1 * 0.1));  // the lognormal's mean
+  EXPECT_EQ(item.spec.depth.depth, 0.4);
+  EXPECT_EQ(item.spec.body.restitution, 0.9);
+  EXPECT_EQ(item.spec.body.width, 0.5);  // a plain number: fixed
+  EXPECT_TRUE(item.uncertain.law(F::Width).is_fixed());
+  EXPECT_EQ(item.uncertain.law(F::MuS).kind(), core::Distribution::Kind::Uniform);
+  EXPECT_EQ(item.uncertain.law(F::MuS).b(), 0.4);
+  EXPECT_EQ(item.uncertain.law(F::Restitution).range().text(), "[0, 1]");  // truncated to the valid range
+  EXPECT_EQ(item.uncertain.nominal.body.mu_s, item.spec.body.mu_s);
+  EXPECT_EQ(core::validate(item.uncertain), "");
+  // Without distributions: not uncertain, and the nominal is the item.
+  const Catalogue plain = parse_catalogue(sensors(), one_item());
+  EXPECT_FALSE(plain.items[0].uncertain.uncertain());
+  EXPECT_EQ(plain.items[0].uncertain.nominal.body.width, 0.5);
+  // A cylinder whose width is uncertain: the members re-derive their radius of gyration.
+  XmlRpcValue cyl = one_item();
+  cyl[0]["shape"] = "cylinder";
+  cyl[0]["width"] = law("uniform", pair(0.4, 0.6));
+  const Catalogue cc = parse_catalogue(sensors(), cyl);
+  EXPECT_TRUE(cc.items[0].uncertain.cylinder_radius_x);
+  EXPECT_NEAR(cc.items[0].spec.body.radius_of_gyration, std::sqrt(0.25 / 16 + 0.81 / 3), 1e-15);
+  for (const core::ItemSpec& m : core::draw_members(cc.items[0].uncertain, 8, 1))
+    EXPECT_EQ(m.body.radius_of_gyration, core::cylinder_radius_of_gyration(m.body.width, 0.9));
+}
+
+TEST(Catalogue, BadDistributionsNameItemAndField) {
+  auto with = [](const char* key, XmlRpcValue v) {
+    XmlRpcValue i = one_item();
+    i[0]["depth"] = 0.4;
+    i[0][key] = v;
+    return error_of(sensors(), i);
+  };
+  EXPECT_EQ(with("mu_s", law("uniform", pair(0.6, 0.3))), "items[0] 'cabinet': mu_s: uniform: lo 0.6 > hi 0.3");
+  EXPECT_EQ(with("width", law("normal", pair(0.5, -0.1))), "items[0] 'cabinet': width: normal: sd -0.1 < 0");
+  EXPECT_EQ(with("cg_height", law("lognormal", pair(0, 0.3))), "items[0] 'cabinet': cg_height: lognormal: median 0 <= 0");
+  EXPECT_EQ(with("cg_height", law("lognormal", pair(0.9, -0.3))), "items[0] 'cabinet': cg_height: lognormal: beta -0.3 < 0");
+  EXPECT_EQ(with("eccentricity", law("uniform", pair(0.0, 0.5))),
+            "items[0] 'cabinet': eccentricity: uniform: lo 0 outside (0, 1)");
+  EXPECT_EQ(with("restitution", law("uniform", pair(0.8, 1.2))),
+            "items[0] 'cabinet': restitution: uniform: hi 1.2 outside [0, 1]");
+  EXPECT_EQ(with("mu_s", law("beta", pair(2, 3))),
+            "items[0] 'cabinet': mu_s: 'beta' is not a distribution (uniform, normal, lognormal) nor nominal");
+  XmlRpcValue three;
+  three[0] = 0.1;
+  three[1] = 0.2;
+  three[2] = 0.3;
+  EXPECT_EQ(with("mu_s", law("uniform", three)),
+            "items[0] 'cabinet': mu_s: uniform: must be a list [lo, hi] of 2 numbers, found 3 entries");
+  EXPECT_EQ(with("mu_s", law("normal", 0.3)),
+            "items[0] 'cabinet': mu_s: normal: must be a list [mean, sd] of 2 numbers, found a number");
+  EXPECT_EQ(with("mu_s", law("lognormal", pair("low", 0.1))),
+            "items[0] 'cabinet': mu_s: lognormal: median: must be a number, found a string");
+  XmlRpcValue two = law("uniform", pair(0.2, 0.3));
+  two["normal"] = pair(0.25, 0.01);
+  EXPECT_EQ(with("mu_s", two), "items[0] 'cabinet': mu_s: two distributions (normal, uniform): give one");
+  XmlRpcValue only_nominal;
+  only_nominal["nominal"] = 0.3;
+  EXPECT_NE(with("mu_s", only_nominal).find("items[0] 'cabinet': mu_s: a map must give a distribution"), std::string::npos);
+  XmlRpcValue bad_nominal = law("uniform", pair(0.25, 0.4));
+  bad_nominal["nominal"] = 0.5;
+  EXPECT_EQ(with("mu_s", bad_nominal), "items[0] 'cabinet': mu_s: uniform: nominal 0.5 outside [0.25, 0.4]");
+  bad_nominal["nominal"] = "high";
+  EXPECT_EQ(with("mu_s", bad_nominal), "items[0] 'cabinet': mu_s: nominal: must be a number, found a string");
+  EXPECT_EQ(with("mu_s", law("normal", pair(std::nan(""), 0.1))),
+            "items[0] 'cabinet': mu_s: normal: mean nan is not a finite number");
+  // Keys that take no distribution.
+  EXPECT_NE(with("overturn_angle", law("uniform", pair(1.0, 1.2))).find("items[0] 'cabinet': overturn_angle: must be a number"),
+            std::string::npos);
+  // The nominal item is validated as before.
+  EXPECT_EQ(with("width", law("uniform", pair(0.5, 0.5))), "accepted");
+  XmlRpcValue far = law("normal", pair(5.0, 0.1));
+  far["nominal"] = 5.0;
+  EXPECT_EQ(with("eccentricity", far), "items[0] 'cabinet': eccentricity: normal: nominal 5 outside (0, 1)");
 }
 
 }  // namespace

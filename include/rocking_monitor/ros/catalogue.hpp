@@ -8,6 +8,7 @@
 #include <XmlRpcValue.h>
 
 #include "rocking_monitor/monitoring/item_monitor.hpp"
+#include "rocking_monitor/monitoring/uncertain_item.hpp"
 
 namespace rocking_monitor::live {
 
@@ -30,7 +31,10 @@ struct ItemPose {
 };
 
 struct CatalogueItem {
-  core::ItemSpec spec;
+  core::ItemSpec spec;  ///< the nominal item (every uncertain field at its law's nominal)
+  /// The item's uncertain parameters (issue 13): uncertain.nominal == spec; laws Fixed for every
+  /// field given as a plain number. uncertain.uncertain(): some field was given as a distribution.
+  core::UncertainItemSpec uncertain;
   ItemPose pose;
 };
 
@@ -57,7 +61,11 @@ std::pair<int, int> parse_shard(const std::string& text);
 Catalogue select_shard(const Catalogue& catalogue, int k, int n);
 
 /// Parses the `sensors` and `items` lists (as loaded by rosparam from config/catalogue_example.yaml).
-/// Validates every field (types, units, ranges, unique ids, known sensors).
+/// Validates every field (types, units, ranges, unique ids, known sensors). The numeric keys width,
+/// depth, cg_height, eccentricity, eccentricity_y, radius_of_gyration, radius_of_gyration_y, mu_s and
+/// restitution may be distribution maps ({uniform: [lo, hi]}, {normal: [mean, sd]},
+/// {lognormal: [median, beta]}, optionally nominal: x; config/catalogue_uncertain_example.yaml);
+/// errors name the item and the field: "items[2] 'cart': mu_s: uniform: lo 0.6 > hi 0.3".
 Catalogue parse_catalogue(const XmlRpc::XmlRpcValue& sensors, const XmlRpc::XmlRpcValue& items);
 
 }  // namespace rocking_monitor::live
