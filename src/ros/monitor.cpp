@@ -64,7 +64,9 @@ bool RockingMonitor::load_parameters() {
             param(pnh_, "publish_markers", publish_markers_, "bool") &&
             param(pnh_, "publish_tf", publish_tf_, "bool") && param(pnh_, "threads", threads_, "integer") &&
             param(pnh_, "marker_rate", marker_rate_, "number") &&
-            param(pnh_, "fidelity", fidelity, "string") && param(pnh_, "shard", shard_, "string (k/n)");
+            param(pnh_, "fidelity", fidelity, "string") && param(pnh_, "shard", shard_, "string (k/n)") &&
+            param(pnh_, "ensemble_size", ensemble_size_, "integer") && param(pnh_, "ensemble_seed", ensemble_seed_, "integer") &&
+            param(pnh_, "alarm_probability", alarm_probability_, "number");
   double scene_h = 0.0, scene_v = 0.0;
   ok = ok && param(pnh_, "linearized_max_alpha", options_.linearized_max_alpha, "number") &&
        param(pnh_, "scene_envelope/horizontal", scene_h, "number") &&
@@ -82,6 +84,14 @@ bool RockingMonitor::load_parameters() {
   }
   options_.scene = core::SceneEnvelope::from_parameters(scene_h, scene_v);
   options_.solver.substeps = substeps;
+  if (ensemble_size_ < 1 || ensemble_size_ > 100000) {
+    ROS_FATAL("rocking_monitor: ~ensemble_size = %d must be in [1, 100000] (members per uncertain item)", ensemble_size_);
+    return false;
+  }
+  if (!(alarm_probability_ > 0.0 && alarm_probability_ <= 1.0)) {
+    ROS_FATAL("rocking_monitor: ~alarm_probability = %g must be in (0, 1]", alarm_probability_);
+    return false;
+  }
   if (threads_ < 1) {
     ROS_FATAL("rocking_monitor: ~threads = %d must be >= 1", threads_);
     return false;
@@ -173,7 +183,14 @@ bool RockingMonitor::init() {
   for (const CatalogueItem& entry : cat.items) {
     Item it;
     it.entry = entry;
-    it.monitor = std::make_unique<core::ItemMonitor>(entry.spec, options_);
+    if (entry.uncertain.uncertain()) {
+      std::vector<int> pulled;
+      it.members = core::draw_members(entry.uncertain, ensemble_size_, static_cast<std::uint64_t>(ensemble_seed_), &pulled);
+      if (!pulled.empty())
+        ROS_WARN("rocking_monitor: item '%s': %zu of %d members drawn outside the valid geometry were pulled toward "
+                 "the nominal item", entry.spec.id.c_str(), pulled.size(), ensemble_size_);
+    }
+    make_models(it);
     for (std::size_t i = 0; i < sensors_.size(); ++i)
       if (sensors_[i].spec.name == entry.spec.sensor) it.sensor = i;
     sensors_[it.sensor].items.push_back(items_.size());
@@ -202,6 +219,7 @@ bool RockingMonitor::init() {
   states_pub_ = pnh_.advertise<RockingStateArray>("states", static_cast<std::uint32_t>(state_queue_size_));
   criteria_pub_ = pnh_.advertise<CriterionExceedance>("criteria", 100);
   alarms_pub_ = pnh_.advertise<OverturnAlarm>("alarms", 1000, true);
+  probability_alarms_pub_ = pnh_.advertise<ProbabilityAlarm>("probability_alarms", 1000, true);
   if (publish_markers_) markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 2);
   reset_srv_ = pnh_.advertiseService("reset", &RockingMonitor::on_reset, this);
 
@@ -291,7 +309,12 @@ void RockingMonitor::reset_all(const std::string& why) {
     s.have_first = false;
     ++s.resets;
   }
-  for (Item& it : items_) it.monitor = std::make_unique<core::ItemMonitor>(it.entry.spec, options_);
+  for (Item& it : items_) make_models(it);
+}
+
+void RockingMonitor::make_models(Item& it) {
+  it.monitor = std::make_unique<core::ItemMonitor>(it.entry.spec, options_);
+  if (!it.members.empty()) it.ensemble = std::make_unique<core::ItemEnsemble>(it.members, options_, alarm_probability_);
 }
 
 bool RockingMonitor::on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {

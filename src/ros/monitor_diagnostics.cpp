@@ -64,6 +64,14 @@ void RockingMonitor::catalogue_diagnostics(diagnostic_updater::DiagnosticStatusW
   else st.summary(diagnostic_msgs::DiagnosticStatus::OK, "monitoring " + std::to_string(items_.size()) + " items");
   st.add("items", items_.size());
   st.add("shard (k/n of the catalogue)", shard_);
+  std::size_t ensembles = 0, members = 0;
+  for (const Item& it : items_)
+    if (it.ensemble) {
+      ++ensembles;
+      members += static_cast<std::size_t>(it.ensemble->size());
+    }
+  st.add("items with an ensemble (uncertain parameters)", ensembles);
+  st.add("ensemble members stepped per sample", members);
   for (int m = 0; m < 5; ++m) st.add(core::to_string(static_cast<ItemMode>(m)), counts[m]);
   st.add("pure-rocking model not valid now", invalid);
   st.add("items without transform", without_tf);

@@ -86,6 +86,36 @@ void RockingMonitor::publish_events(Item& it, const core::ItemEvents& ev, const 
   }
 }
 
+void RockingMonitor::publish_crossings(Item& it, const core::EnsembleEvents& ev, const ::ros::Time& stamp) {
+  const core::ItemSpec& spec = it.entry.spec;
+  const core::ItemEnsemble& e = *it.ensemble;
+  for (int i = 0; i < ev.count; ++i) {
+    const core::ProbabilityCrossing& c = ev.crossings[i];
+    ProbabilityAlarm m;
+    m.header.stamp = stamp;
+    m.header.frame_id = spec.frame;
+    m.item_id = spec.id;
+    m.description = spec.description;
+    m.level = static_cast<std::uint8_t>(static_cast<int>(c.level) + static_cast<int>(ItemMode::BeyondTipping));
+    m.threshold = e.threshold();
+    m.ensemble_size = static_cast<std::uint16_t>(e.size());
+    const double epoch = sensors_[it.sensor].epoch.toSec();
+    m.time_since_first_sample = c.time;
+    m.event_time = epoch + c.time;
+    const core::WilsonInterval w = e.interval(c.level);
+    m.value.probability = e.probability(c.level);
+    m.value.lower = w.lower;
+    m.value.upper = w.upper;
+    // Beyond tipping is not an alarm level of its own here (it says little about falling).
+    if (c.level == core::Level::BeyondTipping) continue;
+    probability_alarms_pub_.publish(m);
+    ROS_WARN("rocking_monitor: P(%s) of %s (%s) reached %.2f [%.2f, %.2f] over %d members (threshold %.2f), %s",
+             core::to_string(static_cast<ItemMode>(m.level)), spec.id.c_str(), spec.description.c_str(),
+             m.value.probability, w.lower, w.upper, e.size(), e.threshold(),
+             core::event_time_text(epoch + c.time, epoch).c_str());
+  }
+}
+
 void RockingMonitor::fill_plane(const core::PlaneMonitor& pm, PlaneState& out) {
   out.mode = static_cast<std::uint8_t>(pm.mode());
   out.pivot = static_cast<std::int8_t>(pm.side());
@@ -121,6 +151,19 @@ void RockingMonitor::fill_state(const Item& it, RockingState& out) const {
   out.slip = w.slip;
   out.model = w.model;
   out.input_stamp = it.stamp;
+  if (it.ensemble) {
+    const core::ItemEnsemble& e = *it.ensemble;
+    out.ensemble_size = static_cast<std::uint16_t>(e.size());
+    auto fill = [&](core::Level l, LevelProbability& p) {
+      const core::WilsonInterval w = e.interval(l);
+      p.probability = e.probability(l);
+      p.lower = w.lower;
+      p.upper = w.upper;
+    };
+    fill(core::Level::BeyondTipping, out.p_beyond_tipping);
+    fill(core::Level::Committed, out.p_committed);
+    fill(core::Level::Overturned, out.p_overturned);
+  }
 }
 
 void RockingMonitor::publish_states() {

@@ -50,6 +50,7 @@ void RockingMonitor::start_items(Sensor& s, double t, const Eigen::Vector3d& a) 
     if (!it.has_rotation && !lookup_rotation(it, s.frame)) continue;
     const Eigen::Vector3d ai = it.rotation * a;
     it.monitor->start(t, ai.x(), ai.y(), ai.z(), s.dt_nominal);
+    if (it.ensemble) it.ensemble->start(t, ai.x(), ai.y(), ai.z(), s.dt_nominal);
     it.stamp = s.epoch + ::ros::Duration(t);
   }
 }
@@ -90,9 +91,7 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
       ROS_WARN("rocking_monitor: sensor '%s': time jumped back to %.3f s: restarting its %zu items",
                s.spec.name.c_str(), header.stamp.toSec(), s.items.size());
       s.baseline.reset();
-      for (std::size_t idx : s.items) {
-        items_[idx].monitor = std::make_unique<core::ItemMonitor>(items_[idx].entry.spec, options_);
-      }
+      for (std::size_t idx : s.items) make_models(items_[idx]);
       break;
     case V::AcceptGap:
       ROS_WARN_THROTTLE(5.0, "rocking_monitor: sensor '%s': %.3f s gap bridged by a straight line (%lu gaps)",
@@ -136,6 +135,7 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
     if (!it.monitor->started()) {  // its transform arrived late: start now
       const Eigen::Vector3d ai = it.rotation * a;
       it.monitor->start(t, ai.x(), ai.y(), ai.z(), s.dt_nominal);
+      if (it.ensemble) it.ensemble->start(t, ai.x(), ai.y(), ai.z(), s.dt_nominal);
       it.stamp = header.stamp;
       continue;
     }
@@ -148,6 +148,7 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
       if (!it.ready) continue;
       const Eigen::Vector3d ai = it.rotation * a;
       it.monitor->step(ai.x(), ai.y(), ai.z(), dt);
+      if (it.ensemble) it.ensemble->step(ai.x(), ai.y(), ai.z(), dt);
       it.stamp = header.stamp;
     }
   };
@@ -165,6 +166,7 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
     if (!it.ready) continue;
     const core::ItemEvents& ev = it.monitor->events();
     if (ev.change_count > 0 || ev.alarm_count > 0) publish_events(it, ev, header.stamp);
+    if (it.ensemble && it.ensemble->events().count > 0) publish_crossings(it, it.ensemble->events(), header.stamp);
   }
   s.last_processing_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   s.max_processing_s = std::max(s.max_processing_s, s.last_processing_s);

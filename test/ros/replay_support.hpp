@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,7 +14,9 @@
 #include <ros/ros.h>
 
 #include "rocking_monitor/motion/gravity_baseline.hpp"
+#include "rocking_monitor/monitoring/item_ensemble.hpp"
 #include "rocking_monitor/monitoring/item_monitor.hpp"
+#include "rocking_monitor/monitoring/uncertain_item.hpp"
 #include "rocking_monitor/motion/sample_timing.hpp"
 #include "rocking_monitor/ros/catalogue.hpp"
 
@@ -23,6 +26,15 @@ struct OfflineState {
   std::uint8_t mode = 0;
   double theta[core::kPlaneCount] = {0.0, 0.0};  // x, y plane
   std::uint32_t impacts[core::kPlaneCount] = {0, 0};
+  int ensemble_size = 0;
+  double p[core::kLevelCount] = {0.0, 0.0, 0.0};  // beyond tipping, committed, overturned
+};
+
+struct OfflineCrossing {
+  std::string item;
+  int level = 0;  // 2, 3, 4 as in the messages
+  double time_since_first_sample = 0.0;
+  double probability = 0.0;
 };
 
 struct OfflineAlarm {
@@ -68,8 +80,17 @@ class OfflineMonitor {
     tc.max_gap = number(nh, "max_gap", tc.max_gap);
     tc.backward_jump = number(nh, "backward_jump", tc.backward_jump);
     timing_ = core::SampleTiming(tc);
+    int ensemble_size = 32, ensemble_seed = 1;
+    nh.getParam("ensemble_size", ensemble_size);
+    nh.getParam("ensemble_seed", ensemble_seed);
+    const double alarm_probability = number(nh, "alarm_probability", 0.5);
     for (const auto& entry : catalogue_.items) {
       items_.emplace_back(entry.spec, options_);
+      ensembles_.emplace_back();
+      if (entry.uncertain.uncertain())
+        ensembles_.back() = std::make_unique<core::ItemEnsemble>(
+            core::draw_members(entry.uncertain, ensemble_size, static_cast<std::uint64_t>(ensemble_seed)), options_,
+            alarm_probability);
       // The pose gives the item frame in its parent (the sensor frame here): v_item = q^-1 v_sensor.
       Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
       if (entry.pose.given && entry.pose.parent_frame == sensor_frame) {
@@ -108,6 +129,7 @@ class OfflineMonitor {
       for (std::size_t i = 0; i < items_.size(); ++i) {
         const Eigen::Vector3d ai = rotations_[i] * first_a_;
         items_[i].start(0.0, ai.x(), ai.y(), ai.z(), dt);
+        if (ensembles_[i]) ensembles_[i]->start(0.0, ai.x(), ai.y(), ai.z(), dt);
       }
       have_first_ = false;
     }
@@ -119,6 +141,15 @@ class OfflineMonitor {
         alarms_.push_back({items_[i].spec().id, static_cast<std::uint8_t>(ev.alarms[k].level), stamp.toSec(),
                            core::to_string(ev.alarms[k].plane), ev.alarms[k].time});
       OfflineState s;
+      if (ensembles_[i]) {
+        const core::EnsembleEvents& ee = ensembles_[i]->step(ai.x(), ai.y(), ai.z(), dt);
+        for (int k = 0; k < ee.count; ++k)
+          if (ee.crossings[k].level != core::Level::BeyondTipping)
+            crossings_.push_back({items_[i].spec().id, static_cast<int>(ee.crossings[k].level) + 2, ee.crossings[k].time,
+                                  ensembles_[i]->probability(ee.crossings[k].level)});
+        s.ensemble_size = ensembles_[i]->size();
+        for (int l = 0; l < core::kLevelCount; ++l) s.p[l] = ensembles_[i]->probability(static_cast<core::Level>(l));
+      }
       s.mode = static_cast<std::uint8_t>(items_[i].mode());
       for (int p = 0; p < items_[i].plane_count(); ++p) {
         const core::PlaneMonitor& pm = items_[i].plane(static_cast<core::Plane>(p));
@@ -132,6 +163,7 @@ class OfflineMonitor {
   static long long stamp_key(double t) { return std::llround(t * 1e6); }  // microseconds
   const std::map<long long, std::vector<OfflineState>>& states() const { return states_; }
   const std::vector<OfflineAlarm>& alarms() const { return alarms_; }
+  const std::vector<OfflineCrossing>& crossings() const { return crossings_; }
   const live::Catalogue& catalogue() const { return catalogue_; }
   const std::vector<core::ItemMonitor>& items() const { return items_; }
 
@@ -150,6 +182,8 @@ class OfflineMonitor {
   core::GravityBaseline baseline_;
   core::SampleTiming timing_;
   std::vector<core::ItemMonitor> items_;
+  std::vector<std::unique_ptr<core::ItemEnsemble>> ensembles_;
+  std::vector<OfflineCrossing> crossings_;
   std::vector<Eigen::Matrix3d> rotations_;
   bool have_first_ = false;
   ::ros::Time epoch_;

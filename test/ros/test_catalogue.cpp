@@ -213,7 +213,7 @@ TEST(Catalogue, ExampleCataloguesParse) {
   EXPECT_EQ(plain.items[1].spec.body.mu_s, 0.3);
   // The uncertain example: every item uncertain, its members valid.
   const Catalogue uncertain = load_example("catalogue_uncertain_example.yaml");
-  ASSERT_EQ(uncertain.items.size(), 3u);
+  ASSERT_EQ(uncertain.items.size(), 4u);
   const CatalogueItem& cart = uncertain.items[0];
   EXPECT_EQ(cart.spec.body.mu_s, 0.3);  // nominal: 0.3
   EXPECT_EQ(cart.uncertain.law(core::UncertainField::MuS).a(), 0.25);

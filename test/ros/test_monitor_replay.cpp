@@ -10,6 +10,7 @@
 #include "replay_support.hpp"
 #include "rocking_monitor/CriterionExceedance.h"
 #include "rocking_monitor/OverturnAlarm.h"
+#include "rocking_monitor/ProbabilityAlarm.h"
 #include "rocking_monitor/RockingStateArray.h"
 
 namespace rocking_monitor::test {
@@ -51,6 +52,9 @@ TEST(MonitorReplay, LiveEqualsOfflineSampleForSample) {
     live[OfflineMonitor::stamp_key(m->header.stamp.toSec())] = *m;
   });
   auto sub_a = nh.subscribe<OverturnAlarm>(ns + "/alarms", 1000, [&](const OverturnAlarm::ConstPtr& m) { alarms.push_back(*m); });
+  std::vector<ProbabilityAlarm> crossings;
+  auto sub_p = nh.subscribe<ProbabilityAlarm>(ns + "/probability_alarms", 1000,
+                                              [&](const ProbabilityAlarm::ConstPtr& m) { crossings.push_back(*m); });
   std::vector<CriterionExceedance> criteria;
   auto sub_c = nh.subscribe<CriterionExceedance>(ns + "/criteria", 1000,
                                                  [&](const CriterionExceedance::ConstPtr& m) { criteria.push_back(*m); });
@@ -79,6 +83,13 @@ TEST(MonitorReplay, LiveEqualsOfflineSampleForSample) {
       ASSERT_EQ(s.x.theta, off[i].theta[0]) << s.id << " at " << key;
       ASSERT_EQ(s.y.theta, off[i].theta[1]) << s.id << " at " << key;
       ASSERT_EQ(s.x.impacts, off[i].impacts[0]) << s.id << " at " << key;
+      // Uncertain items: the ensemble's probabilities, the same members, the same shares.
+      ASSERT_EQ(s.ensemble_size, off[i].ensemble_size) << s.id;
+      ASSERT_EQ(s.p_beyond_tipping.probability, off[i].p[0]) << s.id << " at " << key;
+      ASSERT_EQ(s.p_committed.probability, off[i].p[1]) << s.id << " at " << key;
+      ASSERT_EQ(s.p_overturned.probability, off[i].p[2]) << s.id << " at " << key;
+      ASSERT_LE(s.p_overturned.lower, s.p_overturned.probability);
+      ASSERT_GE(s.p_overturned.upper, s.p_overturned.probability);
       ASSERT_EQ(s.y.impacts, off[i].impacts[1]) << s.id << " at " << key;
       // The item-level fields repeat the worse plane.
       const PlaneState& worse = s.plane == "y" ? s.y : s.x;
@@ -99,6 +110,32 @@ TEST(MonitorReplay, LiveEqualsOfflineSampleForSample) {
     EXPECT_EQ(alarms[i].time_since_first_sample, offline.alarms()[i].time_since_first_sample);
     EXPECT_EQ(OfflineMonitor::stamp_key(alarms[i].header.stamp.toSec()),
               OfflineMonitor::stamp_key(offline.alarms()[i].stamp));
+  }
+  // Probability alarms: the same crossings, at the same times.
+  ASSERT_EQ(crossings.size(), offline.crossings().size());
+  for (std::size_t i = 0; i < crossings.size(); ++i) {
+    EXPECT_EQ(crossings[i].item_id, offline.crossings()[i].item);
+    EXPECT_EQ(crossings[i].level, offline.crossings()[i].level);
+    EXPECT_EQ(crossings[i].time_since_first_sample, offline.crossings()[i].time_since_first_sample);
+    EXPECT_EQ(crossings[i].value.probability, offline.crossings()[i].probability);
+  }
+  int must_cross = 0;
+  pnh.getParam("must_cross", must_cross);
+  EXPECT_GE(static_cast<int>(crossings.size()), must_cross) << "probability alarms expected in this scene";
+  std::string must_be_uncertain;  // an item whose P(overturned) must end strictly between 0 and 1
+  pnh.getParam("must_be_uncertain", must_be_uncertain);
+  if (!must_be_uncertain.empty()) {
+    const RockingStateArray& last = live.rbegin()->second;
+    bool found = false;
+    for (const RockingState& st : last.items) {
+      if (st.id != must_be_uncertain) continue;
+      found = true;
+      EXPECT_GT(st.p_overturned.probability, 0.0) << must_be_uncertain;
+      EXPECT_LT(st.p_overturned.probability, 1.0) << must_be_uncertain;
+      std::printf("[ measured ] %s: P(overturned) %.3f [%.3f, %.3f] over %u members\n", st.id.c_str(),
+                  st.p_overturned.probability, st.p_overturned.lower, st.p_overturned.upper, st.ensemble_size);
+    }
+    EXPECT_TRUE(found) << must_be_uncertain;
   }
   // The physics oracle of this scene: which item falls and which stays (from the offline run).
   if (!must_overturn.empty()) {

@@ -21,8 +21,10 @@
 
 #include "rocking_monitor/CriterionExceedance.h"
 #include "rocking_monitor/OverturnAlarm.h"
+#include "rocking_monitor/ProbabilityAlarm.h"
 #include "rocking_monitor/RockingStateArray.h"
 #include "rocking_monitor/motion/gravity_baseline.hpp"
+#include "rocking_monitor/monitoring/item_ensemble.hpp"
 #include "rocking_monitor/monitoring/item_monitor.hpp"
 #include "rocking_monitor/motion/sample_timing.hpp"
 #include "rocking_monitor/ros/catalogue.hpp"
@@ -47,6 +49,8 @@ class RockingMonitor {
   struct Item {
     CatalogueItem entry;
     std::unique_ptr<core::ItemMonitor> monitor;
+    std::vector<core::ItemSpec> members;         // drawn once at init (uncertain items only)
+    std::unique_ptr<core::ItemEnsemble> ensemble;  // the members under the same samples
     std::size_t sensor = 0;
     bool has_rotation = false;
     Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // item <- sensor
@@ -84,6 +88,8 @@ class RockingMonitor {
   void start_items(Sensor& s, double t, const Eigen::Vector3d& a);
   bool lookup_rotation(Item& item, const std::string& sensor_frame);
   void publish_events(Item& item, const core::ItemEvents& events, const ::ros::Time& stamp);
+  void publish_crossings(Item& item, const core::EnsembleEvents& events, const ::ros::Time& stamp);
+  void make_models(Item& item);  // the nominal ItemMonitor and, for an uncertain item, its ensemble
   void reset_all(const std::string& why);
   void on_state_timer(const ::ros::TimerEvent&);
   void publish_states();
@@ -104,7 +110,10 @@ class RockingMonitor {
   int state_queue_size_ = 10;  // ~states messages kept per subscriber while it lags
   bool publish_markers_ = true, publish_tf_ = true;
   int threads_ = 1;
-  std::string shard_ = "1/1";  // this monitor's part of the catalogue: shard k of n by hash of the id
+  std::string shard_ = "1/1";
+  int ensemble_size_ = 32;        // members per uncertain item (issue 13)
+  int ensemble_seed_ = 1;         // global seed of the members' Latin hypercube
+  double alarm_probability_ = 0.5;  // P(committed) / P(overturned) alarm threshold  // this monitor's part of the catalogue: shard k of n by hash of the id
   double marker_rate_ = 5.0;
   ::ros::Time last_marker_time_;
   std::unique_ptr<tbb::task_arena> arena_;
@@ -114,7 +123,7 @@ class RockingMonitor {
   std::vector<Item> items_;
   std::vector<std::string> screening_names_;
 
-  ::ros::Publisher states_pub_, criteria_pub_, alarms_pub_, markers_pub_;
+  ::ros::Publisher states_pub_, criteria_pub_, alarms_pub_, markers_pub_, probability_alarms_pub_;
   ::ros::ServiceServer reset_srv_;
   ::ros::Timer state_timer_;
   ::ros::WallTimer startup_timer_;
