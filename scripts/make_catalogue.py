@@ -4,7 +4,8 @@
 Usage: make_catalogue.py N OUT.yaml [--topic /ground/imu] [--frame accelerometer] [--seed 1] [--single-plane]
 Items get random but plausible geometry (B 0.15-0.8 m, depth D 0.15-1.0 m, h 0.2-1.2 m, nu1 and
 eccentricity_y 0.25-0.5, mu_s 0.3-0.8) and random yaw, all fed by one Imu sensor. --single-plane
-leaves the depth out (items rocking in their x-z plane only).
+leaves the depth out (items rocking in their x-z plane only). --uncertain gives mu_s and cg_height as
+laws (the node then runs an ensemble per item).
 """
 import argparse
 import math
@@ -18,6 +19,8 @@ p.add_argument("--frame", default="accelerometer")
 p.add_argument("--seed", type=int, default=1)
 p.add_argument("--rate", type=float, default=200.0)
 p.add_argument("--single-plane", action="store_true", help="no depth: x-z plane only")
+p.add_argument("--uncertain", action="store_true",
+               help="mu_s uniform +-0.1 and cg_height normal (sd 4 %%) around the drawn values: ensembles")
 a = p.parse_args()
 rng = random.Random(a.seed)
 with open(a.out, "w") as f:
@@ -31,6 +34,11 @@ with open(a.out, "w") as f:
                              rng.uniform(0, 50), rng.uniform(-math.pi, math.pi))
         d, nu_y = rng.uniform(0.15, min(1.0, 1.5 * h)), rng.uniform(0.25, 0.5)
         depth = "" if a.single_plane else "depth: %.3f, eccentricity_y: %.2f, " % (d, nu_y)
-        f.write("  - {id: item%05d, sensor: floor, width: %.3f, %scg_height: %.3f, eccentricity: %.2f, "
-                "mu_s: %.2f, pose: {parent_frame: %s, x: %.2f, y: %.2f, yaw: %.3f}}\n" % (
-                    i, b, depth, h, nu, mu, a.frame, x, y, yaw))
+        if a.uncertain:
+            hv = "{normal: [%.3f, %.4f]}" % (h, 0.04 * h)
+            muv = "{uniform: [%.2f, %.2f], nominal: %.2f}" % (max(0.05, mu - 0.1), mu + 0.1, mu)
+        else:
+            hv, muv = "%.3f" % h, "%.2f" % mu
+        f.write("  - {id: item%05d, sensor: floor, width: %.3f, %scg_height: %s, eccentricity: %.2f, "
+                "mu_s: %s, pose: {parent_frame: %s, x: %.2f, y: %.2f, yaw: %.3f}}\n" % (
+                    i, b, depth, hv, nu, muv, a.frame, x, y, yaw))

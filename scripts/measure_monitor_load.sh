@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Measures the live monitor's processing time per input sample for catalogues of N items:
-#   [THREADS=k] [FIDELITY=adaptive|rocking|contact] [PLANES=2|1] bash scripts/measure_monitor_load.sh BAG [N ...]
+#   [THREADS=k] [FIDELITY=adaptive|rocking|contact] [PLANES=2|1] [UNCERTAIN=0|1] bash scripts/measure_monitor_load.sh BAG [N ...]
 #   (default N: 1 100 10000)
 # Replays BAG (sensor_msgs/Imu on /ground/imu) at real time through a monitor fed by a synthetic
-# catalogue of N items (two rocking planes each; PLANES=1: no depth) and prints the mean and max processing time per sample from /diagnostics.
+# catalogue of N items (two rocking planes each; PLANES=1: no depth; UNCERTAIN=1: ensembles of
+# ~ensemble_size members per item) and prints the mean and max processing time per sample from /diagnostics.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export PATH=/usr/bin:$PATH
@@ -15,6 +16,7 @@ printf "%8s %14s %14s %10s %16s %16s\n" items "mean (ms)" "max (ms)" "samples" "
 for n in "${counts[@]}"; do
   cat=$(mktemp --suffix=.yaml)
   single=(); [ "${PLANES:-2}" = 1 ] && single=(--single-plane)
+  [ "${UNCERTAIN:-0}" = 1 ] && single+=(--uncertain)
   /usr/bin/python3 scripts/make_catalogue.py "$n" "$cat" "${single[@]}"
   log=$(mktemp)
   roslaunch rocking_monitor replay.launch bag:="$bag" catalogue:="$cat" required:=true start_delay:=3 threads:="${THREADS:-1}" fidelity:="${FIDELITY:-adaptive}" \
