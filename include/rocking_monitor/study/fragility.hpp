@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "rocking_monitor/physics/parameter_distribution.hpp"
+
 namespace rocking_monitor::core::study {
 
 /// Outcomes at one intensity: `failures` of `trials` overturned (counts may be fractional weights).
@@ -50,9 +52,5 @@ struct FragilityBand {
 FragilityBand bootstrap_fragility(const std::vector<FragilityPoint>& points, const std::vector<double>& im_grid,
                                   int resamples, std::uint64_t seed);
 
-/// Standard normal CDF and its inverse (Acklam's rational approximation refined by one Halley step,
-/// relative error below 1e-15 over (0, 1)).
-double normal_cdf(double x);
-double normal_quantile(double p);
 
 }  // namespace rocking_monitor::core::study
