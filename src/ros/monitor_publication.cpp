@@ -37,6 +37,17 @@ constexpr std::array<core::CriterionId, core::kScreeningCount> kScreening = {
     core::CriterionId::Housner, core::CriterionId::Ishiyama, core::CriterionId::IshiyamaEquivalent,
     core::CriterionId::Proposed};
 
+// The fields every alarm message shares: stamp, the item's frame, id and description.
+template <class Alarm>
+Alarm alarm_for(const core::ItemSpec& spec, const ::ros::Time& stamp) {
+  Alarm m;
+  m.header.stamp = stamp;
+  m.header.frame_id = spec.frame;
+  m.item_id = spec.id;
+  m.description = spec.description;
+  return m;
+}
+
 }  // namespace
 
 void RockingMonitor::publish_events(Item& it, const core::ItemEvents& ev, const ::ros::Time& stamp) {
@@ -59,11 +70,7 @@ void RockingMonitor::publish_events(Item& it, const core::ItemEvents& ev, const 
   }
   for (int i = 0; i < ev.alarm_count; ++i) {
     const core::AlarmEvent& a = ev.alarms[i];
-    OverturnAlarm m;
-    m.header.stamp = stamp;
-    m.header.frame_id = spec.frame;
-    m.item_id = spec.id;
-    m.description = spec.description;
+    OverturnAlarm m = alarm_for<OverturnAlarm>(spec, stamp);
     m.level = static_cast<std::uint8_t>(a.level);
     m.plane = core::to_string(a.plane);
     const double epoch = sensors_[it.sensor].epoch.toSec();
@@ -91,11 +98,7 @@ void RockingMonitor::publish_crossings(Item& it, const core::EnsembleEvents& ev,
   const core::ItemEnsemble& e = *it.ensemble;
   for (int i = 0; i < ev.count; ++i) {
     const core::ProbabilityCrossing& c = ev.crossings[i];
-    ProbabilityAlarm m;
-    m.header.stamp = stamp;
-    m.header.frame_id = spec.frame;
-    m.item_id = spec.id;
-    m.description = spec.description;
+    ProbabilityAlarm m = alarm_for<ProbabilityAlarm>(spec, stamp);
     m.level = static_cast<std::uint8_t>(static_cast<int>(c.level) + static_cast<int>(ItemMode::BeyondTipping));
     m.threshold = e.threshold();
     m.ensemble_size = static_cast<std::uint16_t>(e.size());
