@@ -314,6 +314,11 @@ const StepReport& RockingModel::step(double ax, double ay, double dt) {
     }
   }
 
+  finish_sample(in, ax, ay, dt);
+  return report_;
+}
+
+void RockingModel::finish_sample(const GroundInput& in, double ax, double ay, double dt) {
   update_criteria(in, dt);
   if (mode_ == Mode::Rocking) {
     const OverturnMargin m = margin();
@@ -333,6 +338,32 @@ const StepReport& RockingModel::step(double ax, double ay, double dt) {
   ay_prev_ = ay;
   ++outcome_.samples;
   outcome_.integrator_steps += report_.integrator_steps;
+}
+
+const StepReport& RockingModel::advance_at_rest(double ax, double ay, double dt) {
+  report_ = StepReport{};
+  sample_dt_ = dt;
+  const GroundInput in = GroundInput::first_order_hold(ax_prev_, ay_prev_, ax, ay, dt);
+  finish_sample(in, ax, ay, dt);
+  return report_;
+}
+
+const StepReport& RockingModel::commit_rocking_sample(double ax, double ay, double dt,
+                                                      double theta, double omega, double h_next,
+                                                      double k1_theta, double k1_omega,
+                                                      int integrator_steps, double max_ratio) {
+  report_ = StepReport{};
+  sample_dt_ = dt;
+  const GroundInput in = GroundInput::first_order_hold(ax_prev_, ay_prev_, ax, ay, dt);
+  theta_ = theta;
+  omega_ = omega;
+  dopri5_.restore(h_next, k1_theta, k1_omega);
+  report_.integrator_steps = integrator_steps;
+  if (max_ratio > outcome_.max_rotation_ratio) {
+    outcome_.max_rotation_ratio = max_ratio;
+    outcome_.max_rotation_side = side_;
+  }
+  finish_sample(in, ax, ay, dt);
   return report_;
 }
 

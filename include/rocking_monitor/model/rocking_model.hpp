@@ -98,8 +98,27 @@ class RockingModel {
   const RockingOutcome& outcome() const { return outcome_; }
   const Body& body() const { return body_; }
   const SolverSettings& settings() const { return settings_; }
+  const Dopri5Stepper& dopri5() const { return dopri5_; }
+
+  // ---- For BatchRocking (model/batch_rocking.hpp), which steps many bodies with SIMD and keeps
+  // this class as the authority. Both do exactly what step(ax, ay, dt) does in the cases they are
+  // meant for, without allocation; they do not validate (the batch validated the sample).
+
+  /// A sample in which a body at REST stays at rest (the caller has shown that no corner lifts
+  /// anywhere in the sample): advances time and the last inputs, re-evaluates the criteria.
+  const StepReport& advance_at_rest(double ax, double ay, double dt);
+
+  /// A sample in which a ROCKING body took dopri5 steps elsewhere, with the same arithmetic as
+  /// step(), and nothing happened (no impact, overturn, turning point, first passage beyond
+  /// alpha): sets theta, omega, the controller's next step size and FSAL derivative, the step
+  /// count and the largest |theta|/alpha at step ends, then finishes the sample as step() does.
+  const StepReport& commit_rocking_sample(double ax, double ay, double dt, double theta,
+                                          double omega, double h_next, double k1_theta,
+                                          double k1_omega, int integrator_steps,
+                                          double max_ratio);
 
  private:
+  void finish_sample(const GroundInput& in, double ax, double ay, double dt);
   enum class Event { None, Impact, Overturn, Degenerate };
   double find_uplift(const GroundInput& in, double tau, double tau_end, int& side) const;
   void start_rocking(const GroundInput& in, double tau, int side);
