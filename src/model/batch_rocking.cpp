@@ -41,9 +41,11 @@ BatchRocking::BatchRocking(const std::vector<BodyParameters>& bodies,
   for (auto* v : {&lanes_.side, &lanes_.alpha, &lanes_.p2, &lanes_.atol_th, &lanes_.atol_om,
                   &lanes_.overturn, &lanes_.beyond, &lanes_.ax0, &lanes_.axs, &lanes_.ay0,
                   &lanes_.ays, &lanes_.theta, &lanes_.omega, &lanes_.h, &lanes_.k1a, &lanes_.k1b,
-                  &lanes_.fsal, &lanes_.max_ratio, &lanes_.steps})
+                  &lanes_.fsal, &lanes_.max_ratio, &lanes_.steps, &lanes_.radius, &lanes_.inertia,
+                  &lanes_.cos_al, &lanes_.slide_checked, &lanes_.committed})
     v->assign(np, 0.0);
   lanes_.clean.assign(np, 0);
+  lanes_.end_clear.assign(np, 0);
   bcast_ax_.assign(n, 0.0);
   bcast_ay_.assign(n, 0.0);
 }
@@ -81,7 +83,8 @@ void BatchRocking::step(const double* ax, const double* ay, double dt) {
   std::size_t m_count = 0;
   for (std::size_t k = 0; k < n; ++k) {
     RockingModel& m = models_[k];
-    if (l.rest[k] && !l.maybe_lift[k]) {
+    // An OVERTURNED body's step() only advances time and re-evaluates the (empty) criteria.
+    if ((l.rest[k] && !l.maybe_lift[k]) || m.mode() == Mode::Overturned) {
       m.advance_at_rest(ax[k], ay[k], dt);
       ++stats_.rest_fast;
       continue;
@@ -115,6 +118,11 @@ void BatchRocking::step(const double* ax, const double* ay, double dt) {
     l.fsal[i] = st.fsal_valid() ? 1.0 : 0.0;
     l.max_ratio[i] = 0.0;
     l.steps[i] = 0.0;
+    l.radius[i] = pv.radius;
+    l.inertia[i] = pv.inertia;
+    l.cos_al[i] = pv.cos_alpha;
+    l.slide_checked[i] = std::isinf(m.body().mu_s()) ? 0.0 : 1.0;
+    l.committed[i] = m.outcome().committed ? 1.0 : 0.0;
   }
   if (m_count == 0) return;
   // Pad to whole vectors with copies of the last lane (results ignored).
@@ -123,7 +131,8 @@ void BatchRocking::step(const double* ax, const double* ay, double dt) {
     const std::size_t j = m_count - 1;
     for (auto* v : {&l.side, &l.alpha, &l.p2, &l.atol_th, &l.atol_om, &l.overturn, &l.beyond,
                     &l.ax0, &l.axs, &l.ay0, &l.ays, &l.theta, &l.omega, &l.h, &l.k1a, &l.k1b,
-                    &l.fsal, &l.max_ratio, &l.steps})
+                    &l.fsal, &l.max_ratio, &l.steps, &l.radius, &l.inertia, &l.cos_al,
+                    &l.slide_checked, &l.committed})
       (*v)[i] = (*v)[j];
   }
 
@@ -134,7 +143,8 @@ void BatchRocking::step(const double* ax, const double* ay, double dt) {
     RockingModel& m = models_[k];
     if (l.clean[i]) {
       m.commit_rocking_sample(ax[k], ay[k], dt, l.theta[i], l.omega[i], l.h[i], l.k1a[i],
-                              l.k1b[i], static_cast<int>(l.steps[i]), l.max_ratio[i]);
+                              l.k1b[i], static_cast<int>(l.steps[i]), l.max_ratio[i],
+                              l.end_clear[i] != 0);
       ++stats_.rocking_fast;
     } else {
       m.step(ax[k], ay[k], dt);  // the model was not touched: this is the roll-back

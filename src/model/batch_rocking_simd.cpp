@@ -171,12 +171,19 @@ void RockingSampleT(BatchRocking::Lanes& l, std::size_t m, double dt, double tol
       const V qa = hn::Div(ea, sca), qb = hn::Div(eb, scb);
       const V err = hn::Sqrt(hn::Mul(hn::Set(d, 0.5), hn::Add(hn::Add(zero, hn::Mul(qa, qa)), hn::Mul(qb, qb))));
       // The controller's factor with the scalar std::pow, lane by lane (exact step sizes).
-      hn::Store(err, d, errb);
-      for (std::size_t k = 0; k < L; ++k) {
-        const double e = errb[k];
-        fac[k] = e == 0.0 ? 5.0 : std::min(5.0, std::max(0.2, 0.9 * std::pow(e, -0.2)));
+      V factor;
+      if constexpr (kExact) {
+        hn::Store(err, d, errb);
+        for (std::size_t k = 0; k < L; ++k) {
+          const double e = errb[k];
+          fac[k] = e == 0.0 ? 5.0 : std::min(5.0, std::max(0.2, 0.9 * std::pow(e, -0.2)));
+        }
+        factor = hn::Load(d, fac);
+      } else {  // err^-0.2 = exp(-0.2 log err): not the bits of std::pow
+        const V pw = hn::Exp(d, hn::Mul(hn::Set(d, -0.2), hn::Log(d, err)));
+        factor = hn::Min(hn::Set(d, 5.0), hn::Max(hn::Set(d, 0.2), hn::Mul(hn::Set(d, 0.9), pw)));
+        factor = hn::IfThenElse(hn::Eq(err, zero), hn::Set(d, 5.0), factor);
       }
-      const V factor = hn::Load(d, fac);
       const auto accept = hn::And(
           active, hn::Or(hn::Or(hn::Le(err, one), hn::Le(h, h_min)), hn::Ge(attempts, hn::Set(d, 50.0))));
       // Events the scalar scan_step would act on: impact / degenerate (s*theta not > 0 at either
@@ -210,6 +217,35 @@ void RockingSampleT(BatchRocking::Lanes& l, std::size_t m, double dt, double tol
       h_try = hn::IfThenElse(rejected, hn::Max(hn::Mul(h, factor), h_min), h_try);
       retry = rejected;
       active = hn::And(hn::AndNot(dropped, active), hn::Lt(t, dtv));
+    }
+    // Sample-end screen (Highway Sin/Cos; a filter only, with margins far above its error).
+    {
+      const V ax1 = hn::Add(ax0, hn::Mul(axs, dtv)), ay1 = hn::Add(ay0, hn::Mul(ays, dtv));
+      const V phi = hn::Sub(alpha, hn::Mul(side, th));
+      const V sn = hn::Sin(d, phi), cs = hn::Cos(d, phi);
+      const V thdd = hn::Mul(negside_p2, hn::Sub(hn::Mul(hn::Add(one, hn::Div(ay1, g)), sn),
+                                                 hn::Mul(hn::Mul(side, hn::Div(ax1, g)), cs)));
+      const V R = hn::LoadU(d, l.radius.data() + i);
+      const V w2 = hn::Mul(om, om);
+      const V ry = hn::Add(hn::Add(g, ay1), hn::Add(hn::Neg(hn::Mul(hn::Mul(R, cs), w2)),
+                                                   hn::Mul(hn::Mul(side, hn::Mul(R, sn)), thdd)));
+      const V ry_scale = hn::Add(hn::Add(g, hn::Abs(ay1)), hn::Mul(R, hn::Add(w2, hn::Abs(thdd))));
+      const auto no_flight = hn::Gt(ry, hn::Mul(hn::Set(d, 1e-9), ry_scale));
+      const auto no_slide = hn::Eq(hn::LoadU(d, l.slide_checked.data() + i), zero);
+      // overturn_margin: deficit = (gR (1 - cos phi) - I w^2 / 2) / (gR (1 - cos alpha)).
+      const V barrier = hn::Mul(g, R);
+      const V num = hn::Sub(hn::Mul(barrier, hn::Sub(one, cs)),
+                            hn::Mul(hn::Mul(hn::Set(d, 0.5), hn::LoadU(d, l.inertia.data() + i)), w2));
+      const V den = hn::Mul(barrier, hn::Sub(one, hn::LoadU(d, l.cos_al.data() + i)));
+      const V deficit = hn::Div(num, den);
+      const auto inward = hn::Le(hn::Mul(side, om), zero);
+      const auto not_committed = hn::And(hn::Gt(phi, hn::Set(d, 1e-6)),
+                                         hn::Or(inward, hn::Gt(deficit, hn::Set(d, 1e-6))));
+      const auto latched = hn::Ne(hn::LoadU(d, l.committed.data() + i), zero);
+      const auto clear = hn::And(hn::And(no_flight, no_slide), hn::Or(latched, not_committed));
+      alignas(64) double eb[16];
+      hn::Store(hn::IfThenElseZero(clear, one), d, eb);
+      for (std::size_t k = 0; k < L; ++k) l.end_clear[i + k] = eb[k] != 0.0 ? 1 : 0;
     }
     hn::StoreU(th, d, l.theta.data() + i);
     hn::StoreU(om, d, l.omega.data() + i);

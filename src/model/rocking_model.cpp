@@ -318,9 +318,14 @@ const StepReport& RockingModel::step(double ax, double ay, double dt) {
   return report_;
 }
 
-void RockingModel::finish_sample(const GroundInput& in, double ax, double ay, double dt) {
-  update_criteria(in, dt);
-  if (mode_ == Mode::Rocking) {
+void RockingModel::finish_sample(const GroundInput& in, double ax, double ay, double dt,
+                                 bool end_clear) {
+  if (end_clear) {
+    violations_ = 0;  // what update_criteria() would find; no onset
+  } else {
+    update_criteria(in, dt);
+  }
+  if (mode_ == Mode::Rocking && !end_clear) {
     const OverturnMargin m = margin();
     if (m.committed && !outcome_.committed) {
       outcome_.committed = true;
@@ -351,7 +356,8 @@ const StepReport& RockingModel::advance_at_rest(double ax, double ay, double dt)
 const StepReport& RockingModel::commit_rocking_sample(double ax, double ay, double dt,
                                                       double theta, double omega, double h_next,
                                                       double k1_theta, double k1_omega,
-                                                      int integrator_steps, double max_ratio) {
+                                                      int integrator_steps, double max_ratio,
+                                                      bool end_clear) {
   report_ = StepReport{};
   sample_dt_ = dt;
   const GroundInput in = GroundInput::first_order_hold(ax_prev_, ay_prev_, ax, ay, dt);
@@ -363,7 +369,7 @@ const StepReport& RockingModel::commit_rocking_sample(double ax, double ay, doub
     outcome_.max_rotation_ratio = max_ratio;
     outcome_.max_rotation_side = side_;
   }
-  finish_sample(in, ax, ay, dt);
+  finish_sample(in, ax, ay, dt, end_clear);
   return report_;
 }
 

@@ -20,7 +20,7 @@ enum class BatchTrig : std::uint8_t {
 
 /// Per-sample counters of the last step() (what bounds the batch's cost).
 struct BatchStats {
-  std::size_t rest_fast = 0;       ///< lanes at REST shown by the vector uplift test to stay there
+  std::size_t rest_fast = 0;  ///< lanes at REST shown by the vector uplift test to stay there, and OVERTURNED lanes
   std::size_t rocking_fast = 0;    ///< ROCKING lanes stepped by the vector dopri5 and committed
   std::size_t scalar = 0;          ///< lanes stepped by RockingModel::step (events, uplift, ...)
   std::size_t rocking_fallback = 0;  ///< of those: vector-stepped lanes rolled back to scalar
@@ -40,7 +40,10 @@ struct BatchStats {
 ///    alpha for the first time, the overturn angle, a non-finite value) is dropped and stepped from
 ///    its state at the sample start by RockingModel::step; clean lanes are written back with
 ///    RockingModel::commit_rocking_sample, which finishes the sample exactly as step() does
-///    (criteria, committed test, counters).
+///    (criteria, committed test, counters). The kernel also screens the sample end (Highway
+///    Sin/Cos, wide margins): when the ground reaction is surely > 0 (no free flight), sliding is
+///    not checked (mu_s not given) and the body is surely not committed (or already latched), the
+///    commit skips those scalar evaluations, whose result would be "nothing" (no violation).
 ///  - everything else (OVERTURNED lanes, rk4 / analytic settings, the linearized model) is
 ///    stepped by RockingModel::step.
 /// With BatchTrig::Exact every lane equals a RockingModel stepped alone, bit for bit.
@@ -81,7 +84,10 @@ class BatchRocking {
     std::vector<double> side, alpha, p2, atol_th, atol_om, overturn, beyond;
     std::vector<double> ax0, axs, ay0, ays;
     std::vector<double> theta, omega, h, k1a, k1b, fsal, max_ratio, steps;
-    std::vector<std::uint8_t> clean;
+    // Sample-end screen (criteria, committed test): per lane pivot R, I_O/m, cos(alpha), whether
+    // sliding is checked (finite mu_s) and whether committed is already latched.
+    std::vector<double> radius, inertia, cos_al, slide_checked, committed;
+    std::vector<std::uint8_t> clean, end_clear;
   };
 
  private:

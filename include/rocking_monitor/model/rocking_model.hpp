@@ -112,13 +112,16 @@ class RockingModel {
   /// step(), and nothing happened (no impact, overturn, turning point, first passage beyond
   /// alpha): sets theta, omega, the controller's next step size and FSAL derivative, the step
   /// count and the largest |theta|/alpha at step ends, then finishes the sample as step() does.
+  /// end_clear: the caller has shown that at the sample end no criterion is violated (ground
+  /// reaction > 0, sliding not checked) and the body is not committed (or already was): the
+  /// criteria and the committed test, whose outcome is then known (nothing), are not evaluated.
   const StepReport& commit_rocking_sample(double ax, double ay, double dt, double theta,
                                           double omega, double h_next, double k1_theta,
                                           double k1_omega, int integrator_steps,
-                                          double max_ratio);
+                                          double max_ratio, bool end_clear = false);
 
  private:
-  void finish_sample(const GroundInput& in, double ax, double ay, double dt);
+  void finish_sample(const GroundInput& in, double ax, double ay, double dt, bool end_clear = false);
   enum class Event { None, Impact, Overturn, Degenerate };
   double find_uplift(const GroundInput& in, double tau, double tau_end, int& side) const;
   void start_rocking(const GroundInput& in, double tau, int side);
