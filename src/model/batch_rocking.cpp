@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "rocking_monitor/constants.hpp"
+
 namespace rocking_monitor::core {
 
 namespace {
@@ -35,6 +37,10 @@ BatchRocking::BatchRocking(const std::vector<BodyParameters>& bodies,
   }
   for (auto* v : {&lanes_.ax_prev, &lanes_.ay_prev, &lanes_.ax_now, &lanes_.ay_now})
     v->assign(np, 0.0);
+  lanes_.t.assign(np, 0.0);
+  lanes_.deferred.assign(np, 0);
+  lanes_.mu_inf.assign(np, 0);
+  for (std::size_t k = 0; k < n; ++k) lanes_.mu_inf[k] = std::isinf(models_[k].body().mu_s());
   lanes_.rest.assign(np, 0);
   lanes_.maybe_lift.assign(np, 0);
   lanes_.idx.assign(np, 0);
@@ -53,7 +59,23 @@ BatchRocking::BatchRocking(const std::vector<BodyParameters>& bodies,
 const char* BatchRocking::simd_target() { return batch_detail::target_name(); }
 
 void BatchRocking::reset(double t, double ax, double ay) {
+  std::fill(lanes_.deferred.begin(), lanes_.deferred.end(), 0);
   for (RockingModel& m : models_) m.reset(t, ax, ay);
+  mirrors_stale_ = true;
+}
+
+void BatchRocking::flush(std::size_t k) const {
+  models_[k].apply_rest_samples(lanes_.t[k], lanes_.ax_prev[k], lanes_.ay_prev[k],
+                                lanes_.deferred[k]);
+  lanes_.deferred[k] = 0;
+}
+
+void BatchRocking::refresh_mirror(std::size_t k) {
+  const RockingModel& m = models_[k];
+  lanes_.rest[k] = m.mode() == Mode::Rest;
+  lanes_.ax_prev[k] = m.last_ax();
+  lanes_.ay_prev[k] = m.last_ay();
+  lanes_.t[k] = m.time();
 }
 
 void BatchRocking::step_all(double ax, double ay, double dt) {
@@ -64,33 +86,50 @@ void BatchRocking::step_all(double ax, double ay, double dt) {
 
 void BatchRocking::step(const double* ax, const double* ay, double dt) {
   const std::size_t n = models_.size();
-  for (std::size_t k = 0; k < n; ++k) require_valid_sample(ax[k], ay[k], dt, "BatchRocking::step");
+  bool finite = std::isfinite(dt) && dt > 0.0;
+  for (std::size_t k = 0; k < n; ++k) finite &= std::isfinite(ax[k]) & std::isfinite(ay[k]);
+  if (!finite)
+    for (std::size_t k = 0; k < n; ++k) require_valid_sample(ax[k], ay[k], dt, "BatchRocking::step");
   stats_ = BatchStats{};
   Lanes& l = lanes_;
-
-  // 1. Lanes at REST: the vector uplift test.
-  for (std::size_t k = 0; k < n; ++k) {
-    const RockingModel& m = models_[k];
-    l.rest[k] = m.mode() == Mode::Rest;
-    l.ax_prev[k] = m.last_ax();
-    l.ay_prev[k] = m.last_ay();
-    l.ax_now[k] = ax[k];
-    l.ay_now[k] = ay[k];
+  if (mirrors_stale_) {
+    for (std::size_t k = 0; k < n; ++k) refresh_mirror(k);
+    mirrors_stale_ = false;
   }
+
+  // 1. Lanes at REST: the vector uplift test (mirrors: mode, last inputs).
+  std::copy(ax, ax + n, l.ax_now.begin());
+  std::copy(ay, ay + n, l.ay_now.begin());
   batch_detail::uplift_test(l, padded(n), settings_.model == ModelKind::Linearized);
 
   // 2. Sort the lanes: rest (fast), rocking (vector dopri5), everything else (scalar).
   std::size_t m_count = 0;
   for (std::size_t k = 0; k < n; ++k) {
+    if (l.rest[k] && !l.maybe_lift[k]) {
+      // free_flight() and slides_from_rest() at the sample end, as RockingModel::update_criteria
+      // evaluates them (ay + g < 0; mu_s given), with room for its rounding of the input line.
+      const double margin = 1e-12 * (std::abs(ay[k]) + std::abs(l.ay_prev[k]) + kGravity);
+      if (l.mu_inf[k] && ay[k] + kGravity > margin) {
+        l.t[k] += dt;  // RockingModel::step's t_ += dt
+        l.ax_prev[k] = ax[k];
+        l.ay_prev[k] = ay[k];
+        ++l.deferred[k];
+        ++stats_.rest_fast;
+        continue;
+      }
+    }
+    sync(k);
     RockingModel& m = models_[k];
     // An OVERTURNED body's step() only advances time and re-evaluates the (empty) criteria.
     if ((l.rest[k] && !l.maybe_lift[k]) || m.mode() == Mode::Overturned) {
       m.advance_at_rest(ax[k], ay[k], dt);
+      refresh_mirror(k);
       ++stats_.rest_fast;
       continue;
     }
     if (!vector_rocking_ || m.mode() != Mode::Rocking) {
       m.step(ax[k], ay[k], dt);
+      refresh_mirror(k);
       ++stats_.scalar;
       continue;
     }
@@ -151,6 +190,7 @@ void BatchRocking::step(const double* ax, const double* ay, double dt) {
       ++stats_.scalar;
       ++stats_.rocking_fallback;
     }
+    refresh_mirror(k);
   }
 }
 

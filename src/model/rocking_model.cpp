@@ -353,6 +353,15 @@ const StepReport& RockingModel::advance_at_rest(double ax, double ay, double dt)
   return report_;
 }
 
+void RockingModel::apply_rest_samples(double t, double ax, double ay, long n) {
+  report_ = StepReport{};
+  violations_ = 0;
+  t_ = t;
+  ax_prev_ = ax;
+  ay_prev_ = ay;
+  outcome_.samples += n;
+}
+
 const StepReport& RockingModel::commit_rocking_sample(double ax, double ay, double dt,
                                                       double theta, double omega, double h_next,
                                                       double k1_theta, double k1_omega,

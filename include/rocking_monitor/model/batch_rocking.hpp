@@ -46,6 +46,11 @@ struct BatchStats {
 ///    commit skips those scalar evaluations, whose result would be "nothing" (no violation).
 ///  - everything else (OVERTURNED lanes, rk4 / analytic settings, the linearized model) is
 ///    stepped by RockingModel::step.
+///  - deferred rest: a lane at REST that stays there and whose sample end violates nothing
+///    (mu_s not given, a_yg + g > 0 with a margin) is not touched at all: the batch adds dt to
+///    its own copy of the lane's time (the same additions as RockingModel::step) and counts the
+///    sample; the model is brought up to date (RockingModel::apply_rest_samples) before it is
+///    stepped again and whenever model(k) / report(k) is called.
 /// With BatchTrig::Exact every lane equals a RockingModel stepped alone, bit for bit.
 /// step() does no allocation (the work arrays are sized at construction).
 class BatchRocking {
@@ -63,10 +68,19 @@ class BatchRocking {
   /// The same input for every lane.
   void step_all(double ax, double ay, double dt);
 
-  const RockingModel& model(std::size_t k) const { return models_[k]; }
+  /// Lane k's model, brought up to date (see "Deferred rest" above). The reference is valid until
+  /// the next step().
+  const RockingModel& model(std::size_t k) const {
+    sync(k);
+    return models_[k];
+  }
   /// For set-up only (set_state, reset of one lane); never while step() runs.
-  RockingModel& model(std::size_t k) { return models_[k]; }
-  const StepReport& report(std::size_t k) const { return models_[k].last_report(); }
+  RockingModel& model(std::size_t k) {
+    sync(k);
+    mirrors_stale_ = true;
+    return models_[k];
+  }
+  const StepReport& report(std::size_t k) const { return model(k).last_report(); }
   const BatchStats& stats() const { return stats_; }
   BatchTrig trig() const { return trig_; }
   /// The SIMD target Highway chose at run time (e.g. "AVX3", "AVX2").
@@ -79,6 +93,10 @@ class BatchRocking {
     // Uplift test (per lane): inputs and a result flag (1 = may lift: scalar).
     std::vector<double> ax_prev, ay_prev, ax_now, ay_now;
     std::vector<std::uint8_t> rest, maybe_lift;
+    // Mirrors of the models (valid when mirrors_stale_ is false) and the deferred rest samples.
+    std::vector<double> t;
+    std::vector<long> deferred;
+    std::vector<std::uint8_t> mu_inf;
     // Compacted rocking lanes of this sample.
     std::vector<std::uint32_t> idx;
     std::vector<double> side, alpha, p2, atol_th, atol_om, overturn, beyond;
@@ -91,11 +109,18 @@ class BatchRocking {
   };
 
  private:
-  std::vector<RockingModel> models_;
+  void sync(std::size_t k) const {
+    if (lanes_.deferred[k] != 0) flush(k);
+  }
+  void flush(std::size_t k) const;
+  void refresh_mirror(std::size_t k);
+
+  mutable std::vector<RockingModel> models_;
+  bool mirrors_stale_ = true;
   SolverSettings settings_;
   BatchTrig trig_;
   bool vector_rocking_ = false;  // dopri5 + nonlinear model
-  Lanes lanes_;
+  mutable Lanes lanes_;
   BatchStats stats_;
   std::vector<double> bcast_ax_, bcast_ay_;
 };

@@ -108,6 +108,11 @@ class RockingModel {
   /// anywhere in the sample): advances time and the last inputs, re-evaluates the criteria.
   const StepReport& advance_at_rest(double ax, double ay, double dt);
 
+  /// n samples at REST that BatchRocking kept for this body (no corner lifted, no criterion
+  /// violated at any of their ends), applied at once: the time (the caller's sum t_ + dt + dt...,
+  /// the same additions as step()), the last inputs and the sample count. No allocation.
+  void apply_rest_samples(double t, double ax, double ay, long n);
+
   /// A sample in which a ROCKING body took dopri5 steps elsewhere, with the same arithmetic as
   /// step(), and nothing happened (no impact, overturn, turning point, first passage beyond
   /// alpha): sets theta, omega, the controller's next step size and FSAL derivative, the step
