@@ -2,6 +2,7 @@
 // every lane of a batch must give the decisions of a RockingModel stepped alone, with theta after
 // every sample and the event times within 1e-9 (bit-identical with BatchTrig::Exact).
 #include <gtest/gtest.h>
+#include <hwy/targets.h>
 
 #include <atomic>
 #include <cmath>
@@ -348,6 +349,28 @@ TEST(BatchRocking, RandomBodiesTimesThreeInputsSameDecisions) {
                 double(c.totals.rocking_fallback) / (2000.0 * (in.ax.size() - 1)));
     expect_exact(c);
   }
+}
+
+// Every SIMD target compiled in (AVX-512, AVX2, SSE4, ..., and the emulated 128-bit / scalar
+// fallback) gives the scalar model's bits with exact trig: the portable path answers the same.
+TEST(BatchRocking, EverySimdTargetGivesTheSameBits) {
+  const std::vector<BodyParameters> bodies = random_bodies(300, 77);
+  std::vector<Input> inputs = property_inputs();
+  inputs.resize(std::min<std::size_t>(inputs.size(), 2));
+  int targets = 0;
+  for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
+    hwy::SetSupportedTargetsForTest(target);
+    std::printf("[ batch  ] SIMD target %s (batch reports %s)\n", hwy::TargetName(target),
+                BatchRocking::simd_target());
+    EXPECT_STREQ(BatchRocking::simd_target(), hwy::TargetName(target));
+    for (const Input& in : inputs) {
+      SCOPED_TRACE(std::string(hwy::TargetName(target)) + " " + in.name);
+      expect_exact(run_compare(bodies, in, BatchTrig::Exact, {}, SolverSettings{}, 13));
+    }
+    ++targets;
+  }
+  hwy::SetSupportedTargetsForTest(0);  // back to the machine's own
+  EXPECT_GE(targets, 2);
 }
 
 // The fast trigonometry (Highway Sin/Cos) is not bit-identical: this measures how far it is from
