@@ -351,6 +351,13 @@ TEST(BatchRocking, RandomBodiesTimesThreeInputsSameDecisions) {
   }
 }
 
+TEST(BatchRocking, TenThousandLanesOnTheBundledPulse) {
+  const Compare c = run_compare(random_bodies(10000, 99), pulse_csv(), BatchTrig::Exact, {},
+                                SolverSettings{}, 61);
+  expect_exact(c);
+  EXPECT_GT(c.totals.rocking_fast, 0u);
+}
+
 // Every SIMD target compiled in (AVX-512, AVX2, SSE4, ..., and the emulated 128-bit / scalar
 // fallback) gives the scalar model's bits with exact trig: the portable path answers the same.
 TEST(BatchRocking, EverySimdTargetGivesTheSameBits) {
