@@ -351,6 +351,26 @@ TEST(BatchRocking, RandomBodiesTimesThreeInputsSameDecisions) {
   }
 }
 
+TEST(BatchRocking, OtherSettingsAreSteppedByTheScalarModel) {
+  // rk4, analytic and the linearized model have no vector path for rocking lanes; their rest lanes
+  // still use the (model-specific) uplift test and deferral.
+  const Input in = pulse_csv();
+  SolverSettings lin;
+  lin.model = ModelKind::Linearized;
+  SolverSettings rk4;
+  rk4.method = Method::Rk4;
+  SolverSettings ana;
+  ana.method = Method::Analytic;
+  ana.model = ModelKind::Linearized;
+  for (const SolverSettings& s : {lin, rk4, ana}) {
+    SCOPED_TRACE(to_string(s.method) + std::string(" ") + to_string(s.model));
+    const Compare c = run_compare(varied_bodies(23), in, BatchTrig::Exact, {}, s, 7);
+    expect_exact(c);
+    EXPECT_GT(c.totals.rest_fast, 0u);
+    EXPECT_EQ(c.totals.rocking_fast, 0u);
+  }
+}
+
 TEST(BatchRocking, TenThousandLanesOnTheBundledPulse) {
   const Compare c = run_compare(random_bodies(10000, 99), pulse_csv(), BatchTrig::Exact, {},
                                 SolverSettings{}, 61);
