@@ -225,6 +225,29 @@ void BM_CatalogueBatch(benchmark::State& state, const CatalogueCase* cc, rb::Met
   state.SetLabel(BatchRocking::simd_target());
 }
 
+// ------------------------------------------------------------------ sin/cos per stage
+// Cost of one lane's sin + cos, as the batch's dopri5 kernel evaluates them in each stage (6 per
+// step): std::sin/std::cos lane by lane (exact trig) or Highway Sin/Cos (fast trig), 10,000 lanes
+// with angles in the rocking range. Counter ns_per_sincos: per lane.
+void BM_SinCosLanes(benchmark::State& state, bool exact) {
+  constexpr std::size_t n = 10000;
+  std::vector<double> x(n), s(n), c(n);
+  rb::SplitMix64 rng(3);
+  for (double& v : x) v = rng.uniform(-0.3, 0.7);
+  double seconds = 0.0;
+  double lanes = 0.0;
+  for (auto _ : state) {
+    const double start = rb::thread_cpu_seconds();
+    rocking_monitor::core::batch_detail::sincos_lanes(x.data(), s.data(), c.data(), n, exact);
+    seconds += rb::thread_cpu_seconds() - start;
+    lanes += n;
+    benchmark::DoNotOptimize(s.data());
+    benchmark::DoNotOptimize(c.data());
+  }
+  state.counters["ns_per_sincos"] = 1e9 * seconds / lanes;
+  state.SetLabel(BatchRocking::simd_target());
+}
+
 // ------------------------------------------------------------------ registration
 std::vector<std::unique_ptr<Scenario>> g_scenarios;
 std::vector<std::unique_ptr<CatalogueCase>> g_catalogues;
@@ -315,6 +338,8 @@ void register_all() {
                  dir.c_str());
   }
   for (const auto& sc : g_scenarios) register_item(sc.get());
+  benchmark::RegisterBenchmark("sincos/exact_std", BM_SinCosLanes, true)->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark("sincos/fast_highway", BM_SinCosLanes, false)->Unit(benchmark::kMicrosecond);
 
   // Real-time capacity: a catalogue of 10,000 items stepped on one 200 Hz feed.
   constexpr std::size_t kItems = 10000;

@@ -268,6 +268,27 @@ void RockingSampleFast(BatchRocking::Lanes& l, std::size_t m, double dt, double 
 }
 const char* TargetName() { return hwy::TargetName(HWY_TARGET); }
 
+// sin and cos of n values (n a multiple of 16), as the dopri5 kernel evaluates them per stage
+// (for the benchmark of their cost).
+void SinCosExact(const double* x, double* s, double* c, std::size_t n) {
+  const hn::ScalableTag<double> d;
+  for (std::size_t i = 0; i < n; i += hn::Lanes(d)) {
+    hn::Vec<hn::ScalableTag<double>> vs, vc;
+    SinCos<true>(d, hn::LoadU(d, x + i), vs, vc);
+    hn::StoreU(vs, d, s + i);
+    hn::StoreU(vc, d, c + i);
+  }
+}
+void SinCosFast(const double* x, double* s, double* c, std::size_t n) {
+  const hn::ScalableTag<double> d;
+  for (std::size_t i = 0; i < n; i += hn::Lanes(d)) {
+    hn::Vec<hn::ScalableTag<double>> vs, vc;
+    SinCos<false>(d, hn::LoadU(d, x + i), vs, vc);
+    hn::StoreU(vs, d, s + i);
+    hn::StoreU(vc, d, c + i);
+  }
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace rocking_monitor::core::batch_detail
 HWY_AFTER_NAMESPACE();
@@ -278,6 +299,13 @@ HWY_EXPORT(UpliftTest);
 HWY_EXPORT(RockingSampleExact);
 HWY_EXPORT(RockingSampleFast);
 HWY_EXPORT(TargetName);
+HWY_EXPORT(SinCosExact);
+HWY_EXPORT(SinCosFast);
+
+void sincos_lanes(const double* x, double* s, double* c, std::size_t n, bool exact_trig) {
+  if (exact_trig) HWY_DYNAMIC_DISPATCH(SinCosExact)(x, s, c, n);
+  else HWY_DYNAMIC_DISPATCH(SinCosFast)(x, s, c, n);
+}
 
 void uplift_test(BatchRocking::Lanes& l, std::size_t n, bool linearized) {
   HWY_DYNAMIC_DISPATCH(UpliftTest)(l, n, linearized);

@@ -131,6 +131,9 @@ void uplift_test(BatchRocking::Lanes& l, std::size_t n, bool linearized);
 /// Vector dopri5 over the sample [0, dt] for the m compacted rocking lanes; sets l.clean.
 void rocking_sample(BatchRocking::Lanes& l, std::size_t m, double dt, double tol, bool exact_trig);
 const char* target_name();
+/// sin and cos of n values (n a multiple of 16) the way the dopri5 kernel evaluates them
+/// (benchmarks: the cost of the trigonometry per stage).
+void sincos_lanes(const double* x, double* s, double* c, std::size_t n, bool exact_trig);
 }  // namespace batch_detail
 
 }  // namespace rocking_monitor::core
