@@ -40,17 +40,6 @@ BatchRocking::BatchRocking(const std::vector<BodyParameters>& bodies,
   lanes_.t.assign(np, 0.0);
   lanes_.deferred.assign(np, 0);
   lanes_.mu_inf.assign(np, 0);
-  lanes_.rocking.assign(np, 0);
-  lanes_.overturned.assign(np, 0);
-  lanes_.r_valid.assign(np, 0);
-  for (auto* v : {&lanes_.r_side, &lanes_.r_alpha, &lanes_.r_p2, &lanes_.r_atol_th,
-                  &lanes_.r_atol_om, &lanes_.r_overturn, &lanes_.r_beyond, &lanes_.r_theta,
-                  &lanes_.r_omega, &lanes_.r_h, &lanes_.r_k1a, &lanes_.r_k1b, &lanes_.r_fsal,
-                  &lanes_.r_radius, &lanes_.r_inertia, &lanes_.r_cos_al, &lanes_.r_slide_checked,
-                  &lanes_.r_committed, &lanes_.r_max})
-    v->assign(np, 0.0);
-  lanes_.r_steps.assign(np, 0);
-  lanes_.r_last_steps.assign(np, 0);
   for (std::size_t k = 0; k < n; ++k) lanes_.mu_inf[k] = std::isinf(models_[k].body().mu_s());
   lanes_.rest.assign(np, 0);
   lanes_.maybe_lift.assign(np, 0);
@@ -71,60 +60,22 @@ const char* BatchRocking::simd_target() { return batch_detail::target_name(); }
 
 void BatchRocking::reset(double t, double ax, double ay) {
   std::fill(lanes_.deferred.begin(), lanes_.deferred.end(), 0);
-  std::fill(lanes_.r_valid.begin(), lanes_.r_valid.end(), 0);
   for (RockingModel& m : models_) m.reset(t, ax, ay);
   mirrors_stale_ = true;
 }
 
 void BatchRocking::flush(std::size_t k) const {
-  Lanes& l = lanes_;
-  if (l.r_valid[k]) {
-    models_[k].apply_rocking_samples(l.t[k], l.ax_prev[k], l.ay_prev[k], l.deferred[k],
-                                     l.r_theta[k], l.r_omega[k], l.r_h[k], l.r_k1a[k],
-                                     l.r_k1b[k], l.r_steps[k], l.r_last_steps[k], l.r_max[k]);
-    l.r_valid[k] = 0;
-    l.r_steps[k] = 0;
-    l.r_max[k] = 0.0;
-  } else {
-    models_[k].apply_rest_samples(l.t[k], l.ax_prev[k], l.ay_prev[k], l.deferred[k]);
-  }
-  l.deferred[k] = 0;
+  models_[k].apply_rest_samples(lanes_.t[k], lanes_.ax_prev[k], lanes_.ay_prev[k],
+                                lanes_.deferred[k]);
+  lanes_.deferred[k] = 0;
 }
 
 void BatchRocking::refresh_mirror(std::size_t k) {
   const RockingModel& m = models_[k];
-  Lanes& l = lanes_;
-  l.rest[k] = m.mode() == Mode::Rest;
-  l.rocking[k] = m.mode() == Mode::Rocking;
-  l.overturned[k] = m.mode() == Mode::Overturned;
-  l.ax_prev[k] = m.last_ax();
-  l.ay_prev[k] = m.last_ay();
-  l.t[k] = m.time();
-  l.r_valid[k] = 0;
-  l.r_steps[k] = 0;
-  l.r_max[k] = 0.0;
-  if (!l.rocking[k] || !vector_rocking_) return;
-  const int s = m.side();
-  const Pivot& pv = m.body().pivot(s);
-  const Dopri5Stepper& st = m.dopri5();
-  l.r_side[k] = s;
-  l.r_alpha[k] = pv.alpha;
-  l.r_p2[k] = pv.p2;
-  l.r_atol_th[k] = settings_.tol * pv.alpha;
-  l.r_atol_om[k] = settings_.tol * pv.p * pv.alpha;
-  l.r_overturn[k] = m.body().overturn_angle();
-  l.r_beyond[k] = m.outcome().beyond_tipping ? 1.0 : 0.0;
-  l.r_theta[k] = m.theta();
-  l.r_omega[k] = m.omega();
-  l.r_h[k] = st.step_size();
-  l.r_k1a[k] = st.fsal_k1(0);
-  l.r_k1b[k] = st.fsal_k1(1);
-  l.r_fsal[k] = st.fsal_valid() ? 1.0 : 0.0;
-  l.r_radius[k] = pv.radius;
-  l.r_inertia[k] = pv.inertia;
-  l.r_cos_al[k] = pv.cos_alpha;
-  l.r_slide_checked[k] = std::isinf(m.body().mu_s()) ? 0.0 : 1.0;
-  l.r_committed[k] = m.outcome().committed ? 1.0 : 0.0;
+  lanes_.rest[k] = m.mode() == Mode::Rest;
+  lanes_.ax_prev[k] = m.last_ax();
+  lanes_.ay_prev[k] = m.last_ay();
+  lanes_.t[k] = m.time();
 }
 
 void BatchRocking::step_all(double ax, double ay, double dt) {
@@ -142,10 +93,7 @@ void BatchRocking::step(const double* ax, const double* ay, double dt) {
   stats_ = BatchStats{};
   Lanes& l = lanes_;
   if (mirrors_stale_) {
-    for (std::size_t k = 0; k < n; ++k) {
-      sync(k);  // deferred samples first: the mirrors are re-read from the models
-      refresh_mirror(k);
-    }
+    for (std::size_t k = 0; k < n; ++k) refresh_mirror(k);
     mirrors_stale_ = false;
   }
 
@@ -170,48 +118,50 @@ void BatchRocking::step(const double* ax, const double* ay, double dt) {
         continue;
       }
     }
-    if (l.overturned[k] || (l.rest[k] && !l.maybe_lift[k])) {
-      // An OVERTURNED body's step() only advances time and re-evaluates the (empty) criteria.
-      sync(k);
-      models_[k].advance_at_rest(ax[k], ay[k], dt);
+    sync(k);
+    RockingModel& m = models_[k];
+    // An OVERTURNED body's step() only advances time and re-evaluates the (empty) criteria.
+    if ((l.rest[k] && !l.maybe_lift[k]) || m.mode() == Mode::Overturned) {
+      m.advance_at_rest(ax[k], ay[k], dt);
       refresh_mirror(k);
       ++stats_.rest_fast;
       continue;
     }
-    if (!vector_rocking_ || !l.rocking[k]) {
-      sync(k);
-      models_[k].step(ax[k], ay[k], dt);
+    if (!vector_rocking_ || m.mode() != Mode::Rocking) {
+      m.step(ax[k], ay[k], dt);
       refresh_mirror(k);
       ++stats_.scalar;
       continue;
     }
-    // A ROCKING lane: from the per-lane arrays (the model is not touched).
     const std::size_t i = m_count++;
+    const int s = m.side();
+    const Pivot& pv = m.body().pivot(s);
+    const Dopri5Stepper& st = m.dopri5();
     l.idx[i] = static_cast<std::uint32_t>(k);
-    l.side[i] = l.r_side[k];
-    l.alpha[i] = l.r_alpha[k];
-    l.p2[i] = l.r_p2[k];
-    l.atol_th[i] = l.r_atol_th[k];
-    l.atol_om[i] = l.r_atol_om[k];
-    l.overturn[i] = l.r_overturn[k];
-    l.beyond[i] = l.r_beyond[k];
-    l.ax0[i] = l.ax_prev[k];
-    l.axs[i] = (ax[k] - l.ax_prev[k]) / dt;  // GroundInput::first_order_hold
-    l.ay0[i] = l.ay_prev[k];
-    l.ays[i] = (ay[k] - l.ay_prev[k]) / dt;
-    l.theta[i] = l.r_theta[k];
-    l.omega[i] = l.r_omega[k];
-    l.h[i] = l.r_h[k];
-    l.k1a[i] = l.r_k1a[k];
-    l.k1b[i] = l.r_k1b[k];
-    l.fsal[i] = l.r_fsal[k];
+    l.side[i] = s;
+    l.alpha[i] = pv.alpha;
+    l.p2[i] = pv.p2;
+    l.atol_th[i] = settings_.tol * pv.alpha;
+    l.atol_om[i] = settings_.tol * pv.p * pv.alpha;
+    l.overturn[i] = m.body().overturn_angle();
+    l.beyond[i] = m.outcome().beyond_tipping ? 1.0 : 0.0;
+    l.ax0[i] = m.last_ax();
+    l.axs[i] = (ax[k] - m.last_ax()) / dt;  // GroundInput::first_order_hold
+    l.ay0[i] = m.last_ay();
+    l.ays[i] = (ay[k] - m.last_ay()) / dt;
+    l.theta[i] = m.theta();
+    l.omega[i] = m.omega();
+    l.h[i] = st.step_size();
+    l.k1a[i] = st.fsal_k1(0);
+    l.k1b[i] = st.fsal_k1(1);
+    l.fsal[i] = st.fsal_valid() ? 1.0 : 0.0;
     l.max_ratio[i] = 0.0;
     l.steps[i] = 0.0;
-    l.radius[i] = l.r_radius[k];
-    l.inertia[i] = l.r_inertia[k];
-    l.cos_al[i] = l.r_cos_al[k];
-    l.slide_checked[i] = l.r_slide_checked[k];
-    l.committed[i] = l.r_committed[k];
+    l.radius[i] = pv.radius;
+    l.inertia[i] = pv.inertia;
+    l.cos_al[i] = pv.cos_alpha;
+    l.slide_checked[i] = std::isinf(m.body().mu_s()) ? 0.0 : 1.0;
+    l.committed[i] = m.outcome().committed ? 1.0 : 0.0;
   }
   if (m_count == 0) return;
   // Pad to whole vectors with copies of the last lane (results ignored).
@@ -229,33 +179,14 @@ void BatchRocking::step(const double* ax, const double* ay, double dt) {
   batch_detail::rocking_sample(l, mp, dt, settings_.tol, trig_ == BatchTrig::Exact);
   for (std::size_t i = 0; i < m_count; ++i) {
     const std::size_t k = l.idx[i];
-    if (l.clean[i] && l.end_clear[i]) {  // deferred: stays in the per-lane arrays
-      l.r_theta[k] = l.theta[i];
-      l.r_omega[k] = l.omega[i];
-      l.r_h[k] = l.h[i];
-      l.r_k1a[k] = l.k1a[i];
-      l.r_k1b[k] = l.k1b[i];
-      l.r_fsal[k] = 1.0;
-      l.r_max[k] = std::max(l.r_max[k], l.max_ratio[i]);
-      const int steps = static_cast<int>(l.steps[i]);
-      l.r_steps[k] += steps;
-      l.r_last_steps[k] = steps;
-      l.r_valid[k] = 1;
-      ++l.deferred[k];
-      l.t[k] += dt;  // RockingModel::step's t_ += dt
-      l.ax_prev[k] = ax[k];
-      l.ay_prev[k] = ay[k];
-      ++stats_.rocking_fast;
-      continue;
-    }
-    sync(k);
     RockingModel& m = models_[k];
     if (l.clean[i]) {
       m.commit_rocking_sample(ax[k], ay[k], dt, l.theta[i], l.omega[i], l.h[i], l.k1a[i],
-                              l.k1b[i], static_cast<int>(l.steps[i]), l.max_ratio[i], false);
+                              l.k1b[i], static_cast<int>(l.steps[i]), l.max_ratio[i],
+                              l.end_clear[i] != 0);
       ++stats_.rocking_fast;
     } else {
-      m.step(ax[k], ay[k], dt);  // from the state at the sample start: the roll-back
+      m.step(ax[k], ay[k], dt);  // the model was not touched: this is the roll-back
       ++stats_.scalar;
       ++stats_.rocking_fallback;
     }

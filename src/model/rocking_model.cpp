@@ -362,27 +362,6 @@ void RockingModel::apply_rest_samples(double t, double ax, double ay, long n) {
   outcome_.samples += n;
 }
 
-void RockingModel::apply_rocking_samples(double t, double ax, double ay, long n, double theta,
-                                         double omega, double h_next, double k1_theta,
-                                         double k1_omega, long steps, int last_steps,
-                                         double max_ratio) {
-  report_ = StepReport{};
-  report_.integrator_steps = last_steps;
-  theta_ = theta;
-  omega_ = omega;
-  dopri5_.restore(h_next, k1_theta, k1_omega);
-  if (max_ratio > outcome_.max_rotation_ratio) {
-    outcome_.max_rotation_ratio = max_ratio;
-    outcome_.max_rotation_side = side_;
-  }
-  violations_ = 0;
-  t_ = t;
-  ax_prev_ = ax;
-  ay_prev_ = ay;
-  outcome_.samples += n;
-  outcome_.integrator_steps += steps;
-}
-
 const StepReport& RockingModel::commit_rocking_sample(double ax, double ay, double dt,
                                                       double theta, double omega, double h_next,
                                                       double k1_theta, double k1_omega,

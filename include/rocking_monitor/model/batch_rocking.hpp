@@ -46,10 +46,6 @@ struct BatchStats {
 ///    commit skips those scalar evaluations, whose result would be "nothing" (no violation).
 ///  - everything else (OVERTURNED lanes, rk4 / analytic settings, the linearized model) is
 ///    stepped by RockingModel::step.
-///  - deferred rocking: a clean ROCKING lane whose sample end the screen cleared is not written
-///    back: its state stays in the batch's per-lane arrays for the next sample, and
-///    RockingModel::apply_rocking_samples brings the model up to date when the lane meets an event
-///    or is looked at.
 ///  - deferred rest: a lane at REST that stays there and whose sample end violates nothing
 ///    (mu_s not given, a_yg + g > 0 with a margin) is not touched at all: the batch adds dt to
 ///    its own copy of the lane's time (the same additions as RockingModel::step) and counts the
@@ -100,15 +96,7 @@ class BatchRocking {
     // Mirrors of the models (valid when mirrors_stale_ is false) and the deferred rest samples.
     std::vector<double> t;
     std::vector<long> deferred;
-    std::vector<std::uint8_t> mu_inf, rocking, overturned;
-    // Per lane (index k): a ROCKING lane's state, controller and pivot constants. While r_valid[k]
-    // the lane's samples are deferred here (see "Deferred samples") and its model is behind.
-    std::vector<std::uint8_t> r_valid;
-    std::vector<double> r_side, r_alpha, r_p2, r_atol_th, r_atol_om, r_overturn, r_beyond;
-    std::vector<double> r_theta, r_omega, r_h, r_k1a, r_k1b, r_fsal, r_radius, r_inertia, r_cos_al,
-        r_slide_checked, r_committed, r_max;
-    std::vector<long> r_steps;
-    std::vector<int> r_last_steps;
+    std::vector<std::uint8_t> mu_inf;
     // Compacted rocking lanes of this sample.
     std::vector<std::uint32_t> idx;
     std::vector<double> side, alpha, p2, atol_th, atol_om, overturn, beyond;

@@ -113,14 +113,6 @@ class RockingModel {
   /// the same additions as step()), the last inputs and the sample count. No allocation.
   void apply_rest_samples(double t, double ax, double ay, long n);
 
-  /// n samples of ROCKING that BatchRocking kept for this body, each one a commit_rocking_sample()
-  /// with end_clear, applied at once: state and controller at the end of the last one, time (the
-  /// caller's sum of the same additions), last inputs, sample count, the integrator steps of all
-  /// (and of the last one, for last_report()) and the largest |theta|/alpha. No allocation.
-  void apply_rocking_samples(double t, double ax, double ay, long n, double theta, double omega,
-                             double h_next, double k1_theta, double k1_omega, long steps,
-                             int last_steps, double max_ratio);
-
   /// A sample in which a ROCKING body took dopri5 steps elsewhere, with the same arithmetic as
   /// step(), and nothing happened (no impact, overturn, turning point, first passage beyond
   /// alpha): sets theta, omega, the controller's next step size and FSAL derivative, the step
