@@ -93,7 +93,10 @@ void BatchRocking::step(const double* ax, const double* ay, double dt) {
   stats_ = BatchStats{};
   Lanes& l = lanes_;
   if (mirrors_stale_) {
-    for (std::size_t k = 0; k < n; ++k) refresh_mirror(k);
+    for (std::size_t k = 0; k < n; ++k) {
+      sync(k);  // deferred samples first: the mirrors are re-read from the models
+      refresh_mirror(k);
+    }
     mirrors_stale_ = false;
   }
 
