@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "bench_common.hpp"
+#include "rocking_monitor/model/batch_rocking.hpp"
 
 // ------------------------------------------------------------------ allocation counter
 // Every heap allocation in this program goes through these; the benchmarks read the count around
@@ -171,6 +172,82 @@ void BM_Catalogue(benchmark::State& state, const CatalogueCase* cc, rb::MethodSe
   state.counters["items"] = static_cast<double>(items.size());
 }
 
+// ------------------------------------------------------------------ a catalogue, batch engine
+// The same catalogue and feed through BatchRocking (model/batch_rocking.hpp). Extra counters:
+//   rest_fast_frac / rocking_fast_frac / scalar_frac   where the item-samples went
+//   fallback_frac      item-samples stepped by the vector dopri5 and then redone by the scalar
+//                      model (an event inside the sample)
+void BM_CatalogueBatch(benchmark::State& state, const CatalogueCase* cc, rb::MethodSetting ms,
+                       BatchTrig trig) {
+  BatchRocking batch(cc->bodies, ms.settings, trig);
+  const std::vector<double>& a = cc->motion.horizontal;
+  const std::size_t n = a.size(), items = batch.size();
+  const double dt = cc->motion.dt;
+  std::vector<double> ax(items), ay(items);
+  Tally t;
+  double rest_fast = 0, rocking_fast = 0, scalar = 0, fallback = 0;
+  for (auto _ : state) {
+    batch.reset(0.0, a[0], cc->motion.ay(0));
+    for (std::size_t k = 0; k < items; ++k) {
+      const double r0 = cc->theta0_ratio.empty() ? 0.0 : cc->theta0_ratio[k];
+      if (r0 != 0.0) batch.model(k).set_state(r0 * batch.model(k).body().pivot(r0 > 0 ? 1 : -1).alpha, 0.0);
+    }
+    long rocking = 0;
+    const long allocs0 = g_allocations.load();
+    const double start = rb::thread_cpu_seconds();
+    for (std::size_t i = 1; i < n; ++i) {
+      std::fill(ax.begin(), ax.end(), a[i]);
+      std::fill(ay.begin(), ay.end(), cc->motion.ay(i));
+      batch.step(ax.data(), ay.data(), dt);
+      const BatchStats& st = batch.stats();
+      rest_fast += st.rest_fast;
+      rocking_fast += st.rocking_fast;
+      scalar += st.scalar;
+      fallback += st.rocking_fallback;
+      rocking += static_cast<long>(items - st.rest_fast);
+    }
+    const double stop = rb::thread_cpu_seconds();
+    t.allocations += static_cast<double>(g_allocations.load() - allocs0);
+    t.seconds += stop - start;
+    t.item_steps += static_cast<double>((n - 1) * items);
+    t.rocking_steps += static_cast<double>(rocking);
+    for (std::size_t k = 0; k < items; ++k) {
+      t.int_steps += static_cast<double>(batch.model(k).outcome().integrator_steps);
+      t.impacts += static_cast<double>(batch.model(k).outcome().impacts);
+    }
+  }
+  set_counters(state, t);
+  state.counters["items"] = static_cast<double>(items);
+  state.counters["rest_fast_frac"] = rest_fast / t.item_steps;
+  state.counters["rocking_fast_frac"] = rocking_fast / t.item_steps;
+  state.counters["scalar_frac"] = scalar / t.item_steps;
+  state.counters["fallback_frac"] = fallback / t.item_steps;
+  state.SetLabel(BatchRocking::simd_target());
+}
+
+// ------------------------------------------------------------------ sin/cos per stage
+// Cost of one lane's sin + cos, as the batch's dopri5 kernel evaluates them in each stage (6 per
+// step): std::sin/std::cos lane by lane (exact trig) or Highway Sin/Cos (fast trig), 10,000 lanes
+// with angles in the rocking range. Counter ns_per_sincos: per lane.
+void BM_SinCosLanes(benchmark::State& state, bool exact) {
+  constexpr std::size_t n = 10000;
+  std::vector<double> x(n), s(n), c(n);
+  rb::SplitMix64 rng(3);
+  for (double& v : x) v = rng.uniform(-0.3, 0.7);
+  double seconds = 0.0;
+  double lanes = 0.0;
+  for (auto _ : state) {
+    const double start = rb::thread_cpu_seconds();
+    rocking_monitor::core::batch_detail::sincos_lanes(x.data(), s.data(), c.data(), n, exact);
+    seconds += rb::thread_cpu_seconds() - start;
+    lanes += n;
+    benchmark::DoNotOptimize(s.data());
+    benchmark::DoNotOptimize(c.data());
+  }
+  state.counters["ns_per_sincos"] = 1e9 * seconds / lanes;
+  state.SetLabel(BatchRocking::simd_target());
+}
+
 // ------------------------------------------------------------------ registration
 std::vector<std::unique_ptr<Scenario>> g_scenarios;
 std::vector<std::unique_ptr<CatalogueCase>> g_catalogues;
@@ -194,6 +271,15 @@ void register_catalogue(const CatalogueCase* cc, const std::vector<rb::MethodSet
     benchmark::RegisterBenchmark(name.c_str(), BM_Catalogue, cc, ms)
         ->Unit(benchmark::kMillisecond)
         ->Iterations(2);
+    if (ms.method != "dopri5" || ms.settings.model != ModelKind::Nonlinear) continue;
+    for (BatchTrig trig : {BatchTrig::Exact, BatchTrig::Fast}) {
+      const std::string bname = "batch/" + cc->name + "/" + to_string(ms.settings.model) + "/" +
+                                ms.method + rb::setting_suffix(ms) +
+                                (trig == BatchTrig::Exact ? "/exact_trig" : "/fast_trig");
+      benchmark::RegisterBenchmark(bname.c_str(), BM_CatalogueBatch, cc, ms, trig)
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(2);
+    }
   }
 }
 
@@ -252,6 +338,8 @@ void register_all() {
                  dir.c_str());
   }
   for (const auto& sc : g_scenarios) register_item(sc.get());
+  benchmark::RegisterBenchmark("sincos/exact_std", BM_SinCosLanes, true)->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark("sincos/fast_highway", BM_SinCosLanes, false)->Unit(benchmark::kMicrosecond);
 
   // Real-time capacity: a catalogue of 10,000 items stepped on one 200 Hz feed.
   constexpr std::size_t kItems = 10000;
@@ -271,6 +359,16 @@ void register_all() {
       const double r = rng.uniform(0.2, 0.9);
       cc->theta0_ratio.push_back(rng.next() & 1 ? r : -r);
     }
+    g_catalogues.push_back(std::move(cc));
+  }
+  // (a0) every item at rest: a weak 2 Hz sine of 0.02 g for 5 s (no item lifts).
+  {
+    auto cc = std::make_unique<CatalogueCase>();
+    cc->name = "rest_weak_sine";
+    cc->bodies = bodies;
+    cc->motion = rb::zeros(dt, 5.0);
+    for (std::size_t i = 0; i < cc->motion.horizontal.size(); ++i)
+      cc->motion.horizontal[i] = 0.02 * kGravity * std::sin(2.0 * kPi * 2.0 * dt * static_cast<double>(i));
     g_catalogues.push_back(std::move(cc));
   }
   if (rb::records_available(dir)) {

@@ -45,6 +45,17 @@ endif()
 target_include_directories(rocking_monitor_csv PRIVATE ${ROCKING_LIBCSV_INCLUDE})
 target_link_libraries(rocking_monitor_csv PRIVATE ${ROCKING_LIBCSV})
 
+# The batch engine's SIMD (model/batch_rocking*.cpp): Highway (Debian libhwy-dev), one copy of
+# the kernels per instruction set, chosen at run time. HWY_TARGET_INCLUDE names the kernel file
+# relative to the package root. No fused multiply-add in the kernels: each lane must give the
+# scalar model's bits (the scalar core is compiled for baseline x86-64, which has no FMA).
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(ROCKING_HWY REQUIRED IMPORTED_TARGET libhwy)
+target_link_libraries(rocking_monitor_model PUBLIC PkgConfig::ROCKING_HWY)
+target_include_directories(rocking_monitor_model PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+set_source_files_properties(${CMAKE_CURRENT_SOURCE_DIR}/src/model/batch_rocking_simd.cpp
+  PROPERTIES COMPILE_OPTIONS "-ffp-contract=off")
+
 # The study runs its cases on std::thread workers and reads YAML bodies / writes a JSON summary.
 find_package(yaml-cpp REQUIRED)
 target_link_libraries(rocking_monitor_study PUBLIC Threads::Threads PRIVATE nlohmann_json::nlohmann_json)

@@ -314,8 +314,18 @@ const StepReport& RockingModel::step(double ax, double ay, double dt) {
     }
   }
 
-  update_criteria(in, dt);
-  if (mode_ == Mode::Rocking) {
+  finish_sample(in, ax, ay, dt);
+  return report_;
+}
+
+void RockingModel::finish_sample(const GroundInput& in, double ax, double ay, double dt,
+                                 bool end_clear) {
+  if (end_clear) {
+    violations_ = 0;  // what update_criteria() would find; no onset
+  } else {
+    update_criteria(in, dt);
+  }
+  if (mode_ == Mode::Rocking && !end_clear) {
     const OverturnMargin m = margin();
     if (m.committed && !outcome_.committed) {
       outcome_.committed = true;
@@ -333,6 +343,42 @@ const StepReport& RockingModel::step(double ax, double ay, double dt) {
   ay_prev_ = ay;
   ++outcome_.samples;
   outcome_.integrator_steps += report_.integrator_steps;
+}
+
+const StepReport& RockingModel::advance_at_rest(double ax, double ay, double dt) {
+  report_ = StepReport{};
+  sample_dt_ = dt;
+  const GroundInput in = GroundInput::first_order_hold(ax_prev_, ay_prev_, ax, ay, dt);
+  finish_sample(in, ax, ay, dt);
+  return report_;
+}
+
+void RockingModel::apply_rest_samples(double t, double ax, double ay, long n) {
+  report_ = StepReport{};
+  violations_ = 0;
+  t_ = t;
+  ax_prev_ = ax;
+  ay_prev_ = ay;
+  outcome_.samples += n;
+}
+
+const StepReport& RockingModel::commit_rocking_sample(double ax, double ay, double dt,
+                                                      double theta, double omega, double h_next,
+                                                      double k1_theta, double k1_omega,
+                                                      int integrator_steps, double max_ratio,
+                                                      bool end_clear) {
+  report_ = StepReport{};
+  sample_dt_ = dt;
+  const GroundInput in = GroundInput::first_order_hold(ax_prev_, ay_prev_, ax, ay, dt);
+  theta_ = theta;
+  omega_ = omega;
+  dopri5_.restore(h_next, k1_theta, k1_omega);
+  report_.integrator_steps = integrator_steps;
+  if (max_ratio > outcome_.max_rotation_ratio) {
+    outcome_.max_rotation_ratio = max_ratio;
+    outcome_.max_rotation_side = side_;
+  }
+  finish_sample(in, ax, ay, dt, end_clear);
   return report_;
 }
 

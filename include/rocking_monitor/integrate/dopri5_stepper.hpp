@@ -34,6 +34,18 @@ class Dopri5Stepper {
   double theta1() const { return y1_[0]; }
   double omega1() const { return y1_[1]; }
   double step_size() const { return h_; }
+  /// Controller state carried from one step to the next (the batch engine mirrors it): whether the
+  /// first-same-as-last derivative is valid, and that derivative (theta', omega').
+  bool fsal_valid() const { return fsal_valid_; }
+  double fsal_k1(int i) const { return k1_[i]; }
+  /// Sets the controller state after the same steps were taken elsewhere (BatchRocking's commit):
+  /// next step size h and a valid FSAL derivative. No allocation.
+  void restore(double h, double k1_theta, double k1_omega) {
+    h_ = h;
+    k1_[0] = k1_theta;
+    k1_[1] = k1_omega;
+    fsal_valid_ = true;
+  }
 
  private:
   double h_ = 1e-3;

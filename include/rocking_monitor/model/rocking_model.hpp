@@ -98,8 +98,35 @@ class RockingModel {
   const RockingOutcome& outcome() const { return outcome_; }
   const Body& body() const { return body_; }
   const SolverSettings& settings() const { return settings_; }
+  const Dopri5Stepper& dopri5() const { return dopri5_; }
+
+  // ---- For BatchRocking (model/batch_rocking.hpp), which steps many bodies with SIMD and keeps
+  // this class as the authority. Both do exactly what step(ax, ay, dt) does in the cases they are
+  // meant for, without allocation; they do not validate (the batch validated the sample).
+
+  /// A sample in which a body at REST stays at rest (the caller has shown that no corner lifts
+  /// anywhere in the sample): advances time and the last inputs, re-evaluates the criteria.
+  const StepReport& advance_at_rest(double ax, double ay, double dt);
+
+  /// n samples at REST that BatchRocking kept for this body (no corner lifted, no criterion
+  /// violated at any of their ends), applied at once: the time (the caller's sum t_ + dt + dt...,
+  /// the same additions as step()), the last inputs and the sample count. No allocation.
+  void apply_rest_samples(double t, double ax, double ay, long n);
+
+  /// A sample in which a ROCKING body took dopri5 steps elsewhere, with the same arithmetic as
+  /// step(), and nothing happened (no impact, overturn, turning point, first passage beyond
+  /// alpha): sets theta, omega, the controller's next step size and FSAL derivative, the step
+  /// count and the largest |theta|/alpha at step ends, then finishes the sample as step() does.
+  /// end_clear: the caller has shown that at the sample end no criterion is violated (ground
+  /// reaction > 0, sliding not checked) and the body is not committed (or already was): the
+  /// criteria and the committed test, whose outcome is then known (nothing), are not evaluated.
+  const StepReport& commit_rocking_sample(double ax, double ay, double dt, double theta,
+                                          double omega, double h_next, double k1_theta,
+                                          double k1_omega, int integrator_steps,
+                                          double max_ratio, bool end_clear = false);
 
  private:
+  void finish_sample(const GroundInput& in, double ax, double ay, double dt, bool end_clear = false);
   enum class Event { None, Impact, Overturn, Degenerate };
   double find_uplift(const GroundInput& in, double tau, double tau_end, int& side) const;
   void start_rocking(const GroundInput& in, double tau, int side);

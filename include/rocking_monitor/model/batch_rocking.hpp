@@ -1,0 +1,139 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "rocking_monitor/model/rocking_model.hpp"
+
+namespace rocking_monitor::core {
+
+/// How the batch engine evaluates sin/cos inside its vectorized dopri5 stages.
+enum class BatchTrig : std::uint8_t {
+  /// std::sin / std::cos per lane (the scalar model's own calls): every lane is bit-identical to
+  /// a RockingModel stepped alone. Default.
+  Exact,
+  /// Highway's vectorized Sin/Cos (hwy/contrib/math, a few ulp): faster, not bit-identical; the
+  /// decisions and event times are compared with the scalar model by the tests and benchmarks.
+  Fast,
+};
+
+/// Per-sample counters of the last step() (what bounds the batch's cost).
+struct BatchStats {
+  std::size_t rest_fast = 0;  ///< lanes at REST shown by the vector uplift test to stay there, and OVERTURNED lanes
+  std::size_t rocking_fast = 0;    ///< ROCKING lanes stepped by the vector dopri5 and committed
+  std::size_t scalar = 0;          ///< lanes stepped by RockingModel::step (events, uplift, ...)
+  std::size_t rocking_fallback = 0;  ///< of those: vector-stepped lanes rolled back to scalar
+};
+
+/// N planar pure-rocking bodies that share input samples, stepped together: structure-of-arrays
+/// mirrors and SIMD across lanes (Highway, runtime dispatch: AVX-512 / AVX2 / SSE / scalar).
+///
+/// Exactness: the batch owns one RockingModel per lane, which stays the authority. Per sample:
+///  - lanes at REST: a vectorized closed-form uplift test on the piecewise-linear input (the sign
+///    of theta'' at theta = 0, eq. 19, at both ends of the sample, with a safety margin). Lanes
+///    that surely stay at rest only advance (RockingModel::advance_at_rest); the others are
+///    stepped by RockingModel::step.
+///  - ROCKING lanes (dopri5 only): vectorized dopri5 steps over the sample with the scalar
+///    controller (same step-size sequence, rejections, FSAL, arithmetic order). A lane in which a
+///    step meets anything (theta reaching 0 = impact, a turning point of theta, |theta| crossing
+///    alpha for the first time, the overturn angle, a non-finite value) is dropped and stepped from
+///    its state at the sample start by RockingModel::step; clean lanes are written back with
+///    RockingModel::commit_rocking_sample, which finishes the sample exactly as step() does
+///    (criteria, committed test, counters). The kernel also screens the sample end (Highway
+///    Sin/Cos, wide margins): when the ground reaction is surely > 0 (no free flight), sliding is
+///    not checked (mu_s not given) and the body is surely not committed (or already latched), the
+///    commit skips those scalar evaluations, whose result would be "nothing" (no violation).
+///  - everything else (OVERTURNED lanes, rk4 / analytic settings, the linearized model) is
+///    stepped by RockingModel::step.
+///  - deferred rest: a lane at REST that stays there and whose sample end violates nothing
+///    (mu_s not given, a_yg + g > 0 with a margin) is not touched at all: the batch adds dt to
+///    its own copy of the lane's time (the same additions as RockingModel::step) and counts the
+///    sample; the model is brought up to date (RockingModel::apply_rest_samples) before it is
+///    stepped again and whenever model(k) / report(k) is called.
+/// With BatchTrig::Exact every lane equals a RockingModel stepped alone, bit for bit.
+/// step() does no allocation (the work arrays are sized at construction).
+class BatchRocking {
+ public:
+  BatchRocking(const std::vector<BodyParameters>& bodies, const SolverSettings& settings,
+               BatchTrig trig = BatchTrig::Exact);
+
+  std::size_t size() const { return models_.size(); }
+  /// Every lane back to REST at time t with the same ground acceleration.
+  void reset(double t, double ax = 0.0, double ay = 0.0);
+  /// Steps every lane one sample: lane k's ground acceleration goes linearly from its previous
+  /// input to (ax[k], ay[k]) over dt seconds. Throws std::invalid_argument (nothing stepped) for a
+  /// non-finite input or dt <= 0.
+  void step(const double* ax, const double* ay, double dt);
+  /// The same input for every lane.
+  void step_all(double ax, double ay, double dt);
+
+  /// Lane k's model, brought up to date (see "Deferred rest" above). The reference is valid until
+  /// the next step().
+  const RockingModel& model(std::size_t k) const {
+    sync(k);
+    return models_[k];
+  }
+  /// For set-up only (set_state, reset of one lane); never while step() runs.
+  RockingModel& model(std::size_t k) {
+    sync(k);
+    mirrors_stale_ = true;
+    return models_[k];
+  }
+  const StepReport& report(std::size_t k) const { return model(k).last_report(); }
+  const BatchStats& stats() const { return stats_; }
+  BatchTrig trig() const { return trig_; }
+  /// The SIMD target Highway chose at run time (e.g. "AVX3", "AVX2").
+  static const char* simd_target();
+
+  /// Work arrays of the vector kernels, structure of arrays (public for the kernels only).
+  struct Lanes {
+    // Per lane, constant: both pivots (index 0: corner 1, index 1: corner 2).
+    std::vector<double> sin_a[2], cos_a[2];
+    // Uplift test (per lane): inputs and a result flag (1 = may lift: scalar).
+    std::vector<double> ax_prev, ay_prev, ax_now, ay_now;
+    std::vector<std::uint8_t> rest, maybe_lift;
+    // Mirrors of the models (valid when mirrors_stale_ is false) and the deferred rest samples.
+    std::vector<double> t;
+    std::vector<long> deferred;
+    std::vector<std::uint8_t> mu_inf;
+    // Compacted rocking lanes of this sample.
+    std::vector<std::uint32_t> idx;
+    std::vector<double> side, alpha, p2, atol_th, atol_om, overturn, beyond;
+    std::vector<double> ax0, axs, ay0, ays;
+    std::vector<double> theta, omega, h, k1a, k1b, fsal, max_ratio, steps;
+    // Sample-end screen (criteria, committed test): per lane pivot R, I_O/m, cos(alpha), whether
+    // sliding is checked (finite mu_s) and whether committed is already latched.
+    std::vector<double> radius, inertia, cos_al, slide_checked, committed;
+    std::vector<std::uint8_t> clean, end_clear;
+  };
+
+ private:
+  void sync(std::size_t k) const {
+    if (lanes_.deferred[k] != 0) flush(k);
+  }
+  void flush(std::size_t k) const;
+  void refresh_mirror(std::size_t k);
+
+  mutable std::vector<RockingModel> models_;
+  bool mirrors_stale_ = true;
+  SolverSettings settings_;
+  BatchTrig trig_;
+  bool vector_rocking_ = false;  // dopri5 + nonlinear model
+  mutable Lanes lanes_;
+  BatchStats stats_;
+  std::vector<double> bcast_ax_, bcast_ay_;
+};
+
+namespace batch_detail {
+/// Vector uplift test over all lanes (l.maybe_lift for lanes with l.rest set), n lanes.
+void uplift_test(BatchRocking::Lanes& l, std::size_t n, bool linearized);
+/// Vector dopri5 over the sample [0, dt] for the m compacted rocking lanes; sets l.clean.
+void rocking_sample(BatchRocking::Lanes& l, std::size_t m, double dt, double tol, bool exact_trig);
+const char* target_name();
+/// sin and cos of n values (n a multiple of 16) the way the dopri5 kernel evaluates them
+/// (benchmarks: the cost of the trigonometry per stage).
+void sincos_lanes(const double* x, double* s, double* c, std::size_t n, bool exact_trig);
+}  // namespace batch_detail
+
+}  // namespace rocking_monitor::core
