@@ -92,6 +92,13 @@ if(CPP_HTTPLIB_FOUND)
     add_rostest_gtest(test_dashboard test/ros/dashboard.test test/ros/test_dashboard.cpp)
     target_link_libraries(test_dashboard rocking_dashboard ${catkin_LIBRARIES})
     add_dependencies(test_dashboard dashboard monitor)
+    # The page in a real browser (Debian chromium, scripts/install_deps.sh); skipped with a notice without it.
+    find_program(CHROMIUM_EXECUTABLE chromium)
+    if(CHROMIUM_EXECUTABLE)
+      add_rostest(test/ros/dashboard_browser.test DEPENDENCIES dashboard monitor)
+    else()
+      message(STATUS "chromium not found: the dashboard's browser test (test/ros/dashboard_browser.test) is not run")
+    endif()
   endif()
 else()
   message(WARNING "cpp-httplib not found (Debian: libcpp-httplib-dev; scripts/install_deps.sh): "

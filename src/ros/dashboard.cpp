@@ -116,6 +116,7 @@ void Dashboard::load_catalogue() {
   items_ = std::move(next);
   index_of_ = std::move(index);
   sent_.assign(items_.size(), Sent{});
+  history_.assign(items_.size(), {});
   state_to_item_.clear();  // rebuilt on the next ~states
   latest_sent_ = false;
   catalogue_loaded_ = true;

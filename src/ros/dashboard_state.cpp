@@ -57,6 +57,7 @@ json state_json(const RockingState& s) {
 // Changes smaller than these are not worth a delta: 10,000 quiet items must cost nothing.
 constexpr double kRatioStep = 1e-3;   // of alpha
 constexpr double kMarginStep = 1e-3;  // of the energy margin's range [-1, 1]
+constexpr double kHistorySeconds = 60.0;  // the page's chart window
 
 }  // namespace
 
@@ -74,6 +75,7 @@ void Dashboard::rebuild_index_locked(const RockingStateArray& msg) {
       it = index_of_.emplace(id, items_.size()).first;
       items_.push_back(std::move(g));
       sent_.emplace_back();
+      history_.emplace_back();
       catalogue_dirty_ = true;  // the catalogue on the parameter server may have it now
     }
     state_to_item_[i] = it->second;
@@ -194,6 +196,16 @@ std::string Dashboard::snapshot_json() const {
   return out.dump();
 }
 
+std::string Dashboard::history_json(const std::string& id) const {
+  json points = json::array();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (const auto it = index_of_.find(id); it != index_of_.end() && it->second < history_.size())
+      for (const Point& p : history_[it->second]) points.push_back({p.t, p.ratio, p.margin});
+  }
+  return json{{"id", id}, {"points", std::move(points)}}.dump();
+}
+
 void Dashboard::on_update_timer(const ::ros::WallTimerEvent&) {
   json changed = json::array();
   double stamp = 0.0;
@@ -211,6 +223,12 @@ void Dashboard::on_update_timer(const ::ros::WallTimerEvent&) {
             std::abs(last.energy_margin - s.energy_margin) < kMarginStep)
           continue;
         last = {s.mode, s.plane, s.rotation_ratio, s.energy_margin, s.theta, s.impacts, true};
+        auto& h = history_[state_to_item_[i]];
+        const double t = s.input_stamp.toSec();
+        if (!h.empty() && t < h.back().t - 1.0) h.clear();  // the clock went back: monitor restarted, bag looped
+        h.push_back({t, static_cast<float>(s.theta < 0.0 ? -s.rotation_ratio : s.rotation_ratio),
+                     static_cast<float>(s.energy_margin)});
+        while (h.front().t < t - kHistorySeconds) h.pop_front();
         json j = {{"id", s.id}, {"state", state_json(s)}};
         if (auto c = criteria_.find(s.id); c != criteria_.end()) j["criteria"] = c->second;
         changed.push_back(std::move(j));

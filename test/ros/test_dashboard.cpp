@@ -224,6 +224,16 @@ TEST(Dashboard, ServesThePageTheSnapshotAndTheAlarms) {
     EXPECT_GE(snap["alarms"][i - 1].at("stamp").get<double>(), snap["alarms"][i].at("stamp").get<double>());
   EXPECT_FALSE(snap.at("health").empty()) << "no sensor health from /diagnostics";
 
+  // The chart's 60 s of the overturned item, kept by the server for pages opened after the alarm.
+  {
+    auto h = http.Get(("/api/history?id=" + must_overturn).c_str());
+    ASSERT_TRUE(h);
+    const json hist = json::parse(h->body);
+    ASSERT_FALSE(hist.at("points").empty());
+    EXPECT_LT(hist["points"].back()[2].get<double>(), 0.0) << "an overturned item's energy margin is < 0";
+    EXPECT_TRUE(json::parse(http.Get("/api/history?id=no_such_item")->body).at("points").empty());
+  }
+
   // Every alarm on the SSE stream within 200 ms of its arrival here on ROS.
   const auto on_sse = events.alarms();
   for (const auto& [key, t_ros] : on_ros) {

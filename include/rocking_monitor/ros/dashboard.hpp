@@ -53,6 +53,10 @@ class Dashboard {
   /// JSON texts (used by the HTTP handlers; public so that they can be tested without a server).
   std::string snapshot_json() const;
 
+  /// {"id", "points": [[stamp s, signed theta/alpha, energy margin], ...]}: the item's last 60 s as
+  /// sent to the pages; empty points for an unknown id or a quiet item.
+  std::string history_json(const std::string& id) const;
+
   /// Page assets embedded in the binary (dashboard_assets.cpp).
   static const char* const kIndexHtml;
   static const char* const kAppJs;
@@ -70,6 +74,11 @@ class Dashboard {
     double rotation_ratio = 0.0, energy_margin = 0.0, theta = 0.0;
     std::uint32_t impacts = 0;
     bool valid = false;
+  };
+  struct Point {  // one chart point, as sent in a delta
+    double t;      // input stamp, s
+    float ratio;   // theta/alpha, signed by theta
+    float margin;  // energy margin
   };
   struct Alarm {
     OverturnAlarm msg;
@@ -118,6 +127,8 @@ class Dashboard {
   std::unordered_map<std::string, std::size_t> index_of_;  // id -> items_
   std::vector<std::size_t> state_to_item_;                 // position in ~states -> items_
   std::vector<Sent> sent_;                                 // per items_
+  // Per items_: the deltas of the last 60 s (at most 60 s x update_rate points; quiet items none).
+  std::vector<std::deque<Point>> history_;
   RockingStateArray::ConstPtr latest_;                     // newest ~states (shared, not copied)
   bool latest_sent_ = true;
   std::deque<Alarm> alarms_;                               // newest first

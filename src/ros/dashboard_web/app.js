@@ -293,8 +293,10 @@ function drawPlan() {
     if (labels) {
       ctx.fillStyle = '#222';
       ctx.font = (it.id === view.selected ? 'bold ' : '') + 12 * dpr + 'px system-ui, sans-serif';
-      const r = Math.hypot(f.w, f.d) * s / 2;
-      ctx.fillText(it.id, ox + s * p.x + r + 4 * dpr, oy - s * p.y - r);
+      const r = Math.hypot(f.w, f.d) * s / 2, tw = ctx.measureText(it.id).width;
+      let lx = ox + s * p.x + r + 4 * dpr;
+      if (lx + tw > W - 4 * dpr) lx = ox + s * p.x - r - 4 * dpr - tw;  // near the right edge: on the left
+      ctx.fillText(it.id, lx, oy - s * p.y - r);
     }
   }
 }
@@ -318,8 +320,24 @@ function pickAt(px, py) {
 }
 
 // ------------------------------------------------------------------ selected item
+// The server keeps each item's last 60 s (what it sent): a page opened after the alarm still has the chart.
+function loadHistory(id) {
+  fetch('/api/history?id=' + encodeURIComponent(id), { cache: 'no-store' })
+    .then((r) => (r.ok ? r.json() : null))
+    .then((j) => {
+      if (!j || !j.points.length) return;
+      const local = view.history.get(id) || [];
+      const lastServer = j.points[j.points.length - 1][0];
+      const merged = j.points.map(([t, r, e]) => ({ t, r, e })).concat(local.filter((p) => p.t > lastServer));
+      view.history.set(id, merged);
+      requestDraw();
+    })
+    .catch(() => {});
+}
+
 function select(id) {
   const old = view.rows.get(view.selected);
+  if (id !== view.selected) loadHistory(id);
   view.selected = id;
   if (old) old.classList.remove('selected');
   const tr = view.rows.get(id);
@@ -398,7 +416,7 @@ function drawChart() {
   const t1 = view.latestStamp, t0 = t1 - HISTORY_S;
   let lo = -1.2, hi = 1.2;
   for (const p of h) { lo = Math.min(lo, p.r, p.e); hi = Math.max(hi, p.r, p.e); }
-  lo = Math.max(lo, -10); hi = Math.min(hi, 10);  // an overturned item's ratio would flatten the rest
+  lo = Math.max(lo, -2.5); hi = Math.min(hi, 2.5);  // an overturned item's ratio (up to ~10) would flatten the rest
   const X = (tt) => l + (W - l - r) * (tt - t0) / HISTORY_S, Y = (v) => t + (H - t - b) * (hi - v) / (hi - lo);
   ctx.strokeStyle = '#ccc'; ctx.lineWidth = 1;
   ctx.strokeRect(l, t, W - l - r, H - t - b);
@@ -409,7 +427,7 @@ function drawChart() {
     ctx.fillText(String(v), 8, Y(v) + 4);
   }
   ctx.setLineDash([]);
-  for (let k = 0; k <= 6; ++k) ctx.fillText('-' + (60 - 10 * k) + ' s', X(t0 + 10 * k) - 12, H - 5);
+  for (let k = 0; k <= 6; ++k) ctx.fillText(k < 6 ? '-' + (60 - 10 * k) + ' s' : 'now', X(t0 + 10 * k) - 12, H - 5);
   const line = (key, colour) => {
     if (!h.length) return;
     ctx.strokeStyle = colour; ctx.lineWidth = 1.6; ctx.beginPath();
@@ -458,7 +476,18 @@ function init() {
   window.addEventListener('resize', requestDraw);
   renderAlarms();
   renderHealth();
-  connect();
+  // ?poll=SECONDS: no live stream, the snapshot every SECONDS instead (headless browsers, whose
+  // virtual time never runs out while a stream is open; proxies that buffer event streams).
+  const poll = parseFloat(new URLSearchParams(location.search).get('poll'));
+  if (poll > 0) {
+    setConn('conn-wait', 'polling every ' + poll + ' s');
+    loadSnapshot();
+    setInterval(loadSnapshot, poll * 1000);
+  } else {
+    connect();
+  }
+  const sel = new URLSearchParams(location.search).get('select');
+  if (sel) { view.selected = sel; loadHistory(sel); }  // ?select=ID: open with it selected (screenshots, links)
 }
 
 init();
