@@ -92,6 +92,7 @@ if(CPP_HTTPLIB_FOUND)
     add_rostest_gtest(test_dashboard test/ros/dashboard.test test/ros/test_dashboard.cpp)
     target_link_libraries(test_dashboard rocking_dashboard ${catkin_LIBRARIES})
     add_dependencies(test_dashboard dashboard monitor)
+    add_rostest(test/ros/dashboard_restart.test DEPENDENCIES dashboard monitor)
     # The page in a real browser (Debian chromium, scripts/install_deps.sh); skipped with a notice without it.
     find_program(CHROMIUM_EXECUTABLE chromium)
     if(CHROMIUM_EXECUTABLE)
