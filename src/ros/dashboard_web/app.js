@@ -35,6 +35,7 @@ function loadSnapshot() {
 }
 
 function applySnapshot(s) {
+  const t0 = performance.now();
   $('monitor').textContent = 'monitor ' + s.monitor;
   view.items = s.items;
   view.byId = new Map(s.items.map((it) => [it.id, it]));
@@ -52,6 +53,7 @@ function applySnapshot(s) {
   updateBanner();
   renderDetail();
   requestDraw();
+  document.body.dataset.snapshotMs = (performance.now() - t0).toFixed(1);  // for load measurements
 }
 
 function addHistory(id, st) {
@@ -453,9 +455,11 @@ function requestDraw() {
   drawQueued = true;
   requestAnimationFrame(() => {
     drawQueued = false;
+    const t0 = performance.now();
     drawPlan();
     drawSide();
     drawChart();
+    document.body.dataset.drawMs = (performance.now() - t0).toFixed(1);  // for load measurements
     $('clock').textContent = view.latestStamp > 0 ? utc(view.latestStamp) : 'no data yet';
   });
 }
