@@ -117,7 +117,9 @@ void Dashboard::load_catalogue() {
   index_of_ = std::move(index);
   sent_.assign(items_.size(), Sent{});
   history_.assign(items_.size(), {});
-  state_to_item_.clear();  // rebuilt on the next ~states
+  state_to_item_.clear();
+  // Map the newest states onto the new list now: after the event no new ~states may come.
+  if (latest_) rebuild_index_locked(*latest_, false);
   latest_sent_ = false;
   catalogue_loaded_ = true;
   catalogue_dirty_ = false;

@@ -61,9 +61,9 @@ constexpr double kHistorySeconds = 60.0;  // the page's chart window
 
 }  // namespace
 
-void Dashboard::rebuild_index_locked(const RockingStateArray& msg) {
+void Dashboard::rebuild_index_locked(const RockingStateArray& msg, bool reread_catalogue) {
   // A restarted or reconfigured monitor may publish other items, in another order or number.
-  if (!state_to_item_.empty() && state_to_item_.size() != msg.items.size()) catalogue_dirty_ = true;
+  if (reread_catalogue && !state_to_item_.empty() && state_to_item_.size() != msg.items.size()) catalogue_dirty_ = true;
   state_to_item_.resize(msg.items.size());
   for (std::size_t i = 0; i < msg.items.size(); ++i) {
     const std::string& id = msg.items[i].id;
@@ -76,7 +76,7 @@ void Dashboard::rebuild_index_locked(const RockingStateArray& msg) {
       items_.push_back(std::move(g));
       sent_.emplace_back();
       history_.emplace_back();
-      catalogue_dirty_ = true;  // the catalogue on the parameter server may have it now
+      if (reread_catalogue) catalogue_dirty_ = true;  // the catalogue on the parameter server may have it now
     }
     state_to_item_[i] = it->second;
   }
@@ -88,7 +88,7 @@ void Dashboard::on_states(const RockingStateArray::ConstPtr& msg) {
   bool same = state_to_item_.size() == msg->items.size();
   for (std::size_t i = 0; same && i < msg->items.size(); ++i)
     same = items_[state_to_item_[i]].entry.spec.id == msg->items[i].id;
-  if (!same) rebuild_index_locked(*msg);
+  if (!same) rebuild_index_locked(*msg, true);
   latest_ = msg;
   latest_sent_ = false;
   ++states_received_;

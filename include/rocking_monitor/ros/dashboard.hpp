@@ -93,7 +93,9 @@ class Dashboard {
   void on_diagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& msg);
   void on_update_timer(const ::ros::WallTimerEvent&);
   void on_catalogue_timer(const ::ros::WallTimerEvent&);
-  void rebuild_index_locked(const RockingStateArray& msg);
+  /// Maps ~states positions to items_, adding items the catalogue lacks (drawn without geometry);
+  /// reread_catalogue: an unknown id or a new count asks for the catalogue to be read again.
+  void rebuild_index_locked(const RockingStateArray& msg, bool reread_catalogue);
   nlohmann::json item_json_locked(std::size_t index, const RockingState* state) const;
   nlohmann::json health_json_locked() const;
   static nlohmann::json alarm_json(const OverturnAlarm& a);
