@@ -27,6 +27,16 @@ bool Dashboard::start_server() {
     res.set_header("Cache-Control", "no-store");
     res.set_content(snapshot_json(), "application/json");
   });
+  server_->Get("/api/item", [this](const httplib::Request& req, httplib::Response& res) {
+    res.set_header("Cache-Control", "no-store");
+    std::string body = item_json(req.get_param_value("id"));
+    if (body.empty()) {
+      res.status = 404;
+      res.set_content("{\"error\":\"no such item\"}", "application/json");
+      return;
+    }
+    res.set_content(body, "application/json");
+  });
   server_->Get("/api/history", [this](const httplib::Request& req, httplib::Response& res) {
     res.set_header("Cache-Control", "no-store");
     res.set_content(history_json(req.get_param_value("id")), "application/json");

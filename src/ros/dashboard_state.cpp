@@ -1,6 +1,8 @@
 // Dashboard's state cache: the ROS callbacks that fill it, the deltas the update timer pushes, and the
 // JSON snapshot served at /api/snapshot.
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <ctime>
 
 #include <nlohmann/json.hpp>
@@ -52,6 +54,15 @@ json state_json(const RockingState& s) {
             {"stamp", s.input_stamp.toSec()}, {"x", plane_json(s.x)}};
   if (s.plane_count >= 2) j["y"] = plane_json(s.y);
   return j;
+}
+
+// A delta's numbers to 6 significant digits: a screen needs no more, and 10,000 rocking items make
+// every byte count (the snapshot keeps full precision).
+double short_number(double v) {
+  if (!std::isfinite(v)) return v;
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", v);
+  return std::strtod(text, nullptr);
 }
 
 // Changes smaller than these are not worth a delta: 10,000 quiet items must cost nothing.
@@ -196,6 +207,17 @@ std::string Dashboard::snapshot_json() const {
   return out.dump();
 }
 
+std::string Dashboard::item_json(const std::string& id) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = index_of_.find(id);
+  if (it == index_of_.end()) return "";
+  const RockingState* state = nullptr;
+  if (latest_)
+    for (std::size_t i = 0; i < latest_->items.size() && i < state_to_item_.size(); ++i)
+      if (state_to_item_[i] == it->second) state = &latest_->items[i];
+  return item_json_locked(it->second, state).dump();
+}
+
 std::string Dashboard::history_json(const std::string& id) const {
   json points = json::array();
   {
@@ -229,9 +251,12 @@ void Dashboard::on_update_timer(const ::ros::WallTimerEvent&) {
         h.push_back({t, static_cast<float>(s.theta < 0.0 ? -s.rotation_ratio : s.rotation_ratio),
                      static_cast<float>(s.energy_margin)});
         while (h.front().t < t - kHistorySeconds) h.pop_front();
-        json j = {{"id", s.id}, {"state", state_json(s)}};
-        if (auto c = criteria_.find(s.id); c != criteria_.end()) j["criteria"] = c->second;
-        changed.push_back(std::move(j));
+        // Compact: the item-level fields (the governing plane's) as one array; the page asks
+        // /api/item for the full state of the one item it shows in detail.
+        json row = {s.id, mode_name(s.mode), s.plane, short_number(s.theta), short_number(s.rotation_ratio),
+                    short_number(s.energy_margin), s.impacts, s.input_stamp.toSec()};
+        if (auto c = criteria_.find(s.id); c != criteria_.end() && !c->second.empty()) row.push_back(c->second);
+        changed.push_back(std::move(row));
       }
       latest_sent_ = true;
     }
@@ -242,7 +267,11 @@ void Dashboard::on_update_timer(const ::ros::WallTimerEvent&) {
       push_health = true;
     }
   }
-  if (!changed.empty()) publish_event("states", json{{"stamp", stamp}, {"items", std::move(changed)}}.dump());
+  if (!changed.empty())
+    publish_event("states", json{{"stamp", stamp},
+                                 {"fields", {"id", "mode", "plane", "theta", "rotation_ratio", "energy_margin",
+                                             "impacts", "stamp", "criteria"}},
+                                 {"items", std::move(changed)}}.dump());
   if (push_health) publish_event("health", health.dump());
 }
 

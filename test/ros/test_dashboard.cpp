@@ -224,6 +224,17 @@ TEST(Dashboard, ServesThePageTheSnapshotAndTheAlarms) {
     EXPECT_GE(snap["alarms"][i - 1].at("stamp").get<double>(), snap["alarms"][i].at("stamp").get<double>());
   EXPECT_FALSE(snap.at("health").empty()) << "no sensor health from /diagnostics";
 
+  // One item in full (the page's detail panel), as in the snapshot; unknown ids are 404.
+  {
+    auto item = http.Get(("/api/item?id=" + must_overturn).c_str());
+    ASSERT_TRUE(item);
+    ASSERT_EQ(item->status, 200);
+    const json j = json::parse(item->body);
+    EXPECT_EQ(j.at("state").at("mode"), "OVERTURNED");
+    EXPECT_TRUE(j["state"].contains("y"));
+    EXPECT_EQ(http.Get("/api/item?id=no_such_item")->status, 404);
+  }
+
   // The chart's 60 s of the overturned item, kept by the server for pages opened after the alarm.
   {
     auto h = http.Get(("/api/history?id=" + must_overturn).c_str());

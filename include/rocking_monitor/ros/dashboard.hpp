@@ -53,6 +53,9 @@ class Dashboard {
   /// JSON texts (used by the HTTP handlers; public so that they can be tested without a server).
   std::string snapshot_json() const;
 
+  /// One item as in the snapshot (geometry, pose, full state of both planes); "" for an unknown id.
+  std::string item_json(const std::string& id) const;
+
   /// {"id", "points": [[stamp s, signed theta/alpha, energy margin], ...]}: the item's last 60 s as
   /// sent to the pages; empty points for an unknown id or a quiet item.
   std::string history_json(const std::string& id) const;

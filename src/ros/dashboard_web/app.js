@@ -69,21 +69,46 @@ function addHistory(id, st) {
   if (st.stamp > view.latestStamp) view.latestStamp = st.stamp;
 }
 
+// A delta is compact (10,000 items must fit): one array per changed item, fields named in msg.fields,
+// the governing plane's values only. The selected item's full state (both planes) comes from /api/item.
 function onStates(msg) {
-  let unknown = false;
-  for (const d of msg.items) {
+  let unknown = false, selectedChanged = false;
+  const f = msg.fields;
+  for (const row of msg.items) {
+    const d = {};
+    f.forEach((name, k) => { d[name] = row[k]; });
     const it = view.byId.get(d.id);
     if (!it) { unknown = true; continue; }
-    it.state = d.state;
+    it.state = Object.assign({}, it.state || {}, {
+      mode: d.mode, plane: d.plane, theta: d.theta, rotation_ratio: d.rotation_ratio,
+      energy_margin: d.energy_margin, impacts: d.impacts, stamp: d.stamp });
     it.criteria = d.criteria;
-    addHistory(d.id, d.state);
+    addHistory(d.id, it.state);
     updateRow(it);
+    if (d.id === view.selected) selectedChanged = true;
   }
   if (msg.stamp > view.latestStamp) view.latestStamp = msg.stamp;
   if (unknown) loadSnapshot();  // the monitor restarted with other items
   updateBanner();
-  if (view.selected) renderDetail();
+  if (selectedChanged) { renderDetail(); loadItem(view.selected); }
   requestDraw();
+}
+
+let itemPending = false;
+function loadItem(id) {
+  if (itemPending) return;  // at most one request in flight: never more than the delta rate
+  itemPending = true;
+  fetch('/api/item?id=' + encodeURIComponent(id), { cache: 'no-store' })
+    .then((r) => (r.ok ? r.json() : null))
+    .then((j) => {
+      const it = j && view.byId.get(j.id);
+      // Only if not older than what the deltas already brought.
+      if (it && j.state && (!it.state || !(it.state.stamp > j.state.stamp))) { it.state = j.state; it.criteria = j.criteria; }
+      renderDetail();
+      requestDraw();
+    })
+    .catch(() => {})
+    .finally(() => { itemPending = false; });
 }
 
 function addAlarm(a, render = true) {
@@ -341,6 +366,7 @@ function select(id) {
   const old = view.rows.get(view.selected);
   if (id !== view.selected) loadHistory(id);
   view.selected = id;
+  loadItem(id);
   if (old) old.classList.remove('selected');
   const tr = view.rows.get(id);
   if (tr) { tr.classList.add('selected'); tr.scrollIntoView({ block: 'nearest' }); }
@@ -358,11 +384,11 @@ function renderDetail() {
   const row = (k, v) => rows.push('<tr><td>' + k + '</td><td>' + v + '</td></tr>');
   row('base B \u00d7 D, h', fmt(it.width, 2) + ' \u00d7 ' + (it.depth ? fmt(it.depth, 2) : '\u2013') + ' m, ' + fmt(it.cg_height, 2) + ' m');
   if (s) {
-    row('governing plane', s.plane + (s.plane_count > 1 ? ' (of 2)' : ' (x only)'));
+    row('governing plane', s.plane + (s.plane_count > 1 ? ' (of 2)' : s.plane_count === 1 ? ' (x only)' : ''));
     row('\u03b8, \u03b8/\u03b1', fmt(s.theta, 4) + ' rad, ' + fmt(s.rotation_ratio, 3));
     row('energy margin', fmt(s.energy_margin, 3));
-    row('impacts x / y', s.x.impacts + (s.y ? ' / ' + s.y.impacts : ''));
-    row('model', esc(s.model) + (s.model_valid ? '' : ' (pure rocking not valid)'));
+    if (s.x) row('impacts x / y', s.x.impacts + (s.y ? ' / ' + s.y.impacts : ''));
+    if (s.model) row('model', esc(s.model) + (s.model_valid ? '' : ' (pure rocking not valid)'));
   }
   row('criteria exceeded', esc((it.criteria || []).join(', ') || 'none'));
   $('sel-details').tBodies[0].innerHTML = rows.join('');
@@ -376,7 +402,7 @@ function drawSide() {
   ctx.font = '12px system-ui, sans-serif';
   if (!it) { ctx.fillStyle = '#888'; ctx.fillText('side view of the selected item', 10, 20); return; }
   const st = it.state, plane = st ? st.plane : 'x';
-  const ps = st ? (plane === 'y' && st.y ? st.y : st.x) : { theta: 0 };
+  const ps = { theta: st ? st.theta : 0 };  // item level = the governing plane's
   const f = footprint(it);
   const B = plane === 'y' ? f.d : f.w, nu = plane === 'y' ? f.nuy : f.nu;
   const h2 = 2 * (it.cg_height > 0 ? it.cg_height : 0.5);  // drawn as a homogeneous B x 2h block
