@@ -63,3 +63,53 @@ if(CATKIN_ENABLE_TESTING)
               ARGS records:=${ROCKING_RECORDS_DIR} tools:=${ROCKING_TOOL_DIR}
               DEPENDENCIES test_monitor_historical)
 endif()
+
+# ---------------------------------------------------------------- the live dashboard (issue 14)
+# cpp-httplib as Debian builds it (a shared library; its pkg-config flags carry the TLS/zlib defines
+# that fix its class layout, so they must be used as given).
+find_package(PkgConfig QUIET)
+if(PkgConfig_FOUND)
+  pkg_check_modules(CPP_HTTPLIB QUIET IMPORTED_TARGET cpp-httplib)
+endif()
+if(CPP_HTTPLIB_FOUND)
+  # The page's files (src/ros/dashboard_web/) become raw string literals included by dashboard_assets.cpp.
+  set(dashboard_web_inc)
+  foreach(asset index.html app.js style.css)
+    set(out ${CMAKE_CURRENT_BINARY_DIR}/dashboard_web/${asset}.inc)
+    add_custom_command(OUTPUT ${out}
+      COMMAND ${CMAKE_COMMAND} -DIN=${CMAKE_CURRENT_SOURCE_DIR}/src/ros/dashboard_web/${asset} -DOUT=${out}
+              -P ${CMAKE_CURRENT_SOURCE_DIR}/cmake/embed_asset.cmake
+      DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/src/ros/dashboard_web/${asset} ${CMAKE_CURRENT_SOURCE_DIR}/cmake/embed_asset.cmake
+      COMMENT "embedding dashboard asset ${asset}")
+    list(APPEND dashboard_web_inc ${out})
+  endforeach()
+  add_library(rocking_dashboard
+    src/ros/dashboard.cpp src/ros/dashboard_state.cpp src/ros/dashboard_http.cpp
+    src/ros/dashboard_events.cpp src/ros/dashboard_assets.cpp ${dashboard_web_inc})
+  target_include_directories(rocking_dashboard PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include ${catkin_INCLUDE_DIRS})
+  target_include_directories(rocking_dashboard PRIVATE ${CMAKE_CURRENT_BINARY_DIR})
+  target_link_libraries(rocking_dashboard PUBLIC rocking_monitor_ros PkgConfig::CPP_HTTPLIB
+                        nlohmann_json::nlohmann_json Threads::Threads)
+  add_executable(dashboard src/ros/dashboard_node.cpp)
+  target_link_libraries(dashboard PRIVATE rocking_dashboard)
+  install(TARGETS dashboard rocking_dashboard
+          RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION}
+          LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+          ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
+  if(CATKIN_ENABLE_TESTING)
+    add_rostest_gtest(test_dashboard test/ros/dashboard.test test/ros/test_dashboard.cpp)
+    target_link_libraries(test_dashboard rocking_dashboard ${catkin_LIBRARIES})
+    add_dependencies(test_dashboard dashboard monitor)
+    add_rostest(test/ros/dashboard_restart.test DEPENDENCIES dashboard monitor)
+    # The page in a real browser (Debian chromium, scripts/install_deps.sh); skipped with a notice without it.
+    find_program(CHROMIUM_EXECUTABLE chromium)
+    if(CHROMIUM_EXECUTABLE)
+      add_rostest(test/ros/dashboard_browser.test DEPENDENCIES dashboard monitor)
+    else()
+      message(STATUS "chromium not found: the dashboard's browser test (test/ros/dashboard_browser.test) is not run")
+    endif()
+  endif()
+else()
+  message(WARNING "cpp-httplib not found (Debian: libcpp-httplib-dev; scripts/install_deps.sh): "
+                  "the dashboard node is not built")
+endif()

@@ -22,6 +22,9 @@ launch_pid=$!
 stop_launch() { kill -INT "$launch_pid" 2>/dev/null || true; wait "$launch_pid" 2>/dev/null || true; }
 trap stop_launch EXIT
 for _ in $(seq 100); do rostopic list >/dev/null 2>&1 && break; sleep 0.2; done
+# The dashboard (demo.launch dashboard:=true, the default) sets ~url once its port is bound.
+for _ in $(seq 25); do url=$(rosparam get /dashboard/url 2>/dev/null) && break; url=""; sleep 0.2; done
+[ -n "$url" ] && echo "Live dashboard: $url (open it in a browser while the pulse plays)"
 python3 scripts/monitor_table.py __name:=monitor_table _end_after_idle:=3.0
 echo
 echo "Monitor log (times since the first sample, and UTC):"

@@ -1,0 +1,162 @@
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <string>
+#include <thread>
+#include <unordered_map>
+#include <vector>
+
+#include <diagnostic_msgs/DiagnosticArray.h>
+#include <nlohmann/json_fwd.hpp>
+#include <ros/ros.h>
+
+#include "rocking_monitor/CriterionExceedance.h"
+#include "rocking_monitor/OverturnAlarm.h"
+#include "rocking_monitor/RockingStateArray.h"
+#include "rocking_monitor/ros/catalogue.hpp"
+
+namespace httplib {
+class Server;
+}
+
+namespace rocking_monitor::live {
+
+/// The operator's live view (issue 14): a read-only web page served by the node itself (no CDN, works
+/// offline) with the floor plan, the selected item's side view and charts, the alarm log and sensor
+/// health. Subscribes to the monitor's ~states, ~alarms, ~criteria and /diagnostics; reads the item
+/// geometry and poses from the monitor's catalogue on the parameter server (`<monitor>/items`).
+///
+/// Threads: ROS callbacks (one spinner) and the HTTP server's pool share the cache under `mutex_`.
+/// ROS never waits on a client: the states callback only swaps a shared pointer; deltas and alarms
+/// are formatted once and queued to each Server-Sent-Events client, whose own HTTP thread writes them.
+class Dashboard {
+ public:
+  Dashboard(::ros::NodeHandle nh, ::ros::NodeHandle pnh);
+  ~Dashboard();
+  Dashboard(const Dashboard&) = delete;
+  Dashboard& operator=(const Dashboard&) = delete;
+
+  /// Reads parameters, binds the port, subscribes. False (after a ROS_FATAL naming the parameter or
+  /// the address) on bad configuration or a port that cannot be bound.
+  bool init();
+
+  /// http://address:port/ once bound (also set as the parameter ~url).
+  const std::string& url() const { return url_; }
+
+  /// JSON texts (used by the HTTP handlers; public so that they can be tested without a server).
+  std::string snapshot_json() const;
+
+  /// One item as in the snapshot (geometry, pose, full state of both planes); "" for an unknown id.
+  std::string item_json(const std::string& id) const;
+
+  /// {"id", "points": [[stamp s, signed theta/alpha, energy margin], ...]}: the item's last 60 s as
+  /// sent to the pages; empty points for an unknown id or a quiet item.
+  std::string history_json(const std::string& id) const;
+
+  /// Page assets embedded in the binary (dashboard_assets.cpp).
+  static const char* const kIndexHtml;
+  static const char* const kAppJs;
+  static const char* const kStyleCss;
+
+ private:
+  // ---- state cache (dashboard_state.cpp)
+  struct ItemGeometry {
+    CatalogueItem entry;  // id, description, width, depth, cg_height, eccentricities, pose
+    bool from_catalogue = true;  // false: seen in ~states only (drawn without geometry)
+  };
+  struct Sent {  // what the page last received for an item: a delta is sent when this changes
+    std::uint8_t mode = 255;
+    std::string plane;
+    double rotation_ratio = 0.0, energy_margin = 0.0, theta = 0.0;
+    std::uint32_t impacts = 0;
+    bool valid = false;
+  };
+  struct Point {  // one chart point, as sent in a delta
+    double t;      // input stamp, s
+    float ratio;   // theta/alpha, signed by theta
+    float margin;  // energy margin
+  };
+  struct Alarm {
+    OverturnAlarm msg;
+    std::string key;  // item/level/stamp: a latched alarm seen twice (monitor reconnect) is logged once
+  };
+
+  bool load_parameters();
+  void load_catalogue();
+  void on_states(const RockingStateArray::ConstPtr& msg);
+  void on_alarm(const OverturnAlarm::ConstPtr& msg);
+  void on_criterion(const CriterionExceedance::ConstPtr& msg);
+  void on_diagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& msg);
+  void on_update_timer(const ::ros::WallTimerEvent&);
+  void on_catalogue_timer(const ::ros::WallTimerEvent&);
+  /// Maps ~states positions to items_, adding items the catalogue lacks (drawn without geometry);
+  /// reread_catalogue: an unknown id or a new count asks for the catalogue to be read again.
+  void rebuild_index_locked(const RockingStateArray& msg, bool reread_catalogue);
+  nlohmann::json item_json_locked(std::size_t index, const RockingState* state) const;
+  nlohmann::json health_json_locked() const;
+  static nlohmann::json alarm_json(const OverturnAlarm& a);
+
+  // ---- HTTP server (dashboard_http.cpp)
+  bool start_server();
+  void stop_server();
+
+  // ---- Server-Sent Events (dashboard_events.cpp)
+  struct Client {
+    std::deque<std::string> queue;  // formatted SSE frames waiting for this client's HTTP thread
+    bool overflowed = false;        // fell too far behind: told to reload the snapshot
+  };
+  void publish_event(const std::string& event, const std::string& data);
+  std::uint64_t add_client();
+  void remove_client(std::uint64_t id);
+  /// Blocks the calling HTTP thread (never ROS) up to `wait` for frames; empty: keep-alive due.
+  /// False when the client is gone or the server stops.
+  bool next_frames(std::uint64_t id, std::chrono::milliseconds wait, std::string& out);
+
+  ::ros::NodeHandle nh_, pnh_;
+  std::string bind_address_ = "127.0.0.1";
+  int port_ = 8080;  // 0: any free port (tests); the bound one is in ~url
+  std::string monitor_ = "/rocking_monitor";
+  double update_rate_ = 10.0;  // Hz, at most 10: deltas to the page
+  int max_clients_ = 8;        // SSE connections at once (each holds one HTTP thread)
+  std::string url_;
+
+  mutable std::mutex mutex_;  // guards everything below down to the SSE section
+  std::vector<ItemGeometry> items_;
+  std::unordered_map<std::string, std::size_t> index_of_;  // id -> items_
+  std::vector<std::size_t> state_to_item_;                 // position in ~states -> items_
+  std::vector<Sent> sent_;                                 // per items_
+  // Per items_: the deltas of the last 60 s (at most 60 s x update_rate points; quiet items none).
+  std::vector<std::deque<Point>> history_;
+  RockingStateArray::ConstPtr latest_;                     // newest ~states (shared, not copied)
+  bool latest_sent_ = true;
+  std::deque<Alarm> alarms_;                               // newest first
+  std::set<std::string> alarm_keys_;
+  std::map<std::string, std::set<std::string>> criteria_;  // id -> "plane:criterion" exceeded now
+  std::map<std::string, diagnostic_msgs::DiagnosticStatus> health_;  // this monitor's statuses by name
+  bool catalogue_loaded_ = false;
+  bool catalogue_dirty_ = false;  // ~states named items the catalogue does not have: reread it
+  std::uint64_t states_received_ = 0;
+  ::ros::WallTime last_health_push_;
+
+  ::ros::Subscriber states_sub_, alarms_sub_, criteria_sub_, diagnostics_sub_;
+  ::ros::WallTimer update_timer_, catalogue_timer_;
+
+  // ---- SSE clients, own lock so that formatting the snapshot never delays a push
+  std::mutex clients_mutex_;
+  std::condition_variable clients_cv_;
+  std::map<std::uint64_t, Client> clients_;
+  std::uint64_t next_client_ = 1;
+  bool stopping_ = false;
+
+  std::unique_ptr<httplib::Server> server_;
+  std::thread server_thread_;
+};
+
+}  // namespace rocking_monitor::live

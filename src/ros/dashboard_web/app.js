@@ -1,0 +1,523 @@
+// rocking_monitor live dashboard: vanilla JS, no framework, no network beyond this node.
+// Data: GET /api/snapshot once (and again when the server says so), then Server-Sent Events from
+// /api/events: "states" (items whose state changed, <= 10 Hz), "alarm" (at once), "health" (1 Hz).
+'use strict';
+
+const COLOURS = { REST: '#2e9d4a', ROCKING: '#e8c31c', BEYOND_TIPPING: '#f08a1c', COMMITTED: '#d62828',
+                  OVERTURNED: '#7b2cbf', UNKNOWN: '#bbbbbb' };
+const SEVERITY = { REST: 0, ROCKING: 1, BEYOND_TIPPING: 2, COMMITTED: 3, OVERTURNED: 4, UNKNOWN: -1 };
+const LABELS = { REST: 'rest', ROCKING: 'rocking', BEYOND_TIPPING: 'beyond tipping', COMMITTED: 'committed',
+                 OVERTURNED: 'overturned', UNKNOWN: 'no state yet' };
+const HISTORY_S = 60;  // chart window, s
+
+const view = {
+  items: [], byId: new Map(), alarms: [], alarmKeys: new Set(), health: [],
+  selected: null, history: new Map(), latestStamp: 0, rows: new Map(), dirty: true,
+  plan: null,  // world -> canvas transform of the floor plan
+};
+
+const $ = (id) => document.getElementById(id);
+const modeOf = (it) => (it.state ? it.state.mode : 'UNKNOWN');
+const fmt = (v, d = 3) => (typeof v === 'number' && isFinite(v) ? v.toFixed(d) : '–');
+const signedRatio = (s) => (s.theta < 0 ? -1 : 1) * s.rotation_ratio;
+
+function utc(seconds) {
+  if (!(seconds > 0)) return '–';
+  return new Date(seconds * 1000).toISOString().replace('T', ' ').replace('Z', ' UTC');
+}
+
+// ------------------------------------------------------------------ data
+function loadSnapshot() {
+  return fetch('/api/snapshot', { cache: 'no-store' })
+    .then((r) => r.json())
+    .then(applySnapshot)
+    .catch((e) => setConn('conn-bad', 'snapshot failed: ' + e));
+}
+
+function applySnapshot(s) {
+  const t0 = performance.now();
+  $('monitor').textContent = 'monitor ' + s.monitor;
+  view.items = s.items;
+  view.byId = new Map(s.items.map((it) => [it.id, it]));
+  for (const it of s.items) if (it.state) addHistory(it.id, it.state);
+  view.alarms = [];
+  view.alarmKeys = new Set();
+  for (const a of s.alarms.slice().reverse()) addAlarm(a, false);
+  renderAlarms();
+  view.health = s.health;
+  renderHealth();
+  if (s.stamp > 0) view.latestStamp = Math.max(view.latestStamp, s.stamp);
+  if (view.selected && !view.byId.has(view.selected)) view.selected = null;
+  layoutPlan();
+  buildItemTable();
+  updateBanner();
+  renderDetail();
+  requestDraw();
+  document.body.dataset.snapshotMs = (performance.now() - t0).toFixed(1);  // for load measurements
+}
+
+function addHistory(id, st) {
+  let h = view.history.get(id);
+  if (!h) { h = []; view.history.set(id, h); }
+  // A restarted monitor or a replayed bag starts its clock again: start the chart again too.
+  if (h.length && st.stamp < h[h.length - 1].t - 1.0) h.length = 0;
+  h.push({ t: st.stamp, r: signedRatio(st), e: st.energy_margin });
+  const cut = st.stamp - HISTORY_S;
+  let drop = 0;
+  while (drop < h.length - 1 && h[drop + 1].t < cut) ++drop;
+  if (drop) h.splice(0, drop);
+  if (st.stamp > view.latestStamp) view.latestStamp = st.stamp;
+}
+
+// A delta is compact (10,000 items must fit): one array per changed item, fields named in msg.fields,
+// the governing plane's values only. The selected item's full state (both planes) comes from /api/item.
+function onStates(msg) {
+  let unknown = false, selectedChanged = false;
+  const f = msg.fields;
+  for (const row of msg.items) {
+    const d = {};
+    f.forEach((name, k) => { d[name] = row[k]; });
+    const it = view.byId.get(d.id);
+    if (!it) { unknown = true; continue; }
+    it.state = Object.assign({}, it.state || {}, {
+      mode: d.mode, plane: d.plane, theta: d.theta, rotation_ratio: d.rotation_ratio,
+      energy_margin: d.energy_margin, impacts: d.impacts, stamp: d.stamp });
+    it.criteria = d.criteria;
+    addHistory(d.id, it.state);
+    updateRow(it);
+    if (d.id === view.selected) selectedChanged = true;
+  }
+  if (msg.stamp > view.latestStamp) view.latestStamp = msg.stamp;
+  if (unknown) loadSnapshot();  // the monitor restarted with other items
+  updateBanner();
+  if (selectedChanged) { renderDetail(); loadItem(view.selected); }
+  requestDraw();
+}
+
+let itemPending = false;
+function loadItem(id) {
+  if (itemPending) return;  // at most one request in flight: never more than the delta rate
+  itemPending = true;
+  fetch('/api/item?id=' + encodeURIComponent(id), { cache: 'no-store' })
+    .then((r) => (r.ok ? r.json() : null))
+    .then((j) => {
+      const it = j && view.byId.get(j.id);
+      // Only if not older than what the deltas already brought.
+      if (it && j.state && (!it.state || !(it.state.stamp > j.state.stamp))) { it.state = j.state; it.criteria = j.criteria; }
+      renderDetail();
+      requestDraw();
+    })
+    .catch(() => {})
+    .finally(() => { itemPending = false; });
+}
+
+function addAlarm(a, render = true) {
+  const key = a.item + '/' + a.level + '/' + a.stamp;
+  if (view.alarmKeys.has(key)) return;
+  view.alarmKeys.add(key);
+  view.alarms.unshift(a);  // newest first
+  if (render) renderAlarms();
+}
+
+function setConn(cls, text) {
+  const c = $('conn');
+  c.className = cls;
+  c.textContent = text;
+}
+
+function connect() {
+  const es = new EventSource('/api/events');
+  es.addEventListener('hello', () => { setConn('conn-ok', 'live'); loadSnapshot(); });
+  es.addEventListener('states', (e) => onStates(JSON.parse(e.data)));
+  es.addEventListener('alarm', (e) => { addAlarm(JSON.parse(e.data)); });
+  es.addEventListener('health', (e) => { view.health = JSON.parse(e.data); renderHealth(); });
+  es.addEventListener('catalogue', () => loadSnapshot());
+  es.onerror = () => setConn('conn-bad', 'disconnected, retrying');  // EventSource reconnects itself
+}
+
+// ------------------------------------------------------------------ tables and banner
+function buildItemTable() {
+  const body = $('items').tBodies[0];
+  const frag = document.createDocumentFragment();
+  view.rows = new Map();
+  for (const it of view.items) {
+    const tr = document.createElement('tr');
+    tr.dataset.item = it.id;
+    for (let i = 0; i < 7; ++i) tr.appendChild(document.createElement('td'));
+    tr.cells[0].textContent = it.id;
+    tr.title = it.description || '';
+    tr.addEventListener('click', () => select(it.id));
+    view.rows.set(it.id, tr);
+    fillRow(tr, it);
+    frag.appendChild(tr);
+  }
+  body.replaceChildren(frag);
+  $('item-count').textContent = '(' + view.items.length + ')';
+}
+
+function fillRow(tr, it) {
+  const m = modeOf(it);
+  tr.dataset.mode = m;
+  tr.classList.toggle('selected', it.id === view.selected);
+  const s = it.state;
+  tr.cells[1].innerHTML = '<span class="mode m-' + m + '">' + LABELS[m] + '</span>';
+  tr.cells[2].textContent = s ? s.plane : '';
+  tr.cells[3].textContent = s ? fmt(s.rotation_ratio) : '';
+  tr.cells[4].textContent = s ? fmt(s.energy_margin) : '';
+  tr.cells[5].textContent = s ? s.impacts : '';
+  tr.cells[6].textContent = (it.criteria || []).join(', ');
+}
+
+function updateRow(it) {
+  const tr = view.rows.get(it.id);
+  if (tr) fillRow(tr, it);
+}
+
+function updateBanner() {
+  const bad = view.items.filter((it) => SEVERITY[modeOf(it)] >= SEVERITY.COMMITTED);
+  const b = $('banner');
+  if (!bad.length) { b.hidden = true; return; }
+  bad.sort((a, c) => SEVERITY[modeOf(c)] - SEVERITY[modeOf(a)]);
+  const names = bad.slice(0, 8).map((it) => it.id + ' ' + LABELS[modeOf(it)].toUpperCase());
+  b.textContent = '\u26a0 ' + bad.length + (bad.length === 1 ? ' item' : ' items') + ' committed or overturned: ' +
+                  names.join(', ') + (bad.length > 8 ? ', \u2026' : '');
+  b.hidden = false;
+}
+
+function renderAlarms() {
+  const rows = view.alarms.slice(0, 500).map((a) =>
+    '<tr data-item="' + esc(a.item) + '" data-level="' + a.level + '"><td>' + utc(a.event_time) + '</td><td>' +
+    fmt(a.t, 3) + '</td><td title="' + esc(a.description) + '">' + esc(a.item) + '</td><td><span class="mode m-' +
+    a.level + '">' + LABELS[a.level] + '</span></td><td>' + esc(a.plane) + '</td><td>' + fmt(a.rotation_ratio, 2) +
+    '</td><td>' + esc((a.predicted_by || []).join(', ') || 'none') + '</td></tr>');
+  $('alarms').tBodies[0].innerHTML = rows.join('') ||
+    '<tr><td colspan="7" class="hint">no alarms</td></tr>';
+}
+
+function esc(s) {
+  return String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' }[c]));
+}
+
+function renderHealth() {
+  // The monitor reports each sensor twice: "sensor NAME input TOPIC" (rate) and "sensor NAME samples".
+  const sensors = new Map();
+  let catalogue = null;
+  for (const st of view.health) {
+    const m = /^sensor (\S+) (input|samples)/.exec(st.name);
+    if (!m) { if (st.name === 'catalogue') catalogue = st; continue; }
+    const s = sensors.get(m[1]) || { name: m[1], level: 0, messages: [], values: {} };
+    s.level = Math.max(s.level, st.level);
+    if (st.message && st.message !== 'ok' && st.message !== 'OK') s.messages.push(st.message);
+    Object.assign(s.values, st.values);
+    sensors.set(m[1], s);
+  }
+  const num = (v) => (v === undefined ? NaN : parseFloat(v));
+  const rows = [];
+  for (const s of sensors.values()) {
+    const v = s.values;
+    const dropped = num(v['dropped duplicate stamp']) + num(v['dropped out-of-order stamp']) + num(v['dropped zero stamp']);
+    const rejected = num(v['rejected non-finite']) + num(v['rejected beyond max_abs_acceleration']);
+    const proc = num(v['processing per sample, mean (s)']), period = num(v['mean sample period (s)']);
+    const share = period > 0 ? ' (' + (100 * proc / period).toFixed(2) + ' %)' : '';
+    rows.push('<tr><td>' + esc(s.name) + '</td><td class="lvl-' + s.level + '">' +
+      esc(['OK', 'WARN', 'ERROR', 'STALE'][s.level] || s.level) + (s.messages.length ? ': ' + esc(s.messages.join('; ')) : '') +
+      '</td><td>' + fmt(num(v['Actual frequency (Hz)']), 1) + '</td><td>' + esc(v['received'] || '–') + '</td><td>' +
+      [dropped, rejected, num(v['gaps bridged'])].map((x) => (isFinite(x) ? x : '–')).join(' / ') + '</td><td>' +
+      fmt(proc * 1e3, 3) + ' ms of ' + fmt(period * 1e3, 2) + ' ms' + share + '</td></tr>');
+  }
+  $('health').tBodies[0].innerHTML = rows.join('') || '<tr><td colspan="6" class="hint">no diagnostics yet</td></tr>';
+  $('catalogue-status').textContent = catalogue ? 'catalogue: ' + catalogue.message : '';
+}
+
+// ------------------------------------------------------------------ floor plan
+function footprint(it) {
+  const w = it.width > 0 ? it.width : 0.3;
+  const d = it.depth > 0 ? it.depth : w;  // an x-plane-only item: drawn square
+  const nu = it.eccentricity > 0 ? it.eccentricity : 0.5, nuy = it.eccentricity_y > 0 ? it.eccentricity_y : 0.5;
+  return { w, d, nu, nuy };
+}
+
+function layoutPlan() {
+  // Items without a pose in the catalogue go on a row below the others (their place is unknown).
+  let minx = Infinity, maxx = -Infinity, miny = Infinity, maxy = -Infinity;
+  const posed = view.items.filter((it) => it.pose);
+  for (const it of posed) {
+    const f = footprint(it), r = Math.hypot(f.w, f.d);
+    minx = Math.min(minx, it.pose.x - r); maxx = Math.max(maxx, it.pose.x + r);
+    miny = Math.min(miny, it.pose.y - r); maxy = Math.max(maxy, it.pose.y + r);
+  }
+  if (!posed.length) { minx = 0; maxx = 4; miny = 0; maxy = 3; }
+  const loose = view.items.filter((it) => !it.pose);
+  const perRow = Math.max(1, Math.ceil(Math.sqrt(loose.length * 4)));
+  loose.forEach((it, k) => {
+    it.auto = { x: minx + 0.5 + 1.0 * (k % perRow), y: miny - 1.0 - 1.0 * Math.floor(k / perRow), yaw: 0 };
+  });
+  if (loose.length) miny -= 1.5 + Math.ceil(loose.length / perRow);
+  view.bounds = { minx, maxx, miny, maxy };
+}
+
+function placeOf(it) { return it.pose || it.auto || { x: 0, y: 0, yaw: 0 }; }
+
+function fitCanvas(c) {
+  const dpr = window.devicePixelRatio || 1;
+  const w = Math.max(50, Math.round(c.clientWidth * dpr)), h = Math.max(50, Math.round(c.clientHeight * dpr));
+  if (c.width !== w || c.height !== h) { c.width = w; c.height = h; }
+  return dpr;
+}
+
+function drawPlan() {
+  const c = $('plan'), ctx = c.getContext('2d');
+  const dpr = fitCanvas(c);
+  const W = c.width, H = c.height, pad = 28 * dpr;
+  ctx.clearRect(0, 0, W, H);
+  if (!view.bounds) return;
+  const b = view.bounds;
+  const s = Math.min((W - 2 * pad) / (b.maxx - b.minx), (H - 2 * pad) / (b.maxy - b.miny));
+  const ox = pad + ((W - 2 * pad) - s * (b.maxx - b.minx)) / 2 - s * b.minx;
+  const oy = H - pad - ((H - 2 * pad) - s * (b.maxy - b.miny)) / 2 + s * b.miny;
+  view.plan = { s, ox, oy, dpr };  // canvas = (ox + s x, oy - s y): x right, y up (REP 103)
+
+  // 1 m grid (coarser when the site is large), so distances read off the plan.
+  let step = 1;
+  while (s * step < 25 * dpr) step *= 5;
+  ctx.strokeStyle = '#e6eaee';
+  ctx.lineWidth = 1;
+  ctx.beginPath();
+  for (let x = Math.ceil(b.minx / step) * step; x <= b.maxx; x += step) { ctx.moveTo(ox + s * x, 0); ctx.lineTo(ox + s * x, H); }
+  for (let y = Math.ceil(b.miny / step) * step; y <= b.maxy; y += step) { ctx.moveTo(0, oy - s * y); ctx.lineTo(W, oy - s * y); }
+  ctx.stroke();
+  // scale bar
+  ctx.fillStyle = '#444';
+  ctx.fillRect(pad, H - 12 * dpr, s * step, 3 * dpr);
+  ctx.font = 11 * dpr + 'px system-ui, sans-serif';
+  ctx.fillText(step + ' m', pad + s * step + 6 * dpr, H - 8 * dpr);
+  ctx.fillText('x \u2192   y \u2191', W - 80 * dpr, H - 8 * dpr);
+
+  const labels = view.items.length <= 300;
+  for (const it of view.items) {
+    const p = placeOf(it), f = footprint(it), m = modeOf(it);
+    ctx.save();
+    ctx.translate(ox + s * p.x, oy - s * p.y);
+    ctx.rotate(-p.yaw);  // canvas y points down: a counter-clockwise yaw turns the other way here
+    // The item frame's origin is under the centre of mass: the base spans -nu B .. (1 - nu) B.
+    const x0 = -f.nu * f.w * s, y0 = -(1 - f.nuy) * f.d * s;
+    ctx.fillStyle = COLOURS[m];
+    ctx.globalAlpha = it.pose ? 1 : 0.6;
+    ctx.fillRect(x0, y0, f.w * s, f.d * s);
+    ctx.globalAlpha = 1;
+    ctx.lineWidth = (it.id === view.selected ? 3 : 1) * dpr;
+    ctx.strokeStyle = it.id === view.selected ? '#0b3d91' : '#0006';
+    ctx.strokeRect(x0, y0, f.w * s, f.d * s);
+    if (m === 'OVERTURNED') {  // a cross as well as the colour: readable in grey print too
+      ctx.beginPath();
+      ctx.moveTo(x0, y0); ctx.lineTo(x0 + f.w * s, y0 + f.d * s);
+      ctx.moveTo(x0 + f.w * s, y0); ctx.lineTo(x0, y0 + f.d * s);
+      ctx.strokeStyle = '#fff';
+      ctx.lineWidth = 2 * dpr;
+      ctx.stroke();
+    }
+    ctx.restore();
+    if (labels) {
+      ctx.fillStyle = '#222';
+      ctx.font = (it.id === view.selected ? 'bold ' : '') + 12 * dpr + 'px system-ui, sans-serif';
+      const r = Math.hypot(f.w, f.d) * s / 2, tw = ctx.measureText(it.id).width;
+      let lx = ox + s * p.x + r + 4 * dpr;
+      if (lx + tw > W - 4 * dpr) lx = ox + s * p.x - r - 4 * dpr - tw;  // near the right edge: on the left
+      ctx.fillText(it.id, lx, oy - s * p.y - r);
+    }
+  }
+}
+
+function pickAt(px, py) {
+  const P = view.plan;
+  if (!P) return null;
+  const wx = (px * P.dpr - P.ox) / P.s, wy = (P.oy - py * P.dpr) / P.s;
+  const tol = 4 * P.dpr / P.s;  // a few pixels around small items
+  let best = null, bestArea = Infinity;
+  for (const it of view.items) {
+    const p = placeOf(it), f = footprint(it);
+    const dx = wx - p.x, dy = wy - p.y, c = Math.cos(p.yaw), sn = Math.sin(p.yaw);
+    const lx = c * dx + sn * dy, ly = -sn * dx + c * dy;  // into the item's frame
+    if (lx >= -f.nu * f.w - tol && lx <= (1 - f.nu) * f.w + tol && ly >= -f.nuy * f.d - tol && ly <= (1 - f.nuy) * f.d + tol) {
+      const area = f.w * f.d;
+      if (area < bestArea) { best = it; bestArea = area; }  // the smaller one when they overlap
+    }
+  }
+  return best;
+}
+
+// ------------------------------------------------------------------ selected item
+// The server keeps each item's last 60 s (what it sent): a page opened after the alarm still has the chart.
+function loadHistory(id) {
+  fetch('/api/history?id=' + encodeURIComponent(id), { cache: 'no-store' })
+    .then((r) => (r.ok ? r.json() : null))
+    .then((j) => {
+      if (!j || !j.points.length) return;
+      const local = view.history.get(id) || [];
+      const lastServer = j.points[j.points.length - 1][0];
+      const merged = j.points.map(([t, r, e]) => ({ t, r, e })).concat(local.filter((p) => p.t > lastServer));
+      view.history.set(id, merged);
+      requestDraw();
+    })
+    .catch(() => {});
+}
+
+function select(id) {
+  const old = view.rows.get(view.selected);
+  if (id !== view.selected) loadHistory(id);
+  view.selected = id;
+  loadItem(id);
+  if (old) old.classList.remove('selected');
+  const tr = view.rows.get(id);
+  if (tr) { tr.classList.add('selected'); tr.scrollIntoView({ block: 'nearest' }); }
+  renderDetail();
+  requestDraw();
+}
+
+function renderDetail() {
+  const it = view.selected && view.byId.get(view.selected);
+  if (!it) return;
+  const s = it.state, m = modeOf(it);
+  $('sel-title').innerHTML = esc(it.id) + ' <span class="mode m-' + m + '">' + LABELS[m] + '</span>';
+  $('sel-desc').textContent = it.description || '';
+  const rows = [];
+  const row = (k, v) => rows.push('<tr><td>' + k + '</td><td>' + v + '</td></tr>');
+  row('base B \u00d7 D, h', fmt(it.width, 2) + ' \u00d7 ' + (it.depth ? fmt(it.depth, 2) : '\u2013') + ' m, ' + fmt(it.cg_height, 2) + ' m');
+  if (s) {
+    row('governing plane', s.plane + (s.plane_count > 1 ? ' (of 2)' : s.plane_count === 1 ? ' (x only)' : ''));
+    row('\u03b8, \u03b8/\u03b1', fmt(s.theta, 4) + ' rad, ' + fmt(s.rotation_ratio, 3));
+    row('energy margin', fmt(s.energy_margin, 3));
+    if (s.x) row('impacts x / y', s.x.impacts + (s.y ? ' / ' + s.y.impacts : ''));
+    if (s.model) row('model', esc(s.model) + (s.model_valid ? '' : ' (pure rocking not valid)'));
+  }
+  row('criteria exceeded', esc((it.criteria || []).join(', ') || 'none'));
+  $('sel-details').tBodies[0].innerHTML = rows.join('');
+}
+
+function drawSide() {
+  const c = $('side'), ctx = c.getContext('2d');
+  const W = c.width, H = c.height;
+  ctx.clearRect(0, 0, W, H);
+  const it = view.selected && view.byId.get(view.selected);
+  ctx.font = '12px system-ui, sans-serif';
+  if (!it) { ctx.fillStyle = '#888'; ctx.fillText('side view of the selected item', 10, 20); return; }
+  const st = it.state, plane = st ? st.plane : 'x';
+  const ps = { theta: st ? st.theta : 0 };  // item level = the governing plane's
+  const f = footprint(it);
+  const B = plane === 'y' ? f.d : f.w, nu = plane === 'y' ? f.nuy : f.nu;
+  const h2 = 2 * (it.cg_height > 0 ? it.cg_height : 0.5);  // drawn as a homogeneous B x 2h block
+  const reach = Math.max(B + h2, h2 * 1.1);
+  const s = Math.min((W - 40) / (2 * reach), (H - 50) / reach);
+  const gx = W / 2, gy = H - 28;  // ground point under the centre of mass
+  ctx.strokeStyle = '#555'; ctx.lineWidth = 2;
+  ctx.beginPath(); ctx.moveTo(10, gy); ctx.lineTo(W - 10, gy); ctx.stroke();
+  // theta > 0: about corner 1 (-B nu), tipping towards -x (left); theta < 0: about corner 2, right.
+  const th = Math.max(-Math.PI / 2, Math.min(Math.PI / 2, ps.theta || 0));
+  const px = th >= 0 ? -nu * B : (1 - nu) * B;
+  const corners = [[-nu * B, 0], [(1 - nu) * B, 0], [(1 - nu) * B, h2], [-nu * B, h2]];
+  const rot = ([u, z]) => {
+    const du = u - px, c1 = Math.cos(th), s1 = Math.sin(th);
+    return [px + du * c1 - z * s1, du * s1 + z * c1];
+  };
+  const toC = ([u, z]) => [gx + s * u, gy - s * z];
+  ctx.beginPath();
+  corners.map(rot).map(toC).forEach(([x, y], k) => (k ? ctx.lineTo(x, y) : ctx.moveTo(x, y)));
+  ctx.closePath();
+  ctx.fillStyle = COLOURS[modeOf(it)];
+  ctx.globalAlpha = 0.85; ctx.fill(); ctx.globalAlpha = 1;
+  ctx.strokeStyle = '#222'; ctx.lineWidth = 1.5; ctx.stroke();
+  const [cx, cy] = toC(rot([0, h2 / 2]));  // centre of mass
+  ctx.fillStyle = '#000'; ctx.beginPath(); ctx.arc(cx, cy, 3, 0, 2 * Math.PI); ctx.fill();
+  const [qx, qy] = toC([px, 0]);  // pivot
+  ctx.strokeStyle = '#000'; ctx.beginPath(); ctx.arc(qx, qy, 4, 0, 2 * Math.PI); ctx.stroke();
+  ctx.fillStyle = '#222';
+  ctx.fillText('side view, plane ' + plane + (plane === 'y' ? ' (across the depth)' : ' (across the width)'), 10, 16);
+  ctx.fillText('\u03b8 = ' + fmt(ps.theta, 3) + ' rad (' + fmt((ps.theta || 0) * 180 / Math.PI, 1) + '\u00b0)', 10, 32);
+}
+
+function drawChart() {
+  const c = $('chart'), ctx = c.getContext('2d');
+  const W = c.width, H = c.height, l = 34, r = 8, t = 18, b = 20;
+  ctx.clearRect(0, 0, W, H);
+  ctx.font = '11px system-ui, sans-serif';
+  const h = view.selected ? view.history.get(view.selected) || [] : [];
+  const t1 = view.latestStamp, t0 = t1 - HISTORY_S;
+  let lo = -1.2, hi = 1.2;
+  for (const p of h) { lo = Math.min(lo, p.r, p.e); hi = Math.max(hi, p.r, p.e); }
+  lo = Math.max(lo, -2.5); hi = Math.min(hi, 2.5);  // an overturned item's ratio (up to ~10) would flatten the rest
+  const X = (tt) => l + (W - l - r) * (tt - t0) / HISTORY_S, Y = (v) => t + (H - t - b) * (hi - v) / (hi - lo);
+  ctx.strokeStyle = '#ccc'; ctx.lineWidth = 1;
+  ctx.strokeRect(l, t, W - l - r, H - t - b);
+  ctx.fillStyle = '#666';
+  for (const v of [-1, 0, 1]) {
+    ctx.setLineDash(v ? [4, 3] : []);
+    ctx.beginPath(); ctx.moveTo(l, Y(v)); ctx.lineTo(W - r, Y(v)); ctx.stroke();
+    ctx.fillText(String(v), 8, Y(v) + 4);
+  }
+  ctx.setLineDash([]);
+  for (let k = 0; k <= 6; ++k) ctx.fillText(k < 6 ? '-' + (60 - 10 * k) + ' s' : 'now', X(t0 + 10 * k) - 12, H - 5);
+  const line = (key, colour) => {
+    if (!h.length) return;
+    ctx.strokeStyle = colour; ctx.lineWidth = 1.6; ctx.beginPath();
+    h.forEach((p, k) => {
+      const x = X(Math.max(p.t, t0)), y = Y(Math.max(lo, Math.min(hi, p[key])));
+      k ? ctx.lineTo(x, y) : ctx.moveTo(x, y);
+    });
+    const last = h[h.length - 1];
+    ctx.lineTo(X(t1), Y(Math.max(lo, Math.min(hi, last[key]))));  // unchanged since: flat
+    ctx.stroke();
+  };
+  line('e', '#2a9d8f');
+  line('r', '#1d4ed8');
+  ctx.fillStyle = '#1d4ed8'; ctx.fillText('\u00b1\u03b8/\u03b1', l + 4, 12);
+  ctx.fillStyle = '#2a9d8f'; ctx.fillText('energy margin', l + 50, 12);
+  ctx.fillStyle = '#666'; ctx.fillText('last 60 s', W - 60, 12);
+}
+
+// ------------------------------------------------------------------ drawing loop
+let drawQueued = false;
+function requestDraw() {
+  if (drawQueued) return;
+  drawQueued = true;
+  requestAnimationFrame(() => {
+    drawQueued = false;
+    const t0 = performance.now();
+    drawPlan();
+    drawSide();
+    drawChart();
+    document.body.dataset.drawMs = (performance.now() - t0).toFixed(1);  // for load measurements
+    $('clock').textContent = view.latestStamp > 0 ? utc(view.latestStamp) : 'no data yet';
+  });
+}
+
+function init() {
+  const legend = $('legend');
+  for (const m of ['REST', 'ROCKING', 'BEYOND_TIPPING', 'COMMITTED', 'OVERTURNED']) {
+    const sp = document.createElement('span');
+    sp.style.setProperty('--c', COLOURS[m]);
+    sp.textContent = LABELS[m];
+    legend.appendChild(sp);
+  }
+  $('plan').addEventListener('click', (e) => {
+    const rect = e.target.getBoundingClientRect();
+    const it = pickAt(e.clientX - rect.left, e.clientY - rect.top);
+    if (it) select(it.id);
+  });
+  window.addEventListener('resize', requestDraw);
+  renderAlarms();
+  renderHealth();
+  // ?poll=SECONDS: no live stream, the snapshot every SECONDS instead (headless browsers, whose
+  // virtual time never runs out while a stream is open; proxies that buffer event streams).
+  const poll = parseFloat(new URLSearchParams(location.search).get('poll'));
+  if (poll > 0) {
+    setConn('conn-wait', 'polling every ' + poll + ' s');
+    loadSnapshot();
+    setInterval(loadSnapshot, poll * 1000);
+  } else {
+    connect();
+  }
+  const sel = new URLSearchParams(location.search).get('select');
+  if (sel) { view.selected = sel; loadHistory(sel); }  // ?select=ID: open with it selected (screenshots, links)
+}
+
+init();

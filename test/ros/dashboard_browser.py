@@ -1,0 +1,80 @@
+#!/usr/bin/python3
+"""rostest: the dashboard page in headless Chromium after the pulse replay.
+
+Loads the page (with ?poll=1: a headless browser's virtual time never runs out while an event stream
+is open, so the page polls the snapshot instead) and checks the DOM: every catalogue item has a row
+carrying its id and mode, the item that overturned is OVERTURNED, the one that survives is not, and the
+red banner is shown. Saves a screenshot (~screenshot, default $ROS_HOME/dashboard_browser.png)."""
+import os
+import re
+import shutil
+import subprocess
+import tempfile
+import time
+import unittest
+
+import rospy
+import rostest
+from rocking_monitor.msg import OverturnAlarm, RockingStateArray
+
+FLAGS = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+         '--disable-background-networking', '--disable-component-update', '--disable-sync',
+         '--virtual-time-budget=5000']
+
+
+def chromium(args, timeout=90):
+    with tempfile.TemporaryDirectory() as profile:
+        return subprocess.run(['chromium'] + FLAGS + ['--user-data-dir=' + profile] + args,
+                              stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, timeout=timeout, check=True).stdout
+
+
+class DashboardBrowser(unittest.TestCase):
+    def test_overturned_item_shows_as_overturned(self):
+        self.assertIsNotNone(shutil.which('chromium'), 'chromium not installed (scripts/install_deps.sh)')
+        must_overturn = rospy.get_param('~must_overturn')
+        must_survive = rospy.get_param('~must_survive')
+        last = {'states': None, 'time': time.time(), 'alarms': []}
+        rospy.Subscriber('/rocking_monitor/states', RockingStateArray,
+                         lambda m: last.update(states=m, time=time.time()), queue_size=10)
+        rospy.Subscriber('/rocking_monitor/alarms', OverturnAlarm,
+                         lambda m: last['alarms'].append((m.item_id, m.level)), queue_size=1000)
+        deadline = time.time() + 90
+        while not rospy.has_param('/dashboard/url'):
+            self.assertLess(time.time(), deadline, 'no /dashboard/url')
+            time.sleep(0.1)
+        url = rospy.get_param('/dashboard/url')
+        # After the replay: the overturn seen on ROS and no state for 2 s (the bag is over).
+        while not ((must_overturn, OverturnAlarm.OVERTURNED) in last['alarms'] and time.time() - last['time'] > 2.0):
+            self.assertLess(time.time(), deadline, 'replay did not end with %s overturned' % must_overturn)
+            time.sleep(0.1)
+
+        dom = chromium(['--dump-dom', url + '?poll=1']).decode('utf-8', 'replace')
+        rows = {}
+        for tag in re.findall(r'<tr [^>]*>', dom):  # item rows carry data-item and data-mode (alarm rows: data-level)
+            item, mode = re.search(r'data-item="([^"]+)"', tag), re.search(r'data-mode="([^"]+)"', tag)
+            if item and mode:
+                rows[item.group(1)] = mode.group(1)
+        ids = [s.id for s in last['states'].items]
+        for i in ids:
+            self.assertIn(i, rows, 'no row for %s in the DOM' % i)
+        modes = {s.id: s.mode for s in last['states'].items}
+        names = ['REST', 'ROCKING', 'BEYOND_TIPPING', 'COMMITTED', 'OVERTURNED']
+        for i in ids:
+            self.assertEqual(rows[i], names[modes[i]], i)
+        self.assertEqual(rows[must_overturn], 'OVERTURNED')
+        self.assertNotEqual(rows[must_survive], 'OVERTURNED')
+        self.assertRegex(dom, r'<div id="banner" role="alert">[^<]*' + must_overturn)
+        print('DOM rows: %s' % rows)
+
+        shot = rospy.get_param('~screenshot', '') or os.path.join(
+            os.environ.get('ROS_HOME', os.path.expanduser('~/.ros')), 'dashboard_browser.png')
+        os.makedirs(os.path.dirname(os.path.abspath(shot)), exist_ok=True)
+        chromium(['--window-size=1400,1000', '--hide-scrollbars', '--screenshot=' + os.path.abspath(shot),
+                  url + '?poll=1&select=' + must_overturn])
+        self.assertGreater(os.path.getsize(shot), 10000)
+        print('screenshot: %s' % shot)
+
+
+if __name__ == '__main__':
+    rospy.init_node('dashboard_browser')
+    rostest.rosrun('rocking_monitor', 'dashboard_browser', DashboardBrowser)
