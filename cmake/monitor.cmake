@@ -104,7 +104,10 @@ if(CPP_HTTPLIB_FOUND)
     # The page in a real browser (Debian chromium, scripts/install_deps.sh); skipped with a notice without it.
     find_program(CHROMIUM_EXECUTABLE chromium)
     if(CHROMIUM_EXECUTABLE)
-      add_rostest(test/ros/dashboard_browser.test DEPENDENCIES dashboard monitor)
+      # The test is Python: ctest does not source devel/setup.bash, so it is told where the generated
+      # message modules are.
+      add_rostest(test/ros/dashboard_browser.test ARGS python_path:=${CATKIN_DEVEL_PREFIX}/${PYTHON_INSTALL_DIR}
+                  DEPENDENCIES dashboard monitor)
     else()
       message(STATUS "chromium not found: the dashboard's browser test (test/ros/dashboard_browser.test) is not run")
     endif()
