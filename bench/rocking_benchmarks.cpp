@@ -33,22 +33,7 @@
 #include "bench_common.hpp"
 #include "rocking_monitor/model/batch_rocking.hpp"
 
-// ------------------------------------------------------------------ allocation counter
-// Every heap allocation in this program goes through these; the benchmarks read the count around
-// their timed loops.
-namespace {
-std::atomic<long> g_allocations{0};
-}
-void* operator new(std::size_t n) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) { return operator new(n); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+#include "allocation_counter.hpp"  // counts heap allocations (replaces operator new)
 
 namespace rb = rocking_monitor::bench;
 using namespace rocking_monitor::core;
@@ -105,7 +90,7 @@ void BM_Item(benchmark::State& state, const Scenario* sc, rb::MethodSetting ms) 
     m.reset(0.0, a[0], sc->motion.ay(0));
     if (sc->theta0_ratio > 0.0) m.set_state(sc->theta0_ratio * alpha, 0.0);
     long rocking = 0;
-    const long allocs0 = g_allocations.load();
+    const long allocs0 = rocking_monitor::testing::allocation_count();
     const double start = rb::thread_cpu_seconds();
     for (std::size_t i = 1; i < n; ++i) {
       const Mode before = m.mode();
@@ -113,7 +98,7 @@ void BM_Item(benchmark::State& state, const Scenario* sc, rb::MethodSetting ms) 
       rocking += rocked(before, m, r);
     }
     const double stop = rb::thread_cpu_seconds();
-    t.allocations += static_cast<double>(g_allocations.load() - allocs0);
+    t.allocations += static_cast<double>(rocking_monitor::testing::allocation_count() - allocs0);
     t.seconds += stop - start;
     t.item_steps += static_cast<double>(n - 1);
     t.rocking_steps += static_cast<double>(rocking);
@@ -148,7 +133,7 @@ void BM_Catalogue(benchmark::State& state, const CatalogueCase* cc, rb::MethodSe
       if (r0 != 0.0) items[k].set_state(r0 * items[k].body().pivot(r0 > 0 ? 1 : -1).alpha, 0.0);
     }
     long rocking = 0;
-    const long allocs0 = g_allocations.load();
+    const long allocs0 = rocking_monitor::testing::allocation_count();
     const double start = rb::thread_cpu_seconds();
     for (std::size_t i = 1; i < n; ++i) {
       const double ax = a[i], ay = cc->motion.ay(i);
@@ -159,7 +144,7 @@ void BM_Catalogue(benchmark::State& state, const CatalogueCase* cc, rb::MethodSe
       }
     }
     const double stop = rb::thread_cpu_seconds();
-    t.allocations += static_cast<double>(g_allocations.load() - allocs0);
+    t.allocations += static_cast<double>(rocking_monitor::testing::allocation_count() - allocs0);
     t.seconds += stop - start;
     t.item_steps += static_cast<double>((n - 1) * items.size());
     t.rocking_steps += static_cast<double>(rocking);
@@ -193,7 +178,7 @@ void BM_CatalogueBatch(benchmark::State& state, const CatalogueCase* cc, rb::Met
       if (r0 != 0.0) batch.model(k).set_state(r0 * batch.model(k).body().pivot(r0 > 0 ? 1 : -1).alpha, 0.0);
     }
     long rocking = 0;
-    const long allocs0 = g_allocations.load();
+    const long allocs0 = rocking_monitor::testing::allocation_count();
     const double start = rb::thread_cpu_seconds();
     for (std::size_t i = 1; i < n; ++i) {
       std::fill(ax.begin(), ax.end(), a[i]);
@@ -207,7 +192,7 @@ void BM_CatalogueBatch(benchmark::State& state, const CatalogueCase* cc, rb::Met
       rocking += static_cast<long>(items - st.rest_fast);
     }
     const double stop = rb::thread_cpu_seconds();
-    t.allocations += static_cast<double>(g_allocations.load() - allocs0);
+    t.allocations += static_cast<double>(rocking_monitor::testing::allocation_count() - allocs0);
     t.seconds += stop - start;
     t.item_steps += static_cast<double>((n - 1) * items);
     t.rocking_steps += static_cast<double>(rocking);

@@ -18,20 +18,7 @@
 #include "rocking_monitor/motion/record_reader.hpp"
 #include "test_helpers.hpp"
 
-// Heap allocations of this program (the batch's step() must make none).
-namespace {
-std::atomic<long> g_allocs{0};
-}
-void* operator new(std::size_t n) {
-  g_allocs.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) { return operator new(n); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+#include "allocation_counter.hpp"  // counts heap allocations (replaces operator new)
 
 namespace rocking_monitor::core {
 namespace {
@@ -128,9 +115,9 @@ Compare run_compare(const std::vector<BodyParameters>& bodies, const Input& in, 
       ax[k] = in.ax[i];
       ay[k] = in.ay_at(i);
     }
-    const long a0 = g_allocs.load();
+    const long a0 = rocking_monitor::testing::allocation_count();
     batch.step(ax.data(), ay.data(), in.dt);
-    c.allocations += g_allocs.load() - a0;
+    c.allocations += rocking_monitor::testing::allocation_count() - a0;
     const BatchStats& st = batch.stats();
     c.totals.rest_fast += st.rest_fast;
     c.totals.rocking_fast += st.rocking_fast;

@@ -1,0 +1,24 @@
+#pragma once
+// Counts every heap allocation of the program that includes this header (in exactly one of its
+// translation units: it replaces the global operator new/delete). Tests and benchmarks read
+// allocation_count() around a loop that must not allocate.
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+namespace rocking_monitor::testing {
+inline std::atomic<long> g_allocation_count{0};
+inline long allocation_count() { return g_allocation_count.load(std::memory_order_relaxed); }
+}  // namespace rocking_monitor::testing
+
+void* operator new(std::size_t n) {
+  rocking_monitor::testing::g_allocation_count.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t n) { return operator new(n); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
