@@ -7,7 +7,7 @@
 #   csv          csv/          CSV reading and writing   (nothing)
 #   motion       motion/       ground motion, records    csv
 #   monitoring   monitoring/   per-item monitor, offline model, motion and below
-#   study        study/        the paper's study         model, motion and below
+#   study        study/        the paper's study         monitoring (catalogue items, ensembles) and below
 #
 include(${CMAKE_CURRENT_LIST_DIR}/layers_rules.cmake)  # who may include whom
 
@@ -56,15 +56,20 @@ target_include_directories(rocking_monitor_model PRIVATE ${CMAKE_CURRENT_SOURCE_
 set_source_files_properties(${CMAKE_CURRENT_SOURCE_DIR}/src/model/batch_rocking_simd.cpp
   PROPERTIES COMPILE_OPTIONS "-ffp-contract=off")
 
-# The study runs its cases on std::thread workers and reads YAML bodies / writes a JSON summary.
+# The catalogue (monitoring/catalogue*.cpp) is parsed from JSON values (its header names
+# nlohmann::json) and read from YAML files; the study runs its cases on std::thread workers and reads
+# YAML bodies / writes a JSON summary.
 find_package(yaml-cpp REQUIRED)
+target_link_libraries(rocking_monitor_monitoring PUBLIC nlohmann_json::nlohmann_json)
 target_link_libraries(rocking_monitor_study PUBLIC Threads::Threads PRIVATE nlohmann_json::nlohmann_json)
 # Debian's yaml-cpp 0.7 exports the plain target name `yaml-cpp` (later versions: yaml-cpp::yaml-cpp).
-if(TARGET yaml-cpp::yaml-cpp)
-  target_link_libraries(rocking_monitor_study PRIVATE yaml-cpp::yaml-cpp)
-else()
-  target_link_libraries(rocking_monitor_study PRIVATE yaml-cpp)
-endif()
+foreach(target rocking_monitor_monitoring rocking_monitor_study)
+  if(TARGET yaml-cpp::yaml-cpp)
+    target_link_libraries(${target} PRIVATE yaml-cpp::yaml-cpp)
+  else()
+    target_link_libraries(${target} PRIVATE yaml-cpp)
+  endif()
+endforeach()
 
 # Umbrella: the whole core, for tools, tests and the ROS layer.
 add_library(rocking_monitor_core INTERFACE)

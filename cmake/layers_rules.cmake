@@ -6,6 +6,6 @@ set(ROCKING_LAYER_ALLOWS_model integrate physics)
 set(ROCKING_LAYER_ALLOWS_csv "")
 set(ROCKING_LAYER_ALLOWS_motion csv)
 set(ROCKING_LAYER_ALLOWS_monitoring model integrate physics motion csv)
-set(ROCKING_LAYER_ALLOWS_study model integrate physics motion csv)
+set(ROCKING_LAYER_ALLOWS_study monitoring model integrate physics motion csv)
 set(ROCKING_CORE_LAYER_NAMES physics integrate model csv motion monitoring study)
 

@@ -1,263 +1,32 @@
 #include "rocking_monitor/ros/catalogue.hpp"
 
-#include <cmath>
-#include <cstdint>
-#include <cstdio>
-#include <set>
-#include <sstream>
+#include <nlohmann/json.hpp>
 
 namespace rocking_monitor::live {
-namespace {
 
-using XmlRpc::XmlRpcValue;
-
-const char* type_name(XmlRpcValue::Type t) {
-  switch (t) {
-    case XmlRpcValue::TypeBoolean: return "a boolean";
-    case XmlRpcValue::TypeInt: return "an integer";
-    case XmlRpcValue::TypeDouble: return "a number";
-    case XmlRpcValue::TypeString: return "a string";
-    case XmlRpcValue::TypeArray: return "a list";
-    case XmlRpcValue::TypeStruct: return "a map";
-    default: return "empty";
+nlohmann::json to_json(const XmlRpc::XmlRpcValue& value) {
+  auto& v = const_cast<XmlRpc::XmlRpcValue&>(value);  // XmlRpcValue's accessors are not const
+  switch (v.getType()) {
+    case XmlRpc::XmlRpcValue::TypeBoolean: return static_cast<bool>(v);
+    case XmlRpc::XmlRpcValue::TypeInt: return static_cast<int>(v);
+    case XmlRpc::XmlRpcValue::TypeDouble: return static_cast<double>(v);
+    case XmlRpc::XmlRpcValue::TypeString: return static_cast<std::string>(v);
+    case XmlRpc::XmlRpcValue::TypeArray: {
+      nlohmann::json a = nlohmann::json::array();
+      for (int i = 0; i < v.size(); ++i) a.push_back(to_json(v[i]));
+      return a;
+    }
+    case XmlRpc::XmlRpcValue::TypeStruct: {
+      nlohmann::json o = nlohmann::json::object();
+      for (auto it = v.begin(); it != v.end(); ++it) o[it->first] = to_json(it->second);
+      return o;
+    }
+    default: return nullptr;
   }
 }
 
-// Reads fields of one list entry with messages that name the entry and the field.
-class Entry {
- public:
-  Entry(const XmlRpcValue& v, std::string where) : v_(const_cast<XmlRpcValue&>(v)), where_(std::move(where)) {
-    if (v_.getType() != XmlRpcValue::TypeStruct) fail("", std::string("must be a map, found ") + type_name(v_.getType()));
-  }
-  [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
-    throw CatalogueError(where_ + (field.empty() ? "" : ": " + field) + ": " + problem);
-  }
-  bool has(const std::string& f) const { return v_.hasMember(f); }
-  std::string text(const std::string& f, bool required, const std::string& fallback = "") const {
-    if (!has(f)) {
-      if (required) fail(f, "missing");
-      return fallback;
-    }
-    if (v_[f].getType() != XmlRpcValue::TypeString) fail(f, std::string("must be a string, found ") + type_name(v_[f].getType()));
-    return static_cast<std::string>(v_[f]);
-  }
-  double number(const std::string& f, bool required, double fallback, const char* unit) const {
-    if (!has(f)) {
-      if (required) fail(f, std::string("missing (") + unit + ")");
-      return fallback;
-    }
-    const XmlRpcValue& x = v_[f];
-    double d;
-    if (x.getType() == XmlRpcValue::TypeDouble) d = static_cast<double>(const_cast<XmlRpcValue&>(x));
-    else if (x.getType() == XmlRpcValue::TypeInt) d = static_cast<int>(const_cast<XmlRpcValue&>(x));
-    else fail(f, std::string("must be a number (") + unit + "), found " + type_name(x.getType()));
-    if (!std::isfinite(d)) fail(f, "must be finite");
-    return d;
-  }
-  // A numeric key that may also be a distribution map ({uniform: [lo, hi]}, {normal: [mean, sd]},
-  // {lognormal: [median, beta]}, optionally with nominal: x). Returns the nominal value; the law (if
-  // any) goes into u.
-  double quantity(const std::string& f, core::UncertainField field, bool required, double fallback, const char* unit,
-                  core::UncertainItemSpec& u) const {
-    if (!has(f) || v_[f].getType() != XmlRpcValue::TypeStruct) return number(f, required, fallback, unit);
-    const core::Distribution d = distribution(f, field);
-    u.law(field) = d;
-    return d.nominal();
-  }
-  core::Distribution distribution(const std::string& f, core::UncertainField field) const {
-    XmlRpcValue& m = v_[f];
-    std::string law;
-    XmlRpcValue* params = nullptr;
-    bool nominal_given = false;
-    double nominal = 0.0;
-    for (auto it = m.begin(); it != m.end(); ++it) {
-      const std::string& key = it->first;
-      if (key == "nominal") {
-        nominal = scalar(it->second, f, "nominal");
-        nominal_given = true;
-      } else if (key == "uniform" || key == "normal" || key == "lognormal") {
-        if (!law.empty()) fail(f, "two distributions (" + law + ", " + key + "): give one");
-        law = key;
-        params = &it->second;
-      } else {
-        fail(f, "'" + key + "' is not a distribution (uniform, normal, lognormal) nor nominal");
-      }
-    }
-    if (law.empty())
-      fail(f, "a map must give a distribution: {uniform: [lo, hi]}, {normal: [mean, sd]} or "
-              "{lognormal: [median, beta]}, optionally with nominal: x");
-    const char* first = law == "uniform" ? "lo" : law == "normal" ? "mean" : "median";
-    const char* second = law == "uniform" ? "hi" : law == "normal" ? "sd" : "beta";
-    const std::string shape = law + ": must be a list [" + first + ", " + second + "] of 2 numbers, found ";
-    if (params->getType() != XmlRpcValue::TypeArray) fail(f, shape + type_name(params->getType()));
-    if (params->size() != 2) fail(f, shape + std::to_string(params->size()) + (params->size() == 1 ? " entry" : " entries"));
-    const double a = scalar((*params)[0], f, law + ": " + first), b = scalar((*params)[1], f, law + ": " + second);
-    const core::ValueRange range = core::valid_range(field);
-    core::Distribution d = law == "uniform"  ? core::Distribution::uniform(a, b, range)
-                           : law == "normal" ? core::Distribution::normal(a, b, range)
-                                             : core::Distribution::lognormal(a, b, range);
-    if (nominal_given) d = d.with_nominal(nominal);
-    if (const std::string error = core::validate(d, f); !error.empty()) throw CatalogueError(where_ + ": " + error);
-    return d;
-  }
-  const XmlRpcValue& member(const std::string& f) const { return v_[f]; }
-  void only(const std::set<std::string>& known) const {
-    for (auto it = v_.begin(); it != v_.end(); ++it)
-      if (!known.count(it->first)) fail(it->first, "unknown key (a typo?)");
-  }
-  const std::string& where() const { return where_; }
-  // A number inside a distribution map ("<field>: <what>: must be a number, found ...").
-  double scalar(XmlRpcValue& x, const std::string& f, const std::string& what) const {
-    if (x.getType() == XmlRpcValue::TypeDouble) return static_cast<double>(x);
-    if (x.getType() == XmlRpcValue::TypeInt) return static_cast<int>(x);
-    fail(f, what + ": must be a number, found " + type_name(x.getType()));
-  }
-
- private:
-  XmlRpcValue& v_;
-  std::string where_;
-};
-
-std::string label(const char* list, int i, const std::string& name) {
-  std::ostringstream os;
-  os << list << "[" << i << "]";
-  if (!name.empty()) os << " '" << name << "'";
-  return os.str();
-}
-
-std::string name_of(const XmlRpcValue& v, const char* key) {
-  auto& m = const_cast<XmlRpcValue&>(v);
-  if (m.getType() == XmlRpcValue::TypeStruct && m.hasMember(key) && m[key].getType() == XmlRpcValue::TypeString)
-    return static_cast<std::string>(m[key]);
-  return {};
-}
-
-}  // namespace
-
-int shard_of(const std::string& id, int n) {
-  std::uint64_t h = 14695981039346656037ull;  // FNV-1a, 64 bit
-  for (unsigned char c : id) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return static_cast<int>(h % static_cast<std::uint64_t>(n)) + 1;
-}
-
-std::pair<int, int> parse_shard(const std::string& text) {
-  int k = 0, n = 0;
-  char tail = 0;
-  if (std::sscanf(text.c_str(), "%d/%d%c", &k, &n, &tail) != 2 || n < 1 || k < 1 || k > n)
-    throw CatalogueError("shard: '" + text + "' is not k/n with 1 <= k <= n (e.g. 2/3)");
-  return {k, n};
-}
-
-Catalogue select_shard(const Catalogue& catalogue, int k, int n) {
-  Catalogue out;
-  out.sensors = catalogue.sensors;
-  for (const CatalogueItem& item : catalogue.items)
-    if (shard_of(item.spec.id, n) == k) out.items.push_back(item);
-  return out;
-}
-
-Catalogue parse_catalogue(const XmlRpcValue& sensors, const XmlRpcValue& items) {
-  Catalogue cat;
-  if (sensors.getType() != XmlRpcValue::TypeArray || sensors.size() == 0)
-    throw CatalogueError("sensors: must be a non-empty list of sensor entries");
-  if (items.getType() != XmlRpcValue::TypeArray || items.size() == 0)
-    throw CatalogueError("items: must be a non-empty list of catalogue items");
-
-  std::set<std::string> sensor_names, topics;
-  for (int i = 0; i < sensors.size(); ++i) {
-    const XmlRpcValue& v = const_cast<XmlRpcValue&>(sensors)[i];
-    const Entry e(v, label("sensors", i, name_of(v, "name")));
-    e.only({"name", "topic", "type", "frame_id", "rate"});
-    SensorSpec s;
-    s.name = e.text("name", true);
-    s.topic = e.text("topic", true);
-    const std::string type = e.text("type", false, "imu");
-    if (type == "imu") s.type = SensorSpec::Type::Imu;
-    else if (type == "accel") s.type = SensorSpec::Type::Accel;
-    else e.fail("type", "'" + type + "' is not one of: imu, accel");
-    s.frame_id = e.text("frame_id", false);
-    s.rate = e.number("rate", false, 200.0, "Hz");
-    if (s.rate <= 0.0) e.fail("rate", "must be > 0 Hz");
-    if (!sensor_names.insert(s.name).second) e.fail("name", "duplicate sensor name '" + s.name + "'");
-    if (!topics.insert(s.topic).second) e.fail("topic", "topic '" + s.topic + "' used by two sensors");
-    cat.sensors.push_back(s);
-  }
-
-  std::set<std::string> ids;
-  for (int i = 0; i < items.size(); ++i) {
-    const XmlRpcValue& v = const_cast<XmlRpcValue&>(items)[i];
-    const Entry e(v, label("items", i, name_of(v, "id")));
-    e.only({"id", "description", "sensor", "frame", "shape", "width", "depth", "cg_height", "eccentricity",
-            "eccentricity_y", "radius_of_gyration", "radius_of_gyration_y", "mu_s", "mu_k", "restitution",
-            "overturn_angle", "pose"});
-    CatalogueItem item;
-    core::ItemSpec& s = item.spec;
-    s.id = e.text("id", true);
-    if (!ids.insert(s.id).second) e.fail("id", "duplicate id");
-    s.description = e.text("description", false);
-    s.sensor = e.text("sensor", true);
-    if (!sensor_names.count(s.sensor)) e.fail("sensor", "'" + s.sensor + "' is not a sensor of this catalogue");
-    s.frame = e.text("frame", false, s.id);
-    core::UncertainItemSpec& u = item.uncertain;
-    using F = core::UncertainField;
-    core::BodyParameters& b = s.body;
-    b.width = e.quantity("width", F::Width, true, 0.0, "base width B, m", u);
-    b.cg_height = e.quantity("cg_height", F::CgHeight, true, 0.0, "height h of the centre of mass, m", u);
-    b.nu1 = e.quantity("eccentricity", F::Eccentricity, false, 0.5, "nu1, dimensionless", u);
-    const std::string shape = e.text("shape", false, "box");
-    core::DepthParameters& d = s.depth;
-    if (e.has("depth")) {
-      d.depth = e.quantity("depth", F::Depth, true, 0.0, "base depth D along the item's y, m", u);
-      d.eccentricity_y = e.quantity("eccentricity_y", F::EccentricityY, false, 0.5, "nu1 of the y-z plane, dimensionless", u);
-      if (e.has("radius_of_gyration_y"))
-        d.radius_of_gyration_y = e.quantity("radius_of_gyration_y", F::RadiusOfGyrationY, false, 0.0, "m", u);
-    } else {
-      for (const char* key : {"eccentricity_y", "radius_of_gyration_y"})
-        if (e.has(key)) e.fail(key, "needs depth (the base along the item's y): without it the item rocks in x only");
-    }
-    // Solid cylinder of diameter B and height 2h rocking about a horizontal diameter; an ensemble member
-    // re-derives it from its own B (D) and h.
-    if (e.has("radius_of_gyration")) {
-      b.radius_of_gyration = e.quantity("radius_of_gyration", F::RadiusOfGyration, false, 0.0, "m", u);
-    } else if (shape == "box") {
-      // homogeneous block B x D x 2h: the core's default in both planes
-    } else if (shape == "cylinder") {
-      b.radius_of_gyration = core::cylinder_radius_of_gyration(b.width, b.cg_height);
-      u.cylinder_radius_x = true;
-      if (d.given() && !e.has("radius_of_gyration_y") && std::isfinite(d.depth)) {
-        d.radius_of_gyration_y = core::cylinder_radius_of_gyration(d.depth, b.cg_height);
-        u.cylinder_radius_y = true;
-      }
-    } else {
-      e.fail("shape", "'" + shape + "' is not one of: box, cylinder (or give radius_of_gyration)");
-    }
-    b.mu_s = e.quantity("mu_s", F::MuS, false, b.mu_s, "static friction coefficient", u);
-    if (e.has("mu_k")) b.mu_k = e.number("mu_k", false, 0.0, "kinetic friction coefficient");
-    if (e.has("restitution")) b.restitution = e.quantity("restitution", F::Restitution, false, 0.0, "angular-velocity ratio", u);
-    if (e.has("overturn_angle")) b.overturn_angle = e.number("overturn_angle", false, 0.0, "rad");
-    u.nominal = s;
-    for (const std::string& err : {core::validate(s), core::validate(u)}) {
-      // core messages read "item '<id>': <field> ..."; keep the list position too.
-      if (!err.empty()) throw CatalogueError(e.where() + ": " + err.substr(err.find(": ") + 2));
-    }
-    if (e.has("pose")) {
-      const Entry p(e.member("pose"), e.where() + ": pose");
-      p.only({"parent_frame", "x", "y", "z", "roll", "pitch", "yaw"});
-      item.pose.given = true;
-      item.pose.parent_frame = p.text("parent_frame", true);
-      item.pose.x = p.number("x", false, 0.0, "m");
-      item.pose.y = p.number("y", false, 0.0, "m");
-      item.pose.z = p.number("z", false, 0.0, "m");
-      item.pose.roll = p.number("roll", false, 0.0, "rad");
-      item.pose.pitch = p.number("pitch", false, 0.0, "rad");
-      item.pose.yaw = p.number("yaw", false, 0.0, "rad");
-    }
-    cat.items.push_back(item);
-  }
-  return cat;
+Catalogue parse_catalogue(const XmlRpc::XmlRpcValue& sensors, const XmlRpc::XmlRpcValue& items) {
+  return core::parse_catalogue(to_json(sensors), to_json(items));
 }
 
 }  // namespace rocking_monitor::live

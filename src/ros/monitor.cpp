@@ -185,10 +185,11 @@ bool RockingMonitor::init() {
     it.entry = entry;
     if (entry.uncertain.uncertain()) {
       std::vector<int> pulled;
-      it.members = core::draw_members(entry.uncertain, ensemble_size_, static_cast<std::uint64_t>(ensemble_seed_), &pulled);
+      const int n = entry.ensemble_size > 0 ? entry.ensemble_size : ensemble_size_;  // the item's own, if given
+      it.members = core::draw_members(entry.uncertain, n, static_cast<std::uint64_t>(ensemble_seed_), &pulled);
       if (!pulled.empty())
         ROS_WARN("rocking_monitor: item '%s': %zu of %d members drawn outside the valid geometry were pulled toward "
-                 "the nominal item", entry.spec.id.c_str(), pulled.size(), ensemble_size_);
+                 "the nominal item", entry.spec.id.c_str(), pulled.size(), n);
     }
     make_models(it);
     for (std::size_t i = 0; i < sensors_.size(); ++i)

@@ -89,7 +89,9 @@ class OfflineMonitor {
       ensembles_.emplace_back();
       if (entry.uncertain.uncertain())
         ensembles_.back() = std::make_unique<core::ItemEnsemble>(
-            core::draw_members(entry.uncertain, ensemble_size, static_cast<std::uint64_t>(ensemble_seed)), options_,
+            core::draw_members(entry.uncertain, entry.ensemble_size > 0 ? entry.ensemble_size : ensemble_size,
+                               static_cast<std::uint64_t>(ensemble_seed)),
+            options_,
             alarm_probability);
       // The pose gives the item frame in its parent (the sensor frame here): v_item = q^-1 v_sensor.
       Eigen::Matrix3d r = Eigen::Matrix3d::Identity();

@@ -9,6 +9,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "rocking_monitor/monitoring/catalogue_file.hpp"
 #include "rocking_monitor/ros/catalogue.hpp"
 
 namespace rocking_monitor::live {
@@ -323,3 +324,37 @@ int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
 }
+
+namespace rocking_monitor::live {
+namespace {
+
+TEST(Catalogue, FileReaderEqualsTheParameterServerPath) {
+  // The tools and the study read the YAML file directly; the node reads what rosparam loaded. Same
+  // items, same laws, same derived radii.
+  for (const char* file : {"catalogue_example.yaml", "catalogue_uncertain_example.yaml"}) {
+    const Catalogue live = load_example(file);
+    const Catalogue offline = core::load_catalogue_file(std::string(ROCKING_SOURCE_DIR) + "/config/" + file);
+    ASSERT_EQ(live.items.size(), offline.items.size()) << file;
+    ASSERT_EQ(live.sensors.size(), offline.sensors.size()) << file;
+    for (std::size_t k = 0; k < live.items.size(); ++k) {
+      const CatalogueItem &a = live.items[k], &b = offline.items[k];
+      EXPECT_EQ(a.spec.id, b.spec.id);
+      EXPECT_EQ(a.spec.sensor, b.spec.sensor);
+      for (int f = 0; f < core::kUncertainFieldCount; ++f) {
+        const auto field = static_cast<core::UncertainField>(f);
+        const double va = core::value_of(a.spec, field), vb = core::value_of(b.spec, field);
+        if (std::isnan(va)) EXPECT_TRUE(std::isnan(vb)) << a.spec.id << " " << core::to_string(field);
+        else EXPECT_EQ(va, vb) << a.spec.id << " " << core::to_string(field);
+        EXPECT_EQ(a.uncertain.law(field).kind(), b.uncertain.law(field).kind()) << a.spec.id;
+        if (!a.uncertain.law(field).is_fixed())
+          EXPECT_EQ(a.uncertain.law(field).nominal(), b.uncertain.law(field).nominal()) << a.spec.id;
+      }
+      EXPECT_EQ(a.pose.x, b.pose.x);
+      EXPECT_EQ(a.pose.yaw, b.pose.yaw);
+      EXPECT_EQ(a.ensemble_size, b.ensemble_size);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rocking_monitor::live

@@ -137,6 +137,20 @@ TEST(MonitorReplay, LiveEqualsOfflineSampleForSample) {
     }
     EXPECT_TRUE(found) << must_be_uncertain;
   }
+  // A catalogue item's own ensemble_size wins over ~ensemble_size ("id:members").
+  std::string item_ensemble;
+  pnh.getParam("item_ensemble_size", item_ensemble);
+  if (!item_ensemble.empty()) {
+    const std::string id = item_ensemble.substr(0, item_ensemble.find(':'));
+    const unsigned members = static_cast<unsigned>(std::stoul(item_ensemble.substr(item_ensemble.find(':') + 1)));
+    bool found = false;
+    for (const RockingState& st : live.rbegin()->second.items) {
+      if (st.id != id) continue;
+      found = true;
+      EXPECT_EQ(st.ensemble_size, members) << id;
+    }
+    EXPECT_TRUE(found) << id;
+  }
   // The physics oracle of this scene: which item falls and which stays (from the offline run).
   if (!must_overturn.empty()) {
     bool found = false;

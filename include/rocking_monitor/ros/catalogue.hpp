@@ -1,71 +1,30 @@
 #pragma once
 
-#include <stdexcept>
-#include <string>
-#include <utility>
-#include <vector>
+// The catalogue as the node reads it from the parameter server: the parameters converted to JSON and
+// parsed by the core (monitoring/catalogue.hpp), so the node, the tools and the study share one
+// grammar and one set of messages.
 
 #include <XmlRpcValue.h>
+#include <nlohmann/json_fwd.hpp>
 
-#include "rocking_monitor/monitoring/item_monitor.hpp"
-#include "rocking_monitor/monitoring/uncertain_item.hpp"
+#include "rocking_monitor/monitoring/catalogue.hpp"
 
 namespace rocking_monitor::live {
 
-/// A ground-acceleration input of the monitor.
-struct SensorSpec {
-  enum class Type { Imu, Accel };
-  std::string name;      ///< referenced by items
-  std::string topic;     ///< sensor_msgs/Imu or geometry_msgs/AccelStamped topic
-  Type type = Type::Imu; ///< imu: specific force incl. gravity (REP 145); accel: ground acceleration
-  std::string frame_id;  ///< overrides the messages' header.frame_id when not empty
-  double rate = 200.0;   ///< expected sample rate, Hz (diagnostics only; dt comes from the stamps)
-};
+using core::Catalogue;
+using core::CatalogueError;
+using core::CatalogueItem;
+using core::ItemPose;
+using core::SensorSpec;
+using core::parse_shard;
+using core::select_shard;
+using core::shard_of;
 
-/// Optional static pose of an item, published by the monitor as a static transform.
-struct ItemPose {
-  bool given = false;
-  std::string parent_frame;            ///< e.g. the sensor's frame
-  double x = 0.0, y = 0.0, z = 0.0;    ///< m
-  double roll = 0.0, pitch = 0.0, yaw = 0.0;  ///< rad
-};
+/// A parameter value as JSON (int, double, bool, string, list, map; others null).
+nlohmann::json to_json(const XmlRpc::XmlRpcValue& value);
 
-struct CatalogueItem {
-  core::ItemSpec spec;  ///< the nominal item (every uncertain field at its law's nominal)
-  /// The item's uncertain parameters (issue 13): uncertain.nominal == spec; laws Fixed for every
-  /// field given as a plain number. uncertain.uncertain(): some field was given as a distribution.
-  core::UncertainItemSpec uncertain;
-  ItemPose pose;
-};
-
-struct Catalogue {
-  std::vector<SensorSpec> sensors;
-  std::vector<CatalogueItem> items;
-};
-
-/// Thrown with one line naming the entry and the field: "items[2] 'server_rack': width: ...".
-class CatalogueError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-/// Which of n shards an item belongs to (1..n): FNV-1a hash of its id, modulo n. Stable across
-/// machines, runs and catalogue order, so n monitors on n machines split one catalogue without
-/// talking to each other.
-int shard_of(const std::string& id, int n);
-
-/// Parses "k/n" (1 <= k <= n); throws CatalogueError naming the text otherwise.
-std::pair<int, int> parse_shard(const std::string& text);
-
-/// The items of shard k of n (catalogue order kept; sensors all kept).
-Catalogue select_shard(const Catalogue& catalogue, int k, int n);
-
-/// Parses the `sensors` and `items` lists (as loaded by rosparam from config/catalogue_example.yaml).
-/// Validates every field (types, units, ranges, unique ids, known sensors). The numeric keys width,
-/// depth, cg_height, eccentricity, eccentricity_y, radius_of_gyration, radius_of_gyration_y, mu_s and
-/// restitution may be distribution maps ({uniform: [lo, hi]}, {normal: [mean, sd]},
-/// {lognormal: [median, beta]}, optionally nominal: x; config/catalogue_uncertain_example.yaml);
-/// errors name the item and the field: "items[2] 'cart': mu_s: uniform: lo 0.6 > hi 0.3".
+/// parse_catalogue() of the `sensors` and `items` parameters (as loaded by rosparam from
+/// config/catalogue_example.yaml).
 Catalogue parse_catalogue(const XmlRpc::XmlRpcValue& sensors, const XmlRpc::XmlRpcValue& items);
 
 }  // namespace rocking_monitor::live

@@ -1,0 +1,92 @@
+// The catalogue read from a YAML file (the offline tools' and the study's path): YAML typing, the
+// per-item ensemble_size, and errors that name the file, the item and the field.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "rocking_monitor/monitoring/catalogue_file.hpp"
+#include "temp_root.hpp"
+
+namespace rc = rocking_monitor::core;
+
+namespace {
+
+const rc::testing::TempRoot& dir = rc::testing::TempRoot::registered("catalogue_file_");
+
+std::string write(const std::string& text) {
+  std::filesystem::create_directories(dir.path());
+  const std::string path = (dir.path() / "catalogue.yaml").string();
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string error_of(const std::string& path) {
+  try {
+    rc::load_catalogue_items_file(path);
+  } catch (const rc::CatalogueError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+const char* kItem = "items:\n  - id: cart\n    width: 0.5\n    cg_height: 0.8\n";
+
+}  // namespace
+
+TEST(CatalogueFile, YamlScalarsAreTypedAsRosparamDoes) {
+  const std::string path = write("a: 3\nb: 0.25\nc: -1.5e-3\nd: '0.25'\ne: true\nf: .nan\ng: -.inf\nh: ~\ni: text\nj: [1, 2.5]\n");
+  const nlohmann::json j = rc::load_yaml_as_json(path);
+  EXPECT_TRUE(j["a"].is_number_integer());
+  EXPECT_EQ(j["a"].get<int>(), 3);
+  EXPECT_EQ(j["b"].get<double>(), 0.25);
+  EXPECT_EQ(j["c"].get<double>(), -1.5e-3);
+  EXPECT_TRUE(j["d"].is_string());  // quoted stays a string
+  EXPECT_TRUE(j["e"].is_boolean());
+  EXPECT_TRUE(std::isnan(j["f"].get<double>()));
+  EXPECT_EQ(j["g"].get<double>(), -INFINITY);
+  EXPECT_TRUE(j["h"].is_null());
+  EXPECT_EQ(j["i"].get<std::string>(), "text");
+  EXPECT_EQ(j["j"][1].get<double>(), 2.5);
+}
+
+TEST(CatalogueFile, ItemsWithoutSensorsAndThePerItemEnsembleSize) {
+  const std::string path = write(std::string(kItem) + "    mu_s: {uniform: [0.3, 0.5]}\n    ensemble_size: 128\n"
+                                      "  - id: vase\n    width: 0.2\n    cg_height: 0.3\n    sensor: lobby\n");
+  const auto items = rc::load_catalogue_items_file(path);
+  ASSERT_EQ(items.size(), 2u);
+  EXPECT_EQ(items[0].ensemble_size, 128);
+  EXPECT_EQ(items[0].spec.body.mu_s, 0.4);  // the uniform's mean
+  EXPECT_TRUE(items[0].uncertain.uncertain());
+  EXPECT_EQ(items[1].ensemble_size, 0);     // deterministic: no ensemble
+  EXPECT_EQ(items[1].spec.sensor, "lobby");  // kept, not checked offline
+  // The full catalogue needs its sensors.
+  try {
+    rc::load_catalogue_file(path);
+    FAIL() << "no sensors";
+  } catch (const rc::CatalogueError& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": sensors: must be a non-empty list of sensor entries");
+  }
+}
+
+TEST(CatalogueFile, ErrorsNameFileItemAndField) {
+  EXPECT_EQ(error_of(write(std::string(kItem) + "    ensemble_size: 64\n")),
+            dir.path().string() + "/catalogue.yaml: items[0] 'cart': ensemble_size: only for an item with a "
+            "distribution (this item is deterministic: one run)");
+  EXPECT_EQ(error_of(write(std::string(kItem) + "    mu_s: {normal: [0.4, 0.1]}\n    ensemble_size: 2.5\n")),
+            dir.path().string() + "/catalogue.yaml: items[0] 'cart': ensemble_size: must be an integer in [1, 100000]");
+  EXPECT_EQ(error_of(write(std::string(kItem) + "    mu_s: {uniform: [0.6, 0.3]}\n")).find(
+                dir.path().string() + "/catalogue.yaml: items[0] 'cart': mu_s: uniform"),
+            0u);
+  EXPECT_EQ(error_of(write(std::string(kItem) + "    mu_s: lots\n")),
+            dir.path().string() + "/catalogue.yaml: items[0] 'cart': mu_s: must be a number (static friction "
+            "coefficient), found a string");
+  const std::string bad_yaml = error_of(write("items: [\n  - id: cart\n"));
+  EXPECT_EQ(bad_yaml.rfind(dir.path().string() + "/catalogue.yaml:", 0), 0u) << bad_yaml;
+  EXPECT_NE(bad_yaml.find(":3:"), std::string::npos) << bad_yaml;  // line of the unclosed list's end
+  EXPECT_EQ(error_of((dir.path() / "missing.yaml").string()), (dir.path() / "missing.yaml").string() + ": cannot read");
+}
