@@ -31,11 +31,12 @@ std::vector<std::pair<std::string, double>> thresholds_in(const ScreeningThresho
 
 void write_fragility_runs_csv(std::ostream& out, const FragilityResult& r, const std::vector<StudyBody>& bodies,
                               const std::vector<StudyRecord>& records, const FragilityOptions& o) {
-  out << "body,record_file,event,station,component,polarity,scale,im_" << to_string(o.im) << ",overturned,beyond_tipping\n";
+  out << "body,member,record_file,event,station,component,polarity,scale,im_" << to_string(o.im)
+      << ",overturned,beyond_tipping\n";
   csv::Writer w(out);
   for (const FragilityRun& run : r.runs) {
     const StudyRecord& rec = records[run.record];
-    w.text(bodies[run.body].name).text(rec.file).text(rec.event).text(rec.station).text(rec.component);
+    w.text(bodies[run.body].name).value(run.member < 0 ? "" : std::to_string(run.member)).text(rec.file).text(rec.event).text(rec.station).text(rec.component);
     w.value(std::to_string(run.polarity)).number("%.9g", run.scale).number("%.9g", run.im);
     w.value(run.overturned ? "1" : "0").value(run.beyond_tipping ? "1" : "0");
     w.end_row();
@@ -50,6 +51,7 @@ void write_fragility_json(std::ostream& out, const FragilityResult& r, const std
     for (const auto& [name, v] : thresholds_in(f.thresholds, o.im)) thresholds[name] = v;
     json item = {{"body", bodies[f.body].name},
                  {"runs", f.runs},
+                 {"members", f.members},
                  {"overturned", f.overturned},
                  {"non_monotone_pairs", f.non_monotone},
                  {"housner_period_s", f.housner_period},

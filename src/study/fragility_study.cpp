@@ -57,40 +57,61 @@ FragilityResult run_fragility(const std::vector<StudyBody>& bodies, const std::v
                               const FragilityOptions& o) {
   if (o.levels < 2) throw StudyError("fragility: at least 2 intensity levels are needed");
   if (!(o.pgv_min > 0.0) || !(o.pgv_max > o.pgv_min)) throw StudyError("fragility: need 0 < pgv_min < pgv_max");
+  if (o.members < 1) throw StudyError("fragility: --members must be >= 1");
   if (const std::string e = validate(o.settings); !e.empty()) throw StudyError(e);
-  std::vector<Body> rigid;
-  for (const StudyBody& b : bodies) rigid.emplace_back(b.parameters);
+  // Each body's members: an uncertain catalogue item runs its Latin-hypercube members (the node's
+  // draw with the same seed), an exact body runs once.
+  std::vector<std::vector<Body>> rigid(bodies.size());
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    if (!bodies[b].uncertain) {
+      rigid[b].emplace_back(bodies[b].parameters);
+      continue;
+    }
+    const int n = bodies[b].ensemble_size > 0 ? bodies[b].ensemble_size : o.members;
+    for (const BodyParameters& m : member_bodies(bodies[b], n, o.member_seed)) rigid[b].emplace_back(m);
+  }
+  std::vector<Body> nominal;
+  for (const StudyBody& b : bodies) nominal.emplace_back(b.parameters);
   std::vector<std::vector<double>> scales;
   for (const StudyRecord& r : records) scales.push_back(fragility_scales(r, o));
   const int polarities = o.both_polarities ? 2 : 1;
   const std::size_t per_record = static_cast<std::size_t>(polarities * o.levels);
+  // Work unit: one (body, member, record); its scaled copies are made once per level.
+  struct Unit {
+    std::size_t body, member, record, first_run;
+  };
+  std::vector<Unit> units;
+  for (std::size_t b = 0; b < bodies.size(); ++b)
+    for (std::size_t m = 0; m < rigid[b].size(); ++m)
+      for (std::size_t r = 0; r < records.size(); ++r) units.push_back({b, m, r, units.size() * per_record});
   FragilityResult result;
-  result.runs.resize(bodies.size() * records.size() * per_record);
-  // Work item: one (body, record); its scaled copies are made once per level.
+  result.runs.resize(units.size() * per_record);
   std::atomic<std::size_t> next{0};
   std::exception_ptr error;
   std::mutex error_mutex;
   auto worker = [&] {
     for (;;) {
       const std::size_t w = next++;
-      if (w >= bodies.size() * records.size()) return;
-      const std::size_t b = w / records.size(), r = w % records.size();
+      if (w >= units.size()) return;
+      const Unit& u = units[w];
       try {
-        const double period = housner_period(rigid[b]);
+        // The IM is the record's (PSV at the nominal body's period): the same for every member.
+        const double period = housner_period(nominal[u.body]);
         for (int l = 0; l < o.levels; ++l) {
-          const double s = scales[r][static_cast<std::size_t>(l)];
-          const StudyRecord rec = scaled(records[r], s);
+          const double s = scales[u.record][static_cast<std::size_t>(l)];
+          const StudyRecord rec = scaled(records[u.record], s);
           const double psv = o.im == IntensityMeasure::Psv ? pseudo_velocity_at(rec.corrected, rec.dt, period)
                                                             : std::nan("");
           for (int p = 0; p < polarities; ++p) {
             const int polarity = p == 0 ? 1 : -1;
-            const CaseResult c = run_case(rigid[b], rec, polarity, o.vertical, o.settings, psv);
-            FragilityRun& run = result.runs[w * per_record + static_cast<std::size_t>(p * o.levels + l)];
-            run.body = b;
-            run.record = r;
+            const CaseResult c = run_case(rigid[u.body][u.member], rec, polarity, o.vertical, o.settings, psv);
+            FragilityRun& run = result.runs[u.first_run + static_cast<std::size_t>(p * o.levels + l)];
+            run.body = u.body;
+            run.member = bodies[u.body].uncertain ? static_cast<int>(u.member) : -1;
+            run.record = u.record;
             run.polarity = polarity;
             run.scale = s;
-            run.im = o.im == IntensityMeasure::Pgv ? rec.pgv : o.im == IntensityMeasure::Pga ? rec.pga : c.housner_psv;
+            run.im = o.im == IntensityMeasure::Pgv ? rec.pgv : o.im == IntensityMeasure::Pga ? rec.pga : psv;
             run.overturned = c.outcome.overturned;
             run.beyond_tipping = c.outcome.beyond_tipping;
           }
@@ -98,7 +119,7 @@ FragilityResult run_fragility(const std::vector<StudyBody>& bodies, const std::v
       } catch (...) {
         std::lock_guard<std::mutex> lock(error_mutex);
         if (!error) error = std::current_exception();
-        next = bodies.size() * records.size();
+        next = units.size();
       }
     }
   };
@@ -112,15 +133,17 @@ FragilityResult run_fragility(const std::vector<StudyBody>& bodies, const std::v
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     BodyFragility f;
     f.body = b;
-    f.thresholds = screening_thresholds(rigid[b]);
-    f.housner_period = housner_period(rigid[b]);
+    f.members = bodies[b].uncertain ? static_cast<int>(rigid[b].size()) : 0;
+    f.thresholds = screening_thresholds(nominal[b]);
+    f.housner_period = housner_period(nominal[b]);
     std::vector<FragilityPoint> points;
     double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
-    for (std::size_t r = 0; r < records.size(); ++r) {
+    for (const Unit& u : units) {
+      if (u.body != b) continue;
       for (int p = 0; p < polarities; ++p) {
         bool fell_below = false;
         for (int l = 0; l < o.levels; ++l) {
-          const FragilityRun& run = result.runs[(b * records.size() + r) * per_record + static_cast<std::size_t>(p * o.levels + l)];
+          const FragilityRun& run = result.runs[u.first_run + static_cast<std::size_t>(p * o.levels + l)];
           ++f.runs;
           f.overturned += run.overturned;
           if (fell_below && !run.overturned) ++f.non_monotone;

@@ -61,4 +61,22 @@ std::vector<StudyBody> grid_bodies(const StudyGrid& g) {
   return bodies;
 }
 
+BodyParameters plane_body(const ItemSpec& item, Plane plane) {
+  BodyParameters x = item.body;
+  if (std::isnan(x.radius_of_gyration)) x.radius_of_gyration = Body::homogeneous_radius_of_gyration(x.width, x.cg_height);
+  if (plane == Plane::X) return x;
+  try {
+    return y_plane_body(x, item.depth);
+  } catch (const std::exception& e) {
+    throw StudyError("item '" + item.id + "': y plane: " + e.what());
+  }
+}
+
+std::vector<BodyParameters> member_bodies(const StudyBody& body, int n, std::uint64_t seed) {
+  if (!body.uncertain) return std::vector<BodyParameters>(static_cast<std::size_t>(std::max(n, 0)), body.parameters);
+  std::vector<BodyParameters> out;
+  for (const ItemSpec& m : draw_members(*body.uncertain, n, seed)) out.push_back(plane_body(m, body.plane));
+  return out;
+}
+
 }  // namespace rocking_monitor::core::study

@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>
 
+#include "rocking_monitor/monitoring/catalogue_file.hpp"
+
 namespace rocking_monitor::core::study {
 namespace {
 
@@ -93,34 +95,25 @@ json set_json(const SetSummary& s) {
 
 namespace {
 
-// One entry of a body file. `catalogue`: an `items:` entry of a monitor catalogue (id, eccentricity,
-// shape, ...; the live node's own keys are ignored), else a study body (name, nu1 list).
+// One study body (name, nu1 list, ...) of a body file. (A monitor catalogue's items are read by the
+// catalogue's own parser: load_catalogue_items().)
 void load_entry(const YAML::Node& item, std::size_t i, const std::string& path, const std::string& prefix,
-                bool catalogue, BodyFile& out, std::set<std::string>& names) {
+                BodyFile& out, std::set<std::string>& names) {
   std::string where = path + ": " + prefix + "[" + std::to_string(i) + "]";
   if (!item.IsMap()) throw StudyError(where + ": expected a map with width, cg_height, ...");
-  const char* name_key = catalogue ? "id" : "name";
-  std::string name = (catalogue ? "item" : "body") + std::to_string(i);
+  const char* name_key = "name";
+  std::string name = "body" + std::to_string(i);
   if (item[name_key]) {
     if (!item[name_key].IsScalar() || item[name_key].Scalar().empty())
       throw StudyError(where + ": " + name_key + ": expected a non-empty string");
     name = item[name_key].Scalar();
-  } else if (catalogue) {
-    throw StudyError(where + ": id: missing (required)");
   }
   where += " (" + name + "): ";
-  // Keys the live monitor uses (which sensor, tf frame, pose, alarm text): no meaning offline.
-  static const std::set<std::string> ignored{"sensor", "frame", "pose", "description"};
-  static const std::set<std::string> body_keys{"name", "width", "cg_height", "nu1", "radius_of_gyration",
+  static const std::set<std::string> known{"name", "width", "cg_height", "nu1", "radius_of_gyration",
                                                "restitution", "mu_s", "depth", "eccentricity_y",
                                                "radius_of_gyration_y"};
-  static const std::set<std::string> item_keys{"id", "width", "cg_height", "eccentricity", "depth",
-                                               "eccentricity_y", "radius_of_gyration", "radius_of_gyration_y",
-                                               "shape", "mu_s", "mu_k", "restitution", "overturn_angle"};
-  const std::set<std::string>& known = catalogue ? item_keys : body_keys;
   for (const auto& kv : item) {
     const std::string key = kv.first.as<std::string>();
-    if (catalogue && ignored.count(key)) continue;
     if (!known.count(key)) {
       std::string list;
       for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
@@ -135,8 +128,6 @@ void load_entry(const YAML::Node& item, std::size_t i, const std::string& path, 
   if (item["radius_of_gyration"]) p.radius_of_gyration = scalar(item["radius_of_gyration"], where, "radius_of_gyration");
   if (item["restitution"]) p.restitution = scalar(item["restitution"], where, "restitution");
   if (item["mu_s"]) p.mu_s = scalar(item["mu_s"], where, "mu_s");
-  if (item["mu_k"]) p.mu_k = scalar(item["mu_k"], where, "mu_k");
-  if (item["overturn_angle"]) p.overturn_angle = scalar(item["overturn_angle"], where, "overturn_angle");
   DepthParameters depth;
   if (item["depth"]) depth.depth = scalar(item["depth"], where, "depth");
   if (item["eccentricity_y"]) depth.eccentricity_y = scalar(item["eccentricity_y"], where, "eccentricity_y");
@@ -148,9 +139,7 @@ void load_entry(const YAML::Node& item, std::size_t i, const std::string& path, 
   }
   std::vector<double> nus{0.5};
   bool nu_list = false;
-  if (catalogue) {
-    if (item["eccentricity"]) nus = {scalar(item["eccentricity"], where, "eccentricity")};
-  } else if (const YAML::Node nu = item["nu1"]) {
+  if (const YAML::Node nu = item["nu1"]) {
     nus.clear();
     if (nu.IsSequence()) {
       nu_list = true;
@@ -168,21 +157,7 @@ void load_entry(const YAML::Node& item, std::size_t i, const std::string& path, 
     if (const std::string e = validate(probe); !e.empty()) throw StudyError(where + e);
     if (const std::string e = validate(depth); !e.empty()) throw StudyError(where + e);
   }
-  if (std::isnan(p.radius_of_gyration)) {
-    std::string shape = "box";
-    if (item["shape"]) {
-      if (!item["shape"].IsScalar()) throw StudyError(where + "shape: expected box or cylinder");
-      shape = item["shape"].Scalar();
-    }
-    if (shape == "box") {
-      p.radius_of_gyration = Body::homogeneous_radius_of_gyration(p.width, p.cg_height);
-    } else if (shape == "cylinder") {
-      // As the catalogue: a solid cylinder of diameter B and height 2h about a horizontal diameter.
-      p.radius_of_gyration = std::sqrt(p.width * p.width / 16.0 + p.cg_height * p.cg_height / 3.0);
-    } else {
-      throw StudyError(where + "shape: '" + shape + "' is not one of: box, cylinder (or give radius_of_gyration)");
-    }
-  }
+  if (std::isnan(p.radius_of_gyration)) p.radius_of_gyration = Body::homogeneous_radius_of_gyration(p.width, p.cg_height);
   for (double nu : nus) {
     BodyParameters b = p;
     b.nu1 = nu;
@@ -193,7 +168,7 @@ void load_entry(const YAML::Node& item, std::size_t i, const std::string& path, 
     if (!names.insert(body_name).second)
       throw StudyError(where + name_key + ": '" + body_name + "' used twice");
     if (!depth.given()) {
-      out.bodies.push_back({body_name, b});
+      out.bodies.push_back({body_name, b, nullptr, Plane::X, 0});
       continue;
     }
     StudyItem it;
@@ -208,6 +183,41 @@ void load_entry(const YAML::Node& item, std::size_t i, const std::string& path, 
     if (const std::string e = validate(it.y); !e.empty()) throw StudyError(nu_where + "y plane: " + e);
     out.items.push_back(std::move(it));
   }
+}
+
+// A monitor catalogue (the node's grammar and messages, monitoring/catalogue.hpp): items without a
+// depth are single-plane bodies, the others two-plane items; distributions are kept for the fragility.
+BodyFile load_catalogue_items(const std::string& path) {
+  std::vector<CatalogueItem> items;
+  try {
+    items = load_catalogue_items_file(path);
+  } catch (const CatalogueError& e) {
+    throw StudyError(e.what());
+  }
+  BodyFile out;
+  for (const CatalogueItem& c : items) {
+    const std::string where = path + ": item '" + c.spec.id + "': ";
+    auto laws = c.uncertain.uncertain() ? std::make_shared<const UncertainItemSpec>(c.uncertain) : nullptr;
+    try {
+      if (!c.spec.two_planes()) {
+        StudyBody b{c.spec.id, plane_body(c.spec, Plane::X), laws, Plane::X, c.ensemble_size};
+        out.bodies.push_back(std::move(b));
+        continue;
+      }
+      StudyItem it;
+      it.name = c.spec.id;
+      it.uncertain = laws;
+      it.ensemble_size = c.ensemble_size;
+      it.x = plane_body(c.spec, Plane::X);
+      it.depth = c.spec.depth;
+      it.y = plane_body(c.spec, Plane::Y);
+      if (const std::string e = validate(it.y); !e.empty()) throw StudyError("y plane: " + e);
+      out.items.push_back(std::move(it));
+    } catch (const StudyError& e) {
+      throw StudyError(where + e.what());
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -240,11 +250,12 @@ BodyFile load_body_file(const std::string& path) {
   } else {
     prefix = "";
   }
+  if (catalogue) return load_catalogue_items(path);
   if (!list || !list.IsSequence() || list.size() == 0)
     throw StudyError(path + ": expected a non-empty list of bodies (under 'bodies:' or 'items:')");
   BodyFile out;
   std::set<std::string> names;
-  for (std::size_t i = 0; i < list.size(); ++i) load_entry(list[i], i, path, prefix, catalogue, out, names);
+  for (std::size_t i = 0; i < list.size(); ++i) load_entry(list[i], i, path, prefix, out, names);
   return out;
 }
 

@@ -211,7 +211,8 @@ int main(int argc, char** argv) {
                  "summarize; nothing is simulated");
   bool fragility = false;
   std::string im_text = "pgv", pgv_range_text = "0.02,2";
-  int levels = 12, bootstrap = 200;
+  int levels = 12, bootstrap = 200, members = 32;
+  std::uint64_t member_seed = 1;
   app.add_flag("--fragility", fragility,
                "Fragility curves instead of the study: every body (and each plane of a two-plane item) under "
                "every record component scaled to --levels PGVs over --pgv-range; writes fragility_runs.csv and "
@@ -223,6 +224,12 @@ int main(int argc, char** argv) {
       ->default_val(pgv_range_text);
   app.add_option("--bootstrap", bootstrap, "--fragility: bootstrap resamples of each fit")->default_val(bootstrap)
       ->check(CLI::Range(10, 100000));
+  app.add_option("--members", members,
+                 "--fragility: members per catalogue item given with distributions (its own ensemble_size wins); "
+                 "the fit pools every member's runs")
+      ->default_val(members)->check(CLI::Range(1, 100000));
+  app.add_option("--member-seed", member_seed, "--fragility: seed of the members' Latin hypercube (the node's ~ensemble_seed)")
+      ->default_val(member_seed);
   app.add_flag("--quiet", quiet, "No progress bar");
   app.add_flag("--dry-run", dry_run, "Load bodies and records, print the plan and exit");
   if (const auto status = rocking_monitor::tools::parse_command_line(app, argc, argv, "rocking_study")) return *status;
@@ -257,8 +264,8 @@ int main(int argc, char** argv) {
     if (fragility) {
       // Each plane of a two-plane item is its own planar body here (planar decomposition).
       for (const st::StudyItem& it : items) {
-        bodies.push_back({it.name + " (x)", it.x});
-        bodies.push_back({it.name + " (y)", it.y});
+        bodies.push_back({it.name + " (x)", it.x, it.uncertain, rocking_monitor::core::Plane::X, it.ensemble_size});
+        bodies.push_back({it.name + " (y)", it.y, it.uncertain, rocking_monitor::core::Plane::Y, it.ensemble_size});
       }
       st::FragilityOptions fo;
       fo.settings = settings;
@@ -272,8 +279,15 @@ int main(int argc, char** argv) {
       fo.vertical = !no_vertical;
       fo.bootstrap = bootstrap;
       fo.threads = threads;
-      std::fprintf(stderr, "rocking_study: fragility of %zu bodies x %zu record components x %d levels x %d polarities\n",
-                   bodies.size(), records.records.size(), levels, one_polarity ? 1 : 2);
+      fo.members = members;
+      fo.member_seed = member_seed;
+      std::size_t runs_per_component = 0;
+      for (const st::StudyBody& b : bodies)
+        runs_per_component += b.uncertain ? static_cast<std::size_t>(b.ensemble_size > 0 ? b.ensemble_size : members) : 1;
+      std::fprintf(stderr,
+                   "rocking_study: fragility of %zu bodies (%zu runs each per record component and level, members of "
+                   "uncertain items included) x %zu record components x %d levels x %d polarities\n",
+                   bodies.size(), runs_per_component, records.records.size(), levels, one_polarity ? 1 : 2);
       if (dry_run) return 0;
       const st::FragilityResult fr = st::run_fragility(bodies, records.records, fo);
       const fs::path out(out_dir);

@@ -156,6 +156,43 @@ TEST(StudyCli, FragilityWritesRunsAndFitsAndRefusesBadOptions) {
   }
 }
 
+TEST(StudyCli, FragilityRunsTheMembersOfUncertainCatalogueItems) {
+  // A catalogue item with distributions runs its members (as the live node draws them); one with a
+  // zero-spread law gives exactly the exact item's outcomes in every member.
+  const fs::path dir = fixture(), out = root() / "fragility_members";
+  const fs::path cat = root() / "uncertain.yaml";
+  std::ofstream(cat) << "sensors: [{name: floor, topic: /imu}]\n"
+                        "items:\n"
+                        "  - {id: exact, sensor: floor, width: 0.25, cg_height: 0.5}\n"
+                        "  - {id: zero_spread, sensor: floor, width: {uniform: [0.25, 0.25]}, cg_height: 0.5, ensemble_size: 3}\n"
+                        "  - {id: uncertain, sensor: floor, width: {uniform: [0.2, 0.3]}, cg_height: {normal: [0.5, 0.05]}}\n";
+  const CliRun r = study("--records " + (dir / "records").string() + " --bodies " + cat.string() +
+                         " --quiet --fragility --levels 5 --bootstrap 20 --members 4 --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(slurp(out / "fragility.json"));
+  ASSERT_EQ(j.at("bodies").size(), 3u);
+  EXPECT_EQ(j["bodies"][0]["members"], 0);
+  EXPECT_EQ(j["bodies"][1]["members"], 3);  // the item's own ensemble_size
+  EXPECT_EQ(j["bodies"][2]["members"], 4);  // --members
+  EXPECT_EQ(j["bodies"][2]["runs"], 4 * 3 * 5 * 2);
+  // body,member,record_file,...,polarity,scale,im,overturned,beyond_tipping
+  std::map<std::string, std::vector<std::string>> outcomes;  // body/member -> overturned per run
+  std::istringstream runs(slurp(out / "fragility_runs.csv"));
+  std::string line;
+  std::getline(runs, line);
+  EXPECT_EQ(line.rfind("body,member,", 0), 0u) << line;
+  while (std::getline(runs, line)) {
+    std::vector<std::string> f;
+    std::stringstream ls(line);
+    for (std::string c; std::getline(ls, c, ',');) f.push_back(c);
+    ASSERT_EQ(f.size(), 11u) << line;
+    outcomes[f[0] + "/" + f[1]].push_back(f[9]);
+  }
+  ASSERT_EQ(outcomes.size(), 1u + 3u + 4u);
+  const auto& exact = outcomes.at("exact/");
+  for (const char* m : {"zero_spread/0", "zero_spread/1", "zero_spread/2"}) EXPECT_EQ(outcomes.at(m), exact) << m;
+}
+
 TEST(StudyCli, BadInputExitsWithStatus2AndOneLineNamingTheProblem) {
   const fs::path dir = fixture();
   const fs::path bad = root() / "bad.yaml";
@@ -299,7 +336,7 @@ TEST(StudyCli, TwoPlaneItemsRunOnStationPairsRotatedToAzimuths) {
   const std::vector<std::pair<std::string, std::vector<std::string>>> errors{
       {"--bodies " + yaml.string() + " --azimuth 0,north" + rec, {"--azimuth", "'north'"}},
       {"--bodies " + yaml.string() + " --shard 1/2" + rec, {yaml.string(), "--shard"}},
-      {"--bodies " + bad.string() + rec, {bad.string(), "items[0] (shelf)", "depth", "-1"}},
+      {"--bodies " + bad.string() + rec, {bad.string(), "items[0] 'shelf'", "depth", "-1"}},
   };
   for (const auto& e : errors) {
     const CliRun b = study(e.first);

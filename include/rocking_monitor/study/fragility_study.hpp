@@ -34,12 +34,17 @@ struct FragilityOptions {
   bool vertical = true;         ///< with the station's vertical when it has one (scaled alike)
   int bootstrap = 200;          ///< bootstrap resamples of each fit
   std::uint64_t seed = 1;       ///< bootstrap seed
+  /// Members per uncertain catalogue item (a body with distributions; its own ensemble_size wins),
+  /// drawn as the live node draws them (draw_members(), seed member_seed = the node's ~ensemble_seed).
+  int members = 32;
+  std::uint64_t member_seed = 1;
   int threads = 0;              ///< 0 = hardware concurrency
 };
 
 /// One run: a body under one scaled record component.
 struct FragilityRun {
   std::size_t body = 0, record = 0;
+  int member = -1;      ///< the ensemble member of an uncertain body (0..), -1: an exact body
   int polarity = 1;
   double scale = 1.0;   ///< factor on the record (horizontal and vertical)
   double im = 0.0;      ///< the scaled record's intensity in options.im (PSV at the body's Housner period)
@@ -50,6 +55,7 @@ struct FragilityRun {
 struct BodyFragility {
   std::size_t body = 0;
   std::size_t runs = 0, overturned = 0;
+  int members = 0;            ///< ensemble members pooled in the fit (0: an exact body)
   bool fitted = false;        ///< false: no run overturned, or every run did (no curve); see note
   std::string note;
   LognormalFragility fit;
@@ -69,7 +75,7 @@ struct FragilityResult {
 /// The scale factors of one record (levels values, ascending). Throws StudyError for a record with PGV 0.
 std::vector<double> fragility_scales(const StudyRecord& record, const FragilityOptions& options);
 
-/// Runs every body under every record component at every level (threads share the work; results are
+/// Runs every body (every member of an uncertain one) under every record component at every level (threads share the work; results are
 /// in a fixed order, identical for any thread count) and fits each body's fragility.
 FragilityResult run_fragility(const std::vector<StudyBody>& bodies, const std::vector<StudyRecord>& records,
                               const FragilityOptions& options);

@@ -2,9 +2,12 @@
 
 // The bodies of the study: the paper's grid of rectangles (or a list read by study_io.hpp).
 
+#include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "rocking_monitor/monitoring/uncertain_item.hpp"
 #include "rocking_monitor/physics/body.hpp"
 #include "rocking_monitor/physics/principal_planes.hpp"
 #include "rocking_monitor/study/study_error.hpp"
@@ -13,17 +16,33 @@ namespace rocking_monitor::core::study {
 
 struct StudyBody {
   std::string name;           ///< unique label, e.g. "h0.630_B0.252_nu0.30"
-  BodyParameters parameters;  ///< radius_of_gyration always set explicitly (finite)
+  BodyParameters parameters;  ///< radius_of_gyration always set explicitly (finite); the nominal body
+  /// A catalogue item given with distributions (issue 13): its laws, and which of its planes this body
+  /// is. The fragility runs members drawn from them (member_bodies()); the study runs the nominal.
+  std::shared_ptr<const UncertainItemSpec> uncertain;
+  Plane plane = Plane::X;
+  int ensemble_size = 0;  ///< the item's own member count (0: the run's --members)
 };
 
 /// A two-plane item (a body with a depth, issue 11): it rocks in its x-z plane as `x` and in its
 /// y-z plane as `y` = y_plane_body(x, depth), without coupling (study_items.hpp runs it).
 struct StudyItem {
   std::string name;
+  std::shared_ptr<const UncertainItemSpec> uncertain;  ///< as StudyBody's (null: exact)
+  int ensemble_size = 0;
   BodyParameters x;        ///< width, eccentricity (nu1), ...; radius_of_gyration set explicitly
   DepthParameters depth;   ///< depth, eccentricity_y, radius_of_gyration_y as given
   BodyParameters y;        ///< the y plane's planar body (radius_of_gyration set explicitly)
 };
+
+/// The planar body of one plane of a catalogue item, radius of gyration made explicit (a box
+/// without one: homogeneous; the y plane: y_plane_body()). Throws StudyError naming the item.
+BodyParameters plane_body(const ItemSpec& item, Plane plane);
+
+/// n members of an uncertain body (draw_members() of its item with `seed`, the same Latin hypercube as
+/// the live node's ensemble), each as the planar body of the body's plane. A body without
+/// distributions gives n copies of its parameters.
+std::vector<BodyParameters> member_bodies(const StudyBody& body, int n, std::uint64_t seed);
 
 /// The paper's grid (section "Overturning criteria validation for symmetric bodies"): `heights`
 /// centre-of-mass heights log-spaced over [min_height, max_height]; for each, `widths` base widths

@@ -27,10 +27,10 @@ namespace rocking_monitor::core::study {
 ///         eccentricity_y: 0.5       # optional with depth, default 0.5
 ///         radius_of_gyration_y: 0.2 # optional with depth, m; default y_plane_body()'s
 ///
-/// or a monitor catalogue (config/catalogue_example.yaml): `items:` entries with id (required),
-/// width, cg_height, eccentricity, depth, eccentricity_y, radius_of_gyration, radius_of_gyration_y,
-/// shape (box | cylinder), mu_s, mu_k, restitution, overturn_angle; the live node's sensor, frame,
-/// pose and description are ignored, as is a top-level `sensors:` list.
+/// or a monitor catalogue (config/catalogue_example.yaml), read by the node's own parser
+/// (monitoring/catalogue_file.hpp: same keys, distributions and messages); the live node's sensor,
+/// frame, pose and description have no meaning offline, nor has a top-level `sensors:` list. Items
+/// with distributions keep their laws (StudyBody::uncertain) for the fragility.
 ///
 /// A body with a depth is a two-plane item (study_items.hpp), the others are single-plane bodies
 /// run per record component. Unknown keys are errors (a typo must not silently fall back to a
