@@ -21,6 +21,8 @@
 #include "command_line.hpp"
 #include "rocking_monitor/csv/csv_writer.hpp"
 #include "rocking_monitor/model/adaptive_model.hpp"
+#include "rocking_monitor/monitoring/catalogue_file.hpp"
+#include "rocking_monitor/monitoring/item_ensemble.hpp"
 #include "rocking_monitor/physics/item_verdict.hpp"
 #include "rocking_monitor/monitoring/simulation.hpp"
 #include "rocking_monitor/motion/ground_motion.hpp"
@@ -356,6 +358,80 @@ std::string y_history_path(const std::string& x_path) {
   return x_path.substr(0, dot) + "_y" + x_path.substr(dot);
 }
 
+// --samples: the item's ensemble (the live node's members: draw_members() with the same seed, each
+// an ItemMonitor) through the record(s); P(level) with its Wilson interval and the threshold crossings.
+const char* level_name(rm::Level level) {
+  switch (level) {
+    case rm::Level::BeyondTipping: return "beyond_tipping";
+    case rm::Level::Committed: return "committed";
+    case rm::Level::Overturned: return "overturned";
+  }
+  return "?";
+}
+
+struct EnsembleRun {
+  json out;
+  std::vector<std::string> lines;
+};
+
+EnsembleRun run_ensemble(const RunOptions& opt, const rm::UncertainItemSpec& spec, int samples, std::uint64_t seed,
+                         double threshold, const rm::GroundMotion& mx, const rm::GroundMotion* my) {
+  std::vector<int> pulled;
+  const std::vector<rm::ItemSpec> members = rm::draw_members(spec, samples, seed, &pulled);
+  rm::ItemMonitor::Options o;
+  o.solver = opt.settings;
+  o.fidelity = opt.fidelity;
+  o.linearized_max_alpha = opt.linearized_max_alpha;
+  o.scene = parse_scene(opt.scene_text, mx);
+  if (my != nullptr) {  // one envelope for both planes: the larger of each
+    const rm::SceneEnvelope sy = parse_scene(opt.scene_text, *my);
+    o.scene.horizontal = std::max(o.scene.horizontal, sy.horizontal);
+    o.scene.vertical = std::max(o.scene.vertical, sy.vertical);
+  }
+  rm::ItemEnsemble ensemble(members, o, threshold);
+  auto ay = [&](std::size_t i) { return my != nullptr ? my->horizontal[i] : 0.0; };
+  auto az = [&](std::size_t i) { return mx.vertical.empty() ? 0.0 : mx.vertical[i]; };
+  const std::clock_t start = std::clock();
+  ensemble.start(0.0, mx.horizontal.front(), ay(0), az(0), mx.dt);
+  std::vector<rm::ProbabilityCrossing> crossings;
+  for (std::size_t i = 1; i < mx.size(); ++i) {
+    const rm::EnsembleEvents& ev = ensemble.step(mx.horizontal[i], ay(i), az(i), mx.dt);
+    for (int k = 0; k < ev.count; ++k) crossings.push_back(ev.crossings[static_cast<std::size_t>(k)]);
+  }
+  const double cpu = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
+  EnsembleRun run;
+  json levels = json::object();
+  std::string summary;
+  for (int l = 0; l < rm::kLevelCount; ++l) {
+    const auto level = static_cast<rm::Level>(l);
+    const rm::WilsonInterval w = ensemble.interval(level);
+    json crossing = nullptr;
+    for (const auto& c : crossings)
+      if (c.level == level) crossing = {{"time_s", c.time}, {"probability", c.probability}};
+    levels[level_name(level)] = {{"probability", ensemble.probability(level)},
+                                    {"wilson_95", {w.lower, w.upper}},
+                                    {"members_reached", ensemble.reached(level)},
+                                    {"crossing", crossing}};
+    summary += format("%sP(%s) %.3f [%.3f, %.3f]", l ? ", " : "", level_name(level), ensemble.probability(level),
+                      w.lower, w.upper);
+  }
+  run.out = {{"members", ensemble.size()},
+             {"seed", seed},
+             {"alarm_probability", threshold},
+             {"pulled_toward_nominal", pulled.size()},
+             {"levels", levels},
+             {"cpu_time_s", cpu}};
+  run.lines.push_back(format("ensemble    %d members (Latin hypercube, seed %llu), given this record: %s",
+                             ensemble.size(), static_cast<unsigned long long>(seed), summary.c_str()));
+  for (const auto& c : crossings)
+    run.lines.push_back(format("crossing    P(%s) reached %.3f >= %.2f at %.4f s", level_name(c.level),
+                               c.probability, threshold, c.time));
+  if (!pulled.empty())
+    run.lines.push_back(format("note        %zu members drawn outside the valid geometry were pulled toward the "
+                               "nominal item", pulled.size()));
+  return run;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -382,8 +458,26 @@ int main(int argc, char** argv) {
   app.add_option("--units", units_text, "Units of CSV records: g | m/s2 | cm/s2 (default m/s2)")
       ->check(CLI::IsMember({"g", "m/s2", "cm/s2"}));
   app.add_option("--scale", opt.scale, "Multiply the ground acceleration by S")->default_val(1.0);
-  app.add_option("--width", body.width, "Base width B along x, m")->required();
-  app.add_option("--cg-height", body.cg_height, "Height h of the centre of mass, m")->required();
+  std::string catalogue_file, item_id;
+  int samples = 0;
+  std::uint64_t ensemble_seed = 1;
+  double alarm_probability = 0.5;
+  app.add_option("--catalogue", catalogue_file,
+                 "Take the body from a monitor catalogue (YAML, the node's grammar) instead of --width ...; "
+                 "with --item");
+  app.add_option("--item", item_id, "--catalogue: the item's id");
+  app.add_option("--samples", samples,
+                 "Run N ensemble members of a --catalogue item given with distributions (as the node: "
+                 "~ensemble_size or the item's ensemble_size) and report P(beyond tipping), P(committed), "
+                 "P(overturned) given this record, with 95 % Wilson intervals")
+      ->check(CLI::Range(1, 100000));
+  app.add_option("--seed", ensemble_seed, "--samples: seed of the members' Latin hypercube (the node's ~ensemble_seed)")
+      ->default_val(ensemble_seed);
+  app.add_option("--alarm-probability", alarm_probability,
+                 "--samples: report when P(level) first reaches this (the node's ~alarm_probability)")
+      ->default_val(alarm_probability)->check(CLI::Range(1e-9, 1.0));
+  app.add_option("--width", body.width, "Base width B along x, m (required without --catalogue)");
+  app.add_option("--cg-height", body.cg_height, "Height h of the centre of mass, m (required without --catalogue)");
   app.add_option("--eccentricity", body.nu1,
                  "nu1: CoM at nu1*B from corner 1, in (0,1); 0.5 = symmetric")
       ->default_val(0.5);
@@ -450,11 +544,34 @@ int main(int argc, char** argv) {
     rm::parse_model(model_text, settings.model);
     if (const std::string e = rm::validate(settings); !e.empty()) throw std::invalid_argument(e);
     rm::parse_fidelity(fidelity_text.c_str(), opt.fidelity);
+    // The body: from the flags, or a catalogue item (then no body flag: one source of truth).
+    std::optional<rm::CatalogueItem> item_entry;
+    static const char* const kBodyFlags[] = {"--width", "--cg-height", "--eccentricity", "--radius-of-gyration",
+                                             "--depth", "--eccentricity-y", "--radius-of-gyration-y", "--mu-s",
+                                             "--mu-k", "--restitution"};
+    if (!catalogue_file.empty()) {
+      if (item_id.empty()) throw std::invalid_argument("--catalogue needs --item ID");
+      for (const char* flag : kBodyFlags)
+        if (app.count(flag) > 0)
+          throw std::invalid_argument(std::string(flag) + " cannot be combined with --catalogue (the item gives the body)");
+      for (const rm::CatalogueItem& c : rm::load_catalogue_items_file(catalogue_file))
+        if (c.spec.id == item_id) item_entry = c;
+      if (!item_entry) throw std::invalid_argument(catalogue_file + ": no item with id '" + item_id + "'");
+      body = item_entry->spec.body;
+      depth = item_entry->spec.depth;
+    } else {
+      if (!item_id.empty()) throw std::invalid_argument("--item needs --catalogue FILE");
+      for (const char* flag : {"--width", "--cg-height"})
+        if (app.count(flag) == 0) throw std::invalid_argument(std::string(flag) + " is required (or --catalogue and --item)");
+    }
+    if (samples > 0 && !(item_entry && item_entry->uncertain.uncertain()))
+      throw std::invalid_argument("--samples needs a --catalogue item given with distributions (" +
+                                  (item_entry ? "'" + item_id + "' has none" : std::string("no --catalogue")) + ")");
     const rm::Body rigid(body);  // validates the x plane's body
 
     // The y plane: asked for by --depth (NaN in DepthParameters means "not given", so an explicit
     // --depth nan is refused here rather than silently dropping the plane).
-    const bool two_planes = app.count("--depth") > 0;
+    const bool two_planes = item_entry ? item_entry->spec.two_planes() : app.count("--depth") > 0;
     if (two_planes && std::isnan(depth.depth))
       throw rm::BodyError("invalid body: depth = nan (must be a finite length > 0 m)");
     if (!two_planes) {
@@ -547,6 +664,10 @@ int main(int argc, char** argv) {
       std::cerr << "rocking_sim: note: the y plane's history is in " << history_y_path
                 << " (--history-y to choose)\n";
     const rm::ItemVerdict item = rm::combine(x.levels, y ? &y->levels : nullptr);
+    std::optional<EnsembleRun> ensemble;
+    if (samples > 0)
+      ensemble = run_ensemble(opt, item_entry->uncertain, samples, ensemble_seed, alarm_probability, motion,
+                              motion_y ? &*motion_y : nullptr);
 
     if (as_json) {
       json out = x.out;  // the top level stays the x plane's single-plane output
@@ -567,6 +688,8 @@ int main(int argc, char** argv) {
             reached ? json(rm::to_string(item.plane[static_cast<int>(level)])) : json(nullptr);
       }
       out["item"] = verdict;
+      if (item_entry) out["item"]["id"] = item_entry->spec.id;
+      if (ensemble) out["ensemble"] = ensemble->out;
       std::cout << out.dump(2) << "\n";
     } else {
       const std::string px = y ? "[x] " : "", py = "[y] ";
@@ -582,6 +705,8 @@ int main(int argc, char** argv) {
                   item.overturned() ? "OVERTURNED" : "survived",
                   level_text(rm::Level::BeyondTipping).c_str(), level_text(rm::Level::Committed).c_str(),
                   level_text(rm::Level::Overturned).c_str());
+      if (ensemble)
+        for (const std::string& line : ensemble->lines) std::printf("%s%s\n", y ? "    " : "", line.c_str());
     }
     return 0;
   } catch (const std::exception& e) {

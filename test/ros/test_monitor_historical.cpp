@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <map>
 #include <sstream>
+#include <tuple>
 #include <nlohmann/json.hpp>
 #include <ros/ros.h>
 #include <rosbag/bag.h>
@@ -19,6 +20,7 @@
 #include <sensor_msgs/Imu.h>
 
 #include "rocking_monitor/OverturnAlarm.h"
+#include "rocking_monitor/ProbabilityAlarm.h"
 #include "rocking_monitor/RockingStateArray.h"
 #include "rocking_monitor/ros/catalogue.hpp"
 #include "test_helpers.hpp"
@@ -75,7 +77,9 @@ TEST(MonitorHistorical, BothPlanesOfEveryItemEqualRockingSim) {
   nh.getParam("/rocking_monitor/tol", tol);
   std::string fidelity = "adaptive";
   nh.getParam("/rocking_monitor/fidelity", fidelity);
-  std::map<std::string, nlohmann::json> offline;
+  std::map<std::string, nlohmann::json> offline, ensembles;
+  std::string catalogue;
+  ASSERT_TRUE(pnh.getParam("catalogue", catalogue));
   for (const auto& item : cat.items) {
     const auto& b = item.spec.body;
     std::string cmd = tools + "/rocking_sim --record " + h.string() + " --vertical " + v.string() +
@@ -92,6 +96,22 @@ TEST(MonitorHistorical, BothPlanesOfEveryItemEqualRockingSim) {
     const std::string json = run(cmd + " 2>/dev/null", status);
     ASSERT_EQ(status, 0) << cmd;
     offline[item.spec.id] = nlohmann::json::parse(json);
+    if (!item.uncertain.uncertain()) continue;
+    // The ensemble: rocking_sim --samples on the catalogue file, the node's member count and seed.
+    int members = 32, seed = 1;
+    double threshold = 0.5;
+    nh.getParam("/rocking_monitor/ensemble_size", members);
+    nh.getParam("/rocking_monitor/ensemble_seed", seed);
+    nh.getParam("/rocking_monitor/alarm_probability", threshold);
+    if (item.ensemble_size > 0) members = item.ensemble_size;
+    const std::string ens = tools + "/rocking_sim --catalogue " + catalogue + " --item " + item.spec.id +
+                            " --samples " + std::to_string(members) + " --seed " + std::to_string(seed) +
+                            " --alarm-probability " + num(threshold) + " --record " + h.string() + " --record-y " +
+                            hy.string() + " --vertical " + v.string() + " --json --fidelity " + fidelity +
+                            " --scene unknown --tol " + num(tol);
+    const std::string ej = run(ens + " 2>/dev/null", status);
+    ASSERT_EQ(status, 0) << ens;
+    ensembles[item.spec.id] = nlohmann::json::parse(ej).at("ensemble");
   }
 
   // 3. Live: stream the bag in lock-step (the monitor publishes a state per sample).
@@ -105,6 +125,10 @@ TEST(MonitorHistorical, BothPlanesOfEveryItemEqualRockingSim) {
         acked = m->header.stamp.toSec();
         last = *m;
       });
+  std::map<std::string, std::map<int, rocking_monitor::ProbabilityAlarm>> live_p;  // item -> level -> alarm
+  auto sub_p = nh.subscribe<rocking_monitor::ProbabilityAlarm>(
+      "/rocking_monitor/probability_alarms", 1000,
+      [&](const rocking_monitor::ProbabilityAlarm::ConstPtr& m) { live_p[m->item_id][m->level] = *m; });
   int repeated = 0;
   auto sub_a = nh.subscribe<rocking_monitor::OverturnAlarm>(
       "/rocking_monitor/alarms", 1000, [&](const rocking_monitor::OverturnAlarm::ConstPtr& m) {
@@ -178,6 +202,33 @@ TEST(MonitorHistorical, BothPlanesOfEveryItemEqualRockingSim) {
     } else {
       ++survived;
     }
+  }
+  // Uncertain items: the live ensemble equals rocking_sim --samples (live == offline).
+  ASSERT_FALSE(ensembles.empty());
+  for (std::size_t i = 0; i < cat.items.size(); ++i) {
+    const std::string& id = cat.items[i].spec.id;
+    if (!ensembles.count(id)) continue;
+    const nlohmann::json& e = ensembles.at(id);
+    const rocking_monitor::RockingState& s = last.items[i];
+    EXPECT_EQ(s.ensemble_size, e.at("members").get<int>()) << id;
+    const std::array<std::tuple<const char*, const rocking_monitor::LevelProbability*, int>, 3> ps = {{
+        {"beyond_tipping", &s.p_beyond_tipping, -1},
+        {"committed", &s.p_committed, rocking_monitor::ProbabilityAlarm::COMMITTED},
+        {"overturned", &s.p_overturned, rocking_monitor::ProbabilityAlarm::OVERTURNED}}};
+    for (const auto& [name, p, code] : ps) {
+      const nlohmann::json& l = e.at("levels").at(name);
+      EXPECT_EQ(p->probability, l.at("probability").get<double>()) << id << " " << name;
+      EXPECT_EQ(p->lower, l.at("wilson_95")[0].get<double>()) << id << " " << name;
+      EXPECT_EQ(p->upper, l.at("wilson_95")[1].get<double>()) << id << " " << name;
+      if (code < 0) continue;  // beyond tipping raises no probability alarm
+      const bool crossed = !l.at("crossing").is_null();
+      ASSERT_EQ(live_p[id].count(code) == 1, crossed) << id << " " << name;
+      if (!crossed) continue;
+      EXPECT_NEAR(live_p[id][code].time_since_first_sample, l.at("crossing").at("time_s").get<double>(), 1e-9) << id;
+      EXPECT_EQ(live_p[id][code].value.probability, l.at("crossing").at("probability").get<double>()) << id;
+    }
+    std::printf("[ measured ] %s: %d members, P(overturned) %.3f [%.3f, %.3f] live and offline\n", id.c_str(),
+                s.ensemble_size, s.p_overturned.probability, s.p_overturned.lower, s.p_overturned.upper);
   }
   // The scene must be a real test: some items fall, some stay, and each plane decides some.
   EXPECT_GT(overturned, 0);
