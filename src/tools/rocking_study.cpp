@@ -285,8 +285,8 @@ int main(int argc, char** argv) {
       for (const st::StudyBody& b : bodies)
         runs_per_component += b.uncertain ? static_cast<std::size_t>(b.ensemble_size > 0 ? b.ensemble_size : members) : 1;
       std::fprintf(stderr,
-                   "rocking_study: fragility of %zu bodies (%zu runs each per record component and level, members of "
-                   "uncertain items included) x %zu record components x %d levels x %d polarities\n",
+                   "rocking_study: fragility of %zu bodies (%zu models with the members of uncertain items) x %zu "
+                   "record components x %d levels x %d polarities\n",
                    bodies.size(), runs_per_component, records.records.size(), levels, one_polarity ? 1 : 2);
       if (dry_run) return 0;
       const st::FragilityResult fr = st::run_fragility(bodies, records.records, fo);
