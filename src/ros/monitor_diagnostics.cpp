@@ -65,13 +65,19 @@ void RockingMonitor::catalogue_diagnostics(diagnostic_updater::DiagnosticStatusW
   st.add("items", items_.size());
   st.add("shard (k/n of the catalogue)", shard_);
   std::size_t ensembles = 0, members = 0;
+  double ensemble_s = 0.0;
   for (const Item& it : items_)
     if (it.ensemble) {
       ++ensembles;
       members += static_cast<std::size_t>(it.ensemble->size());
+      ensemble_s += it.ensemble_s;
     }
+  std::uint64_t samples = 0;
+  for (const Sensor& s : sensors_) samples += s.processed;
   st.add("items with an ensemble (uncertain parameters)", ensembles);
   st.add("ensemble members stepped per sample", members);
+  // Summed over threads: the CPU the ensembles cost per input sample (part of the processing time).
+  st.add("ensemble stepping per sample, mean (s)", samples > 0 ? ensemble_s / static_cast<double>(samples) : 0.0);
   for (int m = 0; m < 5; ++m) st.add(core::to_string(static_cast<ItemMode>(m)), counts[m]);
   st.add("pure-rocking model not valid now", invalid);
   st.add("items without transform", without_tf);

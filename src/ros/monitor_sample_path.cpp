@@ -148,7 +148,11 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
       if (!it.ready) continue;
       const Eigen::Vector3d ai = it.rotation * a;
       it.monitor->step(ai.x(), ai.y(), ai.z(), dt);
-      if (it.ensemble) it.ensemble->step(ai.x(), ai.y(), ai.z(), dt);
+      if (it.ensemble) {
+        const auto e0 = std::chrono::steady_clock::now();
+        it.ensemble->step(ai.x(), ai.y(), ai.z(), dt);
+        it.ensemble_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - e0).count();
+      }
       it.stamp = header.stamp;
     }
   };

@@ -51,6 +51,7 @@ class RockingMonitor {
     std::unique_ptr<core::ItemMonitor> monitor;
     std::vector<core::ItemSpec> members;         // drawn once at init (uncertain items only)
     std::unique_ptr<core::ItemEnsemble> ensemble;  // the members under the same samples
+    double ensemble_s = 0.0;  // wall time spent stepping the members, s (diagnostics: the ensemble's cost)
     std::size_t sensor = 0;
     bool has_rotation = false;
     Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // item <- sensor
