@@ -488,6 +488,10 @@ int main(int argc, char** argv) {
     if (units_text == "g") options.csv_units = rm::AccelUnits::G;
     else if (units_text == "cm/s2") options.csv_units = rm::AccelUnits::CentimetersPerSecond2;
     const rm::RecordFormat format = check_units(record, units_text);
+    // The miniSEED options would be silently meaningless for a file that states its own units.
+    if ((gain || sensor_azimuth || !channel_table.empty()) && format != rm::RecordFormat::MiniSeed)
+      throw rm::RecordError(record + ": --gain, --sensor-azimuth and --channel-table apply to miniSEED records only; this " +
+                            std::string(rm::to_string(format)) + " file states its own units and directions");
     const std::vector<rm::Component> comps = rm::read_record(record, options);
     rm::Component horizontal = first_horizontal(comps);
     std::optional<rm::Component> vertical;

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cstdio>
 #include <random>
 #include <set>
 #include <vector>
@@ -120,4 +122,38 @@ TEST(TimeGrid, SequenceFromTimeAtTheNominalRate) {
   EXPECT_EQ(g.sequence(1000.0 + 0.005 * 37 + 0.002), std::nullopt);  // 0.4 sample off: not this stream
   EXPECT_EQ(g.sequence(999.995), o - 1);  // reordered before the first
   EXPECT_THROW(fd::TimeGrid(0.0), std::invalid_argument);
+}
+
+// The per-sample path allocates nothing. core_tests counts allocations with
+// test/support/allocation_counter.hpp (included once, in test_batch_rocking.cpp); its counter is an
+// inline variable, so this identical definition names the same object.
+namespace rocking_monitor::testing {
+inline std::atomic<long> g_allocation_count{0};
+}  // namespace rocking_monitor::testing
+
+TEST(SampleSequencer, PerSamplePathAllocatesNothing) {
+  fd::SampleSequencer q(4);
+  fd::TimeGrid grid(200.0);
+  unsigned char bin[fd::kBinarySize];
+  char text[64];
+  const double a[3] = {0.1, -0.2, 0.3};
+  const long before = rocking_monitor::testing::g_allocation_count.load();
+  std::uint64_t released = 0;
+  for (std::uint64_t i = 0; i < 10000; ++i) {
+    const std::uint64_t s = (i % 50 == 7) ? i + 1 : (i % 50 == 8) ? i - 1 : i;  // swaps
+    if (i % 97 == 13) continue;                                                  // drops
+    fd::encode_binary(s, 0.005 * static_cast<double>(s), a, bin);
+    fd::AccelSample sample;
+    ASSERT_EQ(fd::parse_datagram(reinterpret_cast<const char*>(bin), sizeof bin, sample), fd::DatagramError::None);
+    q.push(sample);
+    released += q.ready_count();
+    const int n = std::snprintf(text, sizeof text, "%.3f,0.1,-0.2,0.3\n", 0.005 * static_cast<double>(i));
+    ASSERT_EQ(fd::parse_datagram(text, static_cast<std::size_t>(n), sample), fd::DatagramError::None);
+    ASSERT_TRUE(grid.sequence(sample.time_s).has_value());
+  }
+  EXPECT_EQ(rocking_monitor::testing::g_allocation_count.load(), before);
+  EXPECT_GT(released, 9800u);
+  // the counter is live: a vector allocates
+  std::vector<int> v(3);
+  EXPECT_GT(rocking_monitor::testing::g_allocation_count.load(), before);
 }
