@@ -30,11 +30,30 @@ namespace {
 
 void quiet_log(char*) {}
 
+// libmseed reports some problems only as a printed warning and decodes the record anyway (e.g.
+// "Data integrity check for Steim2 failed"): the reader collects them per record and fails on them.
+thread_local std::string* t_diagnostics = nullptr;
+void collect_diagnostic(char* message) {
+  if (t_diagnostics != nullptr && message != nullptr) {
+    std::string m(message);
+    while (!m.empty() && (m.back() == '\n' || m.back() == '\r')) m.pop_back();
+    if (!t_diagnostics->empty()) *t_diagnostics += "; ";
+    *t_diagnostics += m;
+  }
+}
+
 /// libmseed prints its own diagnostics on stderr; our errors say it all, on one line.
 void silence_libmseed() {
   static std::once_flag once;
-  std::call_once(once, [] { ms_loginit(quiet_log, nullptr, quiet_log, nullptr); });
+  std::call_once(once, [] { ms_loginit(quiet_log, nullptr, collect_diagnostic, nullptr); });
 }
+
+/// Points libmseed's diagnostics of this thread at a string while a file is read.
+struct DiagnosticSink {
+  std::string text;
+  DiagnosticSink() { t_diagnostics = &text; }
+  ~DiagnosticSink() { t_diagnostics = nullptr; }
+};
 
 /// Frees libmseed's reader state however the function is left.
 struct MsReader {
@@ -88,6 +107,7 @@ std::vector<Component> read_miniseed(const std::string& path, const ReadOptions&
   std::vector<Channel> channels;  // in order of first appearance
   std::map<std::string, std::size_t> index;
   {
+    DiagnosticSink diagnostics;
     MsReader reader;
     off_t fpos = 0;
     int last = 0;
@@ -102,6 +122,7 @@ std::vector<Component> read_miniseed(const std::string& path, const ReadOptions&
       const long long offset = static_cast<long long>(fpos);
       next_offset = offset + msr->reclen;
       const std::string where = record_where(path, record, offset);
+      if (!diagnostics.text.empty()) fail(where, 0, "libmseed: " + diagnostics.text);
       if (msr->numsamples == 0) continue;  // a record without samples (blockettes only) adds nothing
       if (msr->sampletype == 'a') {
         fail(where, 0, std::string("channel ") + msr->channel + " holds text (ASCII encoding), not samples");
@@ -149,7 +170,8 @@ std::vector<Component> read_miniseed(const std::string& path, const ReadOptions&
     }
     if (rv != MS_ENDOFFILE) {
       fail(record_where(path, record + 1, next_offset), 0,
-           std::string("not a valid miniSEED record (libmseed: ") + ms_errorstr(rv) + ")");
+           std::string("not a valid miniSEED record (libmseed: ") + ms_errorstr(rv) +
+               (diagnostics.text.empty() ? std::string() : "; " + diagnostics.text) + ")");
     }
     // libmseed may stop quietly at a record cut short: the records must cover the file.
     std::error_code ec;

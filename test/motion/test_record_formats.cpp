@@ -318,6 +318,18 @@ TEST(RecordFormatsMiniSeed, GapMixedRateNonAccelerometerAndTruncationAreNamedErr
   EXPECT_NE(read_error((d / "hh.mseed").string(), o).find("hh.mseed: record 1 at byte 0: channel HHZ is not an accelerometer (instrument code H"),
             std::string::npos)
       << read_error((d / "hh.mseed").string(), o);
+  // an unknown encoding (blockette 1000 byte 4, at byte 52 of the record) in record 3
+  std::string enc = read_file(d / "gap.mseed");
+  enc[2 * 512 + 52] = static_cast<char>(99);
+  write_file(d / "encoding.mseed", enc);
+  const std::string encoding = read_error((d / "encoding.mseed").string(), o);
+  EXPECT_NE(encoding.find("encoding.mseed: record 3 at byte 1024: "), std::string::npos) << encoding;
+  // steim2 frames that fail libmseed's integrity check (the last-sample constant of record 2)
+  std::string frames = read_file(d / "gap.mseed");
+  frames[512 + 64 + 8] = static_cast<char>(frames[512 + 64 + 8] ^ 0x40);
+  write_file(d / "integrity.mseed", frames);
+  const std::string integrity = read_error((d / "integrity.mseed").string(), o);
+  EXPECT_NE(integrity.find("integrity.mseed: record 2 at byte 512: libmseed: "), std::string::npos) << integrity;
   // truncated in the middle of its last record
   write_interleaved(d / "whole.mseed", {pack_channel("HNZ", 100.0, kStart, z, DE_STEIM2, 512)});
   const std::string whole = read_file(d / "whole.mseed");
