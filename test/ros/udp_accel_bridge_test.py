@@ -6,8 +6,11 @@ import os
 import random
 import socket
 import struct
+import subprocess
 import time
 import unittest
+
+import roslib.packages
 
 import rospy
 import rostest
@@ -47,8 +50,7 @@ def plan(n, seed):
 
 
 class UdpAccelBridgeTest(unittest.TestCase):
-    def setUp(self):
-        rospy.init_node('udp_accel_bridge_test')
+    def load_record(self):
         d = os.path.join(rospy.get_param('~records_dir'), 'northridge_1994')
         if not os.path.isfile(os.path.join(d, 'Rinaldi228.AT2')):
             self.skipTest('records directory not found: ' + d)
@@ -72,6 +74,7 @@ class UdpAccelBridgeTest(unittest.TestCase):
                     self.diag[key] = {kv.key: kv.value for kv in st.values}
 
     def test_record_through_the_bridge(self):
+        self.load_record()
         deadline = time.time() + 20
         while any(s.get_num_connections() == 0 for s in self.subs):
             self.assertLess(time.time(), deadline, 'bridges not publishing')
@@ -119,6 +122,25 @@ class UdpAccelBridgeTest(unittest.TestCase):
             self.assertEqual(d['form'], 'binary' if key == 'bin' else 'text')
         rospy.loginfo('udp_accel_bridge: %d samples, %d dropped, %d swapped: all counted', self.n, len(dropped), swaps)
 
+    # A bad parameter or a port in use: one FATAL line naming it, exit status 2.
+    def run_bridge(self, *args):
+        exe = [p for p in roslib.packages.find_node('rocking_monitor', 'udp_accel_bridge') if os.access(p, os.X_OK)][0]
+        r = subprocess.run([exe, '__name:=bad_bridge_%d' % random.randrange(1 << 30)] + list(args),
+                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=30)
+        return r.returncode, r.stdout.decode(errors='replace')
+
+    def test_bad_parameters(self):
+        code, out = self.run_bridge('_port:=15699')
+        self.assertEqual(code, 2, out)
+        self.assertIn("~rate_hz must be the controller's sample rate, > 0 Hz", out)
+        code, out = self.run_bridge('_rate_hz:=100.0', '_clock:=gps', '_port:=15699')
+        self.assertEqual(code, 2, out)
+        self.assertIn("~clock must be first_arrival or controller, not 'gps'", out)
+        code, out = self.run_bridge('_rate_hz:=100.0', '_port:=15611', '_bind_address:=127.0.0.1')  # the test's bridge has it
+        self.assertEqual(code, 2, out)
+        self.assertIn('cannot bind 127.0.0.1:15611', out)
+
 
 if __name__ == '__main__':
+    rospy.init_node('udp_accel_bridge_test')
     rostest.rosrun('rocking_monitor', 'udp_accel_bridge', UdpAccelBridgeTest)
