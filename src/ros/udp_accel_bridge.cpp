@@ -146,14 +146,23 @@ void UdpAccelBridge::on_datagram(const char* data, std::size_t size, const ros::
 void UdpAccelBridge::publish_ready(const ros::Time& arrival) {
   for (std::size_t i = 0; i < sequencer_->ready_count(); ++i) {
     const feeds::AccelSample& s = sequencer_->ready()[i];
-    if (clock_ == Clock::FirstArrival && !clock_offset_s_) clock_offset_s_ = arrival.toSec() - s.time_s;
-    const double stamp = s.time_s + (clock_ == Clock::FirstArrival ? *clock_offset_s_ : 0.0);
+    if (clock_ == Clock::FirstArrival && !first_arrival_) {
+      first_arrival_ = arrival;
+      first_time_s_ = s.time_s;
+    }
+    const double since_first = s.time_s - first_time_s_;
+    const double stamp = clock_ == Clock::FirstArrival ? first_arrival_->toSec() + since_first : s.time_s;
     if (!(stamp > 0.0) || stamp > 4294967295.0) {
       ++malformed_;
       last_error_ = "time out of the range of a ROS stamp (with ~clock controller: seconds since 1970)";
       continue;
     }
-    msg_.header.stamp.fromSec(stamp);
+    if (clock_ == Clock::FirstArrival) {
+      const std::int64_t ns = static_cast<std::int64_t>(first_arrival_->toNSec()) + std::llround(since_first * 1e9);
+      msg_.header.stamp.fromNSec(static_cast<std::uint64_t>(ns));  // > 0: checked above
+    } else {
+      msg_.header.stamp.fromSec(stamp);
+    }
     msg_.header.seq = static_cast<std::uint32_t>(s.sequence);
     msg_.linear_acceleration.x = s.accel[0];
     msg_.linear_acceleration.y = s.accel[1];
@@ -192,7 +201,7 @@ void UdpAccelBridge::diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st
   st.add("idle flushes", flushes_);
   st.add("next sequence", sequencer_->next_sequence());
   st.add("clock", clock_ == Clock::Controller ? "controller" : "first_arrival");
-  st.add("clock offset (s)", clock_offset_s_ ? *clock_offset_s_ : 0.0);
+  st.add("clock offset (s)", first_arrival_ ? first_arrival_->toSec() - first_time_s_ : 0.0);
   st.add("arrival - stamp, last (s)", last_arrival_minus_stamp_s_);
   st.add("arrival - stamp, max (s)", max_arrival_minus_stamp_s_);
 }

@@ -69,7 +69,11 @@ class UdpAccelBridge {
   std::unique_ptr<feeds::SampleSequencer> sequencer_;
   std::unique_ptr<feeds::TimeGrid> grid_;
   sensor_msgs::Imu msg_;  // reused: only the stamp and the acceleration change per sample
-  std::optional<double> clock_offset_s_;  // FirstArrival: ROS time - controller time at the first sample
+  // FirstArrival: the first published sample's arrival (ROS time) and controller time. Stamps are
+  // that arrival + (controller time - first controller time) in whole nanoseconds, so the spacing is
+  // the controller's to the nanosecond (an epoch-sized double would round it to 0.24 us).
+  std::optional<ros::Time> first_arrival_;
+  double first_time_s_ = 0.0;
   std::uint64_t datagrams_ = 0;
   std::uint64_t malformed_ = 0;
   std::uint64_t off_grid_ = 0;
