@@ -3,8 +3,7 @@
 
 namespace rocking_monitor::feeds {
 
-SampleSequencer::SampleSequencer(std::size_t window)
-    : slots_(window + 1), history_(kResyncSpan), ready_(window + 2) {}
+SampleSequencer::SampleSequencer(std::size_t window) : slots_(window + 1), history_(kResyncSpan), ready_(window + 2) {}
 
 void SampleSequencer::remember(std::uint64_t sequence, Fate fate) {
   History& h = history_[sequence % history_.size()];

@@ -75,7 +75,8 @@ DatagramError parse_datagram(const char* data, std::size_t size, AccelSample& ou
     s.sequence = le_u64(u + 8);
     s.time_s = le_f64(u + 16);
     for (int k = 0; k < 3; ++k) s.accel[k] = le_f64(u + 24 + 8 * k);
-    if (!std::isfinite(s.time_s) || !std::isfinite(s.accel[0]) || !std::isfinite(s.accel[1]) || !std::isfinite(s.accel[2])) {
+    if (!std::isfinite(s.time_s) || !std::isfinite(s.accel[0]) || !std::isfinite(s.accel[1]) ||
+        !std::isfinite(s.accel[2])) {
       return DatagramError::NonFinite;
     }
     out = s;

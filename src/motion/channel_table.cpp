@@ -2,12 +2,11 @@
 // (miniSEED has counts and a channel code, nothing else). CSV with a header row
 //   network,station,location,channel,azimuth_deg,gain_counts_per_mps2
 // read with the project's CSV layer; errors name the table's file and line.
-#include "record_reader_internal.hpp"
-
 #include <filesystem>
 #include <map>
 #include <system_error>
 
+#include "record_reader_internal.hpp"
 #include "rocking_monitor/csv/csv_reader.hpp"
 
 namespace rocking_monitor::core::record_io {
@@ -39,13 +38,16 @@ ChannelTable read_channel_table(const std::string& path) {
   } catch (const csv::CsvError& e) {
     throw RecordError(e.what());
   }
-  if (rows.empty()) fail(path, 0, "empty channel table (needs a header row: network,station,location,channel,azimuth_deg,gain_counts_per_mps2)");
+  if (rows.empty())
+    fail(path, 0,
+         "empty channel table (needs a header row: network,station,location,channel,azimuth_deg,gain_counts_per_mps2)");
   const std::map<std::string, std::size_t> col = csv::column_index(rows[0], true);
   const char* required[] = {"network", "station", "location", "channel", "azimuth_deg", "gain_counts_per_mps2"};
   for (const char* name : required) {
     if (col.find(name) == col.end()) {
-      fail(path, rows[0].line, std::string("missing column '") + name +
-                                   "' (header: network,station,location,channel,azimuth_deg,gain_counts_per_mps2)");
+      fail(path, rows[0].line,
+           std::string("missing column '") + name +
+               "' (header: network,station,location,channel,azimuth_deg,gain_counts_per_mps2)");
     }
   }
   ChannelTable table;
@@ -76,7 +78,8 @@ ChannelTable read_channel_table(const std::string& path) {
       r.gain_counts_per_mps2 = v;
     }
     if (table.find(r.network, r.station, r.location, r.channel) != nullptr) {
-      fail(path, row.line, "channel " + r.network + "." + r.station + "." + r.location + "." + r.channel + " listed twice");
+      fail(path, row.line,
+           "channel " + r.network + "." + r.station + "." + r.location + "." + r.channel + " listed twice");
     }
     table.rows.push_back(std::move(r));
   }

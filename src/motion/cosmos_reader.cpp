@@ -9,11 +9,10 @@
 //    400 = up, 500 = down (flipped to positive up like every vertical).
 //  * units: the data header's "units=" text (cm/sec2, cm/s/s, m/sec2, mm/sec2, g, gal); anything
 //    else is an error, never a guess.
-#include "record_reader_internal.hpp"
-
 #include <cctype>
 #include <cmath>
 
+#include "record_reader_internal.hpp"
 #include "rocking_monitor/constants.hpp"
 #include "rocking_monitor/motion/station.hpp"
 
@@ -89,13 +88,15 @@ std::vector<Component> read_cosmos(const std::string& path, std::string_view dat
     const Line& first = lines[li];
     const std::string up1 = upper(first.text);
     if (!is_text_header_start(first.text)) {
-      fail(path, first.number, "expected a COSMOS text header line ('... (Format v01.20 with 13 text lines) ...'), found " +
-                                   quoted(trim(first.text)));
+      fail(path, first.number,
+           "expected a COSMOS text header line ('... (Format v01.20 with 13 text lines) ...'), found " +
+               quoted(trim(first.text)));
     }
     const std::string kind = std::string(trim(std::string_view(up1).substr(0, std::min<std::size_t>(25, up1.size()))));
     if (kind.find("CORRECTED ACCELERATION") == std::string::npos || kind.find("UNCORRECTED") != std::string::npos) {
       fail(path, first.number,
-           "not a COSMOS V2 corrected acceleration record: data type " + quoted(trim(first.text.substr(0, std::min<std::size_t>(25, first.text.size())))));
+           "not a COSMOS V2 corrected acceleration record: data type " +
+               quoted(trim(first.text.substr(0, std::min<std::size_t>(25, first.text.size())))));
     }
     const long long n_text = number_before(up1, "TEXT LINES");
     if (n_text < 1) fail(path, first.number, "bad header: cannot read the number of text lines");
@@ -117,12 +118,14 @@ std::vector<Component> read_cosmos(const std::string& path, std::string_view dat
       FortranFormat ff;
       const std::string key = std::string(what) + "-HEADER VALUES FOLLOW";
       if (!split_block_header(h.text, n, words, ftext) || words.find(key) == std::string::npos) {
-        fail(path, h.number, std::string("expected '<n> ") + what + "-header values follow on <l> lines, Format= (...)', found " +
-                                 quoted(trim(h.text)));
+        fail(path, h.number,
+             std::string("expected '<n> ") + what + "-header values follow on <l> lines, Format= (...)', found " +
+                 quoted(trim(h.text)));
       }
       if (!parse_fortran_format(ftext, ff) || (want_kind == 'I') != (ff.kind == 'I')) {
-        fail(path, h.number, "bad header: format " + quoted(ftext) + " is not a Fortran " +
-                                 (want_kind == 'I' ? "integer" : "real") + " format");
+        fail(path, h.number,
+             "bad header: format " + quoted(ftext) + " is not a Fortran " + (want_kind == 'I' ? "integer" : "real") +
+                 " format");
       }
       values.clear();
       li = read_fortran_values(lines, li + 1, static_cast<std::size_t>(n), ff, path, values);
@@ -131,8 +134,11 @@ std::vector<Component> read_cosmos(const std::string& path, std::string_view dat
     std::vector<double> ints, reals;
     const std::size_t int_line = read_header("INTEGER", 'I', ints);
     const std::size_t real_line = read_header("REAL", 'F', reals);
-    if (ints.size() < 54) fail(path, int_line, "integer header has " + std::to_string(ints.size()) + " values, COSMOS V2 needs at least 54");
-    if (reals.size() < 62) fail(path, real_line, "real header has " + std::to_string(reals.size()) + " values, COSMOS V2 needs at least 62");
+    if (ints.size() < 54)
+      fail(path, int_line,
+           "integer header has " + std::to_string(ints.size()) + " values, COSMOS V2 needs at least 54");
+    if (reals.size() < 62)
+      fail(path, real_line, "real header has " + std::to_string(reals.size()) + " values, COSMOS V2 needs at least 62");
     double dt = reals[33];
     if (dt == kCosmosUndefined) dt = reals[61] == kCosmosUndefined ? kCosmosUndefined : reals[61] / 1000.0;
     if (!(dt > 0.0)) fail(path, real_line, "no sample interval (real header #34 and #62 undefined or not positive)");
@@ -145,8 +151,9 @@ std::vector<Component> read_cosmos(const std::string& path, std::string_view dat
     } else if (orient == 500) {
       c.label = "DOWN";
     } else {
-      fail(path, int_line, "integer header #54 (channel orientation) is " + std::to_string(orient) +
-                               ": expected 1-360 (azimuth), 400 (up) or 500 (down)");
+      fail(path, int_line,
+           "integer header #54 (channel orientation) is " + std::to_string(orient) +
+               ": expected 1-360 (azimuth), 400 (up) or 500 (down)");
     }
     c.vertical = label_is_vertical(c.label);
 
@@ -179,7 +186,9 @@ std::vector<Component> read_cosmos(const std::string& path, std::string_view dat
       std::string words, ftext;
       FortranFormat ff;
       if (!split_block_header(h.text, npts, words, ftext) || words.find("PTS") == std::string::npos) {
-        fail(path, h.number, "expected a data header '<npts> acceleration pts, ..., units=..., Format=(...)', found " + quoted(trim(h.text)));
+        fail(path, h.number,
+             "expected a data header '<npts> acceleration pts, ..., units=..., Format=(...)', found " +
+                 quoted(trim(h.text)));
       }
       if (!parse_fortran_format(ftext, ff) || ff.kind == 'I') {
         fail(path, h.number, "bad data header: format " + quoted(ftext) + " is not a Fortran real format");
@@ -197,7 +206,8 @@ std::vector<Component> read_cosmos(const std::string& path, std::string_view dat
         const std::string units = std::string(trim(std::string_view(h.text).substr(u + 6, e - u - 6)));
         const double scale = units_scale(units);
         if (scale == 0.0) {
-          fail(path, h.number, "unknown acceleration units " + quoted(units) + " (cm/sec2, cm/s/s, m/sec2, mm/sec2, g)");
+          fail(path, h.number,
+               "unknown acceleration units " + quoted(units) + " (cm/sec2, cm/s/s, m/sec2, mm/sec2, g)");
         }
         const double sign = label_is_positive_down(c.label) ? -1.0 : 1.0;
         c.accel.reserve(values.size());
@@ -208,8 +218,9 @@ std::vector<Component> read_cosmos(const std::string& path, std::string_view dat
     }
     if (!have_accel) fail(path, lines.back().number, "channel has no acceleration block");
     if (!out.empty() && std::abs(out.front().dt - c.dt) > 1e-9 * out.front().dt) {
-      fail(path, real_line, "mixed sample rates: channel 1 has dt = " + std::to_string(out.front().dt) + " s, channel " +
-                                std::to_string(out.size() + 1) + " dt = " + std::to_string(c.dt) + " s (one rate per file)");
+      fail(path, real_line,
+           "mixed sample rates: channel 1 has dt = " + std::to_string(out.front().dt) + " s, channel " +
+               std::to_string(out.size() + 1) + " dt = " + std::to_string(c.dt) + " s (one rate per file)");
     }
     out.push_back(std::move(c));
   }

@@ -1,9 +1,9 @@
 // Numbers laid out by a Fortran edit descriptor, as COSMOS headers announce them ("Format=(8F10.5)").
 // Fields are cut by column, never by white space: Fortran writes touching fields
 // ("-0.123456E+01-0.234567E+01") whenever a value fills its width.
-#include "record_reader_internal.hpp"
-
 #include <cctype>
+
+#include "record_reader_internal.hpp"
 
 namespace rocking_monitor::core::record_io {
 
@@ -12,7 +12,8 @@ namespace {
 bool read_uint(std::string_view s, std::size_t& i, std::size_t& out) {
   const std::size_t b = i;
   out = 0;
-  while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) out = out * 10 + static_cast<std::size_t>(s[i++] - '0');
+  while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])))
+    out = out * 10 + static_cast<std::size_t>(s[i++] - '0');
   return i > b && i - b < 6;
 }
 
@@ -73,8 +74,9 @@ std::size_t read_fortran_values(const std::vector<Line>& lines, std::size_t firs
     while (!t.empty() && is_space(t.back())) t.remove_suffix(1);  // trailing blanks
     const std::size_t want = std::min(format.per_line, count - got);
     if (t.size() > format.width * format.per_line) {
-      fail(path, ln.number, "line longer than the format allows (" + std::to_string(format.per_line) + " fields of " +
-                                std::to_string(format.width) + " characters)");
+      fail(path, ln.number,
+           "line longer than the format allows (" + std::to_string(format.per_line) + " fields of " +
+               std::to_string(format.width) + " characters)");
     }
     const std::size_t fields = (t.size() + format.width - 1) / format.width;
     if (fields != want) {
@@ -89,7 +91,8 @@ std::size_t read_fortran_values(const std::vector<Line>& lines, std::size_t firs
       double v = 0.0;
       if (format.kind == 'I') {
         long long iv = 0;
-        if (!parse_integer(field, iv)) fail(path, ln.number, "field " + std::to_string(k + 1) + " is not an integer: " + quoted(field));
+        if (!parse_integer(field, iv))
+          fail(path, ln.number, "field " + std::to_string(k + 1) + " is not an integer: " + quoted(field));
         v = static_cast<double>(iv);
       } else {
         v = number_or_fail(field, path, ln.number);

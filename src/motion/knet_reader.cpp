@@ -7,9 +7,9 @@
 //    whole-record average removed. That peak is checked against the data (a truncated file or a
 //    wrong scale factor shows there);
 //  * Dir.: N-S, E-W, U-D (K-NET) or the KiK-net channel number 1-6 (1/4 N-S, 2/5 E-W, 3/6 U-D).
-#include "record_reader_internal.hpp"
-
 #include <cmath>
+
+#include "record_reader_internal.hpp"
 
 namespace rocking_monitor::core::record_io {
 
@@ -20,12 +20,23 @@ struct HeaderKey {
 };
 
 const HeaderKey kHeader[17] = {
-    {{"Origin Time", nullptr}},      {{"Lat.", nullptr}},          {{"Lon.", "Long."}},
-    {{"Depth. (km)", nullptr}},      {{"Mag.", nullptr}},          {{"Station Code", nullptr}},
-    {{"Station Lat.", nullptr}},     {{"Station Lon.", "Station Long."}}, {{"Station Height(m)", nullptr}},
-    {{"Record Time", nullptr}},      {{"Sampling Freq(Hz)", nullptr}},    {{"Duration Time(s)", nullptr}},
-    {{"Dir.", nullptr}},             {{"Scale Factor", nullptr}},  {{"Max. Acc. (gal)", "Max Acc. (gal)"}},
-    {{"Last Correction", nullptr}},  {{"Memo.", nullptr}},
+    {{"Origin Time", nullptr}},
+    {{"Lat.", nullptr}},
+    {{"Lon.", "Long."}},
+    {{"Depth. (km)", nullptr}},
+    {{"Mag.", nullptr}},
+    {{"Station Code", nullptr}},
+    {{"Station Lat.", nullptr}},
+    {{"Station Lon.", "Station Long."}},
+    {{"Station Height(m)", nullptr}},
+    {{"Record Time", nullptr}},
+    {{"Sampling Freq(Hz)", nullptr}},
+    {{"Duration Time(s)", nullptr}},
+    {{"Dir.", nullptr}},
+    {{"Scale Factor", nullptr}},
+    {{"Max. Acc. (gal)", "Max Acc. (gal)"}},
+    {{"Last Correction", nullptr}},
+    {{"Memo.", nullptr}},
 };
 
 /// The value after the header name, or fails naming the line and the name expected.
@@ -35,11 +46,11 @@ std::string_view header_value(const Line& ln, const HeaderKey& key, const std::s
     const std::string_view n(name);
     if (ln.text.substr(0, n.size()) == n) return trim(ln.text.substr(n.size()));
   }
-  fail(path, ln.number, std::string("bad K-NET header: expected '") + key.names[0] + "', found " + quoted(trim(ln.text)));
+  fail(path, ln.number,
+       std::string("bad K-NET header: expected '") + key.names[0] + "', found " + quoted(trim(ln.text)));
 }
 
 }  // namespace
-
 
 std::vector<Component> read_knet(const std::string& path, std::string_view data) {
   const std::vector<Line> lines = split_lines(data);
@@ -64,10 +75,14 @@ std::vector<Component> read_knet(const std::string& path, std::string_view data)
   c.dt = 1.0 / rate;
   // Dir.
   const std::string dir = upper(v[12]);
-  if (dir == "N-S" || dir == "1" || dir == "4") c.label = "N";
-  else if (dir == "E-W" || dir == "2" || dir == "5") c.label = "E";
-  else if (dir == "U-D" || dir == "3" || dir == "6") c.label = "UP";
-  else fail(path, lines[12].number, "unknown direction " + quoted(v[12]) + " (N-S, E-W, U-D or a KiK-net channel 1-6)");
+  if (dir == "N-S" || dir == "1" || dir == "4")
+    c.label = "N";
+  else if (dir == "E-W" || dir == "2" || dir == "5")
+    c.label = "E";
+  else if (dir == "U-D" || dir == "3" || dir == "6")
+    c.label = "UP";
+  else
+    fail(path, lines[12].number, "unknown direction " + quoted(v[12]) + " (N-S, E-W, U-D or a KiK-net channel 1-6)");
   c.vertical = c.label == "UP";
   // Scale Factor: "<a>(gal)/<b>"
   const std::string_view sf = v[13];

@@ -11,8 +11,6 @@
 //  * The gain and the azimuth of 1/2 channels come from the options or the channel table, never
 //    from a default (SEED codes N/E do say north/east).
 // miniSEED has no lines: errors name "<file>: record <n> at byte <offset>".
-#include "record_reader_internal.hpp"
-
 #include <libmseed.h>
 
 #include <algorithm>
@@ -22,6 +20,7 @@
 #include <mutex>
 #include <sstream>
 
+#include "record_reader_internal.hpp"
 #include "rocking_monitor/motion/station.hpp"
 
 namespace rocking_monitor::core::record_io {
@@ -63,8 +62,8 @@ struct MsReader {
 };
 
 struct Segment {
-  hptime_t start = 0;  // microseconds since the epoch
-  double rate = 0.0;   // Hz
+  hptime_t start = 0;           // microseconds since the epoch
+  double rate = 0.0;            // Hz
   std::vector<double> samples;  // as decoded (counts, or the float values)
   std::size_t record = 0;       // 1-based record number in the file
   long long offset = 0;         // byte offset of the record
@@ -178,8 +177,8 @@ std::vector<Component> read_miniseed(const std::string& path, const ReadOptions&
     const auto size = std::filesystem::file_size(path, ec);
     if (!ec && static_cast<long long>(size) != next_offset) {
       fail(record_where(path, record + 1, next_offset), 0,
-           "not a valid miniSEED record (file ends after " + std::to_string(static_cast<long long>(size) - next_offset) +
-               " of its bytes: truncated)");
+           "not a valid miniSEED record (file ends after " +
+               std::to_string(static_cast<long long>(size) - next_offset) + " of its bytes: truncated)");
     }
   }
   if (channels.empty()) fail(path, 0, "no data records (a miniSEED file without samples)");
@@ -187,8 +186,8 @@ std::vector<Component> read_miniseed(const std::string& path, const ReadOptions&
   // One station, one location per file: a station is what the rest of the project loads.
   for (const Channel& c : channels) {
     if (c.net != channels[0].net || c.sta != channels[0].sta || c.loc != channels[0].loc) {
-      fail(path, 0, "holds several stations or locations (" + channels[0].id() + " and " + c.id() +
-                        "): one station per file");
+      fail(path, 0,
+           "holds several stations or locations (" + channels[0].id() + " and " + c.id() + "): one station per file");
     }
   }
 
@@ -201,8 +200,9 @@ std::vector<Component> read_miniseed(const std::string& path, const ReadOptions&
       const Segment& cur = c.segments[k];
       const std::string where = record_where(path, cur.record, cur.offset);
       if (std::abs(cur.rate - prev.rate) > 1e-6 * prev.rate) {
-        fail(where, 0, "channel " + c.id() + ": sample rate changes from " + fixed(prev.rate, 6) + " Hz to " +
-                           fixed(cur.rate, 6) + " Hz at " + iso(cur.start));
+        fail(where, 0,
+             "channel " + c.id() + ": sample rate changes from " + fixed(prev.rate, 6) + " Hz to " +
+                 fixed(cur.rate, 6) + " Hz at " + iso(cur.start));
       }
       const double period_us = 1e6 / prev.rate;
       const double expected = static_cast<double>(prev.start) + static_cast<double>(prev.samples.size()) * period_us;
@@ -225,13 +225,15 @@ std::vector<Component> read_miniseed(const std::string& path, const ReadOptions&
     const Segment& s = c.segments.front();
     const std::string where = record_where(path, s.record, s.offset);
     if (std::abs(s.rate - rate) > 1e-6 * rate) {
-      fail(where, 0, "mixed sample rates: " + ref.id() + " " + fixed(rate, 6) + " Hz, " + c.id() + " " +
-                         fixed(s.rate, 6) + " Hz (one rate per station)");
+      fail(where, 0,
+           "mixed sample rates: " + ref.id() + " " + fixed(rate, 6) + " Hz, " + c.id() + " " + fixed(s.rate, 6) +
+               " Hz (one rate per station)");
     }
     const double offset_s = static_cast<double>(s.start - ref.segments.front().start) * 1e-6;
     if (std::abs(offset_s) * rate > 0.5) {
-      fail(where, 0, "channels start at different samples: " + ref.id() + " at " + iso(ref.segments.front().start) +
-                         ", " + c.id() + " at " + iso(s.start) + " (trim them to a common start)");
+      fail(where, 0,
+           "channels start at different samples: " + ref.id() + " at " + iso(ref.segments.front().start) + ", " +
+               c.id() + " at " + iso(s.start) + " (trim them to a common start)");
     }
   }
 
@@ -240,11 +242,13 @@ std::vector<Component> read_miniseed(const std::string& path, const ReadOptions&
     const SeedChannel k = classify_seed_channel(c.cha, path);
     return k.vertical ? 2 : k.horizontal_index;
   };
-  std::stable_sort(channels.begin(), channels.end(), [&](const Channel& a, const Channel& b) { return rank(a) < rank(b); });
+  std::stable_sort(channels.begin(), channels.end(),
+                   [&](const Channel& a, const Channel& b) { return rank(a) < rank(b); });
   for (std::size_t k = 1; k < channels.size(); ++k) {
     if (rank(channels[k]) == rank(channels[k - 1])) {
-      fail(path, 0, "channels " + channels[k - 1].id() + " and " + channels[k].id() +
-                        " measure the same direction (one band and instrument per file)");
+      fail(path, 0,
+           "channels " + channels[k - 1].id() + " and " + channels[k].id() +
+               " measure the same direction (one band and instrument per file)");
     }
   }
 
@@ -260,10 +264,13 @@ std::vector<Component> read_miniseed(const std::string& path, const ReadOptions&
     } else if (row != nullptr && row->gain_counts_per_mps2) {
       gain = *row->gain_counts_per_mps2;
     } else {
-      fail(path, 0, "channel " + c.id() + ": no gain (counts per m/s^2): give --gain or gain_counts_per_mps2 in a channel table (" +
-                        table_text + ")");
+      fail(path, 0,
+           "channel " + c.id() +
+               ": no gain (counts per m/s^2): give --gain or gain_counts_per_mps2 in a channel table (" + table_text +
+               ")");
     }
-    if (!(gain > 0.0) || !std::isfinite(gain)) fail(path, 0, "channel " + c.id() + ": gain " + fixed(gain, 6) + " is not positive");
+    if (!(gain > 0.0) || !std::isfinite(gain))
+      fail(path, 0, "channel " + c.id() + ": gain " + fixed(gain, 6) + " is not positive");
     Component comp;
     comp.file = path;
     comp.station = c.net + "." + c.sta + (c.loc.empty() ? std::string() : "." + c.loc);
@@ -283,8 +290,11 @@ std::vector<Component> read_miniseed(const std::string& path, const ReadOptions&
       } else if (kind.geographic) {
         az = 90.0 * kind.horizontal_index;
       } else {
-        fail(path, 0, "channel " + c.id() + ": the sensor's azimuth is unknown (channels 1/2 have no fixed direction): give --sensor-azimuth or azimuth_deg in a channel table (" +
-                          table_text + ")");
+        fail(path, 0,
+             "channel " + c.id() +
+                 ": the sensor's azimuth is unknown (channels 1/2 have no fixed direction): give --sensor-azimuth or "
+                 "azimuth_deg in a channel table (" +
+                 table_text + ")");
       }
       az = std::fmod(az, 360.0);
       if (az < 0.0) az += 360.0;

@@ -42,13 +42,17 @@ bool UdpAccelBridge::init() {
     ROS_FATAL_STREAM("udp_accel_bridge: " << what);
     return false;
   };
-  if (!(rate_hz_ > 0.0) || !std::isfinite(rate_hz_)) return bad("~rate_hz must be the controller's sample rate, > 0 Hz");
+  if (!(rate_hz_ > 0.0) || !std::isfinite(rate_hz_))
+    return bad("~rate_hz must be the controller's sample rate, > 0 Hz");
   if (port_ < 1 || port_ > 65535) return bad("~port must be 1-65535, not " + std::to_string(port_));
   if (window_ < 0 || window_ > 1000) return bad("~reorder_window must be 0-1000 samples");
   if (!(idle_flush_s_ > 0.0)) return bad("~idle_flush must be > 0 s");
-  if (clock == "first_arrival") clock_ = Clock::FirstArrival;
-  else if (clock == "controller") clock_ = Clock::Controller;
-  else return bad("~clock must be first_arrival or controller, not '" + clock + "'");
+  if (clock == "first_arrival")
+    clock_ = Clock::FirstArrival;
+  else if (clock == "controller")
+    clock_ = Clock::Controller;
+  else
+    return bad("~clock must be first_arrival or controller, not '" + clock + "'");
   if (!(accel_variance_ >= 0.0)) return bad("~linear_acceleration_variance must be >= 0 (m/s^2)^2");
 
   sequencer_ = std::make_unique<feeds::SampleSequencer>(static_cast<std::size_t>(window_));
@@ -59,7 +63,8 @@ bool UdpAccelBridge::init() {
   sockaddr_in addr{};
   addr.sin_family = AF_INET;
   addr.sin_port = htons(static_cast<uint16_t>(port_));
-  if (::inet_pton(AF_INET, bind_address_.c_str(), &addr.sin_addr) != 1) return bad("~bind_address '" + bind_address_ + "' is not an IPv4 address");
+  if (::inet_pton(AF_INET, bind_address_.c_str(), &addr.sin_addr) != 1)
+    return bad("~bind_address '" + bind_address_ + "' is not an IPv4 address");
   if (::bind(socket_, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
     return bad("cannot bind " + bind_address_ + ":" + std::to_string(port_) + ": " + std::strerror(errno));
   }
@@ -177,11 +182,14 @@ void UdpAccelBridge::publish_ready(const ros::Time& arrival) {
 void UdpAccelBridge::diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st) {
   std::lock_guard<std::mutex> lock(mutex_);
   const feeds::SequenceCounts& c = sequencer_->counts();
-  if (datagrams_ == 0) st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no datagrams yet");
-  else if (mixed_forms_) st.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "text and binary datagrams mixed on one port");
+  if (datagrams_ == 0)
+    st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no datagrams yet");
+  else if (mixed_forms_)
+    st.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "text and binary datagrams mixed on one port");
   else if (c.lost + c.late + c.duplicates + malformed_ + off_grid_ > 0)
     st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "samples lost, late, duplicated or malformed");
-  else st.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
+  else
+    st.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
   st.add("port", port_);
   st.add("sender", last_sender_);
   st.add("form", form_ == 0 ? "none yet" : form_ == 1 ? "text" : "binary");

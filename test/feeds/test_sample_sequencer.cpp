@@ -118,9 +118,9 @@ TEST(TimeGrid, SequenceFromTimeAtTheNominalRate) {
   const std::uint64_t o = fd::TimeGrid::kOrigin;
   EXPECT_EQ(g.sequence(1000.0), o);
   EXPECT_EQ(g.sequence(1000.005), o + 1);
-  EXPECT_EQ(g.sequence(1000.0 + 0.005 * 37 + 0.001), o + 37);  // within a quarter sample
+  EXPECT_EQ(g.sequence(1000.0 + 0.005 * 37 + 0.001), o + 37);        // within a quarter sample
   EXPECT_EQ(g.sequence(1000.0 + 0.005 * 37 + 0.002), std::nullopt);  // 0.4 sample off: not this stream
-  EXPECT_EQ(g.sequence(999.995), o - 1);  // reordered before the first
+  EXPECT_EQ(g.sequence(999.995), o - 1);                             // reordered before the first
   EXPECT_THROW(fd::TimeGrid(0.0), std::invalid_argument);
 }
 
@@ -141,7 +141,7 @@ TEST(SampleSequencer, PerSamplePathAllocatesNothing) {
   std::uint64_t released = 0;
   for (std::uint64_t i = 0; i < 10000; ++i) {
     const std::uint64_t s = (i % 50 == 7) ? i + 1 : (i % 50 == 8) ? i - 1 : i;  // swaps
-    if (i % 97 == 13) continue;                                                  // drops
+    if (i % 97 == 13) continue;                                                 // drops
     fd::encode_binary(s, 0.005 * static_cast<double>(s), a, bin);
     fd::AccelSample sample;
     ASSERT_EQ(fd::parse_datagram(reinterpret_cast<const char*>(bin), sizeof bin, sample), fd::DatagramError::None);

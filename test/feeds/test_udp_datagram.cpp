@@ -13,7 +13,9 @@ namespace fd = rocking_monitor::feeds;
 
 namespace {
 
-fd::DatagramError parse(const std::string& s, fd::AccelSample& out) { return fd::parse_datagram(s.data(), s.size(), out); }
+fd::DatagramError parse(const std::string& s, fd::AccelSample& out) {
+  return fd::parse_datagram(s.data(), s.size(), out);
+}
 
 }  // namespace
 

@@ -13,7 +13,6 @@
 // Skipped with a notice when the records directory is absent.
 
 #include <gtest/gtest.h>
-
 #include <libmseed.h>
 
 #include <algorithm>
@@ -21,6 +20,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <numeric>
 #include <sstream>
 #include <string>
@@ -32,8 +32,6 @@
 #include "rocking_monitor/motion/station.hpp"
 #include "temp_root.hpp"
 #include "test_helpers.hpp"
-
-#include <nlohmann/json.hpp>
 
 #ifndef ROCKING_RECORDS_DIR
 #define ROCKING_RECORDS_DIR "/work/shared/records"
@@ -58,9 +56,9 @@ std::string records_dir() {
   return fs::is_regular_file(fs::path(dir) / "northridge_1994" / "Rinaldi228.AT2") ? dir : "";
 }
 
-#define SKIP_WITHOUT_RECORDS(dir)                                                                \
-  const std::string dir = records_dir();                                                         \
-  if (dir.empty()) {                                                                             \
+#define SKIP_WITHOUT_RECORDS(dir)                                                                           \
+  const std::string dir = records_dir();                                                                    \
+  if (dir.empty()) {                                                                                        \
     GTEST_SKIP() << "records directory not found: " << ROCKING_RECORDS_DIR << " (real-data tests skipped)"; \
   }
 
@@ -104,8 +102,9 @@ void collect_record(char* record, int reclen, void* handler_data) {
 
 /// One channel packed into miniSEED records by libmseed (samples as int32 for integer encodings,
 /// float32/float64 otherwise); returns the records.
-std::vector<std::string> pack_channel(const std::string& chan, double rate, hptime_t start, const std::vector<double>& values,
-                                      int encoding, int reclen, const std::string& sta = "RRS") {
+std::vector<std::string> pack_channel(const std::string& chan, double rate, hptime_t start,
+                                      const std::vector<double>& values, int encoding, int reclen,
+                                      const std::string& sta = "RRS") {
   std::vector<int32_t> ints;
   std::vector<float> floats;
   std::vector<double> doubles;
@@ -226,7 +225,7 @@ TEST(RecordFormatsMiniSeed, FloatEncodingsAndSteim1Int32) {
   o.gain_counts_per_mps2 = 1.0;  // samples written in m/s^2
   write_interleaved(d / "f64.mseed", {pack_channel("HNE", 100.0, kStart, r.h228.accel, DE_FLOAT64, 512)});
   const rm::Component f64 = rm::read_record((d / "f64.mseed").string(), o).at(0);
-  EXPECT_EQ(f64.label, "090");  // E: the code says east
+  EXPECT_EQ(f64.label, "090");         // E: the code says east
   EXPECT_EQ(f64.accel, r.h228.accel);  // exact
   write_interleaved(d / "f32.mseed", {pack_channel("ENN", 100.0, kStart, r.h228.accel, DE_FLOAT32, 512)});
   const rm::Component f32 = rm::read_record((d / "f32.mseed").string(), o).at(0);
@@ -260,11 +259,15 @@ TEST(RecordFormatsMiniSeed, GainAndAzimuthFromAChannelTableBesideTheFile) {
       << read_error(f);
   rm::ReadOptions g;
   g.gain_counts_per_mps2 = kGain;
-  EXPECT_NE(read_error(f, g).find("channel XX.RRS..HN1: the sensor's azimuth is unknown"), std::string::npos) << read_error(f, g);
+  EXPECT_NE(read_error(f, g).find("channel XX.RRS..HN1: the sensor's azimuth is unknown"), std::string::npos)
+      << read_error(f, g);
   write_file(d / "CHANNELS.csv",
              "network,station,location,channel,azimuth_deg,gain_counts_per_mps2\n"
-             "XX,RRS,--,HN1,228," + std::to_string(kGain) + "\n"
-             "XX,RRS,,HN2,318," + std::to_string(2 * kGain) + "\n");
+             "XX,RRS,--,HN1,228," +
+                 std::to_string(kGain) +
+                 "\n"
+                 "XX,RRS,,HN2,318," +
+                 std::to_string(2 * kGain) + "\n");
   const std::vector<rm::Component> c = rm::read_record(f);
   ASSERT_EQ(c.size(), 2u);
   EXPECT_EQ(c[0].label, "228");
@@ -275,8 +278,10 @@ TEST(RecordFormatsMiniSeed, GainAndAzimuthFromAChannelTableBesideTheFile) {
     EXPECT_NEAR(c[1].accel[i], r.h318.accel[i], 0.51 / (2 * gain_text));
   }
   // A bad table names its line.
-  write_file(d / "CHANNELS.csv", "network,station,location,channel,azimuth_deg,gain_counts_per_mps2\nXX,RRS,,HN1,228,-5\n");
-  EXPECT_NE(read_error(f).find("CHANNELS.csv:2: gain_counts_per_mps2 '-5' is not positive"), std::string::npos) << read_error(f);
+  write_file(d / "CHANNELS.csv",
+             "network,station,location,channel,azimuth_deg,gain_counts_per_mps2\nXX,RRS,,HN1,228,-5\n");
+  EXPECT_NE(read_error(f).find("CHANNELS.csv:2: gain_counts_per_mps2 '-5' is not positive"), std::string::npos)
+      << read_error(f);
 }
 
 TEST(RecordFormatsMiniSeed, GapMixedRateNonAccelerometerAndTruncationAreNamedErrors) {
@@ -289,33 +294,38 @@ TEST(RecordFormatsMiniSeed, GapMixedRateNonAccelerometerAndTruncationAreNamedErr
   const std::vector<double> first(z.begin(), z.begin() + 1000), second(z.begin() + 1000, z.end());
   // gap: the second half starts 1 s late
   std::vector<std::string> recs = pack_channel("HNZ", 100.0, kStart, first, DE_STEIM2, 512);
-  const std::vector<std::string> late = pack_channel("HNZ", 100.0, kStart + MS_EPOCH2HPTIME(11), second, DE_STEIM2, 512);
+  const std::vector<std::string> late =
+      pack_channel("HNZ", 100.0, kStart + MS_EPOCH2HPTIME(11), second, DE_STEIM2, 512);
   const std::size_t first_late = recs.size() + 1;
   recs.insert(recs.end(), late.begin(), late.end());
   write_interleaved(d / "gap.mseed", {recs});
   const std::string gap = read_error((d / "gap.mseed").string(), o);
-  EXPECT_NE(gap.find("gap.mseed: record " + std::to_string(first_late) + " at byte " + std::to_string(512 * (first_late - 1)) +
+  EXPECT_NE(gap.find("gap.mseed: record " + std::to_string(first_late) + " at byte " +
+                     std::to_string(512 * (first_late - 1)) +
                      ": channel XX.RRS..HNZ: gap of 1.000000 s at 1994-01-17T12:31:11.000000Z"),
             std::string::npos)
       << gap;
   // the same records, overlapping by 2 s
   recs = pack_channel("HNZ", 100.0, kStart, first, DE_STEIM2, 512);
-  const std::vector<std::string> early = pack_channel("HNZ", 100.0, kStart + MS_EPOCH2HPTIME(8), second, DE_STEIM2, 512);
+  const std::vector<std::string> early =
+      pack_channel("HNZ", 100.0, kStart + MS_EPOCH2HPTIME(8), second, DE_STEIM2, 512);
   recs.insert(recs.end(), early.begin(), early.end());
   write_interleaved(d / "overlap.mseed", {recs});
-  EXPECT_NE(read_error((d / "overlap.mseed").string(), o).find(": channel XX.RRS..HNZ: overlap of "),
-            std::string::npos)
+  EXPECT_NE(read_error((d / "overlap.mseed").string(), o).find(": channel XX.RRS..HNZ: overlap of "), std::string::npos)
       << read_error((d / "overlap.mseed").string(), o);
-  EXPECT_NE(read_error((d / "overlap.mseed").string(), o).find(" s at 1994-01-17T12:31:09.000000Z (records overlap"), std::string::npos);
+  EXPECT_NE(read_error((d / "overlap.mseed").string(), o).find(" s at 1994-01-17T12:31:09.000000Z (records overlap"),
+            std::string::npos);
   // mixed rates
   write_interleaved(d / "mixed.mseed", {pack_channel("HNE", 100.0, kStart, counts(r.h228, kGain), DE_STEIM2, 512),
                                         pack_channel("HNZ", 200.0, kStart, z, DE_STEIM2, 512)});
-  EXPECT_NE(read_error((d / "mixed.mseed").string(), o).find("mixed sample rates: XX.RRS..HNE 100.000000 Hz, XX.RRS..HNZ 200.000000 Hz"),
+  EXPECT_NE(read_error((d / "mixed.mseed").string(), o)
+                .find("mixed sample rates: XX.RRS..HNE 100.000000 Hz, XX.RRS..HNZ 200.000000 Hz"),
             std::string::npos)
       << read_error((d / "mixed.mseed").string(), o);
   // a velocity channel
   write_interleaved(d / "hh.mseed", {pack_channel("HHZ", 100.0, kStart, z, DE_STEIM2, 512)});
-  EXPECT_NE(read_error((d / "hh.mseed").string(), o).find("hh.mseed: record 1 at byte 0: channel HHZ is not an accelerometer (instrument code H"),
+  EXPECT_NE(read_error((d / "hh.mseed").string(), o)
+                .find("hh.mseed: record 1 at byte 0: channel HHZ is not an accelerometer (instrument code H"),
             std::string::npos)
       << read_error((d / "hh.mseed").string(), o);
   // an unknown encoding (blockette 1000 byte 4, at byte 52 of the record) in record 3
@@ -336,8 +346,8 @@ TEST(RecordFormatsMiniSeed, GapMixedRateNonAccelerometerAndTruncationAreNamedErr
   const std::size_t n_records = whole.size() / 512;
   write_file(d / "cut.mseed", whole.substr(0, whole.size() - 300));
   const std::string cut = read_error((d / "cut.mseed").string(), o);
-  EXPECT_NE(cut.find("cut.mseed: record " + std::to_string(n_records) + " at byte " + std::to_string(512 * (n_records - 1)) +
-                     ": not a valid miniSEED record"),
+  EXPECT_NE(cut.find("cut.mseed: record " + std::to_string(n_records) + " at byte " +
+                     std::to_string(512 * (n_records - 1)) + ": not a valid miniSEED record"),
             std::string::npos)
       << cut;
 }
@@ -385,10 +395,10 @@ std::string fixed_lines(const std::vector<std::string>& fields, std::size_t per_
 
 struct CosmosChannel {
   const rm::Component* comp;
-  int orientation;       // integer header #54
-  double dt;             // real header #34
+  int orientation;  // integer header #54
+  double dt;        // real header #34
   std::string units = "cm/sec2(04)";
-  char real_exp = 'E';   // 'D': the real header in Fortran D exponents
+  char real_exp = 'E';  // 'D': the real header in Fortran D exponents
 };
 
 /// One channel of a COSMOS V2 file after the v1.20 description: 13 text lines, 100 integers (10I8),
@@ -462,7 +472,7 @@ TEST(RecordFormatsCosmos, ThreeChannelFileWithCrlfEqualsTheAt2) {
   const fs::path d = scratch("cosmos3");
   const std::string eol = "\r\n";
   write_file(d / "rrs.v2", cosmos_channel({&r.h228, 228, 0.01}, 1, eol) + cosmos_channel({&r.h318, 318, 0.01}, 2, eol) +
-                              cosmos_channel({&r.up, 400, 0.01}, 3, eol));
+                               cosmos_channel({&r.up, 400, 0.01}, 3, eol));
   const std::string f = (d / "rrs.v2").string();
   EXPECT_EQ(rm::detect_format(f), rm::RecordFormat::CosmosV2);
   const std::vector<rm::Component> c = rm::read_record(f);
@@ -512,14 +522,16 @@ TEST(RecordFormatsCosmos, TruncatedWrongUnitsAndMixedRateNameTheLine) {
             std::string::npos)
       << read_error((d / "cut.v2").string());
   write_file(d / "counts.v2", cosmos_channel({&r.h228, 228, 0.01, "counts(50)"}, 1, "\n"));
-  EXPECT_NE(read_error((d / "counts.v2").string()).find("counts.v2:48: unknown acceleration units 'counts'"), std::string::npos)
+  EXPECT_NE(read_error((d / "counts.v2").string()).find("counts.v2:48: unknown acceleration units 'counts'"),
+            std::string::npos)
       << read_error((d / "counts.v2").string());
   const std::string second = cosmos_channel({&r.h318, 318, 0.02}, 2, "\n");
   write_file(d / "mixed.v2", good + second);
   const std::size_t lines_first = static_cast<std::size_t>(std::count(good.begin(), good.end(), '\n'));
   // the second channel's real-header line: its 13 text + 1 + 10 integer lines after the first channel
   EXPECT_NE(read_error((d / "mixed.v2").string())
-                .find("mixed.v2:" + std::to_string(lines_first + 25) + ": mixed sample rates: channel 1 has dt = 0.010000 s, channel 2 dt = 0.020000 s"),
+                .find("mixed.v2:" + std::to_string(lines_first + 25) +
+                      ": mixed sample rates: channel 1 has dt = 0.010000 s, channel 2 dt = 0.020000 s"),
             std::string::npos)
       << read_error((d / "mixed.v2").string());
   // touching fields that are not numbers
@@ -549,7 +561,8 @@ KnetFile knet_file(const rm::Component& c, const std::string& dir_field, long lo
   KnetFile k;
   k.gal_per_count = 3920.0 / 6182761.0;
   for (double a : c.accel) k.counts.push_back(std::llround(a * 100.0 / k.gal_per_count) + offset);
-  const double mean = std::accumulate(k.counts.begin(), k.counts.end(), 0.0L) / static_cast<long double>(k.counts.size());
+  const double mean =
+      std::accumulate(k.counts.begin(), k.counts.end(), 0.0L) / static_cast<long double>(k.counts.size());
   double peak = 0.0;
   for (long long x : k.counts) peak = std::max(peak, std::abs((static_cast<double>(x) - mean) * k.gal_per_count));
   char peak_text[32];
@@ -594,7 +607,8 @@ void expect_knet_equals(const rm::Component& got, const rm::Component& at2, doub
   const double mean = std::accumulate(at2.accel.begin(), at2.accel.end(), 0.0) / static_cast<double>(at2.accel.size());
   // rounding to a count (half a count) plus the mean of those roundings (at most half a count)
   const double tol = gal_per_count * 0.01 * (1.0 + 1e-9);
-  for (std::size_t i = 0; i < got.accel.size(); ++i) ASSERT_NEAR(got.accel[i], at2.accel[i] - mean, tol) << "sample " << i;
+  for (std::size_t i = 0; i < got.accel.size(); ++i)
+    ASSERT_NEAR(got.accel[i], at2.accel[i] - mean, tol) << "sample " << i;
 }
 
 }  // namespace
@@ -669,11 +683,16 @@ TEST(RecordFormatsKnet, TruncatedWrongScaleAndMixedRate) {
       << read_error((d / "twice.NS").string());
   // a line cut short in the middle of the data
   std::string hole = k.text;
-  const std::size_t l30 = [&] { std::size_t q = 0; for (int i = 0; i < 17 + 29; ++i) q = hole.find('\n', q) + 1; return q; }();
+  const std::size_t l30 = [&] {
+    std::size_t q = 0;
+    for (int i = 0; i < 17 + 29; ++i) q = hole.find('\n', q) + 1;
+    return q;
+  }();
   hole.erase(l30, 18);  // two counts of line 47
   write_file(d / "hole.NS", hole);
-  EXPECT_NE(read_error((d / "hole.NS").string()).find("hole.NS:47: only the last data line may hold fewer than 8 values"),
-            std::string::npos)
+  EXPECT_NE(
+      read_error((d / "hole.NS").string()).find("hole.NS:47: only the last data line may hold fewer than 8 values"),
+      std::string::npos)
       << read_error((d / "hole.NS").string());
   // mixed rates within a station: 100 Hz N-S, 200 Hz U-D
   const fs::path s = d / "station";
@@ -684,8 +703,8 @@ TEST(RecordFormatsKnet, TruncatedWrongScaleAndMixedRate) {
   write_file(s / "RRS0019401171231.UD", fast);
   std::string err;
   try {
-    rm::to_sensor_frame(
-        rm::load_station(rm::station_from_files({(s / "RRS0019401171231.NS").string(), (s / "RRS0019401171231.UD").string()})));
+    rm::to_sensor_frame(rm::load_station(
+        rm::station_from_files({(s / "RRS0019401171231.NS").string(), (s / "RRS0019401171231.UD").string()})));
   } catch (const rm::RecordError& e) {
     err = e.what();
   }
@@ -718,7 +737,8 @@ TEST(RecordFormatsTools, RockingSimOnMiniSeedEqualsTheAt2Run) {
   }
   EXPECT_EQ(a["record"]["pga_mps2"], b["record"]["pga_mps2"]);
   // without a gain it refuses, naming what is missing
-  const auto none = rm::testing::run_command(std::string(ROCKING_SIM_EXE) + " --record " + (d / "rrs.mseed").string() + body + " 2>&1");
+  const auto none = rm::testing::run_command(std::string(ROCKING_SIM_EXE) + " --record " + (d / "rrs.mseed").string() +
+                                             body + " 2>&1");
   EXPECT_NE(none.status, 0);
   EXPECT_NE(none.out.find("no gain (counts per m/s^2)"), std::string::npos) << none.out;
 }

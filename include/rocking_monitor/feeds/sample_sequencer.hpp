@@ -71,8 +71,8 @@ class SampleSequencer {
   void release_next();  // releases or gives up next_, then advances
   void remember(std::uint64_t sequence, Fate fate);
 
-  std::vector<Slot> slots_;        // window + 1, indexed by sequence % size
-  std::vector<History> history_;   // kResyncSpan, indexed by sequence % size
+  std::vector<Slot> slots_;       // window + 1, indexed by sequence % size
+  std::vector<History> history_;  // kResyncSpan, indexed by sequence % size
   std::vector<AccelSample> ready_;
   std::size_t ready_count_ = 0;
   std::size_t held_ = 0;

@@ -32,7 +32,7 @@ inline constexpr std::size_t kBinarySize = 48;
 struct AccelSample {
   bool has_sequence = false;  ///< binary datagrams carry one; text ones do not
   std::uint64_t sequence = 0;
-  double time_s = 0.0;        ///< controller clock, s
+  double time_s = 0.0;                ///< controller clock, s
   double accel[3] = {0.0, 0.0, 0.0};  ///< ax, ay, az, m/s^2
 };
 

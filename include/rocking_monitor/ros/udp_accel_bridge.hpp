@@ -6,9 +6,8 @@
 // drops, reordering, late and malformed datagrams counted in /diagnostics.
 // Parameters and the stamp rule: README "Connect a shaking table".
 
-#include <ros/ros.h>
-
 #include <diagnostic_updater/diagnostic_updater.h>
+#include <ros/ros.h>
 #include <sensor_msgs/Imu.h>
 
 #include <atomic>
