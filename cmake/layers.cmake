@@ -56,6 +56,10 @@ target_include_directories(rocking_monitor_model PRIVATE ${CMAKE_CURRENT_SOURCE_
 set_source_files_properties(${CMAKE_CURRENT_SOURCE_DIR}/src/model/batch_rocking_simd.cpp
   PROPERTIES COMPILE_OPTIONS "-ffp-contract=off")
 
+# miniSEED records are decoded by libmseed 2 (Debian libmseed-dev, pkg-config `mseed`).
+pkg_check_modules(ROCKING_MSEED REQUIRED IMPORTED_TARGET mseed)
+target_link_libraries(rocking_monitor_motion PRIVATE PkgConfig::ROCKING_MSEED)
+
 # The catalogue (monitoring/catalogue*.cpp) is parsed from JSON values (its header names
 # nlohmann::json) and read from YAML files; the study runs its cases on std::thread workers and reads
 # YAML bodies / writes a JSON summary.

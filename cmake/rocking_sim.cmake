@@ -8,7 +8,7 @@ if(BUILD_TESTING)
   include(GoogleTest)
   # One executable for the core's suites; the sources mirror the layers (test/<layer>/).
   set(ROCKING_CORE_TESTS "")
-  foreach(dir physics integrate model csv motion monitoring study tools)
+  foreach(dir physics integrate model csv motion monitoring study feeds tools)
     file(GLOB tests CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/test/${dir}/*.cpp)
     list(APPEND ROCKING_CORE_TESTS ${tests})
   endforeach()

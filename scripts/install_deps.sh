@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake git pkg-config
-  libeigen3-dev libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libtbb-dev libcsv-dev
+  libeigen3-dev libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libtbb-dev libcsv-dev libmseed-dev
   libgtest-dev libgmock-dev libbenchmark-dev libsundials-dev libhwy-dev
   python3-matplotlib python3-numpy parallel
   catkin ros-core-dev libroscpp-dev librosbag-dev librostest-dev python3-rostest

@@ -1,5 +1,5 @@
-// Which format a record is, from its content (not its name): AT2, BBP, SMC or a plain table; an
-// unknown format is an error naming the file.
+// Which format a record is, from its content (not its name): miniSEED (binary), COSMOS V2, K-NET,
+// AT2, BBP, SMC or a plain table; an unknown format is an error naming the file.
 #include "record_reader_internal.hpp"
 
 #include <cctype>
@@ -10,6 +10,7 @@ namespace rocking_monitor::core::record_io {
 // ------------------------------------------------------------------ detection
 
 RecordFormat detect_from_content(std::string_view head, bool whole_file, const std::string& path) {
+  if (looks_like_miniseed(head)) return RecordFormat::MiniSeed;
   std::vector<Line> lines = split_lines(head);
   if (!whole_file && !lines.empty()) lines.pop_back();  // possibly cut in the middle
   if (lines.size() > 40) lines.resize(40);
@@ -18,6 +19,15 @@ RecordFormat detect_from_content(std::string_view head, bool whole_file, const s
   while (first < lines.size() && is_blank(lines[first].text)) ++first;
   if (first < lines.size()) {
     const std::string l1 = upper(lines[first].text);
+    // COSMOS: "Corrected acceleration  (Format v01.20 with 13 text lines) ..."
+    if (l1.find("(FORMAT V") != std::string::npos && l1.find("TEXT LINES") != std::string::npos) {
+      return RecordFormat::CosmosV2;
+    }
+    // K-NET / KiK-net: "Origin Time       2006/01/18 23:25:00", line 6 "Station Code ..."
+    if (l1.rfind("ORIGIN TIME", 0) == 0 && first + 5 < lines.size() &&
+        upper(lines[first + 5].text).rfind("STATION CODE", 0) == 0) {
+      return RecordFormat::Knet;
+    }
     if (l1.find("PEER") != std::string::npos &&
         (l1.find("STRONG MOTION") != std::string::npos || l1.find("DATABASE") != std::string::npos)) {
       return RecordFormat::PeerAt2;
@@ -61,6 +71,8 @@ RecordFormat detect_from_content(std::string_view head, bool whole_file, const s
   if (ext == "bbp") return RecordFormat::Bbp;
   if (ext == "smc" || ext == "v2") return RecordFormat::UsgsSmc;
   if (ext == "csv" || ext == "txt" || ext == "dat" || ext == "tsv") return RecordFormat::Csv;
+  if (ext == "mseed" || ext == "miniseed" || ext == "ms") return RecordFormat::MiniSeed;
+  if (ext == "v2c") return RecordFormat::CosmosV2;
   return RecordFormat::Auto;
 }
 

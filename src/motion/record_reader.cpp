@@ -1,4 +1,5 @@
-// Strong-motion record readers (PEER AT2, SCEC BBP, USGS SMC V2, plain CSV/whitespace).
+// Strong-motion record readers (PEER AT2, SCEC BBP, USGS SMC V2, miniSEED 2, COSMOS V2,
+// K-NET/KiK-net ASCII, plain CSV/whitespace).
 //
 // Design notes
 //  * The whole file is read into memory and split into lines (LF, CRLF or lone CR); numbers are
@@ -83,12 +84,18 @@ std::vector<Component> read_record(const std::string& path, const ReadOptions& o
       return read_smc(path, data);
     case RecordFormat::Csv:
       return read_csv(path, data, options.csv_units);
+    case RecordFormat::MiniSeed:
+      return read_miniseed(path, options);
+    case RecordFormat::CosmosV2:
+      return read_cosmos(path, data);
+    case RecordFormat::Knet:
+      return read_knet(path, data);
     case RecordFormat::Auto:
       break;
   }
   const std::string ext = file_extension_lower(path);
   fail(path, 0,
-       "unknown record format (not PEER AT2, SCEC BBP, USGS SMC V2 or CSV by content, and extension " +
+       "unknown record format (not PEER AT2, SCEC BBP, USGS SMC V2, miniSEED, COSMOS V2, K-NET or CSV by content, and extension " +
            (ext.empty() ? std::string("none") : quoted(ext)) + " does not tell)");
 }
 
@@ -104,6 +111,12 @@ const char* to_string(RecordFormat format) {
       return "usgs_smc";
     case RecordFormat::Csv:
       return "csv";
+    case RecordFormat::MiniSeed:
+      return "miniseed";
+    case RecordFormat::CosmosV2:
+      return "cosmos_v2";
+    case RecordFormat::Knet:
+      return "knet";
   }
   return "unknown";
 }

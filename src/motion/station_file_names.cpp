@@ -1,5 +1,6 @@
 // Stations from file names when a directory has no MANIFEST.csv: PEER RSN names, older AT2 names
-// (station code + component), SMC and CSV files read for their station; one group per station.
+// (station code + component), K-NET/KiK-net names (<code><time>.NS/.EW/.UD[1|2]), SMC, COSMOS,
+// miniSEED and CSV files read for their station; one group per station.
 #include "rocking_monitor/motion/station.hpp"
 
 #include <algorithm>
@@ -46,6 +47,14 @@ bool split_at2_name(const std::string& stem, NameParts& out) {
   return false;
 }
 
+bool is_knet_extension(const std::string& ext) {
+  static const char* const names[] = {".ns", ".ew", ".ud", ".ns1", ".ew1", ".ud1", ".ns2", ".ew2", ".ud2"};
+  for (const char* n : names) {
+    if (ext == n) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 StationListing list_from_file_names(const std::string& dir) {
@@ -70,6 +79,8 @@ StationListing list_from_file_names(const std::string& dir) {
     const std::string stem = p.stem().string();
     if (p.filename() == "MANIFEST.csv") {
       listing.ignored_files.push_back(path);  // asked to ignore it (ignore_manifest)
+    } else if (p.filename() == "CHANNELS.csv") {
+      listing.ignored_files.push_back(path);  // the miniSEED channel table, not a record
     } else if (ext == ".at2") {
       NameParts parts;
       StationComponent c;
@@ -107,8 +118,27 @@ StationListing list_from_file_names(const std::string& dir) {
         c.vertical = label_is_vertical(label);
         add_component(st, std::move(c), path);
       }
-    } else if (ext == ".smc" || ext == ".v2" || ext == ".csv") {
-      // SMC names (0111a.smc) do not tell the station; CSV files are one station each: read them.
+    } else if (is_knet_extension(ext)) {
+      // K-NET: <code><yymmddhhmm>.NS/.EW/.UD, one component each; KiK-net .NS1.. (borehole) and
+      // .NS2.. (surface) are two sensors, two stations.
+      const std::vector<Component> comps = read_record(path);
+      const char depth = ext.size() == 4 ? ext[3] : '\0';
+      std::string name = comps.at(0).station.empty() ? stem : comps.at(0).station;
+      if (depth == '1') name += " borehole";
+      if (depth == '2') name += " surface";
+      StationInfo& st = groups[event + "|knet|" + stem + "|" + std::string(1, depth)];
+      st.event = event;
+      st.station = name;
+      st.source = StationSource::FileNames;
+      StationComponent c;
+      c.file = path;
+      c.label = comps.at(0).label;
+      c.vertical = comps.at(0).vertical;
+      add_component(st, std::move(c), path);
+    } else if (ext == ".smc" || ext == ".v2" || ext == ".v2c" || ext == ".csv" || ext == ".mseed" ||
+               ext == ".miniseed" || ext == ".ms") {
+      // SMC names (0111a.smc) do not tell the station, nor do COSMOS or miniSEED names; CSV files
+      // are one station each: read them (miniSEED: gain and azimuths from CHANNELS.csv beside it).
       const std::vector<Component> comps = read_record(path);
       const bool smc = ext != ".csv";
       const std::string name = smc && !comps.at(0).station.empty() ? comps.at(0).station : stem;

@@ -81,6 +81,13 @@ PlayerConfig read_player_config(const ros::NodeHandle& pnh) {
     else if (s != "m/s2") throw std::invalid_argument("~units: '" + s + "' is not one of g, m/s2, cm/s2");
   }
   double v = 0.0;
+  // miniSEED records: counts per m/s^2, the sensor's azimuth, a channel table (docs/records.md)
+  if (get_number(pnh, "gain", v)) {
+    if (!(v > 0.0)) throw std::invalid_argument("~gain: must be > 0 counts per m/s^2");
+    c.source.read.gain_counts_per_mps2 = v;
+  }
+  if (get_number(pnh, "sensor_azimuth", v)) c.source.read.sensor_azimuth_deg = v;
+  get_string(pnh, "channel_table", c.source.read.channel_table);
   if (get_number(pnh, "azimuth", v)) c.source.frame.azimuth_deg = v;
   if (get_number(pnh, "scale", v)) c.source.frame.scale = v;
   if (get_string(pnh, "length_mismatch", s)) {

@@ -205,6 +205,7 @@ StudyRecords load_from_scan(const fs::path& root, const RecordSelection& sel) {
     const std::string rel = fs::relative(p, root).generic_string();
     const std::string ext = p.extension().string();
     if (ext == ".md" || ext == ".json" || ext == ".yaml" || ext == ".yml" || ext == ".py") continue;
+    if (p.filename() == "CHANNELS.csv") continue;  // the miniSEED channel table, not a record
     if (contains_any(rel, sel.exclude)) continue;
     if (detect_format(p.string()) == RecordFormat::Auto) {
       out.notes.push_back(rel + ": not a recognised record format, skipped");

@@ -215,6 +215,14 @@ int main(int argc, char** argv) {
                  "as recorded (ordered so that the second is 90 deg to its left, e.g. E then N)");
   app.add_option("--units", units_text, "Units of CSV records: g | m/s2 | cm/s2 (default m/s2)")
       ->check(CLI::IsMember({"g", "m/s2", "cm/s2"}));
+  std::optional<double> gain, sensor_azimuth;
+  std::string channel_table;
+  app.add_option("--gain", gain, "miniSEED: sensitivity of every channel, counts per m/s^2 (float data in m/s^2: 1)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--sensor-azimuth", sensor_azimuth,
+                 "miniSEED: azimuth of the sensor's channel N/1, degrees clockwise from north (E/2 is 90 deg clockwise of it)");
+  app.add_option("--channel-table", channel_table,
+                 "miniSEED: CSV network,station,location,channel,azimuth_deg,gain_counts_per_mps2 (default: CHANNELS.csv beside the record)");
   app.add_option("--scale", scale, "Multiply the ground acceleration (not gravity) by S (default 1)");
   app.add_option("--length-mismatch", length_text,
                  "Components of unequal length: pad (zeros = ground at rest, default) | truncate | error; changes are reported")
@@ -242,6 +250,10 @@ int main(int argc, char** argv) {
     spec.synthetic = synthetic;
     if (units_text == "g") spec.read.csv_units = core::AccelUnits::G;
     if (units_text == "cm/s2") spec.read.csv_units = core::AccelUnits::CentimetersPerSecond2;
+    spec.read.gain_counts_per_mps2 = gain;
+    spec.read.sensor_azimuth_deg = sensor_azimuth;
+    spec.read.channel_table = channel_table;
+    if (sensor_azimuth && !std::isfinite(*sensor_azimuth)) throw std::invalid_argument("--sensor-azimuth: must be finite");
     spec.frame.azimuth_deg = azimuth;
     if (azimuth && !std::isfinite(*azimuth)) throw std::invalid_argument("--azimuth: must be finite");
     if (!std::isfinite(scale)) throw std::invalid_argument("--scale: must be finite");

@@ -12,6 +12,7 @@ struct Component {
   std::string event;          ///< event name from the header (may be empty)
   std::string station;        ///< station name (may be empty)
   std::string label;          ///< component label as written in the source ("090", "N", "UP", "N-S", ...)
+  std::string channel;        ///< SEED channel code of a miniSEED component ("HNE"); empty for other formats
   bool vertical = false;      ///< true for an up/down component (stored positive up)
   double dt = 0.0;            ///< sample interval, s
   double t0 = 0.0;            ///< time of the first sample, s

@@ -1,0 +1,88 @@
+// The reorder window and the loss accounting of a datagram stream (sample_sequencer.hpp).
+#include "rocking_monitor/feeds/sample_sequencer.hpp"
+
+namespace rocking_monitor::feeds {
+
+SampleSequencer::SampleSequencer(std::size_t window) : slots_(window + 1), history_(kResyncSpan), ready_(window + 2) {}
+
+void SampleSequencer::remember(std::uint64_t sequence, Fate fate) {
+  History& h = history_[sequence % history_.size()];
+  h.sequence = sequence;
+  h.fate = fate;
+}
+
+void SampleSequencer::release_next() {
+  Slot& slot = slots_[next_ % slots_.size()];
+  if (slot.filled) {
+    ready_[ready_count_++] = slot.sample;
+    slot.filled = false;
+    --held_;
+    ++counts_.released;
+    remember(next_, Fate::Released);
+  } else {
+    ++counts_.lost;
+    remember(next_, Fate::Lost);
+  }
+  ++next_;
+}
+
+void SampleSequencer::flush() {
+  ready_count_ = 0;
+  if (!started_) return;
+  // Release up to the newest held sample; the holes before it are lost.
+  while (held_ > 0) {
+    if (ready_count_ == ready_.size()) break;  // cannot happen: held_ <= window + 1
+    release_next();
+  }
+}
+
+void SampleSequencer::push(const AccelSample& sample) {
+  ready_count_ = 0;
+  ++counts_.accepted;
+  const std::uint64_t s = sample.sequence;
+  if (!started_) {
+    started_ = true;
+    next_ = s;
+    max_seen_ = s;
+  }
+  const std::size_t cap = slots_.size();
+  // A restart of the controller's counter (far back or far ahead): release what is held, go on from s.
+  const bool far_back = s < next_ && next_ - s > kResyncSpan;
+  const bool far_ahead = s > next_ && s - next_ > kResyncSpan;
+  if (far_back || far_ahead) {
+    while (held_ > 0) release_next();
+    ++counts_.resyncs;
+    next_ = s;
+    max_seen_ = s;
+  }
+  if (s < next_) {
+    History& h = history_[s % history_.size()];
+    if (h.sequence == s && h.fate == Fate::Lost) {
+      // it did come, but after its place was given up
+      ++counts_.late;
+      --counts_.lost;
+      h.fate = Fate::Unknown;
+    } else if (h.sequence == s && h.fate == Fate::Released) {
+      ++counts_.duplicates;
+    } else {
+      ++counts_.late;
+    }
+    return;
+  }
+  // Make room: give up (or release) the oldest until s fits in the window.
+  while (s >= next_ + cap) release_next();
+  Slot& slot = slots_[s % cap];
+  if (slot.filled) {
+    ++counts_.duplicates;
+  } else {
+    if (s < max_seen_) ++counts_.reordered;
+    slot.filled = true;
+    slot.sample = sample;
+    ++held_;
+  }
+  if (s > max_seen_) max_seen_ = s;
+  // Release the run that is complete.
+  while (slots_[next_ % cap].filled) release_next();
+}
+
+}  // namespace rocking_monitor::feeds

@@ -1,0 +1,217 @@
+// udp_accel_bridge (udp_accel_bridge.hpp): a receive thread reads one datagram per sample, the
+// feeds layer parses it and puts the stream back in order, and each released sample is published
+// as sensor_msgs/Imu. The per-sample path reuses one message and allocates nothing of its own.
+#include "rocking_monitor/ros/udp_accel_bridge.hpp"
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <sys/time.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+
+#include "rocking_monitor/constants.hpp"
+
+namespace rocking_monitor::live {
+
+UdpAccelBridge::UdpAccelBridge(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh) {}
+
+UdpAccelBridge::~UdpAccelBridge() {
+  running_ = false;
+  if (thread_.joinable()) thread_.join();
+  if (socket_ >= 0) ::close(socket_);
+}
+
+bool UdpAccelBridge::init() {
+  std::string topic = "/ground/imu";
+  std::string clock = "first_arrival";
+  pnh_.param("bind_address", bind_address_, bind_address_);
+  pnh_.param("port", port_, port_);
+  pnh_.param("rate_hz", rate_hz_, rate_hz_);
+  pnh_.param("reorder_window", window_, window_);
+  pnh_.param("idle_flush", idle_flush_s_, idle_flush_s_);
+  pnh_.param("clock", clock, clock);
+  pnh_.param("add_gravity", add_gravity_, add_gravity_);
+  pnh_.param("linear_acceleration_variance", accel_variance_, accel_variance_);
+  pnh_.param("frame_id", frame_id_, frame_id_);
+  pnh_.param("topic", topic, topic);
+  auto bad = [](const std::string& what) {
+    ROS_FATAL_STREAM("udp_accel_bridge: " << what);
+    return false;
+  };
+  if (!(rate_hz_ > 0.0) || !std::isfinite(rate_hz_))
+    return bad("~rate_hz must be the controller's sample rate, > 0 Hz");
+  if (port_ < 1 || port_ > 65535) return bad("~port must be 1-65535, not " + std::to_string(port_));
+  if (window_ < 0 || window_ > 1000) return bad("~reorder_window must be 0-1000 samples");
+  if (!(idle_flush_s_ > 0.0)) return bad("~idle_flush must be > 0 s");
+  if (clock == "first_arrival")
+    clock_ = Clock::FirstArrival;
+  else if (clock == "controller")
+    clock_ = Clock::Controller;
+  else
+    return bad("~clock must be first_arrival or controller, not '" + clock + "'");
+  if (!(accel_variance_ >= 0.0)) return bad("~linear_acceleration_variance must be >= 0 (m/s^2)^2");
+
+  sequencer_ = std::make_unique<feeds::SampleSequencer>(static_cast<std::size_t>(window_));
+  grid_ = std::make_unique<feeds::TimeGrid>(rate_hz_);
+
+  socket_ = ::socket(AF_INET, SOCK_DGRAM, 0);
+  if (socket_ < 0) return bad(std::string("socket: ") + std::strerror(errno));
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<uint16_t>(port_));
+  if (::inet_pton(AF_INET, bind_address_.c_str(), &addr.sin_addr) != 1)
+    return bad("~bind_address '" + bind_address_ + "' is not an IPv4 address");
+  if (::bind(socket_, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
+    return bad("cannot bind " + bind_address_ + ":" + std::to_string(port_) + ": " + std::strerror(errno));
+  }
+  int rcvbuf = 4 << 20;  // a burst of a few seconds at 1 kHz must not overflow the kernel buffer
+  ::setsockopt(socket_, SOL_SOCKET, SO_RCVBUF, &rcvbuf, sizeof rcvbuf);
+  timeval tv{};
+  tv.tv_usec = 20000;  // wake up to flush a paused stream
+  ::setsockopt(socket_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+
+  // REP 145: linear acceleration only; orientation and angular velocity "not provided".
+  msg_.header.frame_id = frame_id_;
+  msg_.orientation_covariance[0] = -1.0;
+  msg_.angular_velocity_covariance[0] = -1.0;
+  for (int k = 0; k < 3; ++k) msg_.linear_acceleration_covariance[4 * k] = accel_variance_;
+
+  imu_pub_ = nh_.advertise<sensor_msgs::Imu>(topic, 1000);
+  updater_ = std::make_unique<diagnostic_updater::Updater>(nh_, pnh_);
+  updater_->setHardwareID("udp:" + bind_address_ + ":" + std::to_string(port_));
+  updater_->add("udp_accel_bridge", this, &UdpAccelBridge::diagnostics);
+  diag_timer_ = nh_.createTimer(ros::Duration(0.5), [this](const ros::TimerEvent&) { updater_->update(); });
+
+  running_ = true;
+  thread_ = std::thread([this] { receive_loop(); });
+  ROS_INFO_STREAM("udp_accel_bridge: listening on " << bind_address_ << ":" << port_ << ", " << rate_hz_
+                                                    << " Hz, publishing " << imu_pub_.getTopic());
+  return true;
+}
+
+void UdpAccelBridge::receive_loop() {
+  char buf[2048];
+  ros::WallTime last_datagram = ros::WallTime::now();
+  while (running_ && ros::ok()) {
+    sockaddr_in from{};
+    socklen_t from_len = sizeof from;
+    const ssize_t n = ::recvfrom(socket_, buf, sizeof buf, 0, reinterpret_cast<sockaddr*>(&from), &from_len);
+    const ros::Time arrival = ros::Time::now();
+    if (n < 0) {
+      // A paused stream: release what the reorder window holds (its holes are lost).
+      if ((ros::WallTime::now() - last_datagram).toSec() >= idle_flush_s_) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (sequencer_->held() > 0) {
+          sequencer_->flush();
+          ++flushes_;
+          publish_ready(arrival);
+        }
+      }
+      continue;
+    }
+    last_datagram = ros::WallTime::now();
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (last_sender_.empty()) {
+      char ip[INET_ADDRSTRLEN] = "?";
+      ::inet_ntop(AF_INET, &from.sin_addr, ip, sizeof ip);
+      last_sender_ = std::string(ip) + ":" + std::to_string(ntohs(from.sin_port));
+    }
+    on_datagram(buf, static_cast<std::size_t>(n), arrival);
+  }
+}
+
+void UdpAccelBridge::on_datagram(const char* data, std::size_t size, const ros::Time& arrival) {
+  ++datagrams_;
+  feeds::AccelSample s;
+  const feeds::DatagramError err = feeds::parse_datagram(data, size, s);
+  if (err != feeds::DatagramError::None) {
+    ++malformed_;
+    last_error_ = feeds::to_string(err);
+    return;
+  }
+  const int form = s.has_sequence ? 2 : 1;
+  if (form_ != 0 && form_ != form) mixed_forms_ = true;
+  form_ = form;
+  if (!s.has_sequence) {
+    const std::optional<std::uint64_t> seq = grid_->sequence(s.time_s);
+    if (!seq) {
+      ++off_grid_;
+      return;
+    }
+    s.sequence = *seq;
+  }
+  sequencer_->push(s);
+  publish_ready(arrival);
+}
+
+void UdpAccelBridge::publish_ready(const ros::Time& arrival) {
+  for (std::size_t i = 0; i < sequencer_->ready_count(); ++i) {
+    const feeds::AccelSample& s = sequencer_->ready()[i];
+    if (clock_ == Clock::FirstArrival && !first_arrival_) {
+      first_arrival_ = arrival;
+      first_time_s_ = s.time_s;
+    }
+    const double since_first = s.time_s - first_time_s_;
+    const double stamp = clock_ == Clock::FirstArrival ? first_arrival_->toSec() + since_first : s.time_s;
+    if (!(stamp > 0.0) || stamp > 4294967295.0) {
+      ++malformed_;
+      last_error_ = "time out of the range of a ROS stamp (with ~clock controller: seconds since 1970)";
+      continue;
+    }
+    if (clock_ == Clock::FirstArrival) {
+      const std::int64_t ns = static_cast<std::int64_t>(first_arrival_->toNSec()) + std::llround(since_first * 1e9);
+      msg_.header.stamp.fromNSec(static_cast<std::uint64_t>(ns));  // > 0: checked above
+    } else {
+      msg_.header.stamp.fromSec(stamp);
+    }
+    msg_.header.seq = static_cast<std::uint32_t>(s.sequence);
+    msg_.linear_acceleration.x = s.accel[0];
+    msg_.linear_acceleration.y = s.accel[1];
+    msg_.linear_acceleration.z = s.accel[2] + (add_gravity_ ? core::kGravity : 0.0);
+    imu_pub_.publish(msg_);
+    ++published_;
+    last_arrival_minus_stamp_s_ = arrival.toSec() - stamp;
+    max_arrival_minus_stamp_s_ = std::max(max_arrival_minus_stamp_s_, last_arrival_minus_stamp_s_);
+  }
+}
+
+void UdpAccelBridge::diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const feeds::SequenceCounts& c = sequencer_->counts();
+  if (datagrams_ == 0)
+    st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no datagrams yet");
+  else if (mixed_forms_)
+    st.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "text and binary datagrams mixed on one port");
+  else if (c.lost + c.late + c.duplicates + malformed_ + off_grid_ > 0)
+    st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "samples lost, late, duplicated or malformed");
+  else
+    st.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
+  st.add("port", port_);
+  st.add("sender", last_sender_);
+  st.add("form", form_ == 0 ? "none yet" : form_ == 1 ? "text" : "binary");
+  st.add("datagrams", datagrams_);
+  st.add("malformed", malformed_);
+  st.add("last malformed", last_error_);
+  st.add("off the time grid (text)", off_grid_);
+  st.add("samples accepted", c.accepted);
+  st.add("published", published_);
+  st.add("lost", c.lost);
+  st.add("reordered (published in order)", c.reordered);
+  st.add("late (dropped)", c.late);
+  st.add("duplicates (dropped)", c.duplicates);
+  st.add("resyncs (counter restarted)", c.resyncs);
+  st.add("held in the reorder window", sequencer_->held());
+  st.add("reorder window (samples)", window_);
+  st.add("idle flushes", flushes_);
+  st.add("next sequence", sequencer_->next_sequence());
+  st.add("clock", clock_ == Clock::Controller ? "controller" : "first_arrival");
+  st.add("clock offset (s)", first_arrival_ ? first_arrival_->toSec() - first_time_s_ : 0.0);
+  st.add("arrival - stamp, last (s)", last_arrival_minus_stamp_s_);
+  st.add("arrival - stamp, max (s)", max_arrival_minus_stamp_s_);
+}
+
+}  // namespace rocking_monitor::live
