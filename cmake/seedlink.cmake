@@ -6,6 +6,13 @@ set_target_properties(record_to_mseed PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCK
 if(BUILD_TESTING)
   add_test(NAME cli.record_to_mseed.unknown_flag_is_one_error_line
            COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/unknown_flag.sh record_to_mseed $<TARGET_FILE:record_to_mseed>)
+  add_executable(record_to_mseed_tests test/tools/test_record_to_mseed.cpp)
+  target_link_libraries(record_to_mseed_tests PRIVATE rocking_monitor_core GTest::gtest_main)
+  target_include_directories(record_to_mseed_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/support)
+  target_compile_definitions(record_to_mseed_tests PRIVATE ROCKING_RECORDS_DIR="${ROCKING_RECORDS_DIR}"
+                             RECORD_TO_MSEED_EXE="$<TARGET_FILE:record_to_mseed>")
+  add_dependencies(record_to_mseed_tests record_to_mseed)
+  gtest_discover_tests(record_to_mseed_tests DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 120)
 endif()
 
 if(catkin_FOUND)
