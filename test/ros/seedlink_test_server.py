@@ -20,6 +20,7 @@ Protocol (client -> server, lines ending in CR and/or LF):
 Faults for the bridge's tests:
   --unknown-at N   packet N of the first station is a copy of the record before it with the data
                    encoding set to 99 (a real packet with its own sequence number, on every run)
+  --realtime       release each record at its own end time (data time = wall time), for latency
   --inject-at N    before packet N (this run only): one malformed header ("SL" + non-hex) and the
                    previous packet again under its old sequence number (a wrong sequence number)
 """
@@ -143,16 +144,18 @@ def serve(conn, args, packets, injected):
     t0 = float(open(args.clock_file).read())
     # The packets' clock starts with the first client: it gets them all.
     now_offset = float('-inf') if first_client else (time.time() - t0) * args.speed
+    if args.realtime:  # a live recorder: each record leaves when its last sample has been taken
+        now_offset = time.time()
     last_sent = None
     for i, p in enumerate(packets):
         start = wanted.get(p['key'], 'no')
         if start == 'no':
             continue
-        if start is None and p['offset'] < now_offset:
+        if start is None and (p['end'] if args.realtime else p['offset']) < now_offset:
             continue  # DATA without a number: only packets newer than the request
         if start is not None and p['seq'] < start:
             continue
-        release = t0 + p['offset'] / args.speed
+        release = p['end'] if args.realtime else t0 + p['offset'] / args.speed
         while True:
             wait = release - time.time()
             readable, _, _ = select.select([conn], [], [], max(wait, 0.0))
@@ -193,6 +196,8 @@ def main():
     ap.add_argument('--port', type=int, required=True)
     ap.add_argument('--speed', type=float, default=1.0, help='data seconds per wall second')
     ap.add_argument('--clock-file', required=True)
+    ap.add_argument('--realtime', action='store_true',
+                    help='release each record at its end data time (wall clock), as a live recorder sends it')
     ap.add_argument('--unknown-at', type=int, default=0)
     ap.add_argument('--inject-at', type=int, default=0)
     ap.add_argument('files', nargs='+')
