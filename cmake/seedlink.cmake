@@ -33,3 +33,8 @@ if(catkin_FOUND AND CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/seedlink_monitor.test ARGS records:=${ROCKING_RECORDS_DIR} tools:=${ROCKING_TOOL_DIR}
               DEPENDENCIES test_seedlink_monitor)
 endif()
+
+if(catkin_FOUND AND CATKIN_ENABLE_TESTING)
+  add_rostest(test/ros/seedlink_bridge_bad_params.test ARGS tools:=${ROCKING_TOOL_DIR}
+              DEPENDENCIES seedlink_bridge)
+endif()

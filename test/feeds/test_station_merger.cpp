@@ -122,3 +122,26 @@ TEST(StationFrame, InverseAndErrors) {
 
 }  // namespace
 }  // namespace rocking_monitor::feeds
+
+namespace rocking_monitor::feeds {
+namespace {
+
+TEST(SeedChannels, RolesOfStrongMotionCodes) {
+  for (const char* code : {"HNZ", "HLZ", "ENZ"}) EXPECT_EQ(channel_role(code)->slot, Slot::Z) << code;
+  for (const char* code : {"HNN", "HLN", "ENN"}) {
+    EXPECT_EQ(channel_role(code)->slot, Slot::H1) << code;
+    EXPECT_FALSE(channel_role(code)->numbered) << code;
+  }
+  for (const char* code : {"HNE", "HLE", "ENE"}) EXPECT_EQ(channel_role(code)->slot, Slot::H2) << code;
+  EXPECT_EQ(channel_role("HN1")->slot, Slot::H1);
+  EXPECT_TRUE(channel_role("HN1")->numbered);
+  EXPECT_EQ(channel_role("HN2")->slot, Slot::H2);
+  EXPECT_TRUE(channel_role("EN2")->numbered);
+  EXPECT_FALSE(channel_role("HNU"));   // Galperin axes: no single direction
+  EXPECT_FALSE(channel_role("HN3"));
+  EXPECT_FALSE(channel_role("LOG"));
+  EXPECT_FALSE(channel_role("HN"));
+}
+
+}  // namespace
+}  // namespace rocking_monitor::feeds
