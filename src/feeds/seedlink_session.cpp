@@ -23,6 +23,10 @@ std::optional<std::uint32_t> SeedLinkSession::last_sequence(std::size_t stream) 
   std::lock_guard<std::mutex> lock(mutex_);
   return last_sequence_.at(stream);
 }
+void SeedLinkSession::resume_after(std::size_t stream, std::uint32_t sequence) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  last_sequence_.at(stream) = sequence & (kSequenceModulus - 1);
+}
 double SeedLinkSession::last_outage_s() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return last_outage_s_;

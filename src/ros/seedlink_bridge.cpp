@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "rocking_monitor/constants.hpp"
+#include "rocking_monitor/feeds/sequence_state.hpp"
 #include "rocking_monitor/feeds/tcp_connection.hpp"
 
 namespace rocking_monitor::live {
@@ -39,6 +40,22 @@ SeedLinkBridge::SeedLinkBridge(::ros::NodeHandle nh, ::ros::NodeHandle pnh) : nh
 SeedLinkBridge::~SeedLinkBridge() {
   stop_ = true;
   if (thread_.joinable()) thread_.join();
+  if (session_) save_state();
+}
+
+void SeedLinkBridge::save_state() {
+  if (state_file_.empty()) return;
+  std::map<std::string, std::uint32_t> now = saved_state_;
+  for (std::size_t i = 0; i < stations_.size(); ++i)
+    if (const auto seq = session_->last_sequence(i)) now[stations_[i].spec.name()] = *seq;
+  if (now == saved_state_) return;
+  try {
+    feeds::write_sequence_state(state_file_, now);
+    saved_state_ = now;
+  } catch (const std::runtime_error& e) {
+    ++state_write_failures_;
+    ROS_WARN_THROTTLE(30.0, "seedlink_bridge: %s", e.what());
+  }
 }
 
 bool SeedLinkBridge::init() {
@@ -128,7 +145,10 @@ bool SeedLinkBridge::init() {
     diagnostics_->add("seedlink station " + stations_[i].spec.name(),
                       [this, i](diagnostic_updater::DiagnosticStatusWrapper& st) { station_diagnostics(i, st); });
   }
-  diagnostics_timer_ = nh_.createWallTimer(::ros::WallDuration(0.25), [this](const ::ros::WallTimerEvent&) { diagnostics_->update(); });
+  diagnostics_timer_ = nh_.createWallTimer(::ros::WallDuration(0.25), [this](const ::ros::WallTimerEvent&) {
+    diagnostics_->update();
+    save_state();
+  });
 
   session_ = std::make_unique<feeds::SeedLinkSession>(
       cfg, [this](std::size_t stream, std::uint32_t seq, const char* rec, std::size_t len) { on_record(stream, seq, rec, len); },
@@ -136,6 +156,22 @@ bool SeedLinkBridge::init() {
         if (level == feeds::SeedLinkSession::Level::Info) ROS_INFO("seedlink_bridge: %s", what.c_str());
         else ROS_WARN("seedlink_bridge: %s", what.c_str());
       });
+  pnh_.param("state_file", state_file_, std::string());
+  if (!state_file_.empty()) {
+    try {
+      saved_state_ = feeds::read_sequence_state(state_file_);
+    } catch (const std::runtime_error& e) {
+      ROS_FATAL("seedlink_bridge: ~state_file: %s (delete the file to start from the server's next packets)", e.what());
+      return false;
+    }
+    for (std::size_t i = 0; i < stations_.size(); ++i) {
+      const auto it = saved_state_.find(stations_[i].spec.name());
+      if (it == saved_state_.end()) continue;
+      session_->resume_after(i, it->second);
+      ROS_INFO("seedlink_bridge: %s resumes after packet %06X (%s)", it->first.c_str(), static_cast<unsigned>(it->second),
+               state_file_.c_str());
+    }
+  }
   thread_ = std::thread([this] { session_->run(stop_); });
   ROS_INFO("seedlink_bridge: %zu station(s) from %s; up %s gravity", stations_.size(), server.c_str(),
            add_gravity ? "includes +9.80665 m/s^2 of" : "excludes");
@@ -207,6 +243,8 @@ void SeedLinkBridge::connection_diagnostics(diagnostic_updater::DiagnosticStatus
   st.add("records of unrequested stations", k.unrequested.load());
   st.add("ERROR replies", k.error_replies.load());
   st.add("last error", session_->last_error());
+  st.add("state file", state_file_.empty() ? std::string("(not kept)") : state_file_);
+  st.add("state file write failures", state_write_failures_);
 }
 
 void SeedLinkBridge::station_diagnostics(std::size_t i, diagnostic_updater::DiagnosticStatusWrapper& st) {

@@ -65,6 +65,8 @@ class SeedLinkSession {
   const SessionCounters& counters() const { return counters_; }
   /// Last sequence number handed on for the stream (nothing before its first packet).
   std::optional<std::uint32_t> last_sequence(std::size_t stream) const;
+  /// Sets where the stream resumes (a number kept from an earlier run); before run() only.
+  void resume_after(std::size_t stream, std::uint32_t sequence);
   bool connected() const { return connected_.load(); }
   /// Length of the last outage (connection lost -> next handshake done), s; total of all, s.
   double last_outage_s() const;

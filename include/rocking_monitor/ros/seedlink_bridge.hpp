@@ -6,6 +6,7 @@
 // /diagnostics around them. The client runs on a thread of its own; publish() is thread-safe.
 
 #include <atomic>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -50,6 +51,8 @@ class SeedLinkBridge {
   };
 
   void on_record(std::size_t stream, std::uint32_t sequence, const char* record, std::size_t length);
+  /// Writes ~state_file when a last sequence number changed since the last write.
+  void save_state();
   void connection_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st);
   void station_diagnostics(std::size_t i, diagnostic_updater::DiagnosticStatusWrapper& st);
 
@@ -65,6 +68,9 @@ class SeedLinkBridge {
   std::unique_ptr<diagnostic_updater::Updater> diagnostics_;
   ::ros::WallTimer diagnostics_timer_;
   std::uint64_t reported_session_problems_ = 0;
+  std::string state_file_;  // ~state_file: last sequence numbers kept across restarts ("" = not kept)
+  std::map<std::string, std::uint32_t> saved_state_;
+  std::uint64_t state_write_failures_ = 0;
 };
 
 }  // namespace rocking_monitor::live
