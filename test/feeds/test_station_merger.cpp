@@ -145,3 +145,39 @@ TEST(SeedChannels, RolesOfStrongMotionCodes) {
 
 }  // namespace
 }  // namespace rocking_monitor::feeds
+
+namespace rocking_monitor::feeds {
+namespace {
+
+TEST(StationMerger, AChannelThatNeverComesCostsOnlyTheRing) {
+  // Ring of 16 samples: with Z silent, N and E are held until the ring is full, then the oldest
+  // times are given up one by one (counted); nothing is emitted and nothing grows.
+  StationMerger m(1.0, 0.0, false, 16);
+  Collect c;
+  m.add(record("HNN", 0, 0, 40), c.emit());
+  m.add(record("HNE", 1, 0, 40), c.emit());
+  EXPECT_TRUE(c.out.empty());
+  EXPECT_EQ(m.counters().incomplete, 40u - 16u);  // N alone filled the ring: times 0..23 given up
+  EXPECT_EQ(m.counters().late_samples, 24u);      // E's samples for those times came too late
+  // Z arrives from time 25 on: 24 can never be complete, 25..39 go out.
+  m.add(record("HNZ", 2, 25, 15), c.emit());
+  ASSERT_EQ(c.out.size(), 15u);
+  EXPECT_EQ(c.out.front().time_ns, (kStartUs + 25 * kPeriodUs) * 1000);
+  EXPECT_EQ(m.counters().incomplete, 25u);
+}
+
+TEST(StationMerger, OtherRatesAndMixedOrientationsAreRefused) {
+  StationMerger m(1.0, 30.0, true);
+  Collect c;
+  m.add(record("HNN", 0, 0, 10), c.emit());
+  m.add(record("HN2", 1, 0, 10), c.emit());  // 1/2 after N/E: not one instrument
+  DecodedRecord fast = record("HNE", 1, 0, 10);
+  fast.sample_rate = 200.0;
+  m.add(fast, c.emit());
+  EXPECT_EQ(m.counters().foreign_records, 1u);
+  EXPECT_EQ(m.counters().rate_mismatches, 1u);
+  EXPECT_TRUE(c.out.empty());
+}
+
+}  // namespace
+}  // namespace rocking_monitor::feeds
