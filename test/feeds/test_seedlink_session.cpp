@@ -10,6 +10,7 @@
 
 #include <atomic>
 #include <cstring>
+#include <mutex>
 #include <thread>
 
 #include "rocking_monitor/feeds/mseed_writer.hpp"
@@ -138,6 +139,58 @@ TEST(SeedLinkSession, HandshakePacketsAndResume) {
   EXPECT_EQ(k.connects.load(), 2u);
   EXPECT_GE(k.disconnects.load(), 1u);
   EXPECT_EQ(*session.last_sequence(0), 7u);
+}
+
+TEST(SeedLinkSession, KeepAliveWhenIdleAndReconnectWhenSilent) {
+  Listener l;
+  std::vector<std::string> lines;
+  std::atomic<int> accepted{0};
+  std::thread server([&] {
+    // First connection: answers the keep-alive with one INFO packet, then stays silent: the client
+    // must give up after its idle timeout and come back.
+    for (int round = 0; round < 2; ++round) {
+      const int c = ::accept(l.fd, nullptr, nullptr);
+      ++accepted;
+      for (;;) {
+        const std::string line = read_line(c);
+        if (line.empty()) break;
+        if (round == 0) lines.push_back(line);
+        if (line == "HELLO\r\n") send_str(c, "SeedLink v3.1 (test)\r\ntest\r\n");
+        else if (line == "INFO ID\r\n") {
+          if (round == 0 && lines.size() == 6) send_str(c, packet("SLINFO  ", std::string(512, ' ')));
+        } else if (line != "END\r\n") send_str(c, "OK\r\n");
+        if (round == 1 && line == "END\r\n") break;
+      }
+      ::close(c);
+    }
+  });
+  SessionConfig cfg;
+  cfg.host = "127.0.0.1";
+  cfg.port = l.port;
+  cfg.streams = {StreamSpec{"CI", "RIN", {"HN?"}}};
+  cfg.keepalive_s = 0.1;
+  cfg.idle_timeout_s = 0.5;
+  cfg.backoff_min_s = 0.05;
+  std::atomic<bool> stop{false};
+  std::mutex log_mutex;
+  std::string log;
+  SeedLinkSession session(cfg, [](std::size_t, std::uint32_t, const char*, std::size_t) {},
+                          [&](SeedLinkSession::Level, const std::string& what) {
+                            std::lock_guard<std::mutex> lock(log_mutex);
+                            log += what + "\n";
+                          });
+  std::thread client([&] { session.run(stop); });
+  for (int i = 0; i < 1000 && accepted.load() < 2; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  stop = true;
+  client.join();
+  server.join();
+  ASSERT_GE(lines.size(), 6u);
+  EXPECT_EQ(lines[5], "INFO ID\r\n");
+  EXPECT_EQ(session.counters().info_packets.load(), 1u);
+  EXPECT_GE(session.counters().keepalives.load(), 2u);
+  EXPECT_EQ(session.counters().connects.load(), 2u);
+  EXPECT_NE(log.find("nothing received for 0.5"), std::string::npos) << log;
 }
 
 TEST(SeedLinkSession, RefusedConnectionBacksOffAndSaysWhy) {
