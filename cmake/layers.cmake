@@ -81,3 +81,6 @@ foreach(layer ${ROCKING_CORE_LAYER_NAMES})
   target_link_libraries(rocking_monitor_core INTERFACE rocking_monitor_${layer})
 endforeach()
 target_link_libraries(rocking_monitor_core INTERFACE Threads::Threads)
+
+# --- feeds (issue 18): its third-party libraries and gtests.
+include(${CMAKE_CURRENT_LIST_DIR}/feeds.cmake)

@@ -7,7 +7,8 @@ set(ROCKING_LAYER_ALLOWS_csv "")
 set(ROCKING_LAYER_ALLOWS_motion csv)
 set(ROCKING_LAYER_ALLOWS_monitoring model integrate physics motion csv)
 set(ROCKING_LAYER_ALLOWS_study monitoring model integrate physics motion csv)
-# feeds: live instrument streams (UDP shaking-table datagrams), ROS-free; uses nothing below.
+# feeds: live instrument streams (UDP shaking-table datagrams, the SeedLink client, miniSEED decoding,
+# channel merging), ROS-free; uses nothing below. Its third-party libraries: cmake/feeds.cmake.
 set(ROCKING_LAYER_ALLOWS_feeds "")
 set(ROCKING_CORE_LAYER_NAMES physics integrate model csv motion monitoring study feeds)
 

@@ -13,7 +13,7 @@ if(BUILD_TESTING)
     list(APPEND ROCKING_CORE_TESTS ${tests})
   endforeach()
   # command-line tests with their own executables (they need rocking_study / ROS tools)
-  list(FILTER ROCKING_CORE_TESTS EXCLUDE REGEX "/test_(study_cli|record_to_bag)\\.cpp$")
+  list(FILTER ROCKING_CORE_TESTS EXCLUDE REGEX "/test_(study_cli|record_to_bag|record_to_mseed)\\.cpp$")
   add_executable(core_tests ${ROCKING_CORE_TESTS})
   target_link_libraries(core_tests PRIVATE rocking_monitor_core GTest::gtest_main
                         nlohmann_json::nlohmann_json)

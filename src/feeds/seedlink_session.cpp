@@ -1,0 +1,235 @@
+// The SeedLink client's state machine: handshake, packet loop, back-off and resume (see the header).
+#include "rocking_monitor/feeds/seedlink_session.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <thread>
+
+#include "rocking_monitor/feeds/seedlink_protocol.hpp"
+#include "rocking_monitor/feeds/tcp_connection.hpp"
+
+namespace rocking_monitor::feeds {
+namespace {
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+}  // namespace
+
+SeedLinkSession::SeedLinkSession(SessionConfig config, RecordHandler on_record, LogHandler log)
+    : config_(std::move(config)), on_record_(std::move(on_record)), log_(std::move(log)),
+      last_sequence_(config_.streams.size()) {}
+
+std::optional<std::uint32_t> SeedLinkSession::last_sequence(std::size_t stream) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return last_sequence_.at(stream);
+}
+void SeedLinkSession::resume_after(std::size_t stream, std::uint32_t sequence) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  last_sequence_.at(stream) = sequence & (kSequenceModulus - 1);
+}
+double SeedLinkSession::last_outage_s() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return last_outage_s_;
+}
+double SeedLinkSession::total_outage_s() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return total_outage_s_;
+}
+std::string SeedLinkSession::last_error() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return last_error_;
+}
+void SeedLinkSession::note_error(const std::string& what) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    last_error_ = what;
+  }
+  log_(Level::Warn, what);
+}
+
+void SeedLinkSession::run(const std::atomic<bool>& stop) {
+  double backoff = config_.backoff_min_s;
+  while (!stop.load()) {
+    bool got_data = false;
+    const std::uint64_t connects_before = counters_.connects.load();
+    if (!session_once(stop, got_data)) break;
+    if (counters_.connects.load() != connects_before) {  // an established connection was lost
+      ++counters_.disconnects;
+      lost_ = true;
+      down_since_ = Clock::now();
+    }
+    if (got_data) backoff = config_.backoff_min_s;
+    // Wait, in small slices so that a stop request is honoured at once.
+    const auto until = Clock::now() + std::chrono::duration<double>(backoff);
+    while (!stop.load() && Clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    backoff = std::min(backoff * 2.0, config_.backoff_max_s);
+  }
+  connected_ = false;
+}
+
+bool SeedLinkSession::session_once(const std::atomic<bool>& stop, bool& got_data) {
+  TcpConnection tcp;
+  tcp.set_stop_flag(&stop);
+  const std::string where = config_.host + ":" + std::to_string(config_.port);
+  auto failed = [&](TcpConnection::Status s, const std::string& during) {
+    if (s == TcpConnection::Status::Stopped) return false;
+    note_error("seedlink " + where + ": " + during + ": " + tcp.error());
+    return true;
+  };
+  TcpConnection::Status s = tcp.open(config_.host, config_.port, config_.connect_timeout_s);
+  if (s != TcpConnection::Status::Ok) {
+    ++counters_.connect_failures;
+    return failed(s, "connect");
+  }
+  auto command = [&](const std::string& cmd, bool reply, std::string& line) {
+    TcpConnection::Status st = tcp.send_all(cmd, config_.connect_timeout_s);
+    if (st == TcpConnection::Status::Ok && reply) st = tcp.read_line(line, config_.connect_timeout_s);
+    return st;
+  };
+  std::string line, org;
+  s = command(hello_command(), true, line);
+  if (s == TcpConnection::Status::Ok) s = tcp.read_line(org, config_.connect_timeout_s);
+  if (s != TcpConnection::Status::Ok) {
+    ++counters_.connect_failures;
+    return failed(s, "HELLO");
+  }
+  if (!hello_version(line)) {
+    ++counters_.connect_failures;
+    note_error("seedlink " + where + ": the answer to HELLO ('" + line + "') is not a SeedLink server's");
+    return true;
+  }
+  std::size_t accepted = 0;
+  for (std::size_t i = 0; i < config_.streams.size(); ++i) {
+    const StreamSpec& st = config_.streams[i];
+    s = command(station_command(st.network, st.station), true, line);
+    if (s != TcpConnection::Status::Ok) {
+      ++counters_.connect_failures;
+      return failed(s, "STATION " + st.name());
+    }
+    if (classify_reply(line) != Reply::Ok) {
+      ++counters_.error_replies;
+      note_error("seedlink " + where + ": STATION " + st.station + " " + st.network + " refused: '" + line + "'");
+      continue;
+    }
+    bool selected = false;
+    for (const std::string& sel : st.selectors) {
+      s = command(select_command(sel), true, line);
+      if (s != TcpConnection::Status::Ok) {
+        ++counters_.connect_failures;
+        return failed(s, "SELECT " + sel);
+      }
+      if (classify_reply(line) == Reply::Ok) {
+        selected = true;
+      } else {
+        ++counters_.error_replies;
+        note_error("seedlink " + where + ": " + st.name() + ": SELECT " + sel + " refused: '" + line + "'");
+      }
+    }
+    if (!selected) continue;
+    std::optional<std::uint32_t> from;
+    if (const auto last = last_sequence(i)) from = next_sequence(*last);
+    s = command(data_command(from), true, line);
+    if (s != TcpConnection::Status::Ok) {
+      ++counters_.connect_failures;
+      return failed(s, "DATA");
+    }
+    if (classify_reply(line) != Reply::Ok) {
+      ++counters_.error_replies;
+      note_error("seedlink " + where + ": " + st.name() + ": DATA refused: '" + line + "'");
+      continue;
+    }
+    ++accepted;
+  }
+  if (accepted == 0) {
+    ++counters_.connect_failures;
+    note_error("seedlink " + where + ": the server accepted none of the requested stations");
+    return true;
+  }
+  s = command(end_command(), false, line);
+  if (s != TcpConnection::Status::Ok) {
+    ++counters_.connect_failures;
+    return failed(s, "END");
+  }
+  if (lost_) {  // this handshake ends the outage since the last connection was lost
+    std::lock_guard<std::mutex> lock(mutex_);
+    last_outage_s_ = seconds_since(down_since_);
+    total_outage_s_ += last_outage_s_;
+  }
+  ++counters_.connects;
+  connected_ = true;
+  log_(Level::Info, "seedlink " + where + ": streaming " + std::to_string(accepted) + " station(s) (server: " + org + ")");
+
+  std::array<char, kSeedLinkPacketBytes> packet{};
+  std::string net, sta;
+  auto last_byte = Clock::now();
+  for (;;) {
+    s = tcp.wait_readable(config_.keepalive_s);
+    if (s == TcpConnection::Status::Timeout) {
+      if (seconds_since(last_byte) >= config_.idle_timeout_s) {
+        connected_ = false;
+        note_error("seedlink " + where + ": nothing received for " + std::to_string(config_.idle_timeout_s) + " s: reconnecting");
+        return true;
+      }
+      ++counters_.keepalives;
+      s = tcp.send_all(keepalive_command(), config_.connect_timeout_s);
+      if (s != TcpConnection::Status::Ok) break;
+      continue;
+    }
+    if (s != TcpConnection::Status::Ok) break;
+    s = tcp.read_exact(packet.data(), kSeedLinkHeaderBytes, config_.idle_timeout_s);
+    if (s != TcpConnection::Status::Ok) break;
+    last_byte = Clock::now();
+    const PacketHeader h = parse_packet_header(packet.data());
+    if (h.kind == PacketHeader::Kind::OutOfSync) {
+      ++counters_.out_of_sync;
+      connected_ = false;
+      note_error("seedlink " + where + ": a packet header does not start with 'SL': the stream lost its framing; reconnecting");
+      return true;
+    }
+    s = tcp.read_exact(packet.data() + kSeedLinkHeaderBytes, kSeedLinkRecordBytes, config_.idle_timeout_s);
+    if (s != TcpConnection::Status::Ok) break;
+    if (h.kind == PacketHeader::Kind::Info) {
+      ++counters_.info_packets;
+      continue;
+    }
+    if (h.kind == PacketHeader::Kind::Malformed) {
+      ++counters_.malformed;
+      note_error("seedlink " + where + ": malformed packet header '" + std::string(packet.data(), 8) + "' dropped");
+      continue;
+    }
+    const char* record = packet.data() + kSeedLinkHeaderBytes;
+    std::size_t stream = config_.streams.size();
+    if (record_station(record, kSeedLinkRecordBytes, net, sta)) {
+      for (std::size_t i = 0; i < config_.streams.size(); ++i)
+        if (config_.streams[i].network == net && config_.streams[i].station == sta) stream = i;
+    }
+    if (stream == config_.streams.size()) {
+      ++counters_.unrequested;
+      continue;
+    }
+    if (const auto last = last_sequence(stream)) {
+      const SequenceStep step = sequence_step(*last, h.sequence);
+      if (step.kind == SequenceStep::Kind::Repeat) {
+        ++counters_.repeated_sequence;
+        note_error("seedlink " + where + ": " + config_.streams[stream].name() + ": packet " + std::string(packet.data() + 2, 6) +
+                   " repeats or precedes the last one handed on: dropped");
+        continue;
+      }
+      if (step.kind == SequenceStep::Kind::Jump) {
+        ++counters_.sequence_jumps;
+        counters_.skipped_sequence += step.skipped;
+        note_error("seedlink " + where + ": " + config_.streams[stream].name() + ": " + std::to_string(step.skipped) +
+                   " sequence number(s) missing before packet " + std::string(packet.data() + 2, 6));
+      }
+    }
+    got_data = true;
+    ++counters_.packets;
+    on_record_(stream, h.sequence, record, kSeedLinkRecordBytes);
+    std::lock_guard<std::mutex> lock(mutex_);
+    last_sequence_[stream] = h.sequence;
+  }
+  connected_ = false;
+  return failed(s, "streaming");
+}
+
+}  // namespace rocking_monitor::feeds
