@@ -87,7 +87,25 @@ function addHistory(id, st) {
 
 // A delta is compact (10,000 items must fit): one array per changed item, fields named in msg.fields,
 // the governing plane's values only. The selected item's full state (both planes) comes from /api/item.
+// Load measurement (scripts/measure_dashboard_load.sh): handler and drawing times, real milliseconds,
+// kept in the DOM (body data-*) and, with ?measure=1, in the page title, which a headless browser's
+// DevTools endpoint (/json/list) shows while the page stays live.
+const timing = { delta: [], draw: [], deltaItems: 0, measure: new URLSearchParams(location.search).has('measure') };
+function record(kind, ms) {
+  const a = timing[kind];
+  a.push(ms);
+  const mean = a.reduce((s, v) => s + v, 0) / a.length;
+  const sorted = a.slice().sort((x, y) => x - y);
+  const d = document.body.dataset;
+  d[kind + 'Count'] = a.length;
+  d[kind + 'MeanMs'] = mean.toFixed(2);
+  d[kind + 'P95Ms'] = sorted[Math.min(a.length - 1, Math.floor(0.95 * a.length))].toFixed(2);
+  d[kind + 'MaxMs'] = sorted[a.length - 1].toFixed(2);
+  if (timing.measure) document.title = 'measure ' + JSON.stringify(Object.assign({}, d));
+}
+
 function onStates(msg) {
+  const tStart = performance.now();
   let unknown = false, selectedChanged = false;
   const f = msg.fields;
   for (const row of msg.items) {
@@ -109,6 +127,9 @@ function onStates(msg) {
   updateBanner();
   if (selectedChanged) { renderDetail(); loadItem(view.selected); }
   requestDraw();
+  timing.deltaItems = Math.max(timing.deltaItems, msg.items.length);
+  document.body.dataset.deltaItemsMax = timing.deltaItems;
+  record('delta', performance.now() - tStart);
 }
 
 let itemPending = false;
@@ -509,6 +530,7 @@ function requestDraw() {
     drawChart();
     drawInput();
     document.body.dataset.drawMs = (performance.now() - t0).toFixed(1);  // for load measurements
+    record('draw', performance.now() - t0);
     $('clock').textContent = view.latestStamp > 0 ? utc(view.latestStamp) : 'no data yet';
   });
 }
