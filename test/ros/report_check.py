@@ -95,6 +95,8 @@ class Report(unittest.TestCase):
         self.assertTrue(os.path.exists(bag))
         print('report: %s' % page)
 
+        with open(page, encoding='utf-8') as f:  # ended by the monitor's states, not by the input stopping
+            self.assertIn('every item at rest or overturned for 2.0 s', f.read())
         table = parse(page)
         rows = summary(table)
         ids = [s.id for s in got['states'].items]
@@ -139,6 +141,12 @@ class Report(unittest.TestCase):
             tool = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'scripts', 'rocking_report')
             subprocess.run(['/usr/bin/python3', tool, bag, '-o', out], check=True, timeout=120)
             self.assertEqual(summary(parse(out)), rows)
+            # A valid bag with a catalogue that is not there: one error line, exit status 2, no report.
+            bad = subprocess.run(['/usr/bin/python3', tool, bag, '-o', out + '2', '--catalogue', os.path.join(tmp, 'none.yaml')],
+                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=120)
+            self.assertEqual(bad.returncode, 2)
+            self.assertEqual(bad.stderr.decode().splitlines(), ['rocking_report: error: %s: no such file' % os.path.join(tmp, 'none.yaml')])
+            self.assertFalse(os.path.exists(out + '2'))
 
 
 if __name__ == '__main__':
