@@ -85,7 +85,7 @@ if(CPP_HTTPLIB_FOUND)
   endforeach()
   add_library(rocking_dashboard
     src/ros/dashboard.cpp src/ros/dashboard_state.cpp src/ros/dashboard_http.cpp
-    src/ros/dashboard_events.cpp src/ros/dashboard_assets.cpp ${dashboard_web_inc})
+    src/ros/dashboard_events.cpp src/ros/dashboard_assets.cpp src/ros/dashboard_input.cpp ${dashboard_web_inc})
   target_include_directories(rocking_dashboard PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include ${catkin_INCLUDE_DIRS})
   target_include_directories(rocking_dashboard PRIVATE ${CMAKE_CURRENT_BINARY_DIR})
   target_link_libraries(rocking_dashboard PUBLIC rocking_monitor_ros PkgConfig::CPP_HTTPLIB
@@ -101,6 +101,7 @@ if(CPP_HTTPLIB_FOUND)
     target_link_libraries(test_dashboard rocking_dashboard ${catkin_LIBRARIES})
     add_dependencies(test_dashboard dashboard monitor)
     add_rostest(test/ros/dashboard_restart.test DEPENDENCIES dashboard monitor)
+    add_rostest(test/ros/dashboard_ensemble.test DEPENDENCIES test_dashboard)
     # The page in a real browser (Debian chromium, scripts/install_deps.sh); skipped with a notice without it.
     find_program(CHROMIUM_EXECUTABLE chromium)
     if(CHROMIUM_EXECUTABLE)

@@ -19,6 +19,7 @@ Dashboard::~Dashboard() {
   alarms_sub_.shutdown();
   criteria_sub_.shutdown();
   diagnostics_sub_.shutdown();
+  input_sub_.shutdown();
   stop_server();
 }
 
@@ -44,6 +45,19 @@ bool Dashboard::load_parameters() {
     if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) update_rate_ = static_cast<double>(v);
     else if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) update_rate_ = static_cast<int>(v);
     else return wrong("update_rate", "number, Hz");
+  }
+  if (pnh_.getParam("sensor_topic", v)) {
+    if (v.getType() != XmlRpc::XmlRpcValue::TypeString) return wrong("sensor_topic", "string");
+    sensor_topic_ = static_cast<std::string>(v);
+  }
+  if (pnh_.getParam("sensor_type", v)) {
+    if (v.getType() != XmlRpc::XmlRpcValue::TypeString) return wrong("sensor_type", "string: imu or accel");
+    sensor_type_ = static_cast<std::string>(v);
+  }
+  if (sensor_type_ != "imu" && sensor_type_ != "accel") {
+    ROS_FATAL("dashboard: ~sensor_type = '%s' must be imu (sensor_msgs/Imu) or accel (geometry_msgs/AccelStamped)",
+              sensor_type_.c_str());
+    return false;
   }
   if (pnh_.getParam("max_clients", v)) {
     if (v.getType() != XmlRpc::XmlRpcValue::TypeInt) return wrong("max_clients", "integer");
@@ -101,6 +115,9 @@ void Dashboard::load_catalogue() {
     catalogue_dirty_ = false;
     return;
   }
+  // The input chart follows the monitor's first sensor unless ~sensor_topic names one.
+  if (sensor_topic_.empty() && !cat.sensors.empty())
+    subscribe_input(cat.sensors.front().topic, cat.sensors.front().type == SensorSpec::Type::Imu);
   std::lock_guard<std::mutex> lock(mutex_);
   std::vector<ItemGeometry> next;
   next.reserve(cat.items.size());
@@ -138,6 +155,7 @@ bool Dashboard::init() {
   alarms_sub_ = nh_.subscribe(monitor_ + "/alarms", 1000, &Dashboard::on_alarm, this, hints);
   criteria_sub_ = nh_.subscribe(monitor_ + "/criteria", 1000, &Dashboard::on_criterion, this, hints);
   diagnostics_sub_ = nh_.subscribe("/diagnostics", 50, &Dashboard::on_diagnostics, this);
+  if (!sensor_topic_.empty()) subscribe_input(sensor_topic_, sensor_type_ == "imu");
   // Wall timers: under sim time the clock stops with the bag, and the page must still get the last state.
   update_timer_ = nh_.createWallTimer(::ros::WallDuration(1.0 / update_rate_), &Dashboard::on_update_timer, this);
   catalogue_timer_ = nh_.createWallTimer(::ros::WallDuration(1.0), &Dashboard::on_catalogue_timer, this);

@@ -41,6 +41,10 @@ bool Dashboard::start_server() {
     res.set_header("Cache-Control", "no-store");
     res.set_content(history_json(req.get_param_value("id")), "application/json");
   });
+  server_->Get("/api/input", [this](const httplib::Request&, httplib::Response& res) {
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(input_json(), "application/json");
+  });
   server_->Get("/api/events", [this](const httplib::Request&, httplib::Response& res) {
     const std::uint64_t id = add_client();
     if (id == 0) {

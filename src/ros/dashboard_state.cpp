@@ -53,6 +53,12 @@ json state_json(const RockingState& s) {
             {"model_valid", s.model_valid}, {"model", s.model}, {"slip", s.slip},
             {"stamp", s.input_stamp.toSec()}, {"x", plane_json(s.x)}};
   if (s.plane_count >= 2) j["y"] = plane_json(s.y);
+  if (s.ensemble_size > 0) {  // an item with uncertain parameters: P(level) over its members
+    j["ensemble_size"] = s.ensemble_size;
+    j["p_overturned"] = s.p_overturned.probability;
+    j["p_overturned_interval"] = {s.p_overturned.lower, s.p_overturned.upper};
+    j["p_committed"] = s.p_committed.probability;
+  }
   return j;
 }
 
@@ -240,11 +246,12 @@ void Dashboard::on_update_timer(const ::ros::WallTimerEvent&) {
       for (std::size_t i = 0; i < latest_->items.size() && i < state_to_item_.size(); ++i) {
         const RockingState& s = latest_->items[i];
         Sent& last = sent_[state_to_item_[i]];
+        const double p = s.ensemble_size > 0 ? s.p_overturned.probability : -1.0;
         if (last.valid && last.mode == s.mode && last.plane == s.plane && last.impacts == s.impacts &&
             std::abs(last.rotation_ratio - s.rotation_ratio) < kRatioStep &&
-            std::abs(last.energy_margin - s.energy_margin) < kMarginStep)
+            std::abs(last.energy_margin - s.energy_margin) < kMarginStep && std::abs(last.p_overturned - p) < kRatioStep)
           continue;
-        last = {s.mode, s.plane, s.rotation_ratio, s.energy_margin, s.theta, s.impacts, true};
+        last = {s.mode, s.plane, s.rotation_ratio, s.energy_margin, s.theta, s.impacts, true, p};
         auto& h = history_[state_to_item_[i]];
         const double t = s.input_stamp.toSec();
         if (!h.empty() && t < h.back().t - 1.0) h.clear();  // the clock went back: monitor restarted, bag looped
@@ -255,7 +262,11 @@ void Dashboard::on_update_timer(const ::ros::WallTimerEvent&) {
         // /api/item for the full state of the one item it shows in detail.
         json row = {s.id, mode_name(s.mode), s.plane, short_number(s.theta), short_number(s.rotation_ratio),
                     short_number(s.energy_margin), s.impacts, s.input_stamp.toSec()};
-        if (auto c = criteria_.find(s.id); c != criteria_.end() && !c->second.empty()) row.push_back(c->second);
+        const auto c = criteria_.find(s.id);
+        const bool has_criteria = c != criteria_.end() && !c->second.empty();
+        if (has_criteria) row.push_back(c->second);
+        else if (p >= 0.0) row.push_back(nullptr);
+        if (p >= 0.0) row.push_back(short_number(p));  // only ensemble items carry it
         changed.push_back(std::move(row));
       }
       latest_sent_ = true;
@@ -270,9 +281,10 @@ void Dashboard::on_update_timer(const ::ros::WallTimerEvent&) {
   if (!changed.empty())
     publish_event("states", json{{"stamp", stamp},
                                  {"fields", {"id", "mode", "plane", "theta", "rotation_ratio", "energy_margin",
-                                             "impacts", "stamp", "criteria"}},
+                                             "impacts", "stamp", "criteria", "p_overturned"}},
                                  {"items", std::move(changed)}}.dump());
   if (push_health) publish_event("health", health.dump());
+  push_input();
 }
 
 }  // namespace rocking_monitor::live

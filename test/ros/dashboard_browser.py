@@ -4,7 +4,7 @@
 Loads the page (with ?poll=1: a headless browser's virtual time never runs out while an event stream
 is open, so the page polls the snapshot instead) and checks the DOM: every catalogue item has a row
 carrying its id and mode, the item that overturned is OVERTURNED, the one that survives is not, and the
-red banner is shown. Saves a screenshot (~screenshot, default $ROS_HOME/dashboard_browser.png)."""
+red banner is shown, and the input acceleration chart holds the pulse. Saves a screenshot (~screenshot, default $ROS_HOME/dashboard_browser.png)."""
 import os
 import re
 import shutil
@@ -64,6 +64,14 @@ class DashboardBrowser(unittest.TestCase):
         self.assertEqual(rows[must_overturn], 'OVERTURNED')
         self.assertNotEqual(rows[must_survive], 'OVERTURNED')
         self.assertRegex(dom, r'<div id="banner" role="alert">[^<]*' + must_overturn)
+        # The input acceleration chart (sensor health panel) holds the pulse: its peak 4.0 m/s^2 survives
+        # the 50 ms bins.
+        chart = re.search(r'<canvas id="input-chart"[^>]*>', dom)
+        self.assertIsNotNone(chart, 'no input chart in the DOM')
+        points, peak = re.search(r'data-points="(\d+)"', chart.group(0)), re.search(r'data-peak="([^"]+)"', chart.group(0))
+        self.assertIsNotNone(points, 'input chart never drawn: %s' % chart.group(0))
+        self.assertGreater(int(points.group(1)), 100)
+        self.assertAlmostEqual(float(peak.group(1)), 4.0, delta=1e-6)
         print('DOM rows: %s' % rows)
 
         shot = rospy.get_param('~screenshot', '') or os.path.join(

@@ -101,6 +101,10 @@ TEST(Dashboard, ServesThePageTheSnapshotAndTheAlarms) {
   pnh.getParam("url_param", url_param);
   pnh.getParam("must_overturn", must_overturn);
   pnh.getParam("must_survive", must_survive);
+  int min_ensembles = 0;        // items with uncertain parameters the catalogue has (P(overturned) checked)
+  double input_peak_x = 0.0;    // the input's peak |a_x|, m/s^2 (0: not checked)
+  pnh.getParam("min_ensembles", min_ensembles);
+  pnh.getParam("input_peak_x", input_peak_x);
 
   // The monitor's ROS outputs, as this test receives them.
   std::mutex mutex;
@@ -201,6 +205,7 @@ TEST(Dashboard, ServesThePageTheSnapshotAndTheAlarms) {
   }
   ASSERT_EQ(snap["items"].size(), states->items.size());
   std::map<std::string, std::string> mode_of;
+  int ensembles = 0;
   for (const RockingState& s : states->items) {
     const json* found = nullptr;
     for (const json& it : snap["items"])
@@ -212,11 +217,32 @@ TEST(Dashboard, ServesThePageTheSnapshotAndTheAlarms) {
     EXPECT_EQ(st.at("plane").get<std::string>(), s.plane) << s.id;
     EXPECT_EQ(st.at("theta").get<double>(), s.theta) << s.id;  // same message, round-trip doubles
     EXPECT_EQ(st.at("x").at("theta").get<double>(), s.x.theta) << s.id;
+    if (s.ensemble_size > 0) {  // P(overturned) over the item's members, as the monitor published it
+      ++ensembles;
+      EXPECT_EQ(st.at("p_overturned").get<double>(), s.p_overturned.probability) << s.id;
+      EXPECT_EQ(st.at("p_overturned_interval")[1].get<double>(), s.p_overturned.upper) << s.id;
+    } else {
+      EXPECT_FALSE(st.contains("p_overturned")) << s.id;
+    }
     mode_of[s.id] = mode_name(s.mode);
   }
+  EXPECT_EQ(ensembles, min_ensembles);
   EXPECT_EQ(mode_of[must_overturn], "OVERTURNED");
   EXPECT_NE(mode_of[must_survive], "OVERTURNED");
   EXPECT_NE(mode_of[must_survive], "");
+
+  // The input chart's 60 s: the dashboard's own subscription to the monitor's sensor keeps the peak.
+  if (input_peak_x > 0.0) {
+    auto in = http.Get("/api/input");
+    ASSERT_TRUE(in);
+    const json j = json::parse(in->body);
+    EXPECT_EQ(j.at("topic"), "/ground/imu");
+    ASSERT_FALSE(j.at("points").empty());
+    double peak = 0.0;
+    for (const json& p : j["points"]) peak = std::max(peak, std::abs(p[1].get<double>()));
+    EXPECT_NEAR(peak, input_peak_x, 1e-6) << "the 50 ms bins keep each bin's largest sample";
+    std::printf("input chart: %zu points, peak |a_x| %.6f m/s^2\n", j["points"].size(), peak);
+  }
 
   // The alarm log: every alarm the monitor published, newest first.
   ASSERT_EQ(snap.at("alarms").size(), on_ros.size());

@@ -14,6 +14,8 @@
 #include <vector>
 
 #include <diagnostic_msgs/DiagnosticArray.h>
+#include <geometry_msgs/AccelStamped.h>
+#include <sensor_msgs/Imu.h>
 #include <nlohmann/json_fwd.hpp>
 #include <ros/ros.h>
 
@@ -60,6 +62,10 @@ class Dashboard {
   /// sent to the pages; empty points for an unknown id or a quiet item.
   std::string history_json(const std::string& id) const;
 
+  /// {"topic", "points": [[stamp s, a_x, a_y, a_z], ...]}: the input acceleration of the last 60 s
+  /// (m/s^2, sensor axes, the at-rest reading removed), one point per 50 ms bin (its largest sample).
+  std::string input_json() const;
+
   /// Page assets embedded in the binary (dashboard_assets.cpp).
   static const char* const kIndexHtml;
   static const char* const kAppJs;
@@ -77,6 +83,11 @@ class Dashboard {
     double rotation_ratio = 0.0, energy_margin = 0.0, theta = 0.0;
     std::uint32_t impacts = 0;
     bool valid = false;
+    double p_overturned = -1.0;  // ensemble items: P(overturned) last sent
+  };
+  struct InputPoint {  // one 50 ms bin of the input acceleration (its sample of largest magnitude)
+    double t;          // stamp, s
+    float a[3];        // m/s^2, sensor axes, at-rest reading removed
   };
   struct Point {  // one chart point, as sent in a delta
     double t;      // input stamp, s
@@ -96,6 +107,12 @@ class Dashboard {
   void on_diagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& msg);
   void on_update_timer(const ::ros::WallTimerEvent&);
   void on_catalogue_timer(const ::ros::WallTimerEvent&);
+  // ---- the input acceleration (dashboard_input.cpp): the monitor does not republish its input
+  void subscribe_input(const std::string& topic, bool imu);
+  void on_imu(const sensor_msgs::Imu::ConstPtr& msg);
+  void on_accel(const geometry_msgs::AccelStamped::ConstPtr& msg);
+  void add_input_locked(double t, double x, double y, double z, bool gravity_included);
+  void push_input();
   /// Maps ~states positions to items_, adding items the catalogue lacks (drawn without geometry);
   /// reread_catalogue: an unknown id or a new count asks for the catalogue to be read again.
   void rebuild_index_locked(const RockingStateArray& msg, bool reread_catalogue);
@@ -126,6 +143,9 @@ class Dashboard {
   double update_rate_ = 10.0;  // Hz, at most 10: deltas to the page
   int max_clients_ = 8;        // SSE connections at once (each holds one HTTP thread)
   std::string url_;
+  std::string sensor_topic_;  // ~sensor_topic; empty: the first sensor of the monitor's catalogue
+  std::string sensor_type_ = "imu";  // ~sensor_type with ~sensor_topic: imu | accel
+  std::string input_topic_;   // subscribed now
 
   mutable std::mutex mutex_;  // guards everything below down to the SSE section
   std::vector<ItemGeometry> items_;
@@ -144,8 +164,13 @@ class Dashboard {
   bool catalogue_dirty_ = false;  // ~states named items the catalogue does not have: reread it
   std::uint64_t states_received_ = 0;
   ::ros::WallTime last_health_push_;
+  std::deque<InputPoint> input_;       // last 60 s, 50 ms bins
+  bool have_rest_ = false;             // at-rest reading known (the first sample's, as the monitor)
+  double rest_[3] = {0.0, 0.0, 0.0};
+  std::size_t input_pushed_ = 0;       // bins of input_ already sent on the event stream
+  double input_pushed_t_ = 0.0;        // stamp of the last bin sent
 
-  ::ros::Subscriber states_sub_, alarms_sub_, criteria_sub_, diagnostics_sub_;
+  ::ros::Subscriber states_sub_, alarms_sub_, criteria_sub_, diagnostics_sub_, input_sub_;
   ::ros::WallTimer update_timer_, catalogue_timer_;
 
   // ---- SSE clients, own lock so that formatting the snapshot never delays a push

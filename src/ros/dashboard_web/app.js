@@ -14,10 +14,25 @@ const view = {
   items: [], byId: new Map(), alarms: [], alarmKeys: new Set(), health: [],
   selected: null, history: new Map(), latestStamp: 0, rows: new Map(), dirty: true,
   plan: null,  // world -> canvas transform of the floor plan
+  input: [], inputTopic: '',  // [t, ax, ay, az] of the last 60 s (50 ms bins), m/s^2
+  colourBy: 'mode',  // 'p': items with uncertain parameters coloured by P(overturned)
 };
 
 const $ = (id) => document.getElementById(id);
 const modeOf = (it) => (it.state ? it.state.mode : 'UNKNOWN');
+const pOf = (it) => (it.state && typeof it.state.p_overturned === 'number' ? it.state.p_overturned : null);
+// P(overturned) 0 -> green, 0.5 -> red, 1 -> purple (the mode colours of rest, committed, overturned).
+function pColour(p) {
+  const stops = [[0, [46, 157, 74]], [0.25, [232, 195, 28]], [0.5, [214, 40, 40]], [1, [123, 44, 191]]];
+  let k = 1;
+  while (k < stops.length - 1 && p > stops[k][0]) ++k;
+  const [p0, c0] = stops[k - 1], [p1, c1] = stops[k], f = Math.max(0, Math.min(1, (p - p0) / (p1 - p0)));
+  return 'rgb(' + c0.map((v, i) => Math.round(v + f * (c1[i] - v))).join(',') + ')';
+}
+function colourOf(it) {
+  const p = pOf(it);
+  return view.colourBy === 'p' && p !== null ? pColour(p) : COLOURS[modeOf(it)];
+}
 const fmt = (v, d = 3) => (typeof v === 'number' && isFinite(v) ? v.toFixed(d) : '–');
 const signedRatio = (s) => (s.theta < 0 ? -1 : 1) * s.rotation_ratio;
 
@@ -50,6 +65,7 @@ function applySnapshot(s) {
   if (view.selected && !view.byId.has(view.selected)) view.selected = null;
   layoutPlan();
   buildItemTable();
+  loadInput();
   updateBanner();
   renderDetail();
   requestDraw();
@@ -71,7 +87,25 @@ function addHistory(id, st) {
 
 // A delta is compact (10,000 items must fit): one array per changed item, fields named in msg.fields,
 // the governing plane's values only. The selected item's full state (both planes) comes from /api/item.
+// Load measurement (scripts/measure_dashboard_load.sh): handler and drawing times, real milliseconds,
+// kept in the DOM (body data-*) and, with ?measure=1, in the page title, which a headless browser's
+// DevTools endpoint (/json/list) shows while the page stays live.
+const timing = { delta: [], draw: [], deltaItems: 0, measure: new URLSearchParams(location.search).has('measure') };
+function record(kind, ms) {
+  const a = timing[kind];
+  a.push(ms);
+  const mean = a.reduce((s, v) => s + v, 0) / a.length;
+  const sorted = a.slice().sort((x, y) => x - y);
+  const d = document.body.dataset;
+  d[kind + 'Count'] = a.length;
+  d[kind + 'MeanMs'] = mean.toFixed(2);
+  d[kind + 'P95Ms'] = sorted[Math.min(a.length - 1, Math.floor(0.95 * a.length))].toFixed(2);
+  d[kind + 'MaxMs'] = sorted[a.length - 1].toFixed(2);
+  if (timing.measure) document.title = 'measure ' + JSON.stringify(Object.assign({}, d));
+}
+
 function onStates(msg) {
+  const tStart = performance.now();
   let unknown = false, selectedChanged = false;
   const f = msg.fields;
   for (const row of msg.items) {
@@ -82,7 +116,8 @@ function onStates(msg) {
     it.state = Object.assign({}, it.state || {}, {
       mode: d.mode, plane: d.plane, theta: d.theta, rotation_ratio: d.rotation_ratio,
       energy_margin: d.energy_margin, impacts: d.impacts, stamp: d.stamp });
-    it.criteria = d.criteria;
+    it.criteria = d.criteria || undefined;
+    if (typeof d.p_overturned === 'number') it.state.p_overturned = d.p_overturned;
     addHistory(d.id, it.state);
     updateRow(it);
     if (d.id === view.selected) selectedChanged = true;
@@ -92,6 +127,9 @@ function onStates(msg) {
   updateBanner();
   if (selectedChanged) { renderDetail(); loadItem(view.selected); }
   requestDraw();
+  timing.deltaItems = Math.max(timing.deltaItems, msg.items.length);
+  document.body.dataset.deltaItemsMax = timing.deltaItems;
+  record('delta', performance.now() - tStart);
 }
 
 let itemPending = false;
@@ -132,6 +170,7 @@ function connect() {
   es.addEventListener('alarm', (e) => { addAlarm(JSON.parse(e.data)); });
   es.addEventListener('health', (e) => { view.health = JSON.parse(e.data); renderHealth(); });
   es.addEventListener('catalogue', () => loadSnapshot());
+  es.addEventListener('input', (e) => addInput(JSON.parse(e.data).points));
   es.onerror = () => setConn('conn-bad', 'disconnected, retrying');  // EventSource reconnects itself
 }
 
@@ -143,7 +182,7 @@ function buildItemTable() {
   for (const it of view.items) {
     const tr = document.createElement('tr');
     tr.dataset.item = it.id;
-    for (let i = 0; i < 7; ++i) tr.appendChild(document.createElement('td'));
+    for (let i = 0; i < 8; ++i) tr.appendChild(document.createElement('td'));
     tr.cells[0].textContent = it.id;
     tr.title = it.description || '';
     tr.addEventListener('click', () => select(it.id));
@@ -166,6 +205,10 @@ function fillRow(tr, it) {
   tr.cells[4].textContent = s ? fmt(s.energy_margin) : '';
   tr.cells[5].textContent = s ? s.impacts : '';
   tr.cells[6].textContent = (it.criteria || []).join(', ');
+  const p = pOf(it);
+  if (p !== null) tr.dataset.pOverturned = p;
+  tr.cells[7].textContent = p !== null ? fmt(p, 2) : '';
+  if (p !== null) tr.cells[7].style.background = pColour(p) + '40';
 }
 
 function updateRow(it) {
@@ -301,7 +344,7 @@ function drawPlan() {
     ctx.rotate(-p.yaw);  // canvas y points down: a counter-clockwise yaw turns the other way here
     // The item frame's origin is under the centre of mass: the base spans -nu B .. (1 - nu) B.
     const x0 = -f.nu * f.w * s, y0 = -(1 - f.nuy) * f.d * s;
-    ctx.fillStyle = COLOURS[m];
+    ctx.fillStyle = colourOf(it);
     ctx.globalAlpha = it.pose ? 1 : 0.6;
     ctx.fillRect(x0, y0, f.w * s, f.d * s);
     ctx.globalAlpha = 1;
@@ -485,12 +528,77 @@ function requestDraw() {
     drawPlan();
     drawSide();
     drawChart();
+    drawInput();
     document.body.dataset.drawMs = (performance.now() - t0).toFixed(1);  // for load measurements
+    record('draw', performance.now() - t0);
     $('clock').textContent = view.latestStamp > 0 ? utc(view.latestStamp) : 'no data yet';
   });
 }
 
+// ------------------------------------------------------------------ input acceleration (health panel)
+function loadInput() {
+  fetch('/api/input', { cache: 'no-store' }).then((r) => r.json()).then((j) => {
+    view.inputTopic = j.topic;
+    view.input = j.points;
+    requestDraw();
+  }).catch(() => {});
+}
+
+function addInput(points) {
+  if (!points.length) return;
+  const last = view.input.length ? view.input[view.input.length - 1][0] : -Infinity;
+  if (points[0][0] < last - 1.0) view.input = [];  // a new run: the clock went back
+  for (const p of points) if (!view.input.length || p[0] > view.input[view.input.length - 1][0]) view.input.push(p);
+  const cut = points[points.length - 1][0] - HISTORY_S;
+  let drop = 0;
+  while (drop < view.input.length && view.input[drop][0] < cut) ++drop;
+  if (drop) view.input.splice(0, drop);
+  requestDraw();
+}
+
+function drawInput() {
+  const c = $('input-chart'), ctx = c.getContext('2d');
+  const W = c.width, H = c.height, l = 34, r = 8, t = 16, b = 18;
+  ctx.clearRect(0, 0, W, H);
+  ctx.font = '11px system-ui, sans-serif';
+  const pts = view.input;
+  const t1 = pts.length ? Math.max(pts[pts.length - 1][0], view.latestStamp) : view.latestStamp, t0 = t1 - HISTORY_S;
+  let peak = 0;
+  for (const p of pts) peak = Math.max(peak, Math.abs(p[1]), Math.abs(p[2]), Math.abs(p[3]));
+  c.dataset.points = pts.length;  // for tests: what the chart holds
+  c.dataset.peak = peak;
+  const lim = Math.max(0.1, peak * 1.1);
+  const X = (tt) => l + (W - l - r) * (tt - t0) / HISTORY_S, Y = (v) => t + (H - t - b) * (lim - v) / (2 * lim);
+  ctx.strokeStyle = '#ccc'; ctx.lineWidth = 1;
+  ctx.strokeRect(l, t, W - l - r, H - t - b);
+  ctx.beginPath(); ctx.moveTo(l, Y(0)); ctx.lineTo(W - r, Y(0)); ctx.stroke();
+  ctx.fillStyle = '#666';
+  ctx.fillText(lim.toPrecision(2), 2, Y(lim) + 8);
+  ctx.fillText('-' + lim.toPrecision(2), 2, Y(-lim));
+  for (let k = 0; k <= 6; ++k) ctx.fillText(k < 6 ? '-' + (60 - 10 * k) + ' s' : 'now', X(t0 + 10 * k) - 12, H - 4);
+  const colours = ['#1d4ed8', '#f08a1c', '#2a9d8f'];
+  for (let k = 1; k <= 3; ++k) {
+    ctx.strokeStyle = colours[k - 1]; ctx.lineWidth = 1.2; ctx.beginPath();
+    let first = true;
+    for (const p of pts) {
+      if (p[0] < t0) continue;
+      first ? ctx.moveTo(X(p[0]), Y(p[k])) : ctx.lineTo(X(p[0]), Y(p[k]));
+      first = false;
+    }
+    ctx.stroke();
+  }
+  ctx.fillStyle = '#222';
+  ctx.fillText('input acceleration, m/s\u00b2 ' + (view.inputTopic ? '(' + view.inputTopic + ')' : '(no sensor topic)'), l, 11);
+  ['x', 'y', 'z'].forEach((n, k) => { ctx.fillStyle = colours[k]; ctx.fillText(n, W - 40 + 12 * k, 11); });
+}
+
 function init() {
+  const colourBy = new URLSearchParams(location.search).get('colour');
+  if (colourBy === 'p') { view.colourBy = 'p'; $('colour-by').value = 'p'; }
+  const showP = () => { $('p-legend').hidden = view.colourBy !== 'p'; };
+  $('colour-by').addEventListener('change', (e) => { view.colourBy = e.target.value; showP(); requestDraw(); });
+  $('p-legend').style.setProperty('--g', [0, 0.25, 0.5, 1].map(pColour).join(','));
+  showP();
   const legend = $('legend');
   for (const m of ['REST', 'ROCKING', 'BEYOND_TIPPING', 'COMMITTED', 'OVERTURNED']) {
     const sp = document.createElement('span');

@@ -1,0 +1,23 @@
+# The post-event report (issue 14, part 2): scripts/rocking_report (Python: rosbag, numpy, matplotlib)
+# and its tests. The monitor's launch files start it as a node with report_dir:=DIR.
+catkin_install_python(PROGRAMS scripts/rocking_report DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+if(CATKIN_ENABLE_TESTING)
+  # No ROS master: bad input is one error line; the spectrum and the Housner periods from independent sources.
+  add_test(NAME report.bad_input_is_one_error_line
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/report_bad_input.sh
+                   ${CMAKE_CURRENT_SOURCE_DIR}/scripts/rocking_report ${CMAKE_CURRENT_SOURCE_DIR})
+  if(TARGET rocking_sim)
+    add_test(NAME report.spectrum_and_periods_match_closed_forms_and_core
+             COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/test_report_method.py
+                     ${CMAKE_CURRENT_SOURCE_DIR}/scripts/rocking_report $<TARGET_FILE:rocking_sim>
+                     ${CMAKE_CURRENT_SOURCE_DIR}/config/catalogue_example.yaml
+                     ${CMAKE_CURRENT_SOURCE_DIR}/bags/one_sine_pulse.csv)
+  endif()
+  # The report written by the node after the pulse replay equals the monitor's alarms and states.
+  if(TARGET monitor)
+    add_rostest(test/ros/report.test
+                ARGS python_path:=${CATKIN_DEVEL_PREFIX}/${PYTHON_INSTALL_DIR}
+                     report_dir:=${CMAKE_CURRENT_BINARY_DIR}/test_results/rocking_report
+                DEPENDENCIES monitor)
+  endif()
+endif()
