@@ -15,6 +15,10 @@ if(CATKIN_ENABLE_TESTING)
   endif()
   # The report written by the node after the pulse replay equals the monitor's alarms and states.
   if(TARGET monitor)
+    # From record files and a catalogue (no bag): record_to_bag, replay, the node's report.
+    add_test(NAME report.from_record_files
+             COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/report_from_record.sh ${CMAKE_CURRENT_SOURCE_DIR})
+    set_tests_properties(report.from_record_files PROPERTIES TIMEOUT 180)
     add_rostest(test/ros/report.test
                 ARGS python_path:=${CATKIN_DEVEL_PREFIX}/${PYTHON_INSTALL_DIR}
                      report_dir:=${CMAKE_CURRENT_BINARY_DIR}/test_results/rocking_report
