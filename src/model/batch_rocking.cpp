@@ -3,6 +3,7 @@
 #include "rocking_monitor/model/batch_rocking.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <stdexcept>
 
@@ -40,6 +41,8 @@ BatchRocking::BatchRocking(const std::vector<BodyParameters>& bodies,
   lanes_.t.assign(np, 0.0);
   lanes_.deferred.assign(np, 0);
   lanes_.mu_inf.assign(np, 0);
+  seen_.assign(n, 0);
+  first_violation_.assign(n, std::numeric_limits<double>::quiet_NaN());
   for (std::size_t k = 0; k < n; ++k) lanes_.mu_inf[k] = std::isinf(models_[k].body().mu_s());
   lanes_.rest.assign(np, 0);
   lanes_.maybe_lift.assign(np, 0);
@@ -58,7 +61,16 @@ BatchRocking::BatchRocking(const std::vector<BodyParameters>& bodies,
 
 const char* BatchRocking::simd_target() { return batch_detail::target_name(); }
 
+void BatchRocking::note_violations(std::size_t k) {
+  const std::uint8_t onsets = models_[k].last_report().violation_onsets;
+  if (onsets == 0) return;
+  if (seen_[k] == 0) first_violation_[k] = models_[k].time();
+  seen_[k] |= onsets;
+}
+
 void BatchRocking::reset(double t, double ax, double ay) {
+  std::fill(seen_.begin(), seen_.end(), 0);
+  std::fill(first_violation_.begin(), first_violation_.end(), std::numeric_limits<double>::quiet_NaN());
   std::fill(lanes_.deferred.begin(), lanes_.deferred.end(), 0);
   for (RockingModel& m : models_) m.reset(t, ax, ay);
   mirrors_stale_ = true;
@@ -126,12 +138,14 @@ void BatchRocking::step(const double* ax, const double* ay, double dt) {
     // An OVERTURNED body's step() only advances time and re-evaluates the (empty) criteria.
     if ((l.rest[k] && !l.maybe_lift[k]) || m.mode() == Mode::Overturned) {
       m.advance_at_rest(ax[k], ay[k], dt);
+      note_violations(k);
       refresh_mirror(k);
       ++stats_.rest_fast;
       continue;
     }
     if (!vector_rocking_ || m.mode() != Mode::Rocking) {
       m.step(ax[k], ay[k], dt);
+      note_violations(k);
       refresh_mirror(k);
       ++stats_.scalar;
       continue;
@@ -193,6 +207,7 @@ void BatchRocking::step(const double* ax, const double* ay, double dt) {
       ++stats_.scalar;
       ++stats_.rocking_fallback;
     }
+    note_violations(k);
     refresh_mirror(k);
   }
 }

@@ -12,6 +12,7 @@
 #include <string>
 #include <thread>
 
+#include "rocking_monitor/model/batch_rocking.hpp"
 #include "rocking_monitor/motion/response_spectrum.hpp"
 
 namespace rocking_monitor::core::study {
@@ -71,8 +72,10 @@ double pseudo_velocity_at(const std::vector<double>& accel, double dt, double pe
   return 2.0 * kPi / period * peak;
 }
 
-CaseResult run_case(const Body& body, const StudyRecord& rec, int polarity, bool vertical,
-                    const SolverSettings& settings, double psv) {
+namespace {
+
+// Everything of a case but the simulation.
+CaseResult case_setup(const Body& body, const StudyRecord& rec, int polarity, bool vertical, double psv) {
   CaseResult c;
   c.polarity = polarity;
   c.vertical = vertical && rec.has_vertical();
@@ -80,6 +83,21 @@ CaseResult run_case(const Body& body, const StudyRecord& rec, int polarity, bool
   c.housner_psv = std::isnan(psv) ? pseudo_velocity_at(rec.corrected, rec.dt, c.housner_period) : psv;
   c.thresholds = screening_thresholds(body);
   c.prediction = screening_prediction(c.thresholds, rec.pga, rec.pgv, c.housner_psv);
+  return c;
+}
+
+void finish_case(CaseResult& c, const Body& body, const RockingModel& model) {
+  c.outcome = model.outcome();
+  c.final_mode = model.mode();
+  if (c.outcome.max_rotation_side != 0)
+    c.max_theta = c.outcome.max_rotation_ratio * body.pivot(c.outcome.max_rotation_side).alpha;
+}
+
+}  // namespace
+
+CaseResult run_case(const Body& body, const StudyRecord& rec, int polarity, bool vertical,
+                    const SolverSettings& settings, double psv) {
+  CaseResult c = case_setup(body, rec, polarity, vertical, psv);
 
   // Same loop as simulate() (rocking_sim), with the polarity applied to the horizontal only:
   // multiplying by +-1 is exact, so the samples are those of a record written with that sign.
@@ -96,10 +114,7 @@ CaseResult run_case(const Body& body, const StudyRecord& rec, int polarity, bool
       c.violations |= r.violation_onsets;
     }
   }
-  c.outcome = model.outcome();
-  c.final_mode = model.mode();
-  if (c.outcome.max_rotation_side != 0)
-    c.max_theta = c.outcome.max_rotation_ratio * body.pivot(c.outcome.max_rotation_side).alpha;
+  finish_case(c, body, model);
   return c;
 }
 
@@ -144,6 +159,19 @@ std::vector<CaseResult> run_study(const std::vector<StudyBody>& bodies,
     }
   }
 
+  // Batched: (record, bodies [b0, b1)); the bodies of a record input step together.
+  constexpr std::size_t kLanes = 64;
+  struct BatchUnit {
+    std::size_t record, b0, b1;
+  };
+  std::vector<BatchUnit> batch_units;
+  if (options.batch && per_body > 0 && range.begin < range.end) {
+    const std::size_t b_first = range.begin / per_body, b_last = (range.end - 1) / per_body + 1;
+    for (std::size_t r = 0; r < records.size(); ++r)
+      for (std::size_t b0 = b_first; b0 < b_last; b0 += kLanes) batch_units.push_back({r, b0, std::min(b0 + kLanes, b_last)});
+  }
+  const std::size_t unit_count = options.batch ? batch_units.size() : units.size();
+
   std::vector<CaseResult> results(range.size());
   std::atomic<std::size_t> next{0}, done{0};
   std::atomic<bool> stop{false};
@@ -152,12 +180,62 @@ std::vector<CaseResult> run_study(const std::vector<StudyBody>& bodies,
   std::condition_variable finished_cv;
   int running = 0;
 
+  // One batched unit: PSV once per body, then each input of the record with the bodies whose case is
+  // in the range as lanes. Returns the number of cases run.
+  auto run_batch_unit = [&](std::size_t r, std::size_t b0, std::size_t b1) -> std::size_t {
+    const StudyRecord& rec = records[r];
+    std::vector<double> psv(b1 - b0);
+    for (std::size_t b = b0; b < b1; ++b)
+      psv[b - b0] = pseudo_velocity_at(rec.corrected, rec.dt, housner_period(rigid[b]));
+    std::size_t count = 0;
+    std::vector<std::size_t> lanes;
+    std::vector<BodyParameters> params;
+    for (std::size_t i = first[r]; i < first[r + 1]; ++i) {
+      lanes.clear();
+      params.clear();
+      for (std::size_t b = b0; b < b1; ++b) {
+        const std::size_t idx = b * per_body + i;
+        if (idx >= range.begin && idx < range.end) {
+          lanes.push_back(b);
+          params.push_back(bodies[b].parameters);
+        }
+      }
+      if (lanes.empty()) continue;
+      const StudyInput& in = inputs[i];
+      const double s = in.polarity < 0 ? -1.0 : 1.0;
+      const bool use_v = in.vertical && rec.has_vertical();
+      const std::vector<double>& ah = rec.horizontal;
+      BatchRocking batch(params, options.settings, options.trig);
+      if (!ah.empty()) {
+        batch.reset(rec.t0, s * ah[0], use_v ? rec.vertical[0] : 0.0);
+        for (std::size_t k = 1; k < ah.size(); ++k) batch.step_all(s * ah[k], use_v ? rec.vertical[k] : 0.0, rec.dt);
+      }
+      for (std::size_t k = 0; k < lanes.size(); ++k) {
+        const std::size_t b = lanes[k];
+        CaseResult c = case_setup(rigid[b], rec, in.polarity, in.vertical, psv[b - b0]);
+        c.violations = batch.violations_seen(k);
+        c.first_violation_time = batch.first_violation_time(k);
+        finish_case(c, rigid[b], batch.model(k));
+        c.index = b * per_body + i;
+        c.body = b;
+        c.record = r;
+        results[c.index - range.begin] = c;
+        ++count;
+      }
+    }
+    return count;
+  };
+
   auto worker = [&]() {
     try {
       for (;;) {
         if (stop.load(std::memory_order_relaxed)) break;
         const std::size_t u = next.fetch_add(1);
-        if (u >= units.size()) break;
+        if (u >= unit_count) break;
+        if (options.batch) {
+          done.fetch_add(run_batch_unit(batch_units[u].record, batch_units[u].b0, batch_units[u].b1));
+          continue;
+        }
         const Unit& unit = units[u];
         const Body& body = rigid[unit.body];
         const StudyRecord& rec = records[unit.record];
@@ -185,7 +263,7 @@ std::vector<CaseResult> run_study(const std::vector<StudyBody>& bodies,
   int threads = options.threads > 0 ? options.threads
                                     : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   threads = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(threads),
-                                                   std::max<std::size_t>(1, units.size())));
+                                                   std::max<std::size_t>(1, unit_count)));
   std::vector<std::thread> pool;
   running = threads;
   for (int t = 0; t < threads; ++t) pool.emplace_back(worker);

@@ -230,6 +230,13 @@ int main(int argc, char** argv) {
       ->default_val(members)->check(CLI::Range(1, 100000));
   app.add_option("--member-seed", member_seed, "--fragility: seed of the members' Latin hypercube (the node's ~ensemble_seed)")
       ->default_val(member_seed);
+  bool scalar = false, fast_trig = false;
+  app.add_flag("--fast-trig", fast_trig,
+               "Batch engine with Highway's vector sin/cos (a few ulp): faster, not bit-identical; decisions can "
+               "differ on knife-edge cases (docs/performance.md)");
+  app.add_flag("--scalar", scalar,
+               "One RockingModel per case instead of the batch engine (bodies of a record input stepped together, "
+               "SIMD across bodies; bit-identical results): for timing and cross-checks");
   app.add_flag("--quiet", quiet, "No progress bar");
   app.add_flag("--dry-run", dry_run, "Load bodies and records, print the plan and exit");
   if (const auto status = rocking_monitor::tools::parse_command_line(app, argc, argv, "rocking_study")) return *status;
@@ -307,6 +314,8 @@ int main(int argc, char** argv) {
     options.plan.both_polarities = !one_polarity;
     options.plan.verticals = !no_vertical;
     options.threads = threads;
+    options.batch = !scalar;
+    if (fast_trig) options.trig = rocking_monitor::core::BatchTrig::Fast;
     const std::size_t total = st::study_case_count(bodies.size(), records.records, options.plan);
     options.range = st::shard_range(total, shard_k, shard_n);
     std::size_t with_v = 0, samples = 0;

@@ -660,5 +660,58 @@ TEST(StudyRealRecords, ManifestGivesEveryHorizontalComponentWithItsVertical) {
   EXPECT_EQ(v_on, 8);
 }
 
+TEST(StudyBatch, BatchEngineEqualsOneModelPerCaseBitForBit) {
+  // The batch path (bodies of a record input stepped together, SIMD) against one RockingModel per
+  // case, on real Rinaldi components with and without the vertical, bodies with friction (sliding
+  // onsets are violations) and without, whole and in shards that cut through the bodies.
+  const std::string dir = ROCKING_RECORDS_DIR;
+  const StudyRecords rinaldi = load_study_records(dir, {{"Rinaldi"}, {}});
+  ASSERT_EQ(rinaldi.records.size(), 2u);
+  StudyGrid g = small_grid();
+  g.widths = 6;
+  g.eccentricities = {0.5, 0.3};
+  std::vector<StudyBody> bodies = grid_bodies(g);
+  for (std::size_t b = 0; b < bodies.size(); b += 3) bodies[b].parameters.mu_s = 0.3;
+  StudyOptions batch, scalar;
+  batch.threads = scalar.threads = 2;
+  scalar.batch = false;
+  const auto a = run_study(bodies, rinaldi.records, batch);
+  const auto c = run_study(bodies, rinaldi.records, scalar);
+  ASSERT_EQ(a.size(), c.size());
+  int overturned = 0, violated = 0, rocked = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].index, c[i].index);
+    EXPECT_EQ(a[i].outcome.overturned, c[i].outcome.overturned) << i;
+    EXPECT_EQ(a[i].outcome.impacts, c[i].outcome.impacts) << i;
+    EXPECT_EQ(a[i].outcome.integrator_steps, c[i].outcome.integrator_steps) << i;
+    EXPECT_EQ(a[i].outcome.samples, c[i].outcome.samples) << i;
+    EXPECT_EQ(a[i].final_mode, c[i].final_mode) << i;
+    EXPECT_EQ(a[i].violations, c[i].violations) << i;
+    EXPECT_TRUE(same_double(a[i].first_violation_time, c[i].first_violation_time)) << i;
+    EXPECT_TRUE(same_double(a[i].outcome.max_rotation_ratio, c[i].outcome.max_rotation_ratio)) << i;
+    EXPECT_TRUE(same_double(a[i].outcome.overturn_time, c[i].outcome.overturn_time)) << i;
+    EXPECT_TRUE(same_double(a[i].outcome.committed_time, c[i].outcome.committed_time)) << i;
+    EXPECT_TRUE(same_double(a[i].max_theta, c[i].max_theta)) << i;
+    overturned += a[i].outcome.overturned;
+    violated += a[i].violations != 0;
+    rocked += a[i].outcome.impacts > 0;
+  }
+  // A real comparison: some cases fall, some rock, some break the pure-rocking assumptions.
+  EXPECT_GT(overturned, 0);
+  EXPECT_GT(rocked, overturned);
+  EXPECT_GT(violated, 0);
+  const std::string whole = csv_of(c, bodies, rinaldi.records);
+  EXPECT_EQ(csv_of(a, bodies, rinaldi.records), whole);
+  for (int n : {3, 7}) {
+    std::string joined;
+    for (int k = 1; k <= n; ++k) {
+      StudyOptions s = batch;
+      s.range = shard_range(a.size(), k, n);
+      joined += csv_of(run_study(bodies, rinaldi.records, s), bodies, rinaldi.records);
+    }
+    EXPECT_EQ(joined, whole) << n << " shards";
+  }
+}
+
 }  // namespace
 }  // namespace rocking_monitor::core::study

@@ -81,6 +81,11 @@ class BatchRocking {
     return models_[k];
   }
   const StepReport& report(std::size_t k) const { return model(k).last_report(); }
+  /// Lane k's violation onsets since reset(), OR-ed over every sample (bit 1 << Criterion), and the
+  /// time of the first one (NaN: none): what a caller that does not read report(k) after every step
+  /// (which would undo the deferred rest) needs. A deferred-rest sample has no onset by construction.
+  std::uint8_t violations_seen(std::size_t k) const { return seen_[k]; }
+  double first_violation_time(std::size_t k) const { return first_violation_[k]; }
   const BatchStats& stats() const { return stats_; }
   BatchTrig trig() const { return trig_; }
   /// The SIMD target Highway chose at run time (e.g. "AVX3", "AVX2").
@@ -114,6 +119,7 @@ class BatchRocking {
   }
   void flush(std::size_t k) const;
   void refresh_mirror(std::size_t k);
+  void note_violations(std::size_t k);  // after lane k's model stepped this sample
 
   mutable std::vector<RockingModel> models_;
   bool mirrors_stale_ = true;
@@ -123,6 +129,8 @@ class BatchRocking {
   mutable Lanes lanes_;
   BatchStats stats_;
   std::vector<double> bcast_ax_, bcast_ay_;
+  std::vector<std::uint8_t> seen_;
+  std::vector<double> first_violation_;
 };
 
 namespace batch_detail {

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "rocking_monitor/integrate/solver_settings.hpp"
+#include "rocking_monitor/model/batch_rocking.hpp"
 #include "rocking_monitor/model/rocking_model.hpp"
 #include "rocking_monitor/physics/body.hpp"
 #include "rocking_monitor/physics/criteria.hpp"
@@ -91,15 +92,23 @@ struct StudyOptions {
   /// with (cases done, cases in range).
   std::function<void(std::size_t, std::size_t)> progress;
   double progress_interval_s = 0.5;
+  /// Step the bodies that share a record input together in the batch engine (model/batch_rocking:
+  /// SIMD across bodies, bit-identical to one RockingModel per case); false: one model per case.
+  bool batch = true;
+  /// The batch engine's sin/cos: Exact (libm per lane, bit-identical) or Fast (Highway's vector
+  /// Sin/Cos: a few ulp, decisions may differ where the body is on a knife edge).
+  BatchTrig trig = BatchTrig::Exact;
 };
 
 /// Total number of cases for these bodies and records.
 std::size_t study_case_count(std::size_t bodies, const std::vector<StudyRecord>& records,
                              const StudyPlanOptions& plan = {});
 
-/// Runs the cases of options.range on options.threads threads. Work is handed out per
-/// (body, record) so the PSV is computed once for its 2-4 cases; results are returned in case order
-/// and are bit-identical for any thread count. Throws the first error a worker met.
+/// Runs the cases of options.range on options.threads threads. Work is handed out per (record, up to
+/// 64 bodies) with options.batch (each of the record's inputs steps those bodies together), else per
+/// (body, record); either way the PSV is computed once per (body, record). Results are returned in
+/// case order and are bit-identical for any thread count and either path. Throws the first error a
+/// worker met.
 std::vector<CaseResult> run_study(const std::vector<StudyBody>& bodies,
                                   const std::vector<StudyRecord>& records, const StudyOptions& options);
 
