@@ -5,10 +5,14 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <iostream>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "rocking_monitor/motion/record_reader.hpp"
 
 namespace rocking_monitor::tools {
 
@@ -32,6 +36,26 @@ inline std::optional<int> parse_command_line(CLI::App& app, int argc, char** arg
     return 2;
   }
   return std::nullopt;
+}
+
+/// The miniSEED options of the record tools (--gain, --sensor-azimuth, --channel-table), bound to `read`.
+inline void add_miniseed_options(CLI::App& app, core::ReadOptions& read) {
+  app.add_option("--gain", read.gain_counts_per_mps2,
+                 "miniSEED: sensitivity of every channel, counts per m/s^2 (float data in m/s^2: 1)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--sensor-azimuth", read.sensor_azimuth_deg,
+                 "miniSEED: azimuth of the sensor's channel N/1, degrees clockwise from north (E/2 is 90 deg "
+                 "clockwise of it)");
+  app.add_option("--channel-table", read.channel_table,
+                 "miniSEED: CSV network,station,location,channel,azimuth_deg,gain_counts_per_mps2 (default: "
+                 "CHANNELS.csv beside the record)");
+}
+
+/// Whether any of them was given; throws for a non-finite azimuth.
+inline bool miniseed_options_given(const core::ReadOptions& read) {
+  if (read.sensor_azimuth_deg && !std::isfinite(*read.sensor_azimuth_deg))
+    throw std::invalid_argument("--sensor-azimuth: must be finite");
+  return read.gain_counts_per_mps2 || read.sensor_azimuth_deg || !read.channel_table.empty();
 }
 
 }  // namespace rocking_monitor::tools

@@ -215,14 +215,8 @@ int main(int argc, char** argv) {
                  "as recorded (ordered so that the second is 90 deg to its left, e.g. E then N)");
   app.add_option("--units", units_text, "Units of CSV records: g | m/s2 | cm/s2 (default m/s2)")
       ->check(CLI::IsMember({"g", "m/s2", "cm/s2"}));
-  std::optional<double> gain, sensor_azimuth;
-  std::string channel_table;
-  app.add_option("--gain", gain, "miniSEED: sensitivity of every channel, counts per m/s^2 (float data in m/s^2: 1)")
-      ->check(CLI::PositiveNumber);
-  app.add_option("--sensor-azimuth", sensor_azimuth,
-                 "miniSEED: azimuth of the sensor's channel N/1, degrees clockwise from north (E/2 is 90 deg clockwise of it)");
-  app.add_option("--channel-table", channel_table,
-                 "miniSEED: CSV network,station,location,channel,azimuth_deg,gain_counts_per_mps2 (default: CHANNELS.csv beside the record)");
+  rec::SourceSpec spec;
+  rocking_monitor::tools::add_miniseed_options(app, spec.read);
   app.add_option("--scale", scale, "Multiply the ground acceleration (not gravity) by S (default 1)");
   app.add_option("--length-mismatch", length_text,
                  "Components of unequal length: pad (zeros = ground at rest, default) | truncate | error; changes are reported")
@@ -243,17 +237,13 @@ int main(int argc, char** argv) {
   if (const auto status = rocking_monitor::tools::parse_command_line(app, argc, argv, kProgram)) return *status;
 
   try {
-    rec::SourceSpec spec;
     spec.files = files;
     spec.station = station;
     spec.records_dir = records_dir;
     spec.synthetic = synthetic;
     if (units_text == "g") spec.read.csv_units = core::AccelUnits::G;
     if (units_text == "cm/s2") spec.read.csv_units = core::AccelUnits::CentimetersPerSecond2;
-    spec.read.gain_counts_per_mps2 = gain;
-    spec.read.sensor_azimuth_deg = sensor_azimuth;
-    spec.read.channel_table = channel_table;
-    if (sensor_azimuth && !std::isfinite(*sensor_azimuth)) throw std::invalid_argument("--sensor-azimuth: must be finite");
+    rocking_monitor::tools::miniseed_options_given(spec.read);  // checks the azimuth
     spec.frame.azimuth_deg = azimuth;
     if (azimuth && !std::isfinite(*azimuth)) throw std::invalid_argument("--azimuth: must be finite");
     if (!std::isfinite(scale)) throw std::invalid_argument("--scale: must be finite");

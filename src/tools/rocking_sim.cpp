@@ -440,8 +440,7 @@ int main(int argc, char** argv) {
       "under horizontal and vertical ground acceleration (Boroschek & Romo). With --depth the item "
       "rocks in two uncoupled principal planes: x-z (width, --record) and y-z (depth, --record-y)."};
   std::string record, record_y, vertical_file, units_text, history_path, history_y_path,
-      method_text = "dopri5", model_text = "nonlinear", channel_table;
-  std::optional<double> gain, sensor_azimuth;
+      method_text = "dopri5", model_text = "nonlinear";
   RunOptions opt;
   rm::BodyParameters body;
   rm::DepthParameters depth;
@@ -458,12 +457,8 @@ int main(int argc, char** argv) {
                  "Separate vertical component file (positive up), shared by both planes");
   app.add_option("--units", units_text, "Units of CSV records: g | m/s2 | cm/s2 (default m/s2)")
       ->check(CLI::IsMember({"g", "m/s2", "cm/s2"}));
-  app.add_option("--gain", gain, "miniSEED: sensitivity of every channel, counts per m/s^2 (float data in m/s^2: 1)")
-      ->check(CLI::PositiveNumber);
-  app.add_option("--sensor-azimuth", sensor_azimuth,
-                 "miniSEED: azimuth of the sensor's channel N/1, degrees clockwise from north (E/2 is 90 deg clockwise of it)");
-  app.add_option("--channel-table", channel_table,
-                 "miniSEED: CSV network,station,location,channel,azimuth_deg,gain_counts_per_mps2 (default: CHANNELS.csv beside the record)");
+  rm::ReadOptions options;
+  rocking_monitor::tools::add_miniseed_options(app, options);
   app.add_option("--scale", opt.scale, "Multiply the ground acceleration by S")->default_val(1.0);
   std::string catalogue_file, item_id;
   int samples = 0;
@@ -597,16 +592,12 @@ int main(int argc, char** argv) {
     const bool derived_history_y = two_planes && !history_path.empty() && history_y_path.empty();
     if (derived_history_y) history_y_path = y_history_path(history_path);
 
-    rm::ReadOptions options;
-    options.gain_counts_per_mps2 = gain;
-    options.sensor_azimuth_deg = sensor_azimuth;
-    options.channel_table = channel_table;
-    if (sensor_azimuth && !std::isfinite(*sensor_azimuth)) throw std::invalid_argument("--sensor-azimuth: must be finite");
+    const bool miniseed_options = rocking_monitor::tools::miniseed_options_given(options);
     if (units_text == "g") options.csv_units = rm::AccelUnits::G;
     else if (units_text == "cm/s2") options.csv_units = rm::AccelUnits::CentimetersPerSecond2;
     const rm::RecordFormat format = check_units(record, units_text);
     // The miniSEED options would be silently meaningless for a file that states its own units.
-    if ((gain || sensor_azimuth || !channel_table.empty()) && format != rm::RecordFormat::MiniSeed)
+    if (miniseed_options && format != rm::RecordFormat::MiniSeed)
       throw rm::RecordError(record + ": --gain, --sensor-azimuth and --channel-table apply to miniSEED records only; this " +
                             std::string(rm::to_string(format)) + " file states its own units and directions");
     const std::vector<rm::Component> comps = rm::read_record(record, options);

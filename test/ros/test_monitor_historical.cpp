@@ -29,12 +29,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string num(double v) {
-  std::ostringstream os;
-  os.precision(17);
-  os << v;
-  return os.str();
-}
+std::string num(double v) { return rocking_monitor::core::testing::exact_number(v); }
 
 std::string run(const std::string& cmd, int& status) {
   const rocking_monitor::core::testing::CommandResult r = rocking_monitor::core::testing::run_command(cmd);

@@ -34,12 +34,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string num(double v) {
-  std::ostringstream os;
-  os.precision(17);
-  os << v;
-  return os.str();
-}
+std::string num(double v) { return rocking_monitor::core::testing::exact_number(v); }
 
 pid_t start_server(const std::vector<std::string>& args) {
   const pid_t pid = fork();

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,14 @@ inline CommandResult run_command(const std::string& cmd) {
   const int st = pclose(pipe);
   r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
   return r;
+}
+
+/// A number as a command-line argument that reads back to the same double (17 significant digits).
+inline std::string exact_number(double v) {
+  std::ostringstream os;
+  os.precision(17);
+  os << v;
+  return os.str();
 }
 
 }  // namespace rocking_monitor::core::testing
