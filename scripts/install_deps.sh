@@ -14,7 +14,6 @@ packages=(
   ros-visualization-msgs ros-diagnostic-msgs libdiagnostic-updater-dev libnodeletlib-dev libnodeletlib-tools
   libtf2-ros-dev libtf2-eigen-dev tf2-tools python3-sensor-msgs
   libcpp-httplib-dev chromium
-  libmseed-dev
 )
 
 missing=()
