@@ -178,8 +178,59 @@ def plane(contact, com, inertia, mass, axis):
     return out
 
 
+def rotation_between(a, b):
+    """Smallest rotation taking unit vector a onto unit vector b (Rodrigues)."""
+    a, b = a / np.linalg.norm(a), b / np.linalg.norm(b)
+    v, c = np.cross(a, b), float(np.dot(a, b))
+    s = np.linalg.norm(v)
+    if s < 1e-15:
+        return np.eye(3)  # a == -b does not occur: the candidates are within 90 deg of -z
+    k = np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]]) / s
+    angle = math.atan2(s, c)
+    return np.eye(3) + math.sin(angle) * k + (1 - math.cos(angle)) * (k @ k)
+
+
+def settle(placed, com, tolerance):
+    """The rest position nearest to the given placement: a rigid body on a flat floor rests on a face
+    of its convex hull, the one whose normal is closest to straight down among those with the centre
+    of mass above the contact polygon. Returns the small rotation to apply (world frame) and its
+    angle, rad; the given placement is then only the starting guess (a scan's orientation on the
+    table is known to about a degree)."""
+    from scipy.spatial import ConvexHull
+    hull = ConvexHull(placed)
+    normals = hull.equations[:, :3]
+    down = np.array([0.0, 0.0, -1.0])
+    order = np.argsort(-(normals @ down))
+    tried = set()
+    for i in order:
+        n = normals[i]
+        if n @ down <= 0:
+            break
+        key = tuple(np.round(n, 9))
+        if key in tried:
+            continue
+        tried.add(key)
+        r = rotation_between(n, down)
+        p = placed @ r.T
+        c = r @ com
+        low = p[p[:, 2] <= p[:, 2].min() + tolerance]
+        h2 = convex_hull_2d(low[:, :2])
+        if len(h2) >= 3 and point_in_convex(h2, c[:2]):
+            return r, math.acos(min(1.0, float(n @ down)))
+    raise GeometryError("no convex-hull face carries the centre of mass: the body cannot rest")
+
+
+def point_in_convex(hull, p):
+    """p strictly inside the counter-clockwise convex polygon."""
+    for k in range(len(hull)):
+        a, b = hull[k], hull[(k + 1) % len(hull)]
+        if (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]) <= 0:
+            return False
+    return True
+
+
 def rocking_geometry(vertices, faces, rotation=np.eye(3), mass=1.0, contact_tolerance=1e-3,
-                     com=None):
+                     com=None, settle_on_hull=False):
     """All the quantities of the module docstring; `com` (mesh frame) overrides the homogeneous
     centre of mass (a specimen's measured one); the inertia stays the mesh's about that point."""
     if not mass > 0:
@@ -192,6 +243,11 @@ def rocking_geometry(vertices, faces, rotation=np.eye(3), mass=1.0, contact_tole
         d = np.asarray(com, dtype=float) - com_mesh
         inertia_mesh = inertia_mesh + mass * (np.dot(d, d) * np.eye(3) - np.outer(d, d))
         com_mesh = np.asarray(com, dtype=float)
+    settle_angle = 0.0
+    if settle_on_hull:
+        used0 = np.unique(faces)
+        r, settle_angle = settle(vertices[used0] @ rotation.T, rotation @ com_mesh, contact_tolerance)
+        rotation = r @ rotation
     placed = vertices @ rotation.T
     floor = placed[:, 2].min()
     placed = placed - np.array([0.0, 0.0, floor])  # floor at z = 0
@@ -204,6 +260,7 @@ def rocking_geometry(vertices, faces, rotation=np.eye(3), mass=1.0, contact_tole
     result = {"volume": volume, "mass": mass, "density": mass / volume, "com": c.tolist(),
               "inertia": inertia.tolist(), "principal_inertia": sorted(np.linalg.eigvalsh(inertia).tolist()),
               "contact_points": int(len(contact)), "contact_tolerance": contact_tolerance,
+              "settle_angle_deg": math.degrees(settle_angle), "rotation": rotation.tolist(),
               "hull": hull.tolist(), "x": plane(contact, c, inertia, mass, 0),
               "y": plane(contact, c, inertia, mass, 1)}
     return result, placed
@@ -281,12 +338,12 @@ def plot_outline(path, title, placed, g):
     plt.close(fig)
 
 
-def granite(directory, tolerance, plot_dir=None):
+def granite(directory, tolerance, plot_dir=None, settle_on_hull=True):
     entries, results = [], {}
     for name, spec in GRANITE.items():
         v, f = read_obj(os.path.join(directory, spec["mesh"]))
         g, placed = rocking_geometry(v, f, quaternion_matrix(*spec["quaternion"]), spec["mass"],
-                                     tolerance, spec["com"])
+                                     tolerance, spec["com"], settle_on_hull)
         g["open_edges"] = open_edges(v, f)
         results[name] = g
         entries.append(catalogue_entry(name, g))
@@ -303,8 +360,15 @@ def main(argv=None):
                     default=(0.0, 0.0, 0.0, 1.0), help="placement rotation, mesh -> world")
     ap.add_argument("--mass", type=float, default=1.0, help="kg (default 1)")
     ap.add_argument("--com", nargs=3, type=float, help="measured centre of mass, mesh frame, m")
-    ap.add_argument("--contact-tolerance", type=float, default=0.002,
-                    help="m above the lowest vertex counted as base contact (default 0.002)")
+    ap.add_argument("--contact-tolerance", type=float, default=0.001,
+                    help="m above the lowest vertex counted as base contact (default 0.001: "
+                         "scan noise on a resting face)")
+    ap.add_argument("--settle", action="store_true",
+                    help="turn the body onto the convex-hull face it rests on nearest to the placement "
+                         "(always on with --granite unless --no-settle)")
+    ap.add_argument("--no-settle", action="store_true", help="with --granite: use the placement as given")
+    ap.add_argument("--homogeneous", action="store_true",
+                    help="with --granite: the mesh's own centre of mass for every specimen")
     ap.add_argument("--id", default="item")
     ap.add_argument("--yaml", help="write the catalogue (items:) here")
     ap.add_argument("--json", help="write every number here")
@@ -312,11 +376,14 @@ def main(argv=None):
     a = ap.parse_args(argv)
     try:
         if a.granite:
-            results, entries = granite(a.granite, a.contact_tolerance, a.plot_dir)
+            if a.homogeneous:
+                for spec in GRANITE.values():
+                    spec["com"] = None
+            results, entries = granite(a.granite, a.contact_tolerance, a.plot_dir, not a.no_settle)
         elif a.mesh:
             v, f = read_obj(a.mesh)
             g, placed = rocking_geometry(v, f, quaternion_matrix(*a.quaternion), a.mass,
-                                         a.contact_tolerance, a.com)
+                                         a.contact_tolerance, a.com, a.settle)
             g["open_edges"] = open_edges(v, f)
             results, entries = {a.id: g}, [catalogue_entry(a.id, g)]
             if a.plot_dir:

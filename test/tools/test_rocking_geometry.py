@@ -151,6 +151,19 @@ class TestTurnedBox(unittest.TestCase, Close):
         with self.assertRaisesRegex(rg.GeometryError, "no extent along x"):
             rg.rocking_geometry(v, f, rg.quaternion_matrix(*q), 1.0, 1e-6)
 
+    def test_settle_turns_a_slightly_tilted_box_back_onto_its_base(self):
+        a, b, c, m = 0.4, 0.3, 1.0, 10.0
+        v, f = box((-a / 2, -b / 2, 0.0), (a / 2, b / 2, c))
+        t = math.radians(2.0)
+        q = (math.sin(t / 2) * 0.6, math.sin(t / 2) * 0.8, 0.0, math.cos(t / 2))
+        g, _ = rg.rocking_geometry(v, f, rg.quaternion_matrix(*q), m, 1e-6, settle_on_hull=True)
+        self.assertRel(g["settle_angle_deg"], 2.0)
+        self.assertEqual(g["contact_points"], 4)
+        self.assertRel(g["x"]["width"], a)
+        self.assertRel(g["y"]["width"], b)
+        self.assertRel(g["x"]["cg_height"], c / 2)
+        self.assertRel(g["inertia"], box_inertia(m, a, b, c))
+
     def test_centre_of_mass_outside_the_base_is_refused(self):
         v, f = box((0, 0, 0), (0.2, 0.2, 1.0))
         with self.assertRaisesRegex(rg.GeometryError, "not over the base"):
