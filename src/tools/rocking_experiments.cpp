@@ -66,6 +66,13 @@ int main(int argc, char** argv) {
       const std::string problem = rm::validate(b);
       if (!problem.empty()) throw std::runtime_error("item '" + item.spec.id + "': " + problem);
       specimens.push_back({item.spec.id, b, static_cast<int>(it - outcomes.specimens.begin())});
+      const rm::Body body(b);
+      for (int side : {1, -1}) {
+        const auto& p = body.pivot(side);
+        std::printf("%s pivot %d: alpha %.3f deg, R %.4f m, p %.3f rad/s, uplift at %.3f g, "
+                    "restitution %.4f\n", item.spec.id.c_str(), side > 0 ? 1 : 2,
+                    p.alpha * 180.0 / M_PI, p.radius, p.p, p.tan_alpha, p.restitution);
+      }
     }
     std::vector<std::string> files;
     for (const auto& e : fs::directory_iterator(fs::path(dir) / "tests")) {
