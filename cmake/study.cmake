@@ -38,3 +38,11 @@ if(BUILD_TESTING)
            COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/test_rocking_geometry.py)
   set_tests_properties(rocking_geometry_closed_forms PROPERTIES TIMEOUT 60)
 endif()
+
+if(BUILD_TESTING)
+  add_test(NAME rocking_experiments_accounting
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/experiments_accounting.sh
+                   $<TARGET_FILE:rocking_experiments> ${ROCKING_EXPERIMENTS_DIR}/granite_pbr
+                   ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/granite_specimens.yaml)
+  set_tests_properties(rocking_experiments_accounting PROPERTIES TIMEOUT 60 SKIP_RETURN_CODE 77)
+endif()
