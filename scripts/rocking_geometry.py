@@ -352,6 +352,39 @@ def granite(directory, tolerance, plot_dir=None, settle_on_hull=True):
     return results, entries
 
 
+def granite_ensemble(directory, members, seed, tolerance, max_tilt_deg=5.0, tol_range=(5e-4, 2e-3)):
+    """Members of each specimen's geometric uncertainty, member 0 the nominal (granite()): the
+    placement tilted by up to max_tilt_deg about a random horizontal axis (the configuration's
+    orientation is itself uncertain) then settled, the contact tolerance log-uniform in tol_range,
+    and for SP2 either of the data's two centres of mass (stated, or the homogeneous mesh's).
+    Returns the YAML entries (ids SP1#k) and the number of members refused (no resting face or a
+    line contact), which are reported, not replaced."""
+    rng = np.random.default_rng(seed)
+    entries, refused = [], 0
+    for name, spec in GRANITE.items():
+        v, f = read_obj(os.path.join(directory, spec["mesh"]))
+        q = quaternion_matrix(*spec["quaternion"])
+        for k in range(members):
+            rot, tol, com = q, tolerance, spec["com"]
+            if k > 0:
+                phi = rng.uniform(0.0, 2.0 * math.pi)
+                tilt = math.radians(rng.uniform(-max_tilt_deg, max_tilt_deg))
+                axis = np.array([math.cos(phi), math.sin(phi), 0.0])
+                qt = (*(axis * math.sin(tilt / 2)), math.cos(tilt / 2))
+                rot = quaternion_matrix(*qt) @ q
+                tol = math.exp(rng.uniform(math.log(tol_range[0]), math.log(tol_range[1])))
+                if spec["com"] is not None and rng.uniform() < 0.5:
+                    com = None
+            try:
+                g, _ = rocking_geometry(v, f, rot, spec["mass"], tol, com, True)
+            except GeometryError as e:
+                refused += 1
+                print(f"rocking_geometry: {name} member {k} refused: {e}", file=sys.stderr)
+                continue
+            entries.append(catalogue_entry(f"{name}#{k}", g))
+    return entries, refused
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("mesh", nargs="?", help="OBJ mesh (metres), .gz allowed")
@@ -369,6 +402,10 @@ def main(argv=None):
     ap.add_argument("--no-settle", action="store_true", help="with --granite: use the placement as given")
     ap.add_argument("--homogeneous", action="store_true",
                     help="with --granite: the mesh's own centre of mass for every specimen")
+    ap.add_argument("--ensemble", type=int, default=0, metavar="N",
+                    help="with --granite: N members per specimen of its geometric uncertainty "
+                         "(ids SP1#k; rocking_experiments gives P(overturn))")
+    ap.add_argument("--seed", type=int, default=20, help="ensemble seed (default 20)")
     ap.add_argument("--id", default="item")
     ap.add_argument("--yaml", help="write the catalogue (items:) here")
     ap.add_argument("--json", help="write every number here")
@@ -379,7 +416,13 @@ def main(argv=None):
             if a.homogeneous:
                 for spec in GRANITE.values():
                     spec["com"] = None
-            results, entries = granite(a.granite, a.contact_tolerance, a.plot_dir, not a.no_settle)
+            if a.ensemble > 0:
+                entries, refused = granite_ensemble(a.granite, a.ensemble, a.seed, a.contact_tolerance)
+                results = {}
+                print(f"rocking_geometry: {len(entries)} members written, {refused} refused",
+                      file=sys.stderr)
+            else:
+                results, entries = granite(a.granite, a.contact_tolerance, a.plot_dir, not a.no_settle)
         elif a.mesh:
             v, f = read_obj(a.mesh)
             g, placed = rocking_geometry(v, f, quaternion_matrix(*a.quaternion), a.mass,

@@ -54,18 +54,28 @@ int main(int argc, char** argv) {
   try {
     const auto outcomes = rm::read_outcomes((fs::path(dir) / "outcomes.csv").string());
     const auto items = rm::load_catalogue_items_file(catalogue);
-    struct Specimen { std::string id; rm::BodyParameters body; int column; };
+    // Items "SP1#3" are members of SP1's ensemble (rocking_geometry.py --ensemble): P(overturn) is
+    // the fraction of members that overturn, the prediction P >= 0.5.
+    struct Specimen { std::string id; std::vector<rm::BodyParameters> members; int column; };
     std::vector<Specimen> specimens;
     for (const auto& item : items) {
-      const auto it = std::find(outcomes.specimens.begin(), outcomes.specimens.end(), item.spec.id);
+      const std::string name = item.spec.id.substr(0, item.spec.id.find('#'));
+      const auto it = std::find(outcomes.specimens.begin(), outcomes.specimens.end(), name);
       if (it == outcomes.specimens.end())
-        throw std::runtime_error(catalogue + ": item '" + item.spec.id + "' has no column in outcomes.csv");
+        throw std::runtime_error(catalogue + ": item '" + item.spec.id + "': no column " + name +
+                                 "_overturned in outcomes.csv");
       rm::BodyParameters b = item.spec.body;
       if (!std::isnan(restitution)) b.restitution = restitution;
       if (!std::isnan(mu_s)) b.mu_s = mu_s;
       const std::string problem = rm::validate(b);
       if (!problem.empty()) throw std::runtime_error("item '" + item.spec.id + "': " + problem);
-      specimens.push_back({item.spec.id, b, static_cast<int>(it - outcomes.specimens.begin())});
+      auto group = std::find_if(specimens.begin(), specimens.end(),
+                                [&](const Specimen& sp) { return sp.id == name; });
+      if (group != specimens.end()) {
+        group->members.push_back(b);
+        continue;
+      }
+      specimens.push_back({name, {b}, static_cast<int>(it - outcomes.specimens.begin())});
       const rm::Body body(b);
       for (int side : {1, -1}) {
         const auto& p = body.pivot(side);
@@ -92,28 +102,51 @@ int main(int argc, char** argv) {
       table.open(out);
       if (!table) throw std::runtime_error(out + ": cannot open for writing");
       table << "test,specimen,peak_table_accel_mps2,offset_mps2,exceeds_static_uplift,uplift,"
-               "max_rotation_ratio,impacts,overturn_time_s,predicted_overturned,measured_overturned\n";
+               "max_rotation_ratio,impacts,overturn_time_s,predicted_overturned,measured_overturned,"
+               "members,p_overturn\n";
     }
     std::map<std::string, rm::Confusion> per;
     rm::Confusion all;
     long without_outcome = 0;
+    // Brier score and a 5-bin reliability diagram of P(overturn), per specimen and overall.
+    struct Reliability { double brier = 0.0; long n = 0; long bin_n[5] = {}; double bin_p[5] = {};
+                         long bin_y[5] = {}; };
+    std::map<std::string, Reliability> rel;
+    auto add_rel = [](Reliability& r, double p, int y) {
+      r.brier += (p - y) * (p - y);
+      ++r.n;
+      const int b = std::min(4, static_cast<int>(p * 5.0));
+      ++r.bin_n[b];
+      r.bin_p[b] += p;
+      r.bin_y[b] += y;
+    };
     for (const auto& file : files) {
       const auto test = rm::read_table_test(file);
       const auto row = outcomes.by_test.find(test.number);
       for (const auto& s : specimens) {
-        auto p = rm::predict_table_test(s.body, s.id, test, settings);
+        // the first member (the nominal geometry) gives the row's details, the members P(overturn)
+        auto p = rm::predict_table_test(s.members.front(), s.id, test, settings);
+        long over = p.predicted;
+        for (std::size_t k = 1; k < s.members.size(); ++k)
+          over += rm::predict_table_test(s.members[k], s.id, test, settings).predicted;
+        const double prob = static_cast<double>(over) / static_cast<double>(s.members.size());
+        const bool predicted = prob >= 0.5;
         if (row != outcomes.by_test.end()) p.measured = row->second[s.column];
         if (p.measured < 0) ++without_outcome;
         else {
-          per[s.id].add(p.predicted, p.measured == 1);
-          all.add(p.predicted, p.measured == 1);
+          per[s.id].add(predicted, p.measured == 1);
+          all.add(predicted, p.measured == 1);
+          add_rel(rel[s.id], prob, p.measured);
+          add_rel(rel["all"], prob, p.measured);
         }
         if (table) {
           char line[512];
-          std::snprintf(line, sizeof line, "%d,%s,%.6g,%.6g,%d,%d,%.6g,%ld,%.4f,%d,%s\n", p.test,
-                        s.id.c_str(), test.peak_mps2, test.offset_mps2, p.exceeds_static_uplift,
-                        p.uplift, p.max_rotation_ratio, p.impacts, p.overturn_time, p.predicted,
-                        p.measured < 0 ? "" : std::to_string(p.measured).c_str());
+          std::snprintf(line, sizeof line, "%d,%s,%.6g,%.6g,%d,%d,%.6g,%ld,%.4f,%d,%s,%zu,%.4f\n",
+                        p.test, s.id.c_str(), test.peak_mps2, test.offset_mps2,
+                        p.exceeds_static_uplift, p.uplift, p.max_rotation_ratio, p.impacts,
+                        p.overturn_time, predicted,
+                        p.measured < 0 ? "" : std::to_string(p.measured).c_str(),
+                        s.members.size(), prob);
           table << line;
         }
       }
@@ -123,6 +156,18 @@ int main(int argc, char** argv) {
                 std::isnan(restitution) ? "eq. 34" : std::to_string(restitution).c_str());
     for (const auto& [id, c] : per) print_scores(id, c);
     print_scores("all", all);
+    if (std::any_of(specimens.begin(), specimens.end(), [](const Specimen& sp) { return sp.members.size() > 1; })) {
+      for (const auto& [id, r] : rel) {
+        std::printf("%-8s Brier %.4f  reliability (P bin: n, mean P, observed):", id.c_str(),
+                    r.n ? r.brier / static_cast<double>(r.n) : std::nan(""));
+        for (int b = 0; b < 5; ++b)
+          if (r.bin_n[b])
+            std::printf("  [%.1f,%.1f%c: %ld, %.2f, %.2f", b * 0.2, (b + 1) * 0.2, b == 4 ? ']' : ')',
+                        r.bin_n[b], r.bin_p[b] / static_cast<double>(r.bin_n[b]),
+                        static_cast<double>(r.bin_y[b]) / static_cast<double>(r.bin_n[b]));
+        std::printf("\n");
+      }
+    }
     if (without_outcome)
       std::printf("rocking_experiments: %ld predictions without a measured outcome (not scored)\n",
                   without_outcome);
