@@ -23,4 +23,15 @@ done
 grep -qE "^all +tests +8 " "$tmp/out.txt" || { echo "FAIL: all not 8"; fail=1; }
 # the tests start with Test011..Test014: the table rows name them in order
 [ "$(awk -F, 'NR==2{print $1}' "$tmp/t.csv")" = "11" ] || { echo "FAIL: first row is not test 11"; fail=1; }
+# An ensemble of two identical SP2 members (SP2#0, SP2#1): one row per test, members 2, and
+# P(overturn) equal to the single member's 0/1 prediction.
+sed -n '/id: SP2/,$p' "$catalogue" | sed 's/id: SP2/id: SP2#0/' > "$tmp/member.yaml"
+{ echo "items:"; cat "$tmp/member.yaml"; sed 's/SP2#0/SP2#1/' "$tmp/member.yaml"; } > "$tmp/ens.yaml"
+"$exe" "$dir" --catalogue "$tmp/ens.yaml" --max-tests 4 --out "$tmp/e.csv" > "$tmp/e.txt" || { cat "$tmp/e.txt"; exit 1; }
+[ "$(($(wc -l < "$tmp/e.csv") - 1))" -eq 4 ] || { echo "FAIL: ensemble rows"; fail=1; }
+awk -F, 'NR>1 { if ($12 != 2 || $13 + 0 != $10) bad = 1 } END { exit bad }' "$tmp/e.csv" ||
+  { echo "FAIL: ensemble members/P"; cat "$tmp/e.csv"; fail=1; }
+paste -d, <(awk -F, 'NR>1 && $2=="SP2" {print $10}' "$tmp/t.csv") <(awk -F, 'NR>1 {print $10}' "$tmp/e.csv") |
+  awk -F, '$1 != $2 { bad = 1 } END { exit bad }' || { echo "FAIL: ensemble of copies differs from SP2"; fail=1; }
+grep -qE "^SP2 +Brier" "$tmp/e.txt" || { echo "FAIL: no Brier line"; fail=1; }
 exit $fail
