@@ -20,6 +20,7 @@ if(BUILD_TESTING)
   target_include_directories(core_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/support)
   target_compile_definitions(core_tests PRIVATE
     ROCKING_RECORDS_DIR="${ROCKING_RECORDS_DIR}"
+    ROCKING_EXPERIMENTS_DIR="${ROCKING_EXPERIMENTS_DIR}"
     ROCKING_SIM_EXE="$<TARGET_FILE:rocking_sim>"
     ROCKING_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
   add_dependencies(core_tests rocking_sim)

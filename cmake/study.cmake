@@ -25,3 +25,24 @@ if(BUILD_TESTING)
   add_dependencies(study_cli_tests rocking_study)
   gtest_discover_tests(study_cli_tests DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 900)
 endif()
+
+# rocking_experiments: the real shaking-table experiments (issue 20, docs/validation.md).
+add_executable(rocking_experiments ${CMAKE_CURRENT_SOURCE_DIR}/src/tools/rocking_experiments.cpp)
+target_link_libraries(rocking_experiments PRIVATE rocking_monitor_core CLI11::CLI11)
+target_compile_options(rocking_experiments PRIVATE -Wall -Wextra -Wpedantic)
+set_target_properties(rocking_experiments PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_TOOL_DIR})
+
+if(BUILD_TESTING)
+  # rocking_geometry.py (issue 20) on closed forms: box, off-centre hollow, box turned about z.
+  add_test(NAME rocking_geometry_closed_forms
+           COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/test_rocking_geometry.py)
+  set_tests_properties(rocking_geometry_closed_forms PROPERTIES TIMEOUT 60)
+endif()
+
+if(BUILD_TESTING)
+  add_test(NAME rocking_experiments_accounting
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/experiments_accounting.sh
+                   $<TARGET_FILE:rocking_experiments> ${ROCKING_EXPERIMENTS_DIR}/granite_pbr
+                   ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/granite_specimens.yaml)
+  set_tests_properties(rocking_experiments_accounting PROPERTIES TIMEOUT 60 SKIP_RETURN_CODE 77)
+endif()

@@ -1,0 +1,77 @@
+#pragma once
+// Real shaking-table experiments (issue 20): the table's measured acceleration of each test, the
+// measured outcome per specimen, and the engine's prediction of it. See docs/validation.md.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "rocking_monitor/model/adaptive_model.hpp"
+#include "rocking_monitor/physics/body.hpp"
+
+namespace rocking_monitor::core {
+
+/// One test's table acceleration (a `time_s,table_accel_g` CSV, gzipped or not).
+struct TableTest {
+  int number = 0;            ///< from the file name TestNNN
+  std::string file;
+  double dt = 0.0;           ///< s, the sampling interval (uniform; checked)
+  double offset_mps2 = 0.0;  ///< removed instrument offset, m/s^2 (the record's mean, see .cpp)
+  double peak_mps2 = 0.0;    ///< max |a| after the offset is removed, m/s^2
+  double peak_positive_mps2 = 0.0;  ///< max a (toward +x), m/s^2
+  double peak_negative_mps2 = 0.0;  ///< max -a (toward -x), m/s^2
+  std::vector<double> accel_mps2;   ///< offset removed, m/s^2, positive along the shaking axis +x
+};
+
+/// Reads a test. Throws std::runtime_error "<file>:<line>: <problem>" (bad header or number,
+/// non-uniform or non-increasing time, fewer than 2 samples).
+TableTest read_table_test(const std::string& path);
+
+/// outcomes.csv: `test,<specimen>_overturned,...` (1 = overturned, 0 = not); the specimen names are
+/// the header's column prefixes upper-cased (sp1_overturned -> SP1). Throws "<file>:<line>: ...".
+struct MeasuredOutcomes {
+  std::vector<std::string> specimens;
+  std::map<int, std::vector<int>> by_test;  ///< test -> one 0/1 per specimen
+};
+MeasuredOutcomes read_outcomes(const std::string& path);
+
+struct ExperimentSettings {
+  AdaptiveSettings adaptive{};  ///< default fidelity (adaptive)
+  /// s of table at rest appended after the record: a body still rocking when the recording stops
+  /// settles or falls (the experiments' outcome is the final state).
+  double tail_s = 5.0;
+  /// +1: table acceleration positive toward +x (pivot 2 side), as recorded; -1: reversed.
+  int direction = 1;
+};
+
+struct TestPrediction {
+  int test = 0;
+  std::string specimen;
+  bool predicted = false;     ///< the engine's overturn
+  int measured = -1;          ///< 1 overturned, 0 not, -1 no outcome for this test
+  bool uplift = false;        ///< rocking started
+  double max_rotation_ratio = 0.0;  ///< max |theta| / alpha of the pivot
+  double overturn_time = 0.0;       ///< s, NaN when not overturned
+  long impacts = 0;
+  bool exceeds_static_uplift = false;  ///< the table reached g tan(alpha) toward some pivot
+};
+
+/// Static uplift (eq. 19): the table acceleration toward +x lifts pivot 1 (corner 1, -x side)...
+/// returns true when the record reaches g tan(alpha) of the pivot it would lift in either direction.
+bool exceeds_static_uplift(const Body& body, const TableTest& test, int direction = 1);
+
+/// Runs one specimen (its x-z plane) through one test.
+TestPrediction predict_table_test(const BodyParameters& body, const std::string& specimen,
+                                  const TableTest& test, const ExperimentSettings& settings = {});
+
+/// Confusion matrix of predicted vs measured overturning (tests without an outcome not counted).
+struct Confusion {
+  long tp = 0, fp = 0, tn = 0, fn = 0;
+  void add(bool predicted, bool measured);
+  long total() const { return tp + fp + tn + fn; }
+  double accuracy() const;
+  double precision() const;  ///< NaN when nothing predicted overturned
+  double recall() const;     ///< NaN when nothing overturned
+  double f1() const;
+};
+
+}  // namespace rocking_monitor::core

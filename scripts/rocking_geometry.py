@@ -1,0 +1,457 @@
+#!/usr/bin/env python3
+"""rocking_geometry: a rocking item's catalogue entry from a closed surface mesh (issue 20).
+
+Reads a triangle mesh (OBJ, optionally gzipped), places it (quaternion, translation, mass), and
+computes, exactly for the polyhedron (signed tetrahedra, homogeneous density):
+  - volume, centre of mass, central inertia tensor;
+  - the base contact: the vertices within --contact-tolerance of the lowest one, and their convex
+    hull on the floor;
+  - for the shaking axis (world x) the two pivots (the hull's extreme points along x), the height of
+    the centre of mass above the floor, per pivot alpha, R and the inertia about the pivot (parallel
+    axis, about the horizontal axis perpendicular to the shaking);
+  - the same across it (world y): the catalogue's second plane;
+  - the catalogue entry (width, cg_height, eccentricity, radius_of_gyration; depth, eccentricity_y,
+    radius_of_gyration_y) that the monitor, rocking_sim and rocking_experiments read.
+
+The planar model (docs/validation.md) assumes both pivots on one flat floor: the entry uses the
+height of the centre of mass above the lowest vertex; the pivots' own heights (within the tolerance)
+are reported, with the exact per-pivot alpha they would give.
+
+  rocking_geometry.py MESH [--quaternion X Y Z W] [--mass KG] [--com X Y Z] ...
+  rocking_geometry.py --granite DIR [--yaml OUT] [--plot-dir DIR]   (the two granite specimens)
+"""
+import argparse
+import gzip
+import json
+import math
+import os
+import sys
+
+import numpy as np
+
+
+class GeometryError(Exception):
+    """Bad mesh or placement; the message names the file (and line) or the quantity."""
+
+
+# ---------------------------------------------------------------- reading
+
+def read_obj(path):
+    """Vertices (n x 3) and triangles (m x 3, 0-based) of an OBJ file (.gz allowed).
+    Polygons are fanned into triangles; v/vt/vn face tokens and negative indices are accepted."""
+    opener = gzip.open if path.endswith(".gz") else open
+    vertices, faces = [], []
+    try:
+        with opener(path, "rt", encoding="utf-8", errors="replace") as f:
+            for lineno, line in enumerate(f, 1):
+                parts = line.split()
+                if not parts:
+                    continue
+                if parts[0] == "v":
+                    try:
+                        vertices.append([float(parts[1]), float(parts[2]), float(parts[3])])
+                    except (IndexError, ValueError):
+                        raise GeometryError(f"{path}:{lineno}: vertex needs three numbers: {line.strip()}")
+                elif parts[0] == "f":
+                    idx = []
+                    for tok in parts[1:]:
+                        try:
+                            i = int(tok.split("/")[0])
+                        except ValueError:
+                            raise GeometryError(f"{path}:{lineno}: bad face index '{tok}'")
+                        i = i - 1 if i > 0 else len(vertices) + i
+                        if i < 0 or i >= len(vertices):
+                            raise GeometryError(f"{path}:{lineno}: face index {tok} outside the "
+                                                f"{len(vertices)} vertices read so far")
+                        idx.append(i)
+                    if len(idx) < 3:
+                        raise GeometryError(f"{path}:{lineno}: face with fewer than 3 vertices")
+                    for k in range(1, len(idx) - 1):
+                        faces.append([idx[0], idx[k], idx[k + 1]])
+    except OSError as e:
+        raise GeometryError(f"{path}: cannot read ({e})")
+    if not faces:
+        raise GeometryError(f"{path}: no faces")
+    return np.asarray(vertices, dtype=float), np.asarray(faces, dtype=np.int64)
+
+
+def open_edges(vertices, faces):
+    """Directed edges without their opposite twin, after merging coincident vertices (scanner
+    exports often duplicate vertices per face). 0 for a closed, consistently oriented surface."""
+    _, inverse = np.unique(vertices, axis=0, return_inverse=True)
+    inverse = inverse.reshape(-1)
+    f = inverse[faces]
+    directed = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
+    directed = directed[directed[:, 0] != directed[:, 1]]
+    keys = set(map(tuple, directed.tolist()))
+    return sum(1 for a, b in keys if (b, a) not in keys)
+
+
+# ---------------------------------------------------------------- mass properties
+
+def mass_properties(vertices, faces):
+    """Volume, centre of mass and second moment (integral of x x^T dV) of the closed surface, exact:
+    sum over signed tetrahedra (origin, a, b, c). Orientation is fixed so that the volume is > 0."""
+    a, b, c = vertices[faces[:, 0]], vertices[faces[:, 1]], vertices[faces[:, 2]]
+    det = np.einsum("ij,ij->i", a, np.cross(b, c))  # 6 x signed volume
+    volume = det.sum() / 6.0
+    if volume == 0.0:
+        raise GeometryError("mesh encloses zero volume")
+    s = a + b + c
+    first = (det[:, None] * s).sum(axis=0) / 24.0  # integral of x dV
+    # integral over tet(0,a,b,c) of x_i x_j = det/120 (sum_k v_k,i v_k,j + s_i s_j)
+    second = (np.einsum("n,ni,nj->ij", det, a, a) + np.einsum("n,ni,nj->ij", det, b, b)
+              + np.einsum("n,ni,nj->ij", det, c, c) + np.einsum("n,ni,nj->ij", det, s, s)) / 120.0
+    sign = 1.0 if volume > 0 else -1.0
+    return sign * volume, first / volume, sign * second
+
+
+def central_inertia(volume, com, second, mass):
+    """Inertia tensor about the centre of mass, kg m^2, for a homogeneous body of this mass."""
+    rho = mass / volume
+    c = rho * second - mass * np.outer(com, com)  # central second moment
+    return np.trace(c) * np.eye(3) - c
+
+
+def quaternion_matrix(x, y, z, w):
+    n = math.sqrt(x * x + y * y + z * z + w * w)
+    if not n > 0:
+        raise GeometryError("quaternion has zero norm")
+    x, y, z, w = x / n, y / n, z / n, w / n
+    return np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+
+
+# ---------------------------------------------------------------- base contact and pivots
+
+def convex_hull_2d(points):
+    """Andrew's monotone chain; counter-clockwise hull of (n x 2) points, collinear points dropped."""
+    pts = sorted(set(map(tuple, np.asarray(points).tolist())))
+    if len(pts) <= 2:
+        return np.asarray(pts)
+
+    def cross(o, a, b):
+        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+    lower, upper = [], []
+    for p in pts:
+        while len(lower) >= 2 and cross(lower[-2], lower[-1], p) <= 0:
+            lower.pop()
+        lower.append(p)
+    for p in reversed(pts):
+        while len(upper) >= 2 and cross(upper[-2], upper[-1], p) <= 0:
+            upper.pop()
+        upper.append(p)
+    return np.asarray(lower[:-1] + upper[:-1])
+
+
+def plane(contact, com, inertia, mass, axis):
+    """Rocking in the vertical plane containing world axis `axis` (0 = x, 1 = y).
+    Pivot 1 is the contact point with the smallest coordinate (the catalogue's corner 1), pivot 2
+    the largest. Inertia about each pivot: about the horizontal axis perpendicular to the plane."""
+    coord = contact[:, axis]
+    i1, i2 = int(np.argmin(coord)), int(np.argmax(coord))
+    p1, p2 = contact[i1], contact[i2]
+    width = p2[axis] - p1[axis]
+    name = "xy"[axis]
+    if not width > 0:
+        raise GeometryError(f"base contact has no extent along {name} (a line across the shaking "
+                            f"axis): increase --contact-tolerance or check the placement")
+    b1, b2 = com[axis] - p1[axis], p2[axis] - com[axis]
+    if not (b1 > 0 and b2 > 0):
+        raise GeometryError(f"centre of mass ({name} = {com[axis]:.6g} m) is not over the base "
+                            f"contact [{p1[axis]:.6g}, {p2[axis]:.6g}] m: the placement is not at rest")
+    perp = 1 - axis  # rotation axis is the other horizontal axis
+    i_c = inertia[perp, perp]
+    floor = contact[:, 2].min()
+    h = com[2] - floor
+    out = {"width": width, "cg_height": h, "eccentricity": b1 / width,
+           "radius_of_gyration": math.sqrt(i_c / mass), "central_inertia": i_c, "pivots": []}
+    for p, b in ((p1, b1), (p2, b2)):
+        hp = com[2] - p[2]  # the pivot's own height may sit up to the tolerance above the floor
+        out["pivots"].append({
+            "point": p.tolist(), "lever": b, "alpha": math.atan2(b, h), "radius": math.hypot(b, h),
+            "inertia": i_c + mass * (b * b + h * h),
+            "alpha_own_height": math.atan2(b, hp), "radius_own_height": math.hypot(b, hp)})
+    return out
+
+
+def rotation_between(a, b):
+    """Smallest rotation taking unit vector a onto unit vector b (Rodrigues)."""
+    a, b = a / np.linalg.norm(a), b / np.linalg.norm(b)
+    v, c = np.cross(a, b), float(np.dot(a, b))
+    s = np.linalg.norm(v)
+    if s < 1e-15:
+        return np.eye(3)  # a == -b does not occur: the candidates are within 90 deg of -z
+    k = np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]]) / s
+    angle = math.atan2(s, c)
+    return np.eye(3) + math.sin(angle) * k + (1 - math.cos(angle)) * (k @ k)
+
+
+def settle(placed, com, tolerance):
+    """The rest position nearest to the given placement: a rigid body on a flat floor rests on a face
+    of its convex hull, the one whose normal is closest to straight down among those with the centre
+    of mass above the contact polygon. Returns the small rotation to apply (world frame) and its
+    angle, rad; the given placement is then only the starting guess (a scan's orientation on the
+    table is known to about a degree)."""
+    from scipy.spatial import ConvexHull
+    hull = ConvexHull(placed)
+    normals = hull.equations[:, :3]
+    down = np.array([0.0, 0.0, -1.0])
+    order = np.argsort(-(normals @ down))
+    tried = set()
+    for i in order:
+        n = normals[i]
+        if n @ down <= 0:
+            break
+        key = tuple(np.round(n, 9))
+        if key in tried:
+            continue
+        tried.add(key)
+        r = rotation_between(n, down)
+        p = placed @ r.T
+        c = r @ com
+        low = p[p[:, 2] <= p[:, 2].min() + tolerance]
+        h2 = convex_hull_2d(low[:, :2])
+        if len(h2) >= 3 and point_in_convex(h2, c[:2]):
+            return r, math.acos(min(1.0, float(n @ down)))
+    raise GeometryError("no convex-hull face carries the centre of mass: the body cannot rest")
+
+
+def point_in_convex(hull, p):
+    """p strictly inside the counter-clockwise convex polygon."""
+    for k in range(len(hull)):
+        a, b = hull[k], hull[(k + 1) % len(hull)]
+        if (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]) <= 0:
+            return False
+    return True
+
+
+def rocking_geometry(vertices, faces, rotation=np.eye(3), mass=1.0, contact_tolerance=1e-3,
+                     com=None, settle_on_hull=False):
+    """All the quantities of the module docstring; `com` (mesh frame) overrides the homogeneous
+    centre of mass (a specimen's measured one); the inertia stays the mesh's about that point."""
+    if not mass > 0:
+        raise GeometryError(f"mass must be > 0 kg, got {mass}")
+    if not contact_tolerance >= 0:
+        raise GeometryError(f"contact tolerance must be >= 0 m, got {contact_tolerance}")
+    volume, com_mesh, second = mass_properties(vertices, faces)
+    inertia_mesh = central_inertia(volume, com_mesh, second, mass)
+    if com is not None:
+        d = np.asarray(com, dtype=float) - com_mesh
+        inertia_mesh = inertia_mesh + mass * (np.dot(d, d) * np.eye(3) - np.outer(d, d))
+        com_mesh = np.asarray(com, dtype=float)
+    settle_angle = 0.0
+    if settle_on_hull:
+        used0 = np.unique(faces)
+        r, settle_angle = settle(vertices[used0] @ rotation.T, rotation @ com_mesh, contact_tolerance)
+        rotation = r @ rotation
+    placed = vertices @ rotation.T
+    floor = placed[:, 2].min()
+    placed = placed - np.array([0.0, 0.0, floor])  # floor at z = 0
+    c = rotation @ com_mesh - np.array([0.0, 0.0, floor])
+    inertia = rotation @ inertia_mesh @ rotation.T
+    used = np.unique(faces)
+    low = placed[used]
+    contact = low[low[:, 2] <= contact_tolerance]
+    hull = convex_hull_2d(contact[:, :2])
+    result = {"volume": volume, "mass": mass, "density": mass / volume, "com": c.tolist(),
+              "inertia": inertia.tolist(), "principal_inertia": sorted(np.linalg.eigvalsh(inertia).tolist()),
+              "contact_points": int(len(contact)), "contact_tolerance": contact_tolerance,
+              "settle_angle_deg": math.degrees(settle_angle), "rotation": rotation.tolist(),
+              "hull": hull.tolist(), "x": plane(contact, c, inertia, mass, 0),
+              "y": plane(contact, c, inertia, mass, 1)}
+    return result, placed
+
+
+def catalogue_entry(item_id, g, sensor="table"):
+    """YAML text of a catalogue item (both planes), with the derivation in comments."""
+    x, y = g["x"], g["y"]
+    lines = [f"  - id: {item_id}",
+             f"    sensor: {sensor}",
+             f"    width: {x['width']:.9g}          # m, base contact extent along the shaking axis (x)",
+             f"    depth: {y['width']:.9g}          # m, across it (y)",
+             f"    cg_height: {x['cg_height']:.9g}      # m, centre of mass above the lowest vertex",
+             f"    eccentricity: {x['eccentricity']:.9g}",
+             f"    eccentricity_y: {y['eccentricity']:.9g}",
+             f"    radius_of_gyration: {x['radius_of_gyration']:.9g}   # m, central, about y",
+             f"    radius_of_gyration_y: {y['radius_of_gyration']:.9g} # m, central, about x"]
+    for name, p in (("x", x), ("y", y)):
+        for k, piv in enumerate(p["pivots"], 1):
+            lines.append(f"    # {name}-plane pivot {k}: alpha {math.degrees(piv['alpha']):.4f} deg, R "
+                         f"{piv['radius']:.6f} m, I_O {piv['inertia']:.4f} kg m^2")
+    return "\n".join(lines) + "\n"
+
+
+# ---------------------------------------------------------------- the granite specimens
+
+# Placements from ../shared/experiments/granite_pbr/README.md (Virtual Shake Robot configuration).
+GRANITE = {
+    "SP1": {"mesh": "specimens/SP1_pca.obj.gz",
+            "quaternion": (0.8676640240119536, 0.06594471044608025, 0.4791004506761131,
+                           0.11520935188391664),
+            "mass": 353.802, "com": None},
+    "SP2": {"mesh": "specimens/SP2.obj.gz", "quaternion": (0.0, 0.0, 0.0, 1.0),
+            "mass": 353.802, "com": (-0.033, 0.029, 0.001)},
+}
+
+
+def plot_outline(path, title, placed, g):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4.6))
+    step = max(1, len(placed) // 6000)
+    pts = placed[::step]
+    ax1.scatter(pts[:, 0], pts[:, 2], s=0.3, c="0.6")
+    c = g["com"]
+    for piv, col in zip(g["x"]["pivots"], ("tab:red", "tab:blue")):
+        p = piv["point"]
+        ax1.plot([p[0], c[0]], [p[2], c[2]], "-", color=col,
+                 label=f"pivot: alpha {math.degrees(piv['alpha']):.1f} deg, R {piv['radius']:.3f} m")
+        ax1.plot(p[0], p[2], "o", color=col)
+    ax1.plot(c[0], c[2], "k*", ms=12, label="centre of mass")
+    ax1.axhline(0, color="k", lw=0.8)
+    ax1.set_aspect("equal")
+    ax1.set_xlabel("x, shaking axis (m)")
+    ax1.set_ylabel("z (m)")
+    ax1.set_title(f"{title}: side view (x-z)")
+    ax1.legend(fontsize=7, loc="upper right")
+    low = placed[placed[:, 2] <= 0.05]
+    ax2.scatter(low[:, 0], low[:, 1], s=0.5, c="0.75", label="vertices below 50 mm")
+    hull = np.asarray(g["hull"])
+    if len(hull) >= 3:
+        closed = np.vstack([hull, hull[:1]])
+        ax2.plot(closed[:, 0], closed[:, 1], "g-", label="base contact hull")
+    for piv, col in zip(g["x"]["pivots"], ("tab:red", "tab:blue")):
+        ax2.plot(piv["point"][0], piv["point"][1], "o", color=col)
+    ax2.plot(c[0], c[1], "k*", ms=12)
+    ax2.set_aspect("equal")
+    ax2.set_xlabel("x, shaking axis (m)")
+    ax2.set_ylabel("y (m)")
+    ax2.set_title(f"base, tolerance {g['contact_tolerance'] * 1000:g} mm")
+    ax2.legend(fontsize=7, loc="upper right")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def granite(directory, tolerance, plot_dir=None, settle_on_hull=True):
+    entries, results = [], {}
+    for name, spec in GRANITE.items():
+        v, f = read_obj(os.path.join(directory, spec["mesh"]))
+        g, placed = rocking_geometry(v, f, quaternion_matrix(*spec["quaternion"]), spec["mass"],
+                                     tolerance, spec["com"], settle_on_hull)
+        g["open_edges"] = open_edges(v, f)
+        results[name] = g
+        entries.append(catalogue_entry(name, g))
+        if plot_dir:
+            plot_outline(os.path.join(plot_dir, f"granite_{name}.png"), name, placed, g)
+    return results, entries
+
+
+def granite_ensemble(directory, members, seed, tolerance, max_tilt_deg=5.0, tol_range=(5e-4, 2e-3)):
+    """Members of each specimen's geometric uncertainty, member 0 the nominal (granite()): the
+    placement tilted by up to max_tilt_deg about a random horizontal axis (the configuration's
+    orientation is itself uncertain) then settled, the contact tolerance log-uniform in tol_range,
+    and for SP2 either of the data's two centres of mass (stated, or the homogeneous mesh's).
+    Returns the YAML entries (ids SP1#k) and the number of members refused (no resting face or a
+    line contact), which are reported, not replaced."""
+    rng = np.random.default_rng(seed)
+    entries, refused = [], 0
+    for name, spec in GRANITE.items():
+        v, f = read_obj(os.path.join(directory, spec["mesh"]))
+        q = quaternion_matrix(*spec["quaternion"])
+        for k in range(members):
+            rot, tol, com = q, tolerance, spec["com"]
+            if k > 0:
+                phi = rng.uniform(0.0, 2.0 * math.pi)
+                tilt = math.radians(rng.uniform(-max_tilt_deg, max_tilt_deg))
+                axis = np.array([math.cos(phi), math.sin(phi), 0.0])
+                qt = (*(axis * math.sin(tilt / 2)), math.cos(tilt / 2))
+                rot = quaternion_matrix(*qt) @ q
+                tol = math.exp(rng.uniform(math.log(tol_range[0]), math.log(tol_range[1])))
+                if spec["com"] is not None and rng.uniform() < 0.5:
+                    com = None
+            try:
+                g, _ = rocking_geometry(v, f, rot, spec["mass"], tol, com, True)
+            except GeometryError as e:
+                refused += 1
+                print(f"rocking_geometry: {name} member {k} refused: {e}", file=sys.stderr)
+                continue
+            entries.append(catalogue_entry(f"{name}#{k}", g))
+    return entries, refused
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("mesh", nargs="?", help="OBJ mesh (metres), .gz allowed")
+    ap.add_argument("--granite", metavar="DIR", help="the granite_pbr data set: both specimens")
+    ap.add_argument("--quaternion", nargs=4, type=float, metavar=("X", "Y", "Z", "W"),
+                    default=(0.0, 0.0, 0.0, 1.0), help="placement rotation, mesh -> world")
+    ap.add_argument("--mass", type=float, default=1.0, help="kg (default 1)")
+    ap.add_argument("--com", nargs=3, type=float, help="measured centre of mass, mesh frame, m")
+    ap.add_argument("--contact-tolerance", type=float, default=0.001,
+                    help="m above the lowest vertex counted as base contact (default 0.001: "
+                         "scan noise on a resting face)")
+    ap.add_argument("--settle", action="store_true",
+                    help="turn the body onto the convex-hull face it rests on nearest to the placement "
+                         "(always on with --granite unless --no-settle)")
+    ap.add_argument("--no-settle", action="store_true", help="with --granite: use the placement as given")
+    ap.add_argument("--homogeneous", action="store_true",
+                    help="with --granite: the mesh's own centre of mass for every specimen")
+    ap.add_argument("--ensemble", type=int, default=0, metavar="N",
+                    help="with --granite: N members per specimen of its geometric uncertainty "
+                         "(ids SP1#k; rocking_experiments gives P(overturn))")
+    ap.add_argument("--seed", type=int, default=20, help="ensemble seed (default 20)")
+    ap.add_argument("--id", default="item")
+    ap.add_argument("--yaml", help="write the catalogue (items:) here")
+    ap.add_argument("--json", help="write every number here")
+    ap.add_argument("--plot-dir", help="outline pictures (PNG) here")
+    a = ap.parse_args(argv)
+    try:
+        if a.granite:
+            if a.homogeneous:
+                for spec in GRANITE.values():
+                    spec["com"] = None
+            if a.ensemble > 0:
+                entries, refused = granite_ensemble(a.granite, a.ensemble, a.seed, a.contact_tolerance)
+                results = {}
+                print(f"rocking_geometry: {len(entries)} members written, {refused} refused",
+                      file=sys.stderr)
+            else:
+                results, entries = granite(a.granite, a.contact_tolerance, a.plot_dir, not a.no_settle)
+        elif a.mesh:
+            v, f = read_obj(a.mesh)
+            g, placed = rocking_geometry(v, f, quaternion_matrix(*a.quaternion), a.mass,
+                                         a.contact_tolerance, a.com, a.settle)
+            g["open_edges"] = open_edges(v, f)
+            results, entries = {a.id: g}, [catalogue_entry(a.id, g)]
+            if a.plot_dir:
+                plot_outline(os.path.join(a.plot_dir, f"{a.id}.png"), a.id, placed, g)
+        else:
+            ap.error("give a MESH or --granite DIR")
+    except GeometryError as e:
+        print(f"rocking_geometry: {e}", file=sys.stderr)
+        return 2
+    text = ("# rocking_geometry: catalogue entries derived from meshes "
+            f"(contact tolerance {a.contact_tolerance} m)\nitems:\n" + "".join(entries))
+    if a.yaml:
+        with open(a.yaml, "w") as out:
+            out.write(text)
+    else:
+        sys.stdout.write(text)
+    for name, g in results.items():
+        if g["open_edges"]:
+            print(f"rocking_geometry: warning: {name}: {g['open_edges']} open edges: the mesh is not "
+                  "closed, its volume integrals are approximate", file=sys.stderr)
+    if a.json:
+        with open(a.json, "w") as out:
+            json.dump(results, out, indent=1)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

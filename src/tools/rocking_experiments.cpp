@@ -1,0 +1,180 @@
+// rocking_experiments: predicts the real shaking-table experiments of a data set (issue 20):
+// every tests/TestNNN.csv(.gz) for every specimen of a catalogue (rocking_geometry's output),
+// predicted overturn vs outcomes.csv; a CSV table and accuracy, precision, recall, F1.
+// Thin command-line layer: all physics lives in the core (study/shaking_table_experiments).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "command_line.hpp"
+#include "rocking_monitor/monitoring/catalogue_file.hpp"
+#include "rocking_monitor/study/shaking_table_experiments.hpp"
+
+namespace rm = rocking_monitor::core;
+namespace fs = std::filesystem;
+
+namespace {
+
+void print_scores(const std::string& name, const rm::Confusion& c) {
+  std::printf("%-8s tests %4ld  TP %3ld FP %3ld TN %3ld FN %3ld  accuracy %.3f precision %.3f "
+              "recall %.3f F1 %.3f\n", name.c_str(), c.total(), c.tp, c.fp, c.tn, c.fn,
+              c.accuracy(), c.precision(), c.recall(), c.f1());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Predicts real shaking-table tests: each specimen of the catalogue through each "
+               "tests/TestNNN.csv.gz of DIR, compared with DIR/outcomes.csv (docs/validation.md)"};
+  std::string dir, catalogue, out;
+  double restitution = std::nan("");
+  double mu_s = std::nan("");
+  int direction = 1, max_tests = 0;
+  double tail_s = 5.0;
+  app.add_option("dir", dir, "data set: tests/ and outcomes.csv")->required();
+  app.add_option("--catalogue", catalogue, "specimens (YAML items: from rocking_geometry.py); "
+                 "item ids are the outcome columns (SP1, SP2)")->required();
+  app.add_option("--out", out, "write the per-test table here (CSV)");
+  app.add_option("--restitution", restitution, "override eq. 34 (both pivots), in [0, 1]");
+  app.add_option("--mu-s", mu_s, "static friction (default: the catalogue's; none = not checked)");
+  app.add_option("--direction", direction, "+1: table acceleration as recorded; -1 reversed")
+      ->check(CLI::IsMember({-1, 1}));
+  app.add_option("--tail", tail_s, "s of table at rest after each record (default 5)");
+  app.add_option("--max-tests", max_tests, "only the first N tests (0 = all)");
+  if (auto status = rocking_monitor::tools::parse_command_line(app, argc, argv, "rocking_experiments"))
+    return *status;
+  try {
+    const auto outcomes = rm::read_outcomes((fs::path(dir) / "outcomes.csv").string());
+    const auto items = rm::load_catalogue_items_file(catalogue);
+    // Items "SP1#3" are members of SP1's ensemble (rocking_geometry.py --ensemble): P(overturn) is
+    // the fraction of members that overturn, the prediction P >= 0.5.
+    struct Specimen { std::string id; std::vector<rm::BodyParameters> members; int column; };
+    std::vector<Specimen> specimens;
+    for (const auto& item : items) {
+      const std::string name = item.spec.id.substr(0, item.spec.id.find('#'));
+      const auto it = std::find(outcomes.specimens.begin(), outcomes.specimens.end(), name);
+      if (it == outcomes.specimens.end())
+        throw std::runtime_error(catalogue + ": item '" + item.spec.id + "': no column " + name +
+                                 "_overturned in outcomes.csv");
+      rm::BodyParameters b = item.spec.body;
+      if (!std::isnan(restitution)) b.restitution = restitution;
+      if (!std::isnan(mu_s)) b.mu_s = mu_s;
+      const std::string problem = rm::validate(b);
+      if (!problem.empty()) throw std::runtime_error("item '" + item.spec.id + "': " + problem);
+      auto group = std::find_if(specimens.begin(), specimens.end(),
+                                [&](const Specimen& sp) { return sp.id == name; });
+      if (group != specimens.end()) {
+        group->members.push_back(b);
+        continue;
+      }
+      specimens.push_back({name, {b}, static_cast<int>(it - outcomes.specimens.begin())});
+      const rm::Body body(b);
+      for (int side : {1, -1}) {
+        const auto& p = body.pivot(side);
+        std::printf("%s pivot %d: alpha %.3f deg, R %.4f m, p %.3f rad/s, uplift at %.3f g, "
+                    "restitution %.4f\n", item.spec.id.c_str(), side > 0 ? 1 : 2,
+                    p.alpha * 180.0 / M_PI, p.radius, p.p, p.tan_alpha, p.restitution);
+      }
+    }
+    std::vector<std::string> files;
+    for (const auto& e : fs::directory_iterator(fs::path(dir) / "tests")) {
+      const std::string name = e.path().filename().string();
+      if (name.rfind("Test", 0) == 0 && (name.size() > 4 && (name.find(".csv") != std::string::npos)))
+        files.push_back(e.path().string());
+    }
+    std::sort(files.begin(), files.end());
+    if (max_tests > 0 && static_cast<int>(files.size()) > max_tests) files.resize(max_tests);
+    if (files.empty()) throw std::runtime_error(dir + "/tests: no TestNNN.csv(.gz) files");
+
+    rm::ExperimentSettings settings;
+    settings.direction = direction;
+    settings.tail_s = tail_s;
+    std::ofstream table;
+    if (!out.empty()) {
+      table.open(out);
+      if (!table) throw std::runtime_error(out + ": cannot open for writing");
+      table << "test,specimen,peak_table_accel_mps2,offset_mps2,exceeds_static_uplift,uplift,"
+               "max_rotation_ratio,impacts,overturn_time_s,predicted_overturned,measured_overturned,"
+               "members,p_overturn\n";
+    }
+    std::map<std::string, rm::Confusion> per;
+    rm::Confusion all;
+    long without_outcome = 0;
+    // Brier score and a 5-bin reliability diagram of P(overturn), per specimen and overall.
+    struct Reliability { double brier = 0.0; long n = 0; long bin_n[5] = {}; double bin_p[5] = {};
+                         long bin_y[5] = {}; };
+    std::map<std::string, Reliability> rel;
+    auto add_rel = [](Reliability& r, double p, int y) {
+      r.brier += (p - y) * (p - y);
+      ++r.n;
+      const int b = std::min(4, static_cast<int>(p * 5.0));
+      ++r.bin_n[b];
+      r.bin_p[b] += p;
+      r.bin_y[b] += y;
+    };
+    for (const auto& file : files) {
+      const auto test = rm::read_table_test(file);
+      const auto row = outcomes.by_test.find(test.number);
+      for (const auto& s : specimens) {
+        // the first member (the nominal geometry) gives the row's details, the members P(overturn)
+        auto p = rm::predict_table_test(s.members.front(), s.id, test, settings);
+        long over = p.predicted;
+        for (std::size_t k = 1; k < s.members.size(); ++k)
+          over += rm::predict_table_test(s.members[k], s.id, test, settings).predicted;
+        const double prob = static_cast<double>(over) / static_cast<double>(s.members.size());
+        const bool predicted = prob >= 0.5;
+        if (row != outcomes.by_test.end()) p.measured = row->second[s.column];
+        if (p.measured < 0) ++without_outcome;
+        else {
+          per[s.id].add(predicted, p.measured == 1);
+          all.add(predicted, p.measured == 1);
+          add_rel(rel[s.id], prob, p.measured);
+          add_rel(rel["all"], prob, p.measured);
+        }
+        if (table) {
+          char line[512];
+          std::snprintf(line, sizeof line, "%d,%s,%.6g,%.6g,%d,%d,%.6g,%ld,%.4f,%d,%s,%zu,%.4f\n",
+                        p.test, s.id.c_str(), test.peak_mps2, test.offset_mps2,
+                        p.exceeds_static_uplift, p.uplift, p.max_rotation_ratio, p.impacts,
+                        p.overturn_time, predicted,
+                        p.measured < 0 ? "" : std::to_string(p.measured).c_str(),
+                        s.members.size(), prob);
+          table << line;
+        }
+      }
+    }
+    std::printf("rocking_experiments: %zu tests x %zu specimens, direction %+d, restitution %s\n",
+                files.size(), specimens.size(), direction,
+                std::isnan(restitution) ? "eq. 34" : std::to_string(restitution).c_str());
+    for (const auto& [id, c] : per) print_scores(id, c);
+    print_scores("all", all);
+    if (std::any_of(specimens.begin(), specimens.end(), [](const Specimen& sp) { return sp.members.size() > 1; })) {
+      for (const auto& [id, r] : rel) {
+        std::printf("%-8s Brier %.4f  reliability (P bin: n, mean P, observed):", id.c_str(),
+                    r.n ? r.brier / static_cast<double>(r.n) : std::nan(""));
+        for (int b = 0; b < 5; ++b)
+          if (r.bin_n[b])
+            std::printf("  [%.1f,%.1f%c: %ld, %.2f, %.2f", b * 0.2, (b + 1) * 0.2, b == 4 ? ']' : ')',
+                        r.bin_n[b], r.bin_p[b] / static_cast<double>(r.bin_n[b]),
+                        static_cast<double>(r.bin_y[b]) / static_cast<double>(r.bin_n[b]));
+        std::printf("\n");
+      }
+    }
+    if (without_outcome)
+      std::printf("rocking_experiments: %ld predictions without a measured outcome (not scored)\n",
+                  without_outcome);
+    if (table && !table.flush()) throw std::runtime_error(out + ": write failed");
+  } catch (const std::exception& e) {
+    std::cerr << "rocking_experiments: error: " << e.what() << "\n";
+    return 2;
+  }
+  return 0;
+}
