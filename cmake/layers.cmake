@@ -11,6 +11,11 @@
 #
 include(${CMAKE_CURRENT_LIST_DIR}/layers_rules.cmake)  # who may include whom
 
+# scripts/run_sanitizers.sh: AddressSanitizer + UndefinedBehaviorSanitizer on the core layers, core_tests
+# and the fuzz driver only (test/fuzz/, cmake/fuzz.cmake); a separate build directory, never Release.
+option(ROCKING_SANITIZE "Build the core, core_tests and fuzz drivers with -fsanitize=address,undefined" OFF)
+set(ROCKING_SANITIZE_FLAGS -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+
 # g and pi, shared by every layer (header only).
 add_library(rocking_monitor_constants INTERFACE)
 target_include_directories(rocking_monitor_constants INTERFACE
@@ -34,6 +39,10 @@ foreach(layer ${ROCKING_CORE_LAYER_NAMES})
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic)
   set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON)
   add_dependencies(${target} check_layers)
+  if(ROCKING_SANITIZE)
+    target_compile_options(${target} PRIVATE ${ROCKING_SANITIZE_FLAGS})
+    target_link_options(${target} PUBLIC ${ROCKING_SANITIZE_FLAGS})  # whoever links a sanitized layer
+  endif()
 endforeach()
 
 # CSV is parsed by libcsv (Debian libcsv-dev: csv.h, libcsv.so).

@@ -24,5 +24,8 @@ if(BUILD_TESTING)
     ROCKING_SIM_EXE="$<TARGET_FILE:rocking_sim>"
     ROCKING_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
   add_dependencies(core_tests rocking_sim)
+  if(ROCKING_SANITIZE)
+    target_compile_options(core_tests PRIVATE ${ROCKING_SANITIZE_FLAGS})
+  endif()
   gtest_discover_tests(core_tests DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
 endif()

@@ -192,7 +192,7 @@ std::vector<Component> read_at2(const std::string& path, std::string_view data) 
     bool any = false;
     for_each_ws_token(ln.text, [&](std::string_view tok) {
       if (c.accel.size() >= want) return;  // values after NPTS are ignored
-      c.accel.push_back(number_or_fail(tok, path, ln.number) * scale);
+      c.accel.push_back(scaled_or_fail(number_or_fail(tok, path, ln.number), scale, path, ln.number));
       any = true;
     });
     if (any) last_data_line = ln.number;

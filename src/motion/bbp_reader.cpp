@@ -46,7 +46,7 @@ std::vector<Component> read_bbp(const std::string& path, std::string_view data) 
     }
     const double time = number_or_fail(toks[0], path, ln.number);
     ts.push_back({time, printed_resolution(toks[0]), ln.number});
-    for (int k = 0; k < 3; ++k) col[k].push_back(number_or_fail(toks[static_cast<std::size_t>(k) + 1], path, ln.number) * 0.01);
+    for (int k = 0; k < 3; ++k) col[k].push_back(scaled_or_fail(number_or_fail(toks[static_cast<std::size_t>(k) + 1], path, ln.number), 0.01, path, ln.number));
   }
   if (ts.empty()) fail(path, 0, "empty data: no data rows");
   const double dt = check_uniform_time(path, ts);

@@ -211,7 +211,11 @@ std::vector<Component> read_cosmos(const std::string& path, std::string_view dat
         }
         const double sign = label_is_positive_down(c.label) ? -1.0 : 1.0;
         c.accel.reserve(values.size());
-        for (double v : values) c.accel.push_back(v * scale * sign);
+        for (std::size_t i = 0; i < values.size(); ++i) {
+          // value i sits on data line i / per_line after the data header
+          const std::size_t l = std::min(li + 1 + i / std::max<std::size_t>(ff.per_line, 1), lines.size() - 1);
+          c.accel.push_back(scaled_or_fail(values[i], scale * sign, path, lines[l].number));
+        }
         have_accel = true;
       }
       li = next;

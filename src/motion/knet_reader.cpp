@@ -132,7 +132,7 @@ std::vector<Component> read_knet(const std::string& path, std::string_view data)
   for (long long x : counts) {
     const double gal = (static_cast<double>(x) - mean) * gal_per_count;
     peak_gal = std::max(peak_gal, std::abs(gal));
-    c.accel.push_back(gal * 0.01);
+    c.accel.push_back(scaled_or_fail(gal, 0.01, path, lines[13].number));  // the Scale Factor line
   }
   // NIED prints the peak rounded; allow that and half a count.
   const double allowance = printed_resolution(v[14]) + 0.5 * gal_per_count + 1e-9 * max_acc;

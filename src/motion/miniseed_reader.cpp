@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iomanip>
 #include <map>
 #include <mutex>
 #include <sstream>
@@ -304,7 +305,16 @@ std::vector<Component> read_miniseed(const std::string& path, const ReadOptions&
     for (const Segment& s : c.segments) n += s.samples.size();
     comp.accel.reserve(n);
     for (const Segment& s : c.segments) {
-      for (double v : s.samples) comp.accel.push_back(v / gain);
+      for (double v : s.samples) {
+        const double a = v / gain;
+        if (!std::isfinite(a)) {
+          std::ostringstream msg;
+          msg << std::setprecision(17) << "channel " << c.id() << ": sample " << v << " / gain " << gain
+              << " overflows m/s^2";
+          fail(path, 0, msg.str());
+        }
+        comp.accel.push_back(a);
+      }
     }
     out.push_back(std::move(comp));
   }

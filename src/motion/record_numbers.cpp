@@ -5,6 +5,8 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <iomanip>
+#include <sstream>
 #include <string_view>
 #include <system_error>
 
@@ -83,6 +85,16 @@ double number_or_fail(std::string_view tok, const std::string& path, std::size_t
       break;
   }
   fail(path, line, "non-numeric value " + quoted(tok));
+}
+
+double scaled_or_fail(double value, double scale, const std::string& path, std::size_t line) {
+  const double out = value * scale;
+  if (!std::isfinite(out)) {
+    std::ostringstream msg;
+    msg << std::setprecision(10) << "value " << value << " overflows after conversion to m/s^2 (x " << scale << ")";
+    fail(path, line, msg.str());
+  }
+  return out;
 }
 
 bool is_number(std::string_view tok) {

@@ -74,6 +74,9 @@ bool is_nonfinite_word(std::string_view t);
 NumStatus parse_number(std::string_view tok, double& out);
 /// The number, or RecordError naming path, line and the token.
 double number_or_fail(std::string_view tok, const std::string& path, std::size_t line);
+/// value * scale (a unit conversion to m/s^2), or RecordError naming path and line when the product
+/// overflows to infinity although the value itself was finite (1e308 g, say).
+double scaled_or_fail(double value, double scale, const std::string& path, std::size_t line);
 bool is_number(std::string_view tok);
 bool parse_integer(std::string_view tok, long long& out);
 /// One unit in the last printed digit of a number token (its rounding allowance).

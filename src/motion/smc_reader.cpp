@@ -168,7 +168,7 @@ std::vector<Component> read_smc(const std::string& path, std::string_view data) 
       if (f[j].empty()) {
         fail(path, ln.number, "empty 10-character field " + std::to_string(j + 1) + " in the data");
       }
-      c.accel.push_back(number_or_fail(f[j], path, ln.number) * scale);
+      c.accel.push_back(scaled_or_fail(number_or_fail(f[j], path, ln.number), scale, path, ln.number));
     }
     last_data_line = ln.number;
     if (f.size() < 8 && c.accel.size() < want) {

@@ -66,8 +66,8 @@ std::vector<Component> read_csv(const std::string& path, std::string_view data, 
     }
     const double t = number_or_fail(toks[0], path, ln.number);
     ts.push_back({t, printed_resolution(toks[0]), ln.number});
-    h.push_back(number_or_fail(toks[1], path, ln.number) * scale);
-    if (ncols == 3) v.push_back(number_or_fail(toks[2], path, ln.number) * scale);
+    h.push_back(scaled_or_fail(number_or_fail(toks[1], path, ln.number), scale, path, ln.number));
+    if (ncols == 3) v.push_back(scaled_or_fail(number_or_fail(toks[2], path, ln.number), scale, path, ln.number));
   }
   if (ts.empty()) fail(path, 0, "empty data: no data rows");
   const double dt = check_uniform_time(path, ts);
