@@ -259,24 +259,18 @@ const char* TargetName() { return hwy::TargetName(HWY_TARGET); }
 
 // sin and cos of n values (n a multiple of 16), as the dopri5 kernel evaluates them per stage
 // (for the benchmark of their cost).
-void SinCosExact(const double* x, double* s, double* c, std::size_t n) {
+template <bool kExact>
+void SinCosT(const double* x, double* s, double* c, std::size_t n) {
   const hn::ScalableTag<double> d;
   for (std::size_t i = 0; i < n; i += hn::Lanes(d)) {
     hn::Vec<hn::ScalableTag<double>> vs, vc;
-    SinCos<true>(d, hn::LoadU(d, x + i), vs, vc);
+    SinCos<kExact>(d, hn::LoadU(d, x + i), vs, vc);
     hn::StoreU(vs, d, s + i);
     hn::StoreU(vc, d, c + i);
   }
 }
-void SinCosFast(const double* x, double* s, double* c, std::size_t n) {
-  const hn::ScalableTag<double> d;
-  for (std::size_t i = 0; i < n; i += hn::Lanes(d)) {
-    hn::Vec<hn::ScalableTag<double>> vs, vc;
-    SinCos<false>(d, hn::LoadU(d, x + i), vs, vc);
-    hn::StoreU(vs, d, s + i);
-    hn::StoreU(vc, d, c + i);
-  }
-}
+void SinCosExact(const double* x, double* s, double* c, std::size_t n) { SinCosT<true>(x, s, c, n); }
+void SinCosFast(const double* x, double* s, double* c, std::size_t n) { SinCosT<false>(x, s, c, n); }
 
 }  // namespace HWY_NAMESPACE
 }  // namespace rocking_monitor::core::batch_detail
