@@ -3,6 +3,7 @@
 # when its dependency is missing, so the rest of the package still builds.
 #
 #   rocking_benchmarks   Google Benchmark: ns per item-step, real-time capacity at 200 Hz
+#   monitor_benchmarks   Google Benchmark: the live monitor's core per input sample (10,000 two-plane items)
 #   rocking_accuracy     work-precision, overturn agreement and stability-map CSVs (docs/performance)
 #   reference_tests      gtest: dopri5 at tight tolerance against SUNDIALS CVODE (ctest)
 #
@@ -31,6 +32,14 @@ if(benchmark_FOUND)
   target_compile_definitions(rocking_benchmarks PRIVATE ROCKING_RECORDS_DIR="${ROCKING_RECORDS_DIR}")
   target_compile_options(rocking_benchmarks PRIVATE -Wall -Wextra)
   set_target_properties(rocking_benchmarks PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_TOOL_DIR})
+
+  add_executable(monitor_benchmarks bench/monitor_benchmarks.cpp)
+  target_include_directories(monitor_benchmarks PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/bench ${CMAKE_CURRENT_SOURCE_DIR}/test/support)
+  target_link_libraries(monitor_benchmarks PRIVATE rocking_monitor_core benchmark::benchmark)
+  target_compile_definitions(monitor_benchmarks PRIVATE ROCKING_RECORDS_DIR="${ROCKING_RECORDS_DIR}"
+                             ROCKING_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
+  target_compile_options(monitor_benchmarks PRIVATE -Wall -Wextra)
+  set_target_properties(monitor_benchmarks PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_TOOL_DIR})
 else()
   message(STATUS "rocking_monitor: Google Benchmark not found (libbenchmark-dev): "
                  "rocking_benchmarks not built")

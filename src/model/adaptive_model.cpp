@@ -384,6 +384,29 @@ void AdaptiveModel::switch_down(SwitchReason reason, double ax, double ay) {
   record(t_, ActiveModel::Rocking, reason, t_);
 }
 
+void AdaptiveModel::apply_rest_samples(double t, double ax, double ay, double dt, long n) {
+  // What n calls of step() do on these paths: RockingModel rest (or overturned) samples without
+  // integrator steps, count_rocking_work() and accumulate_rocking() with an empty report; or
+  // ContactModel overturned samples, contact_step() and accumulate_contact() changing nothing but
+  // counters, the hold timer reset; then the clock and inputs.
+  report_ = AdaptiveReport{};
+  if (active_ == ActiveModel::Contact) {
+    contact_.apply_overturned_samples(t, ax, ay, dt, n);
+    report_.contact_samples = 1;
+    outcome_.samples_contact_model += n;
+    if (settings_.fidelity == Fidelity::Adaptive) hold_ = 0.0;
+  } else {
+    rock_.apply_rest_samples(t, ax, ay, n);
+    report_.rocking_samples = 1;
+    outcome_.samples_rocking_model += n;
+  }
+  report_.model = active_;
+  outcome_.samples += n;
+  t_ = t;
+  ax_prev_ = ax;
+  ay_prev_ = ay;
+}
+
 const AdaptiveReport& AdaptiveModel::step(double ax, double ay, double dt) {
   require_valid_sample(ax, ay, dt, "AdaptiveModel::step");
   report_ = AdaptiveReport{};

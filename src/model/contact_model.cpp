@@ -285,4 +285,18 @@ const ContactReport& ContactModel::step(double ax, double ay, double dt) {
   return report_;
 }
 
+void ContactModel::apply_overturned_samples(double t, double ax, double ay, double dt, long n) {
+  report_ = ContactReport{};
+  dt_ = dt;
+  t_ = t;
+  ax_prev_ = ax;
+  ay_prev_ = ay;
+  outcome_.samples += n;
+  report_.mode = mode_;
+  report_.side = side_;
+  report_.slip = slip();
+  report_.slip_velocity = slip_velocity();
+  report_.theta = x_[2];
+}
+
 }  // namespace rocking_monitor::core

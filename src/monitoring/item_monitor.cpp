@@ -22,6 +22,8 @@ ItemMonitor::ItemMonitor(const ItemSpec& spec, const Options& options) : spec_(c
 void ItemMonitor::start(double t, double ax, double ay, double az, double dt_nominal) {
   planes_[0]->start(t, ax, az, dt_nominal);
   if (planes_[1]) planes_[1]->start(t, ay, az, dt_nominal);
+  last_input_[0] = {ax, az};
+  last_input_[1] = {ay, az};
   alarmed_.fill(false);
   events_ = ItemEvents{};
   started_ = true;
@@ -31,7 +33,11 @@ const ItemEvents& ItemMonitor::step(double ax, double ay, double az, double dt) 
   events_.change_count = 0;
   events_.alarm_count = 0;
   const PlaneEvents* ev[kPlaneCount] = {&planes_[0]->step(ax, az, dt), nullptr};
-  if (planes_[1]) ev[1] = &planes_[1]->step(ay, az, dt);
+  last_input_[0] = {ax, az};
+  if (planes_[1]) {
+    ev[1] = &planes_[1]->step(ay, az, dt);
+    last_input_[1] = {ay, az};
+  }
   for (int p = 0; p < kPlaneCount; ++p) {
     if (ev[p] == nullptr) continue;
     for (int i = 0; i < ev[p]->change_count; ++i) {

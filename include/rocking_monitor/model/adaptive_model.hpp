@@ -166,6 +166,22 @@ class AdaptiveModel {
   /// The static pre-check (computed at construction): what friction the scene can demand.
   const SlidingBound& sliding_bound() const { return bound_; }
   const Body& body() const { return body_; }
+
+  // ---- For MonitorBatch (monitoring/monitor_batch.hpp), which defers quiet samples of many items.
+  /// The next sample may be deferred: adaptive fidelity with the pure-rocking model active at REST or
+  /// OVERTURNED (not on the linearized tier), or the contact model OVERTURNED (after the sample of
+  /// the overturn).
+  bool rest_deferrable() const {
+    if (active_ == ActiveModel::Contact)
+      return settings_.fidelity != Fidelity::Rocking && contact_.mode() == ContactMode::Overturned &&
+             outcome_.overturned && outcome_.committed && outcome_.beyond_tipping;
+    return settings_.fidelity == Fidelity::Adaptive && !lin_active_ &&
+           (rock_.mode() == Mode::Rest || (rock_.mode() == Mode::Overturned && rock_.outcome().committed));
+  }
+  /// n samples that step() would have spent at REST (no corner lifting, no criterion at their ends)
+  /// or OVERTURNED, with every input inside the scene envelope, applied at once: t is the caller's
+  /// sum time() + dt + dt ... (the same additions as step()), (ax, ay) and dt the last sample's.
+  void apply_rest_samples(double t, double ax, double ay, double dt, long n);
   const AdaptiveSettings& settings() const { return settings_; }
   /// |P_x| / P_y of a sticking impact from pure rocking that makes corner `new_side` the pivot
   /// (geometry and restitution only): the impact slips in ContactModel when mu_s is below it.

@@ -75,6 +75,9 @@ class ContactModel {
   void reset(double t, double ax = 0.0, double ay = 0.0);
   /// dt finite > 0 and finite inputs, else std::invalid_argument (state unchanged).
   const ContactReport& step(double ax, double ay, double dt);
+  /// n samples of an OVERTURNED body applied at once (what n calls of step() do then: count time
+  /// and samples): t the caller's sum time() + dt + ..., (ax, ay) and dt those of the last sample.
+  void apply_overturned_samples(double t, double ax, double ay, double dt, long n);
 
   /// Exact state transfer (used by AdaptiveModel to take over from RockingModel): places the
   /// body at time t (s), with the current ground acceleration (ax, ay) (the start of the next

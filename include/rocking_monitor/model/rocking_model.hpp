@@ -110,7 +110,8 @@ class RockingModel {
 
   /// n samples at REST that BatchRocking kept for this body (no corner lifted, no criterion
   /// violated at any of their ends), applied at once: the time (the caller's sum t_ + dt + dt...,
-  /// the same additions as step()), the last inputs and the sample count. No allocation.
+  /// the same additions as step()), the last inputs and the sample count. No allocation. Also
+  /// n samples of a body OVERTURNED before them (committed latched): step() does the same then.
   void apply_rest_samples(double t, double ax, double ay, long n);
 
   /// A sample in which a ROCKING body took dopri5 steps elsewhere, with the same arithmetic as

@@ -44,11 +44,13 @@ class ItemMonitor {
   bool screening_exceeded(Plane p, CriterionId id) const { return plane(p).screening_exceeded(id); }
 
  private:
+  friend class MonitorBatch;  // defers quiet samples of many items (monitoring/monitor_batch.hpp)
   ItemSpec spec_;
   std::array<std::unique_ptr<PlaneMonitor>, kPlaneCount> planes_;
   std::array<bool, 3> alarmed_{};  // BEYOND_TIPPING, COMMITTED, OVERTURNED reached by the item
   bool started_ = false;
   ItemEvents events_;
+  std::array<std::array<double, 2>, kPlaneCount> last_input_{};  // each plane's last (horizontal, vertical), m/s^2
 };
 
 }  // namespace rocking_monitor::core

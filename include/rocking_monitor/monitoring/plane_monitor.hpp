@@ -71,6 +71,7 @@ class PlaneMonitor {
   double housner_demand() const { return intensity_ ? intensity_->psv()[0] : 0.0; }
 
  private:
+  friend class MonitorBatch;  // defers quiet samples of many planes (monitoring/monitor_batch.hpp)
   void evaluate_criteria(double ax, double ay);
   void report_switch(SwitchReason reason, bool to_contact);
   void record_change(CriterionId id, bool exceeded, double value, double threshold,

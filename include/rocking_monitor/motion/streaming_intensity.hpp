@@ -90,6 +90,24 @@ class StreamingIntensity {
 
   const StreamingIntensityConfig& config() const { return config_; }
 
+  /// The whole state of a one-period intensity without the oscillator pre-filter (the live
+  /// monitor's: its item's Housner period) as one flat record. MonitorBatch keeps these records of
+  /// many items in one compact array, advances quiet samples there and writes them back.
+  struct Lane {
+    double b0, b1, b2, a1, a2, x1, x2, y1, y2;  // velocity filter
+    NigamJenningsCoefficients osc;
+    double u, v;                                // oscillator state, m and m/s
+    double prev_drive, vel, pga, pgv, max_u;
+    std::size_t count;
+  };
+  /// One period, no oscillator pre-filter, at least one sample pushed.
+  bool lane_eligible() const { return oscillators_.size() == 1 && !filter_oscillators_ && count_ > 0; }
+  void to_lane(Lane& lane) const;    ///< requires lane_eligible()
+  void from_lane(const Lane& lane);  ///< the state of to_lane() advanced by push_quiet()
+  /// push(accel) on a lane if it raises no running maximum (PGA, PGV, PSV): then true with the lane
+  /// advanced bit for bit as push() would; else false with the lane untouched. accel finite.
+  static bool push_quiet(Lane& lane, double accel);
+
  private:
   /// Direct-form-I biquad: y = b0 x + b1 x1 + b2 x2 - a1 y1 - a2 y2.
   struct Biquad {

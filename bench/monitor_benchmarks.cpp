@@ -1,0 +1,184 @@
+// Cost of the live monitor's core per input sample: every item of a catalogue (ItemMonitor: both
+// rocking planes, running spectra and criteria, the adaptive model) stepped on one 3-component
+// feed, as RockingMonitor::on_sample does after the ROS part (issue 12: "the node with 10,000
+// two-plane items under fidelity adaptive <= 1.5 ms per sample on Kobe Takatori").
+//
+//   monitor_benchmarks [--benchmark_filter=REGEX] ...
+//
+// The catalogue is the one scripts/measure_monitor_load.sh gives the node (scripts/make_catalogue.py,
+// seed 1: random geometry, mu_s and yaw), or ROCKING_BENCH_CATALOGUE=FILE. The input is Kobe 1995
+// Takatori (both horizontals, 100 Hz, 41 s; no vertical record: zero, as in the bag) from ROCKING_RECORDS_DIR, rotated into each
+// item's frame by its yaw as tf2 does in the node.
+//
+// Counters: ms_per_sample (thread CPU time per input sample, all items), ns_per_item_sample,
+// allocs_per_sample (must be 0); the batch also deferred_frac (share of item-samples deferred).
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "allocation_counter.hpp"
+#include "bench_common.hpp"
+#include "rocking_monitor/monitoring/catalogue_file.hpp"
+#include "rocking_monitor/monitoring/item_monitor.hpp"
+#include "rocking_monitor/monitoring/monitor_batch.hpp"
+#include "rocking_monitor/motion/station.hpp"
+
+namespace rb = rocking_monitor::bench;
+using namespace rocking_monitor::core;
+
+namespace {
+
+struct Feed {
+  std::vector<double> e, n, up;  // m/s^2, sensor frame (x east-ish, y north-ish, z up)
+  double dt = 0.0;
+};
+
+struct Case {
+  std::vector<CatalogueItem> items;
+  Feed feed;
+  std::vector<double> cos_yaw, sin_yaw;
+};
+
+std::unique_ptr<Case> g_case;
+
+std::string catalogue_path(std::size_t n, bool single_plane) {
+  if (const char* env = std::getenv("ROCKING_BENCH_CATALOGUE")) return env;
+  const std::string out = "/tmp/rocking_monitor_bench_catalogue_" + std::to_string(n) +
+                          (single_plane ? "_1" : "_2") + ".yaml";
+  const std::string cmd = "/usr/bin/python3 " ROCKING_SOURCE_DIR "/scripts/make_catalogue.py " +
+                          std::to_string(n) + " " + out + (single_plane ? " --single-plane" : "");
+  if (std::system(cmd.c_str()) != 0) throw std::runtime_error("monitor_benchmarks: '" + cmd + "' failed");
+  return out;
+}
+
+Feed load_takatori(const std::string& dir) {
+  const StationListing listing = list_stations(dir);
+  const StationRecord st = load_station(find_station(listing, "RSN1120_KOBE_TAK000.AT2"));
+  // Takatori has no vertical record here: the vertical input is then zero (as in the bag).
+  if (st.horizontals.size() != 2) throw std::runtime_error("Takatori: 2 horizontal components expected");
+  Feed f;
+  f.dt = st.horizontals[0].dt;
+  std::size_t n = std::min(st.horizontals[0].accel.size(), st.horizontals[1].accel.size());
+  if (st.vertical) n = std::min(n, st.vertical->accel.size());
+  f.e.assign(st.horizontals[0].accel.begin(), st.horizontals[0].accel.begin() + n);
+  f.n.assign(st.horizontals[1].accel.begin(), st.horizontals[1].accel.begin() + n);
+  if (st.vertical) f.up.assign(st.vertical->accel.begin(), st.vertical->accel.begin() + n);
+  else f.up.assign(n, 0.0);
+  return f;
+}
+
+ItemMonitor::Options options() {
+  ItemMonitor::Options o;  // the node's defaults: adaptive, dopri5 tol 1e-8
+  o.fidelity = Fidelity::Adaptive;
+  return o;
+}
+
+// Item frame input: R(item <- sensor) = Rz(-yaw).
+inline void item_input(const Case& c, std::size_t k, std::size_t i, double& ax, double& ay) {
+  ax = c.cos_yaw[k] * c.feed.e[i] + c.sin_yaw[k] * c.feed.n[i];
+  ay = -c.sin_yaw[k] * c.feed.e[i] + c.cos_yaw[k] * c.feed.n[i];
+}
+
+void finish(benchmark::State& state, double seconds, double samples, double items, double allocs) {
+  state.counters["ms_per_sample"] = 1e3 * seconds / samples;
+  state.counters["ns_per_item_sample"] = 1e9 * seconds / (samples * items);
+  state.counters["allocs_per_sample"] = allocs / samples;
+  state.counters["items"] = items;
+}
+
+// Today's node: one ItemMonitor per item, stepped one after another.
+void BM_ItemMonitors(benchmark::State& state) {
+  const Case& c = *g_case;
+  std::vector<std::unique_ptr<ItemMonitor>> items;
+  for (const CatalogueItem& it : c.items) items.push_back(std::make_unique<ItemMonitor>(it.spec, options()));
+  const std::size_t n = c.feed.e.size();
+  double seconds = 0, samples = 0, allocs = 0;
+  for (auto _ : state) {
+    for (std::size_t k = 0; k < items.size(); ++k) {
+      double ax, ay;
+      item_input(c, k, 0, ax, ay);
+      items[k]->start(0.0, ax, ay, c.feed.up[0], c.feed.dt);
+    }
+    const long a0 = rocking_monitor::testing::allocation_count();
+    const double t0 = rb::thread_cpu_seconds();
+    for (std::size_t i = 1; i < n; ++i) {
+      for (std::size_t k = 0; k < items.size(); ++k) {
+        double ax, ay;
+        item_input(c, k, i, ax, ay);
+        items[k]->step(ax, ay, c.feed.up[i], c.feed.dt);
+      }
+    }
+    seconds += rb::thread_cpu_seconds() - t0;
+    allocs += static_cast<double>(rocking_monitor::testing::allocation_count() - a0);
+    samples += static_cast<double>(n - 1);
+  }
+  finish(state, seconds, samples, static_cast<double>(items.size()), allocs);
+}
+
+// The batch (monitoring/monitor_batch.hpp): the same items, quiet samples deferred. Counter
+// deferred_frac: share of item-samples deferred.
+void BM_MonitorBatch(benchmark::State& state) {
+  const Case& c = *g_case;
+  std::vector<std::unique_ptr<ItemMonitor>> items;
+  for (const CatalogueItem& it : c.items) items.push_back(std::make_unique<ItemMonitor>(it.spec, options()));
+  const std::size_t n = c.feed.e.size(), m = items.size();
+  std::vector<double> ax(m), ay(m), az(m);
+  double seconds = 0, samples = 0, allocs = 0, deferred = 0, planes = 0;
+  auto fill = [&](std::size_t i) {
+    for (std::size_t k = 0; k < m; ++k) {
+      item_input(c, k, i, ax[k], ay[k]);
+      az[k] = c.feed.up[i];
+    }
+  };
+  for (auto _ : state) {
+    fill(0);
+    std::vector<ItemMonitor*> ptrs;
+    for (std::size_t k = 0; k < m; ++k) {
+      items[k]->start(0.0, ax[k], ay[k], az[k], c.feed.dt);
+      ptrs.push_back(items[k].get());
+    }
+    MonitorBatch batch(ptrs);
+    const long a0 = rocking_monitor::testing::allocation_count();
+    const double t0 = rb::thread_cpu_seconds();
+    for (std::size_t i = 1; i < n; ++i) {
+      fill(i);  // as the node: each item's input rotated into its frame
+      deferred += static_cast<double>(batch.step(0, m, ax.data(), ay.data(), az.data(), c.feed.dt));
+      planes += static_cast<double>(m);
+    }
+    seconds += rb::thread_cpu_seconds() - t0;
+    allocs += static_cast<double>(rocking_monitor::testing::allocation_count() - a0);
+    samples += static_cast<double>(n - 1);
+  }
+  finish(state, seconds, samples, static_cast<double>(m), allocs);
+  state.counters["deferred_frac"] = deferred / planes;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  const std::string dir = rb::records_dir();
+  if (!rb::records_available(dir)) {
+    std::fprintf(stderr, "monitor_benchmarks: records folder %s not found (set ROCKING_RECORDS_DIR)\n", dir.c_str());
+    return 0;
+  }
+  const std::size_t n_items = std::getenv("ROCKING_BENCH_ITEMS") ? std::stoul(std::getenv("ROCKING_BENCH_ITEMS")) : 10000;
+  g_case = std::make_unique<Case>();
+  g_case->items = load_catalogue_items_file(catalogue_path(n_items, false));
+  g_case->feed = load_takatori(dir);
+  for (const CatalogueItem& it : g_case->items) {
+    g_case->cos_yaw.push_back(std::cos(it.pose.yaw));
+    g_case->sin_yaw.push_back(std::sin(it.pose.yaw));
+  }
+  const std::string tag = "monitor/takatori/" + std::to_string(g_case->items.size()) + "_two_plane/adaptive";
+  benchmark::RegisterBenchmark((tag + "/item_monitors").c_str(), BM_ItemMonitors)->Unit(benchmark::kMillisecond)->Iterations(1);
+  benchmark::RegisterBenchmark((tag + "/batch").c_str(), BM_MonitorBatch)->Unit(benchmark::kMillisecond)->Iterations(1);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,88 @@
+#pragma once
+
+// Many live items stepped together on one input sample each (issue 12: the batch engine in the node).
+//
+// Why: with thousands of items, most item-samples are quiet: the item stands at rest and the sample
+// changes nothing that anybody reads (no corner lifts, no criterion changes, no running maximum of
+// its intensity grows). Stepped one by one, each such sample still walks the item's whole object
+// graph (two PlaneMonitors, their adaptive, rocking and contact models and running spectra: ~10 KB
+// per item, far beyond the caches at 10,000 items), so the monitor is bound by memory, not by
+// arithmetic. The batch keeps what a quiet sample needs in one compact record per item (~0.5 KB:
+// the uplift coefficients of both corners, friction, the last input and the running-intensity
+// filter states) and advances quiet samples there; the ItemMonitor, which stays the authority,
+// is brought up to date (sync) before it steps a sample that is not quiet and before anybody reads it.
+//
+// Exactness: a deferred sample is one that ItemMonitor::step would have run as "nothing happens"
+// (RockingModel at REST, no uplift, sample end inside the scene without sliding or flight, no new
+// PGA / PGV / PSV maximum, so no criterion changes). The uplift and sample-end tests use a margin
+// of 1e-9 of the input (the model interpolates the input, which can differ in the last bit); the
+// intensity filters run the same arithmetic in the same order. Every item therefore ends every
+// sample bit for bit as if stepped alone (test/monitoring/test_monitor_batch.cpp).
+//
+// Deferred too: planes that overturned before the sample, in the rocking or the contact model
+// (their model only counts time then).
+// Not deferred (stepped by ItemMonitor::step): rocking, sliding, the contact model before an
+// overturn, the linearized tier, spectra with a pre-filter or several periods.
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "rocking_monitor/monitoring/item_monitor.hpp"
+#include "rocking_monitor/motion/streaming_intensity.hpp"
+
+namespace rocking_monitor::core {
+
+class MonitorBatch {
+ public:
+  /// items: started ItemMonitors, not owned; they must outlive the batch, and while the batch holds
+  /// deferred samples of an item nobody else may step it (sync() it first).
+  explicit MonitorBatch(std::vector<ItemMonitor*> items = {});
+
+  std::size_t size() const { return items_.size(); }
+
+  /// Item k was (re)started or stepped outside the batch: read its state again (no deferred samples
+  /// of it may be pending: call sync(k) before touching it).
+  void refresh(std::size_t k);
+
+  /// One sample for items begin..end-1 with active == nullptr or active[k] != 0: exactly
+  /// items[k]->step(ax[k], ay[k], az[k], dt) (item frame, m/s^2, dt s). Disjoint ranges may run on
+  /// different threads. Returns how many of those item-samples were deferred. No allocation.
+  std::size_t step(std::size_t begin, std::size_t end, const double* ax, const double* ay, const double* az,
+                   double dt, const std::uint8_t* active = nullptr);
+
+  /// Events of item k's last sample in step() (none when it was deferred).
+  const ItemEvents& events(std::size_t k) const { return lanes_[k].stepped ? items_[k]->events() : kNoEvents; }
+
+  /// Brings item k's monitor up to date (applies its deferred samples). Before reading it.
+  void sync(std::size_t k);
+  void sync_all();
+  /// Deferred samples still pending for item k.
+  long pending(std::size_t k) const { return lanes_[k].deferred; }
+
+ private:
+  struct PlaneLane {
+    double cs[2] = {0.0, 0.0}, sn[2] = {0.0, 0.0};  // uplift test, corner s = +1 (0) and -1 (1)
+    double mu = 0.0;                                 // friction; inf: not checked
+    bool overturned = false;                         // the model lies on its side: no uplift or contact test
+    double scene_h = 0.0, scene_v = 0.0;             // scene envelope, m/s^2 (inf: unknown)
+    double ax_prev = 0.0, ay_prev = 0.0;             // last input of the plane, m/s^2
+    StreamingIntensity::Lane intensity{};
+  };
+  struct Lane {
+    double t = 0.0;         // the models' clock after the deferred samples, s
+    double dt = 0.0;        // the last deferred sample's interval, s
+    long deferred = 0;      // samples not yet applied to the monitor
+    bool eligible = false;  // every plane may defer its next sample
+    bool stepped = false;   // the last sample went through ItemMonitor::step
+    int planes = 1;
+    PlaneLane plane[kPlaneCount];
+  };
+  bool quiet(Lane& lane, double ax, double ay, double az) const;
+
+  static const ItemEvents kNoEvents;
+  std::vector<ItemMonitor*> items_;
+  std::vector<Lane> lanes_;
+};
+
+}  // namespace rocking_monitor::core

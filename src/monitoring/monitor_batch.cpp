@@ -1,0 +1,155 @@
+#include "rocking_monitor/monitoring/monitor_batch.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "rocking_monitor/constants.hpp"
+
+namespace rocking_monitor::core {
+
+const ItemEvents MonitorBatch::kNoEvents{};
+
+MonitorBatch::MonitorBatch(std::vector<ItemMonitor*> items) : items_(std::move(items)), lanes_(items_.size()) {
+  for (std::size_t k = 0; k < items_.size(); ++k) {
+    if (items_[k] == nullptr) throw std::invalid_argument("MonitorBatch: item " + std::to_string(k) + " is null");
+    refresh(k);
+  }
+}
+
+void MonitorBatch::refresh(std::size_t k) {
+  const ItemMonitor& item = *items_[k];
+  Lane& lane = lanes_[k];
+  lane.deferred = 0;
+  lane.planes = item.plane_count();
+  lane.eligible = item.started();
+  for (int p = 0; p < lane.planes && lane.eligible; ++p) {
+    const PlaneMonitor& pm = *item.planes_[p];
+    PlaneLane& pl = lane.plane[p];
+    const AdaptiveModel* adaptive = pm.adaptive_.get();
+    bool ok = pm.started_ && pm.intensity_ && pm.intensity_->lane_eligible();
+    if (adaptive != nullptr) {
+      ok = ok && adaptive->rest_deferrable();
+    } else {
+      // Pure rocking: at rest with no validity criterion standing (a stale one is cleared by a step).
+      ok = ok && (pm.model_.mode() == Mode::Rest ||
+                  (pm.model_.mode() == Mode::Overturned && pm.model_.outcome().committed)) &&
+           !pm.slid_at_uplift_;
+      for (CriterionId id : {CriterionId::FreeFlight, CriterionId::SlideFromRest, CriterionId::SlideAtUplift,
+                             CriterionId::SlideWhileRocking})
+        ok = ok && !pm.exceeded_[static_cast<int>(id)];
+    }
+    if (!ok) {
+      lane.eligible = false;
+      break;
+    }
+    const Body& body = pm.model_.body();
+    const bool linear = pm.options_.solver.model == ModelKind::Linearized;
+    for (int i = 0; i < 2; ++i) {
+      const Pivot& pv = body.pivot(i == 0 ? 1 : -1);
+      pl.cs[i] = linear ? 1.0 : pv.cos_alpha;  // uplift_function(): linearized cos -> 1, sin -> alpha
+      pl.sn[i] = linear ? pv.alpha : pv.sin_alpha;
+    }
+    pl.mu = body.mu_s();
+    pl.overturned = (adaptive != nullptr ? adaptive->mode() : pm.contact_mode()) == ContactMode::Overturned;
+    const SceneEnvelope scene = adaptive != nullptr ? adaptive->settings().scene : SceneEnvelope{};
+    pl.scene_h = scene.horizontal;
+    pl.scene_v = scene.vertical;
+    // The inputs the model interpolates from; both models hold the same clock (AdaptiveModel resets
+    // its rocking model at its own time on every switch down).
+    const RockingModel& rm = pm.model_;
+    if (adaptive != nullptr) {
+      lane.t = adaptive->time();
+    } else {
+      lane.t = rm.time();
+    }
+    pm.intensity_->to_lane(pl.intensity);
+  }
+  if (lane.eligible) {
+    // The previous inputs are those of the item's last step, as each plane saw them.
+    for (int p = 0; p < lane.planes; ++p) {
+      lane.plane[p].ax_prev = item.last_input_[p][0];
+      lane.plane[p].ay_prev = item.last_input_[p][1];
+    }
+  }
+}
+
+// Whether the sample is quiet for every plane of the lane; if so it is applied to the lane.
+bool MonitorBatch::quiet(Lane& lane, double ax, double ay, double az) const {
+  StreamingIntensity::Lane next[kPlaneCount];
+  for (int p = 0; p < lane.planes; ++p) {
+    const PlaneLane& pl = lane.plane[p];
+    const double x1 = p == 0 ? ax : ay, y1 = az, x0 = pl.ax_prev, y0 = pl.ay_prev;
+    if (x1 > pl.scene_h || -x1 > pl.scene_h || y1 > pl.scene_v || -y1 > pl.scene_v) return false;  // SceneEnvelope::contains
+    next[p] = pl.intensity;
+    if (!StreamingIntensity::push_quiet(next[p], x1)) return false;
+    if (pl.overturned) continue;
+    // Margin: the model evaluates the input interpolated at the sample ends, which may differ from
+    // (x0, y0), (x1, y1) in the last bit.
+    const double m = 1e-9 * (std::abs(x0) + std::abs(y0) + std::abs(x1) + std::abs(y1) + kGravity);
+    for (int i = 0; i < 2; ++i) {
+      const double s = i == 0 ? 1.0 : -1.0;
+      // uplift_function() at both ends: linear in the input, so negative all through the sample.
+      if (!(s * x0 * pl.cs[i] - (y0 + kGravity) * pl.sn[i] < -m)) return false;
+      if (!(s * x1 * pl.cs[i] - (y1 + kGravity) * pl.sn[i] < -m)) return false;
+    }
+    const double normal = y1 + kGravity;
+    if (!(normal > m)) return false;                                               // free flight
+    if (!std::isinf(pl.mu) && !(std::abs(x1) + m * (1.0 + pl.mu) < pl.mu * normal)) return false;  // sliding
+  }
+  for (int p = 0; p < lane.planes; ++p) {
+    PlaneLane& pl = lane.plane[p];
+    pl.intensity = next[p];
+    pl.ax_prev = p == 0 ? ax : ay;
+    pl.ay_prev = az;
+  }
+  return true;
+}
+
+std::size_t MonitorBatch::step(std::size_t begin, std::size_t end, const double* ax, const double* ay,
+                               const double* az, double dt, const std::uint8_t* active) {
+  std::size_t deferred = 0;
+  for (std::size_t k = begin; k < end; ++k) {
+    Lane& lane = lanes_[k];
+    lane.stepped = false;
+    if (active != nullptr && active[k] == 0) continue;
+    // Invalid samples (non-finite, dt <= 0) go to ItemMonitor::step, which rejects them.
+    if (lane.eligible && std::isfinite(ax[k]) && std::isfinite(ay[k]) && std::isfinite(az[k]) && dt > 0.0 &&
+        std::isfinite(dt) && quiet(lane, ax[k], ay[k], az[k])) {
+      lane.t += dt;
+      lane.dt = dt;
+      ++lane.deferred;
+      ++deferred;
+      continue;
+    }
+    sync(k);
+    items_[k]->step(ax[k], ay[k], az[k], dt);
+    lane.stepped = true;
+    refresh(k);
+  }
+  return deferred;
+}
+
+void MonitorBatch::sync(std::size_t k) {
+  Lane& lane = lanes_[k];
+  if (lane.deferred == 0) return;
+  ItemMonitor& item = *items_[k];
+  for (int p = 0; p < lane.planes; ++p) {
+    PlaneMonitor& pm = *item.planes_[p];
+    const PlaneLane& pl = lane.plane[p];
+    pm.intensity_->from_lane(pl.intensity);
+    if (pm.adaptive_) pm.adaptive_->apply_rest_samples(lane.t, pl.ax_prev, pl.ay_prev, lane.dt, lane.deferred);
+    else pm.model_.apply_rest_samples(lane.t, pl.ax_prev, pl.ay_prev, lane.deferred);
+    pm.events_.change_count = 0;
+    pm.events_.alarm_count = 0;
+    item.last_input_[p] = {pl.ax_prev, pl.ay_prev};
+  }
+  item.events_.change_count = 0;
+  item.events_.alarm_count = 0;
+  lane.deferred = 0;
+}
+
+void MonitorBatch::sync_all() {
+  for (std::size_t k = 0; k < lanes_.size(); ++k) sync(k);
+}
+
+}  // namespace rocking_monitor::core
