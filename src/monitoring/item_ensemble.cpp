@@ -35,6 +35,12 @@ ItemEnsemble::ItemEnsemble(const std::vector<ItemSpec>& members, const ItemMonit
 
 void ItemEnsemble::start(double t, double ax, double ay, double az, double dt_nominal) {
   for (ItemMonitor& m : members_) m.start(t, ax, ay, az, dt_nominal);
+  std::vector<ItemMonitor*> ptrs;
+  for (ItemMonitor& m : members_) ptrs.push_back(&m);
+  batch_ = std::make_unique<MonitorBatch>(std::move(ptrs));
+  in_x_.assign(members_.size(), 0.0);
+  in_y_.assign(members_.size(), 0.0);
+  in_z_.assign(members_.size(), 0.0);
   reached_.fill(0);
   crossed_.fill(false);
   for (auto& r : member_reached_) r.fill(false);
@@ -43,12 +49,16 @@ void ItemEnsemble::start(double t, double ax, double ay, double az, double dt_no
 
 const EnsembleEvents& ItemEnsemble::step(double ax, double ay, double az, double dt) {
   events_.count = 0;
-  for (ItemMonitor& m : members_) m.step(ax, ay, az, dt);
+  if (!batch_) throw std::logic_error("ItemEnsemble::step before start()");
+  std::fill(in_x_.begin(), in_x_.end(), ax);
+  std::fill(in_y_.begin(), in_y_.end(), ay);
+  std::fill(in_z_.begin(), in_z_.end(), az);
+  batch_->step(0, members_.size(), in_x_.data(), in_y_.data(), in_z_.data(), dt);
   for (int l = 0; l < kLevelCount; ++l) {
     // Member times of this level in this sample, in order, to find the one that crossed.
     times_.clear();
     for (std::size_t i = 0; i < members_.size(); ++i) {
-      const ItemEvents& ev = members_[i].events();
+      const ItemEvents& ev = batch_->events(i);
       for (int k = 0; k < ev.alarm_count; ++k) {
         if (static_cast<int>(ev.alarms[k].level) - static_cast<int>(ItemMode::BeyondTipping) != l) continue;
         if (!member_reached_[i][l]) {

@@ -311,6 +311,23 @@ void RockingMonitor::reset_all(const std::string& why) {
     ++s.resets;
   }
   for (Item& it : items_) make_models(it);
+  for (Sensor& s : sensors_) s.batch.reset();
+}
+
+void RockingMonitor::rebuild_batch(Sensor& s) {
+  std::vector<core::ItemMonitor*> monitors;
+  monitors.reserve(s.items.size());
+  for (std::size_t idx : s.items) monitors.push_back(items_[idx].monitor.get());
+  s.batch = std::make_unique<core::MonitorBatch>(std::move(monitors));
+  s.in_x.assign(s.items.size(), 0.0);
+  s.in_y.assign(s.items.size(), 0.0);
+  s.in_z.assign(s.items.size(), 0.0);
+  s.in_ready.assign(s.items.size(), 0);
+}
+
+void RockingMonitor::sync_items() {
+  for (Sensor& s : sensors_)
+    if (s.batch) s.batch->sync_all();
 }
 
 void RockingMonitor::make_models(Item& it) {

@@ -171,6 +171,7 @@ void RockingMonitor::fill_state(const Item& it, RockingState& out) const {
 
 void RockingMonitor::publish_states() {
   const auto wall_start = std::chrono::steady_clock::now();
+  sync_items();
   ::ros::Time newest;
   for (std::size_t i = 0; i < items_.size(); ++i) {
     fill_state(items_[i], states_msg_.items[i]);
@@ -198,6 +199,7 @@ void RockingMonitor::on_state_timer(const ::ros::TimerEvent&) {
 
 void RockingMonitor::publish_markers_and_tf() {
   if (!publish_markers_ && !publish_tf_) return;
+  sync_items();
   const auto wall_start = std::chrono::steady_clock::now();
   visualization_msgs::MarkerArray markers;
   std::vector<geometry_msgs::TransformStamped> transforms;

@@ -4,6 +4,7 @@
 #include "rocking_monitor/ros/monitor.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 
 #include <geometry_msgs/TransformStamped.h>
@@ -92,6 +93,7 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
                s.spec.name.c_str(), header.stamp.toSec(), s.items.size());
       s.baseline.reset();
       for (std::size_t idx : s.items) make_models(items_[idx]);
+      s.batch.reset();
       break;
     case V::AcceptGap:
       ROS_WARN_THROTTLE(5.0, "rocking_monitor: sensor '%s': %.3f s gap bridged by a straight line (%lu gaps)",
@@ -122,12 +124,15 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
     s.dt_nominal = dt;
     start_items(s, s.first_t, s.first_a);
     s.have_first = false;
+    s.batch.reset();
   }
+  if (!s.batch) rebuild_batch(s);  // allocates: only after a (re)start
   s.mean_dt = s.mean_dt == 0.0 ? dt : 0.99 * s.mean_dt + 0.01 * dt;
   // Serial: items still waiting for their transform, or starting late, are not stepped.
-  for (std::size_t idx : s.items) {
-    Item& it = items_[idx];
+  for (std::size_t k = 0; k < s.items.size(); ++k) {
+    Item& it = items_[s.items[k]];
     it.ready = false;
+    s.in_ready[k] = 0;
     if (!it.has_rotation && !lookup_rotation(it, s.frame)) {
       ++it.samples_without_transform;
       continue;
@@ -137,18 +142,29 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
       it.monitor->start(t, ai.x(), ai.y(), ai.z(), s.dt_nominal);
       if (it.ensemble) it.ensemble->start(t, ai.x(), ai.y(), ai.z(), s.dt_nominal);
       it.stamp = header.stamp;
+      s.batch->refresh(k);
       continue;
     }
     it.ready = true;
+    s.in_ready[k] = 1;
   }
   // Items are independent: step them in parallel when ~threads > 1 (results do not depend on it).
+  // The batch defers quiet item-samples (at rest or overturned: docs/performance.md), exactly.
+  std::atomic<std::uint64_t> deferred{0};
   auto step_range = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      if (!s.in_ready[k]) continue;
+      const Eigen::Vector3d ai = items_[s.items[k]].rotation * a;
+      s.in_x[k] = ai.x();
+      s.in_y[k] = ai.y();
+      s.in_z[k] = ai.z();
+    }
+    deferred += s.batch->step(begin, end, s.in_x.data(), s.in_y.data(), s.in_z.data(), dt, s.in_ready.data());
     for (std::size_t k = begin; k < end; ++k) {
       Item& it = items_[s.items[k]];
       if (!it.ready) continue;
-      const Eigen::Vector3d ai = it.rotation * a;
-      it.monitor->step(ai.x(), ai.y(), ai.z(), dt);
       if (it.ensemble) {
+        const Eigen::Vector3d ai(s.in_x[k], s.in_y[k], s.in_z[k]);
         const auto e0 = std::chrono::steady_clock::now();
         it.ensemble->step(ai.x(), ai.y(), ai.z(), dt);
         it.ensemble_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - e0).count();
@@ -164,11 +180,12 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
   } else {
     step_range(0, s.items.size());
   }
+  s.deferred += deferred.load();
   // Serial: publish what happened, in catalogue order.
-  for (std::size_t idx : s.items) {
-    Item& it = items_[idx];
+  for (std::size_t k = 0; k < s.items.size(); ++k) {
+    Item& it = items_[s.items[k]];
     if (!it.ready) continue;
-    const core::ItemEvents& ev = it.monitor->events();
+    const core::ItemEvents& ev = s.batch->events(k);
     if (ev.change_count > 0 || ev.alarm_count > 0) publish_events(it, ev, header.stamp);
     if (it.ensemble && it.ensemble->events().count > 0) publish_crossings(it, it.ensemble->events(), header.stamp);
   }

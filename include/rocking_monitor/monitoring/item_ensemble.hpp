@@ -5,9 +5,11 @@
 // each overturning level is the probability of that level given this record, with a Wilson interval.
 
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "rocking_monitor/monitoring/item_monitor.hpp"
+#include "rocking_monitor/monitoring/monitor_batch.hpp"
 #include "rocking_monitor/physics/item_verdict.hpp"
 
 namespace rocking_monitor::core {
@@ -42,7 +44,11 @@ class ItemEnsemble {
   const EnsembleEvents& events() const { return events_; }
 
   int size() const { return static_cast<int>(members_.size()); }
-  const ItemMonitor& member(int i) const { return members_[static_cast<std::size_t>(i)]; }
+  /// Member i, brought up to date (the members are stepped as a MonitorBatch).
+  const ItemMonitor& member(int i) const {
+    if (batch_) batch_->sync(static_cast<std::size_t>(i));
+    return members_[static_cast<std::size_t>(i)];
+  }
   long reached(Level l) const { return reached_[static_cast<int>(l)]; }
   double probability(Level l) const { return static_cast<double>(reached(l)) / static_cast<double>(size()); }
   WilsonInterval interval(Level l) const { return wilson_interval(reached(l), size()); }
@@ -57,6 +63,9 @@ class ItemEnsemble {
   std::array<bool, kLevelCount> crossed_{};
   std::vector<std::array<bool, kLevelCount>> member_reached_;
   std::vector<double> times_;  // scratch: this sample's member times of one level (sized once)
+  // The members share every sample: stepped together, quiet member-samples deferred (made at start()).
+  mutable std::unique_ptr<MonitorBatch> batch_;
+  std::vector<double> in_x_, in_y_, in_z_;  // the sample, once per member (sized once)
   EnsembleEvents events_;
 };
 

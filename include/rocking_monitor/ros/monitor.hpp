@@ -26,6 +26,7 @@
 #include "rocking_monitor/motion/gravity_baseline.hpp"
 #include "rocking_monitor/monitoring/item_ensemble.hpp"
 #include "rocking_monitor/monitoring/item_monitor.hpp"
+#include "rocking_monitor/monitoring/monitor_batch.hpp"
 #include "rocking_monitor/motion/sample_timing.hpp"
 #include "rocking_monitor/ros/catalogue.hpp"
 
@@ -80,6 +81,12 @@ class RockingMonitor {
     ::ros::Time last_stamp;
     std::unique_ptr<diagnostic_updater::TopicDiagnostic> topic_diag;
     double min_freq = 0.0, max_freq = 0.0;
+    // The sensor's items stepped together (issue 12); null after their models were (re)made or
+    // (re)started, rebuilt before the next step. Inputs in each item's frame, sized once.
+    std::unique_ptr<core::MonitorBatch> batch;
+    std::vector<double> in_x, in_y, in_z;   // m/s^2
+    std::vector<std::uint8_t> in_ready;     // the item steps this sample
+    std::uint64_t deferred = 0;             // item-samples deferred by the batch (quiet)
   };
 
   bool load_parameters();
@@ -91,6 +98,8 @@ class RockingMonitor {
   void publish_events(Item& item, const core::ItemEvents& events, const ::ros::Time& stamp);
   void publish_crossings(Item& item, const core::EnsembleEvents& events, const ::ros::Time& stamp);
   void make_models(Item& item);  // the nominal ItemMonitor and, for an uncertain item, its ensemble
+  void rebuild_batch(Sensor& s);
+  void sync_items();  // applies the batches' deferred samples: before anything reads the items
   void reset_all(const std::string& why);
   void on_state_timer(const ::ros::TimerEvent&);
   void publish_states();
