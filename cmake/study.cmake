@@ -45,4 +45,9 @@ if(BUILD_TESTING)
                    $<TARGET_FILE:rocking_experiments> ${ROCKING_EXPERIMENTS_DIR}/granite_pbr
                    ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/granite_specimens.yaml)
   set_tests_properties(rocking_experiments_accounting PROPERTIES TIMEOUT 60 SKIP_RETURN_CODE 77)
+  add_test(NAME rocking_experiments_histories
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/experiments_histories.sh
+                   $<TARGET_FILE:rocking_experiments> ${ROCKING_EXPERIMENTS_DIR}/granite_pbr
+                   ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/granite_specimens.yaml)
+  set_tests_properties(rocking_experiments_histories PROPERTIES TIMEOUT 60 SKIP_RETURN_CODE 77)
 endif()

@@ -266,8 +266,9 @@ def rocking_geometry(vertices, faces, rotation=np.eye(3), mass=1.0, contact_tole
     return result, placed
 
 
-def catalogue_entry(item_id, g, sensor="table"):
-    """YAML text of a catalogue item (both planes), with the derivation in comments."""
+def catalogue_entry(item_id, g, sensor="table", restitution_shift=None, mu_s=None):
+    """YAML text of a catalogue item (both planes), with the derivation in comments; an ensemble
+    member may also carry its restitution_shift (added to eq. 34 per pivot) and mu_s."""
     x, y = g["x"], g["y"]
     lines = [f"  - id: {item_id}",
              f"    sensor: {sensor}",
@@ -282,6 +283,10 @@ def catalogue_entry(item_id, g, sensor="table"):
         for k, piv in enumerate(p["pivots"], 1):
             lines.append(f"    # {name}-plane pivot {k}: alpha {math.degrees(piv['alpha']):.4f} deg, R "
                          f"{piv['radius']:.6f} m, I_O {piv['inertia']:.4f} kg m^2")
+    if restitution_shift is not None:
+        lines.append(f"    restitution_shift: {restitution_shift:.6f}   # added to eq. 34's ratio of each pivot")
+    if mu_s is not None:
+        lines.append(f"    mu_s: {mu_s:.6f}   # static friction, granite on the table")
     return "\n".join(lines) + "\n"
 
 
@@ -352,21 +357,33 @@ def granite(directory, tolerance, plot_dir=None, settle_on_hull=True):
     return results, entries
 
 
-def granite_ensemble(directory, members, seed, tolerance, max_tilt_deg=5.0, tol_range=(5e-4, 2e-3)):
+def granite_ensemble(directory, members, seed, tolerance, max_tilt_deg=5.0, tol_range=(5e-4, 2e-3),
+                     restitution_spread=0.05, mu_range=(0.5, 0.8)):
     """Members of each specimen's geometric uncertainty, member 0 the nominal (granite()): the
     placement tilted by up to max_tilt_deg about a random horizontal axis (the configuration's
     orientation is itself uncertain) then settled, the contact tolerance log-uniform in tol_range,
     and for SP2 either of the data's two centres of mass (stated, or the homogeneous mesh's).
+    Members k > 0 also get a restitution shift uniform in +-restitution_spread (added to eq. 34 of
+    each pivot; 0 = not sampled) and mu_s uniform in mu_range (None = not sampled: pure rocking),
+    each from its own generator so that the geometry draws do not depend on them.
     Returns the YAML entries (ids SP1#k) and the number of members refused (no resting face or a
     line contact), which are reported, not replaced."""
     rng = np.random.default_rng(seed)
+    rng_e = np.random.default_rng([seed, 1])
+    rng_mu = np.random.default_rng([seed, 2])
     entries, refused = [], 0
     for name, spec in GRANITE.items():
         v, f = read_obj(os.path.join(directory, spec["mesh"]))
         q = quaternion_matrix(*spec["quaternion"])
         for k in range(members):
             rot, tol, com = q, tolerance, spec["com"]
+            shift = mu = None
             if k > 0:
+                # drawn first so every member consumes the same draws, refused or not
+                de = rng_e.uniform(-restitution_spread, restitution_spread)
+                dm = rng_mu.uniform(*mu_range) if mu_range else None
+                shift = de if restitution_spread > 0 else None
+                mu = dm
                 phi = rng.uniform(0.0, 2.0 * math.pi)
                 tilt = math.radians(rng.uniform(-max_tilt_deg, max_tilt_deg))
                 axis = np.array([math.cos(phi), math.sin(phi), 0.0])
@@ -381,7 +398,7 @@ def granite_ensemble(directory, members, seed, tolerance, max_tilt_deg=5.0, tol_
                 refused += 1
                 print(f"rocking_geometry: {name} member {k} refused: {e}", file=sys.stderr)
                 continue
-            entries.append(catalogue_entry(f"{name}#{k}", g))
+            entries.append(catalogue_entry(f"{name}#{k}", g, restitution_shift=shift, mu_s=mu))
     return entries, refused
 
 
@@ -406,6 +423,13 @@ def main(argv=None):
                     help="with --granite: N members per specimen of its geometric uncertainty "
                          "(ids SP1#k; rocking_experiments gives P(overturn))")
     ap.add_argument("--seed", type=int, default=20, help="ensemble seed (default 20)")
+    ap.add_argument("--restitution-spread", type=float, default=0.05, metavar="D",
+                    help="ensemble: restitution shift uniform in +-D around eq. 34 per pivot (default "
+                         "0.05; 0 = not sampled)")
+    ap.add_argument("--mu-s", nargs=2, type=float, default=(0.5, 0.8), metavar=("LO", "HI"),
+                    help="ensemble: static friction uniform in [LO, HI] (default 0.5 0.8, granite on "
+                         "steel); --no-friction: not sampled (pure rocking)")
+    ap.add_argument("--no-friction", action="store_true", help="ensemble: no mu_s (pure rocking)")
     ap.add_argument("--id", default="item")
     ap.add_argument("--yaml", help="write the catalogue (items:) here")
     ap.add_argument("--json", help="write every number here")
@@ -417,7 +441,14 @@ def main(argv=None):
                 for spec in GRANITE.values():
                     spec["com"] = None
             if a.ensemble > 0:
-                entries, refused = granite_ensemble(a.granite, a.ensemble, a.seed, a.contact_tolerance)
+                if not 0.0 <= a.restitution_spread <= 1.0:
+                    raise GeometryError(f"--restitution-spread {a.restitution_spread}: must lie in [0, 1]")
+                if not 0.0 <= a.mu_s[0] <= a.mu_s[1]:
+                    raise GeometryError(f"--mu-s {a.mu_s[0]} {a.mu_s[1]}: need 0 <= LO <= HI")
+                entries, refused = granite_ensemble(
+                    a.granite, a.ensemble, a.seed, a.contact_tolerance,
+                    restitution_spread=a.restitution_spread,
+                    mu_range=None if a.no_friction else tuple(a.mu_s))
                 results = {}
                 print(f"rocking_geometry: {len(entries)} members written, {refused} refused",
                       file=sys.stderr)

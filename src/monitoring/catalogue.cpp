@@ -164,7 +164,7 @@ CatalogueItem parse_item(const json& v, int i, const std::set<std::string>* sens
   const Entry e(v, label("items", i, name_of(v, "id")));
   e.only({"id", "description", "sensor", "frame", "shape", "width", "depth", "cg_height", "eccentricity",
           "eccentricity_y", "radius_of_gyration", "radius_of_gyration_y", "mu_s", "mu_k", "restitution",
-          "overturn_angle", "pose", "ensemble_size"});
+          "restitution_shift", "overturn_angle", "pose", "ensemble_size"});
   CatalogueItem item;
   ItemSpec& s = item.spec;
   s.id = e.text("id", true);
@@ -211,6 +211,8 @@ CatalogueItem parse_item(const json& v, int i, const std::set<std::string>* sens
   b.mu_s = e.quantity("mu_s", F::MuS, false, b.mu_s, "static friction coefficient", u);
   if (e.has("mu_k")) b.mu_k = e.number("mu_k", false, 0.0, "kinetic friction coefficient");
   if (e.has("restitution")) b.restitution = e.quantity("restitution", F::Restitution, false, 0.0, "angular-velocity ratio", u);
+  if (e.has("restitution_shift"))
+    b.restitution_shift = e.number("restitution_shift", false, 0.0, "added to each pivot's angular-velocity ratio");
   if (e.has("overturn_angle")) b.overturn_angle = e.number("overturn_angle", false, 0.0, "rad");
   u.nominal = s;
   for (const std::string& err : {validate(s), validate(u)}) {

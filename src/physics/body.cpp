@@ -1,5 +1,6 @@
 #include "rocking_monitor/physics/body.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -30,6 +31,8 @@ std::string validate(const BodyParameters& p) {
     return bad("mu_k", p.mu_k, "must be a finite value >= 0");
   if (!std::isnan(p.restitution) && (p.restitution < 0.0 || p.restitution > 1.0))
     return bad("restitution", p.restitution, "angular-velocity ratio must lie in [0, 1]");
+  if (!std::isfinite(p.restitution_shift) || p.restitution_shift < -1.0 || p.restitution_shift > 1.0)
+    return bad("restitution_shift", p.restitution_shift, "must lie in [-1, 1]");
   if (!std::isfinite(p.overturn_angle) || p.overturn_angle <= 0.0 || p.overturn_angle > kPi)
     return bad("overturn_angle", p.overturn_angle, "must lie in (0, pi] rad");
   return {};
@@ -72,6 +75,8 @@ Pivot Body::make_pivot(double nu, double /*nu_other*/) const {
   pv.restitution = std::isnan(params_.restitution)
                        ? impact_velocity_ratio(ig_ * ig_, h, b, nu)
                        : params_.restitution;
+  if (params_.restitution_shift != 0.0)
+    pv.restitution = std::clamp(pv.restitution + params_.restitution_shift, 0.0, 1.0);
   return pv;
 }
 

@@ -154,7 +154,8 @@ bool exceeds_static_uplift(const Body& body, const TableTest& test, int directio
 }
 
 TestPrediction predict_table_test(const BodyParameters& parameters, const std::string& specimen,
-                                  const TableTest& test, const ExperimentSettings& settings) {
+                                  const TableTest& test, const ExperimentSettings& settings,
+                                  std::vector<HistorySample>* history) {
   const Body body(parameters);
   TestPrediction p;
   p.test = test.number;
@@ -162,13 +163,37 @@ TestPrediction predict_table_test(const BodyParameters& parameters, const std::s
   p.exceeds_static_uplift = exceeds_static_uplift(body, test, settings.direction);
   AdaptiveModel model(body, settings.adaptive);
   const double s = settings.direction >= 0 ? 1.0 : -1.0;
+  const long tail = static_cast<long>(std::ceil(settings.tail_s / test.dt));
+  long sample = 0;
+  auto keep = [&](double a) {
+    if (!history) return;
+    HistorySample h;
+    h.t = static_cast<double>(sample) * test.dt;
+    h.table_accel_mps2 = a;
+    h.theta = model.theta();
+    h.omega = model.omega();
+    h.rotation_ratio = h.theta == 0.0 ? 0.0 : std::abs(h.theta) / body.pivot(h.theta > 0.0 ? 1 : -1).alpha;
+    h.max_rotation_ratio = model.outcome().max_rotation_ratio;
+    h.mode = model.mode_name();
+    history->push_back(h);
+  };
+  if (history) {
+    history->clear();
+    history->reserve(test.accel_mps2.size() + static_cast<std::size_t>(tail));
+  }
   model.reset(0.0, s * test.accel_mps2.front(), 0.0);
+  keep(s * test.accel_mps2.front());
   for (std::size_t i = 1; i < test.accel_mps2.size(); ++i) {
     model.step(s * test.accel_mps2[i], 0.0, test.dt);
+    ++sample;
+    keep(s * test.accel_mps2[i]);
     if (model.outcome().overturned) break;
   }
-  const long tail = static_cast<long>(std::ceil(settings.tail_s / test.dt));
-  for (long i = 0; i < tail && !model.outcome().overturned; ++i) model.step(0.0, 0.0, test.dt);
+  for (long i = 0; i < tail && !model.outcome().overturned; ++i) {
+    model.step(0.0, 0.0, test.dt);
+    ++sample;
+    keep(0.0);
+  }
   const auto& o = model.outcome();
   p.predicted = o.overturned;
   p.uplift = !std::isnan(o.uplift_time);

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -49,6 +51,14 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({-1, 1}));
   app.add_option("--tail", tail_s, "s of table at rest after each record (default 5)");
   app.add_option("--max-tests", max_tests, "only the first N tests (0 = all)");
+  std::string histories, history_tests = "misses";
+  int history_every = 1;
+  app.add_option("--histories", histories, "write rotation histories here: one CSV per chosen test "
+                 "and specimen (TestNNN_SP1.csv; the first member's geometry)");
+  app.add_option("--history-tests", history_tests, "which tests get a history: 'misses' (the wrong "
+                 "predictions, default), 'all', or test numbers '12,40,41'");
+  app.add_option("--history-every", history_every, "keep every Nth sample in a history (the last "
+                 "one always; default 1)")->check(CLI::PositiveNumber);
   if (auto status = rocking_monitor::tools::parse_command_line(app, argc, argv, "rocking_experiments"))
     return *status;
   try {
@@ -94,6 +104,26 @@ int main(int argc, char** argv) {
     if (max_tests > 0 && static_cast<int>(files.size()) > max_tests) files.resize(max_tests);
     if (files.empty()) throw std::runtime_error(dir + "/tests: no TestNNN.csv(.gz) files");
 
+    // Tests named for a history: each must be among the tests run (checked after the run).
+    std::set<int> history_numbers;
+    const bool history_misses = history_tests == "misses", history_all = history_tests == "all";
+    if (!histories.empty()) {
+      if (!history_misses && !history_all) {
+        std::stringstream list(history_tests);
+        std::string cell;
+        while (std::getline(list, cell, ',')) {
+          char* end = nullptr;
+          const long n = std::strtol(cell.c_str(), &end, 10);
+          if (cell.empty() || *end != '\0' || n <= 0)
+            throw std::runtime_error("--history-tests: '" + cell + "' is not a test number (or use misses, all)");
+          history_numbers.insert(static_cast<int>(n));
+        }
+      }
+      fs::create_directories(histories);
+    }
+    std::set<int> history_done;
+    long histories_written = 0;
+    std::vector<rm::HistorySample> history;
     rm::ExperimentSettings settings;
     settings.direction = direction;
     settings.tail_s = tail_s;
@@ -139,6 +169,29 @@ int main(int argc, char** argv) {
           add_rel(rel[s.id], prob, p.measured);
           add_rel(rel["all"], prob, p.measured);
         }
+        const bool wrong = p.measured >= 0 && predicted != (p.measured == 1);
+        if (!histories.empty() && (history_all || (history_misses && wrong) ||
+                                   history_numbers.count(test.number))) {
+          rm::predict_table_test(s.members.front(), s.id, test, settings, &history);
+          char name[64];
+          std::snprintf(name, sizeof name, "Test%03d_%s.csv", test.number, s.id.c_str());
+          const std::string path = (fs::path(histories) / name).string();
+          std::ofstream h(path);
+          if (!h) throw std::runtime_error(path + ": cannot open for writing");
+          h << "t_s,table_accel_mps2,theta_rad,omega_radps,rotation_ratio,max_rotation_ratio,mode\n";
+          char line[256];
+          for (std::size_t k = 0; k < history.size(); ++k) {
+            if (k % static_cast<std::size_t>(history_every) != 0 && k + 1 != history.size()) continue;
+            const auto& r = history[k];
+            std::snprintf(line, sizeof line, "%.6f,%.6g,%.8g,%.8g,%.8g,%.8g,%s\n", r.t,
+                          r.table_accel_mps2, r.theta, r.omega, r.rotation_ratio,
+                          r.max_rotation_ratio, r.mode);
+            h << line;
+          }
+          if (!h.flush()) throw std::runtime_error(path + ": write failed");
+          ++histories_written;
+          history_done.insert(test.number);
+        }
         if (table) {
           char line[512];
           std::snprintf(line, sizeof line, "%d,%s,%.6g,%.6g,%d,%d,%.6g,%ld,%.4f,%d,%s,%zu,%.4f\n",
@@ -168,6 +221,12 @@ int main(int argc, char** argv) {
         std::printf("\n");
       }
     }
+    for (int n : history_numbers)
+      if (!history_done.count(n))
+        throw std::runtime_error("--history-tests: test " + std::to_string(n) + " is not among the tests run");
+    if (!histories.empty())
+      std::printf("rocking_experiments: %ld histories written to %s (%s)\n", histories_written,
+                  histories.c_str(), history_tests.c_str());
     if (without_outcome)
       std::printf("rocking_experiments: %ld predictions without a measured outcome (not scored)\n",
                   without_outcome);

@@ -128,5 +128,31 @@ TEST(Impact, ModelAppliesTheRatioOfTheNewPivotAndTheUserOverride) {
   }
 }
 
+// restitution_shift (an ensemble's spread around eq. 34): added to each pivot's own eq. 34 ratio, so
+// the two pivots keep their difference; clipped to [0, 1]; outside [-1, 1] refused by name.
+TEST(Impact, RestitutionShiftMovesEachPivotsEq34RatioAndIsClipped) {
+  BodyParameters p;
+  p.width = 0.8;
+  p.cg_height = 1.1;
+  p.nu1 = 0.25;
+  p.radius_of_gyration = 0.55;
+  const Body nominal(p);
+  for (double shift : {-0.05, 0.03}) {
+    p.restitution_shift = shift;
+    const Body b(p);
+    for (int side : {1, -1}) {
+      const double eq34 = impact_velocity_ratio(0.55 * 0.55, 1.1, 0.8, nominal.pivot(side).nu);
+      EXPECT_NEAR(b.pivot(side).restitution, eq34 + shift, 1e-15) << side;
+    }
+  }
+  p.restitution_shift = 0.9;  // eq. 34 here is ~0.7-0.8: the sum is clipped to 1
+  EXPECT_EQ(Body(p).pivot(1).restitution, 1.0);
+  p.restitution = 0.5;  // with a given ratio the shift moves it
+  p.restitution_shift = -0.6;
+  EXPECT_EQ(Body(p).pivot(-1).restitution, 0.0);
+  p.restitution_shift = 1.5;
+  EXPECT_NE(validate(p).find("restitution_shift = 1.5"), std::string::npos) << validate(p);
+}
+
 }  // namespace
 }  // namespace rocking_monitor::core

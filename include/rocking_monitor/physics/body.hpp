@@ -27,6 +27,10 @@ struct BodyParameters {
   double mu_k = std::numeric_limits<double>::quiet_NaN();
   /// Measured angular-velocity ratio at impact, in [0, 1]. NaN = theory (paper eq. 34).
   double restitution = std::numeric_limits<double>::quiet_NaN();
+  /// Added to each pivot's ratio (eq. 34's, or `restitution` when given), the sum clipped to
+  /// [0, 1]: an ensemble's spread around the theory that keeps the per-pivot dependence on alpha.
+  /// In [-1, 1]; 0 = none (the ratio unchanged, bit for bit).
+  double restitution_shift = 0.0;
   /// |theta| at which the body lies on its side and is counted OVERTURNED, rad (pi/2 for a box).
   double overturn_angle = 1.5707963267948966;
 };

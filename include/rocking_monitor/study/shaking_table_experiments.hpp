@@ -55,13 +55,30 @@ struct TestPrediction {
   bool exceeds_static_uplift = false;  ///< the table reached g tan(alpha) toward some pivot
 };
 
+/// One sample of a test's rotation history (predict_table_test with a history): the state after the
+/// table sample at time t.
+struct HistorySample {
+  double t = 0.0;                 ///< s from the record's first sample
+  double table_accel_mps2 = 0.0;  ///< table acceleration fed to the model (offset removed, direction applied), m/s^2
+  double theta = 0.0;             ///< rad, > 0 rocking on pivot 1 (corner 1, -x)
+  double omega = 0.0;             ///< rad/s
+  double rotation_ratio = 0.0;    ///< |theta| / alpha of the pivot it rocks on (0 at rest)
+  /// the outcome's max |theta| / alpha so far (includes peaks between samples: the table's column
+  /// at the last sample)
+  double max_rotation_ratio = 0.0;
+  const char* mode = "";          ///< the active model's mode name (REST, ROCKING, SLIDE, ...)
+};
+
 /// Static uplift (eq. 19): the table acceleration toward +x lifts pivot 1 (corner 1, -x side)...
 /// returns true when the record reaches g tan(alpha) of the pivot it would lift in either direction.
 bool exceeds_static_uplift(const Body& body, const TableTest& test, int direction = 1);
 
-/// Runs one specimen (its x-z plane) through one test.
+/// Runs one specimen (its x-z plane) through one test. With `history`, it is cleared and gets one
+/// sample at the start (at rest) and one per table sample stepped (record, then the tail at rest),
+/// up to the overturn.
 TestPrediction predict_table_test(const BodyParameters& body, const std::string& specimen,
-                                  const TableTest& test, const ExperimentSettings& settings = {});
+                                  const TableTest& test, const ExperimentSettings& settings = {},
+                                  std::vector<HistorySample>* history = nullptr);
 
 /// Confusion matrix of predicted vs measured overturning (tests without an outcome not counted).
 struct Confusion {
