@@ -111,7 +111,7 @@ void load_entry(const YAML::Node& item, std::size_t i, const std::string& path, 
   where += " (" + name + "): ";
   static const std::set<std::string> known{"name", "width", "cg_height", "nu1", "radius_of_gyration",
                                                "restitution", "mu_s", "depth", "eccentricity_y",
-                                               "radius_of_gyration_y"};
+                                               "radius_of_gyration_y", "restitution_shift"};
   for (const auto& kv : item) {
     const std::string key = kv.first.as<std::string>();
     if (!known.count(key)) {
@@ -128,6 +128,7 @@ void load_entry(const YAML::Node& item, std::size_t i, const std::string& path, 
   if (item["radius_of_gyration"]) p.radius_of_gyration = scalar(item["radius_of_gyration"], where, "radius_of_gyration");
   if (item["restitution"]) p.restitution = scalar(item["restitution"], where, "restitution");
   if (item["mu_s"]) p.mu_s = scalar(item["mu_s"], where, "mu_s");
+  if (item["restitution_shift"]) p.restitution_shift = scalar(item["restitution_shift"], where, "restitution_shift");
   DepthParameters depth;
   if (item["depth"]) depth.depth = scalar(item["depth"], where, "depth");
   if (item["eccentricity_y"]) depth.eccentricity_y = scalar(item["eccentricity_y"], where, "eccentricity_y");
