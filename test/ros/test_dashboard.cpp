@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <filesystem>
 #include <map>
 #include <mutex>
 #include <set>
@@ -291,10 +292,13 @@ TEST(Dashboard, ServesThePageTheSnapshotAndTheAlarms) {
   // from the monitor's journal alone (its ~monitor names no running monitor).
   std::string journal;
   if (pnh.getParam("journal", journal)) {
+    // The dashboard executable sits beside this test's (devel/lib/rocking_monitor).
+    const std::string exe = std::filesystem::read_symlink("/proc/self/exe").parent_path() / "dashboard";
+    const std::string journal_arg = "_journal:=" + journal;
     const pid_t pid = fork();
     if (pid == 0) {
-      execlp("rosrun", "rosrun", "rocking_monitor", "dashboard", "__name:=dashboard_late", "_port:=0",
-             "_monitor:=/no_monitor_here", ("_journal:=" + journal).c_str(), "_journal_window:=1e12", nullptr);
+      execl(exe.c_str(), exe.c_str(), "__name:=dashboard_late", "_port:=0", "_monitor:=/no_monitor_here",
+            journal_arg.c_str(), "_journal_window:=1000000000000.0", nullptr);
       _exit(127);
     }
     ASSERT_GT(pid, 0);
@@ -308,9 +312,14 @@ TEST(Dashboard, ServesThePageTheSnapshotAndTheAlarms) {
       httplib::Client late(late_host, late_port);
       late.set_read_timeout(std::chrono::seconds(10));
       auto r = late.Get("/api/snapshot");
-      if (r && r->status == 200)
-        for (const json& a : json::parse(r->body).at("alarms"))
+      std::printf("late dashboard at %s: snapshot %s\n", late_url.c_str(),
+                  r ? (std::to_string(r->status) + ", " + std::to_string(r->body.size()) + " bytes").c_str()
+                    : httplib::to_string(r.error()).c_str());
+      if (r && r->status == 200) {
+        const json snap_late = json::parse(r->body);
+        for (const json& a : snap_late.at("alarms"))
           late_alarms.insert(a.at("item").get<std::string>() + "/" + a.at("level").get<std::string>());
+      }
     }
     kill(pid, SIGINT);
     int status = 0;
