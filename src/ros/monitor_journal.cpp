@@ -3,17 +3,25 @@
 // subscriber), journaling each alarm before it is published, resets, and its diagnostics.
 #include "rocking_monitor/ros/monitor.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 
 namespace rocking_monitor::live {
 namespace {
 
-std::string default_journal_path() {
+// $ROS_HOME/rocking_monitor/journal.jsonl for the usual node name; another name (a second monitor,
+// a shard) gets a file of its own, journal<name>.jsonl, so that two monitors never share one event.
+std::string default_journal_path(const std::string& node_name) {
+  std::string file = "journal";
+  if (node_name != "/rocking_monitor") {
+    for (char c : node_name) file += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  }
+  file += ".jsonl";
   const char* ros_home = std::getenv("ROS_HOME");
-  if (ros_home != nullptr && *ros_home != '\0') return std::string(ros_home) + "/rocking_monitor/journal.jsonl";
+  if (ros_home != nullptr && *ros_home != '\0') return std::string(ros_home) + "/rocking_monitor/" + file;
   const char* home = std::getenv("HOME");
-  return std::string(home != nullptr ? home : ".") + "/.ros/rocking_monitor/journal.jsonl";
+  return std::string(home != nullptr ? home : ".") + "/.ros/rocking_monitor/" + file;
 }
 
 const CatalogueItem* find_item(const std::vector<CatalogueItem>& items, const std::string& id) {
@@ -25,11 +33,12 @@ const CatalogueItem* find_item(const std::vector<CatalogueItem>& items, const st
 }  // namespace
 
 bool RockingMonitor::load_journal_parameters() {
-  journal_path_ = default_journal_path();
+  journal_path_ = default_journal_path(pnh_.getNamespace());
   if (pnh_.hasParam("journal") && !pnh_.getParam("journal", journal_path_)) {
     ROS_FATAL("rocking_monitor: parameter ~journal has the wrong type (expected a path; \"\" = off)");
     return false;
   }
+  pnh_.setParam("journal", journal_path_);  // the file in use, for the dashboard and the report
   if (pnh_.hasParam("journal_window")) {
     XmlRpc::XmlRpcValue v;
     pnh_.getParam("journal_window", v);
