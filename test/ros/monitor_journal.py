@@ -11,7 +11,8 @@ and both are fed the rest of the record. Checked:
   the original (event id, sequence, times, plane);
 - it alarms no (item, level) of the first run again, although the control, the same monitor on the
   same samples without the journal, does (so the check can fail);
-- its new alarms are the control's others, at the same times, in the same event, numbered on.
+- its new alarms are the control's others, at the same times, in the same event, numbered on;
+- ~reset closes the event: a reset line in the journal, nothing sent to a new subscriber.
 """
 import json
 import os
@@ -28,6 +29,7 @@ import rospy
 import rostest
 from rocking_monitor.msg import OverturnAlarm, RockingStateArray
 from sensor_msgs.msg import Imu
+from std_srvs.srv import Trigger
 
 OVERTURNED = 4
 
@@ -183,6 +185,15 @@ class Journal(unittest.TestCase):
         after = list(second.alarms)[len(resent):]
         ctl = list(control.alarms)
         rospy.loginfo('after the restart: control %d alarms, restarted monitor %d new ones', len(ctl), len(after))
+        # ~reset closes the event: journaled, and a new subscriber is sent nothing of it.
+        rospy.wait_for_service('/journal_mon/reset', timeout=10)
+        self.assertTrue(rospy.ServiceProxy('/journal_mon/reset', Trigger)().success)
+        late = []
+        late_sub = rospy.Subscriber('/journal_mon/alarms', OverturnAlarm, late.append, queue_size=100)
+        wait_for('a new subscriber', lambda: late_sub.get_num_connections() > 0, timeout=10.0)
+        time.sleep(1.0)
+        late_sub.unregister()
+        self.assertEqual(late, [], 'alarms of an event closed by ~reset sent to a new subscriber')
         second.close()
         control.close()
 
@@ -202,6 +213,8 @@ class Journal(unittest.TestCase):
             text = f.read()
         self.assertTrue(text.endswith('\n'))
         final = [json.loads(l) for l in text.splitlines()]
+        self.assertEqual(final[-1]['kind'], 'reset')
+        final = final[:-1]
         self.assertEqual(len(final), len(before) + len(after))
         self.assertEqual(len({(r['item'], r['level']) for r in final}), len(final))
 
