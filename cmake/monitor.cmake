@@ -2,7 +2,7 @@
 include_directories(${catkin_INCLUDE_DIRS})
 add_library(rocking_monitor_ros
   src/ros/monitor.cpp src/ros/monitor_sample_path.cpp src/ros/monitor_publication.cpp
-  src/ros/monitor_diagnostics.cpp src/ros/catalogue.cpp)
+  src/ros/monitor_diagnostics.cpp src/ros/monitor_journal.cpp src/ros/catalogue.cpp)
 target_include_directories(rocking_monitor_ros PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include ${catkin_INCLUDE_DIRS})
 find_package(TBB REQUIRED)
 target_link_libraries(rocking_monitor_ros PUBLIC rocking_monitor_core ${catkin_LIBRARIES} TBB::tbb)
@@ -62,6 +62,11 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/monitor_historical.test
               ARGS records:=${ROCKING_RECORDS_DIR} tools:=${ROCKING_TOOL_DIR}
               DEPENDENCIES test_monitor_historical)
+  # Issue 19: kill -9 after an OVERTURNED alarm, a cut journal line, restart: alarms once (Python).
+  add_rostest(test/ros/monitor_journal.test
+              ARGS records:=${ROCKING_RECORDS_DIR} tools:=${ROCKING_TOOL_DIR}
+                   python_path:=${CATKIN_DEVEL_PREFIX}/${PYTHON_INSTALL_DIR}
+              DEPENDENCIES monitor)
 endif()
 
 # ---------------------------------------------------------------- the live dashboard (issue 14)
@@ -85,7 +90,8 @@ if(CPP_HTTPLIB_FOUND)
   endforeach()
   add_library(rocking_dashboard
     src/ros/dashboard.cpp src/ros/dashboard_state.cpp src/ros/dashboard_http.cpp
-    src/ros/dashboard_events.cpp src/ros/dashboard_assets.cpp src/ros/dashboard_input.cpp ${dashboard_web_inc})
+    src/ros/dashboard_events.cpp src/ros/dashboard_assets.cpp src/ros/dashboard_input.cpp
+    src/ros/dashboard_journal.cpp ${dashboard_web_inc})
   target_include_directories(rocking_dashboard PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include ${catkin_INCLUDE_DIRS})
   target_include_directories(rocking_dashboard PRIVATE ${CMAKE_CURRENT_BINARY_DIR})
   target_link_libraries(rocking_dashboard PUBLIC rocking_monitor_ros PkgConfig::CPP_HTTPLIB

@@ -24,7 +24,7 @@ void ItemMonitor::start(double t, double ax, double ay, double az, double dt_nom
   if (planes_[1]) planes_[1]->start(t, ay, az, dt_nominal);
   last_input_[0] = {ax, az};
   last_input_[1] = {ay, az};
-  alarmed_.fill(false);
+  alarmed_ = marked_;
   events_ = ItemEvents{};
   started_ = true;
 }
@@ -69,6 +69,17 @@ const ItemEvents& ItemMonitor::step(double ax, double ay, double az, double dt) 
     out.plane = first_plane;
   }
   return events_;
+}
+
+void ItemMonitor::mark_alarmed(ItemMode level) {
+  const int l = level_index(level);
+  if (l < 0 || l >= static_cast<int>(marked_.size())) throw std::invalid_argument("mark_alarmed: not an alarm level");
+  marked_[l] = alarmed_[l] = true;
+}
+
+bool ItemMonitor::alarmed(ItemMode level) const {
+  const int l = level_index(level);
+  return l >= 0 && l < static_cast<int>(alarmed_.size()) && alarmed_[l];
 }
 
 ItemMode ItemMonitor::mode() const {

@@ -146,6 +146,7 @@ void Dashboard::load_catalogue() {
 bool Dashboard::init() {
   if (!load_parameters()) return false;
   load_catalogue();
+  read_journal();
   if (!start_server()) return false;
   pnh_.setParam("url", url_);
   ROS_INFO("dashboard: open %s in a browser (monitor %s)", url_.c_str(), monitor_.c_str());

@@ -115,9 +115,13 @@ void Dashboard::on_alarm(const OverturnAlarm::ConstPtr& msg) {
   std::string frame;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    std::string key = msg->item_id + "/" + std::to_string(msg->level) + "/" +
-                      std::to_string(msg->header.stamp.toNSec());
-    if (!alarm_keys_.insert(key).second) return;  // a latched alarm again after a reconnect
+    // One alarm, however often it arrives (journal at start, re-sent by a restarted monitor, reconnect):
+    // its event and sequence number name it; without them, item, level and stamp.
+    std::string key = !msg->event_id.empty()
+                          ? msg->event_id + "#" + std::to_string(msg->sequence)
+                          : msg->item_id + "/" + std::to_string(msg->level) + "/" +
+                                std::to_string(msg->header.stamp.toNSec());
+    if (!alarm_keys_.insert(key).second) return;
     alarms_.push_front({*msg, std::move(key)});
     constexpr std::size_t kMaxAlarms = 10000;  // three per item of a large site, then the oldest go
     while (alarms_.size() > kMaxAlarms) {
@@ -151,7 +155,7 @@ json Dashboard::alarm_json(const OverturnAlarm& a) {
           {"plane", a.plane}, {"event_time", a.event_time}, {"utc", utc(a.event_time)},
           {"t", a.time_since_first_sample}, {"rotation_ratio", a.rotation_ratio},
           {"stamp", a.header.stamp.toSec()}, {"predicted_by", a.predicted_by},
-          {"not_predicted_by", a.not_predicted_by}};
+          {"not_predicted_by", a.not_predicted_by}, {"event_id", a.event_id}, {"sequence", a.sequence}};
 }
 
 json Dashboard::health_json_locked() const {

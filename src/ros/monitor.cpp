@@ -71,7 +71,7 @@ bool RockingMonitor::load_parameters() {
   ok = ok && param(pnh_, "linearized_max_alpha", options_.linearized_max_alpha, "number") &&
        param(pnh_, "scene_envelope/horizontal", scene_h, "number") &&
        param(pnh_, "scene_envelope/vertical", scene_v, "number");
-  if (!ok) return false;
+  if (!ok || !load_journal_parameters()) return false;
   if (!(options_.linearized_max_alpha >= 0.0) || !(options_.linearized_max_alpha < 1.0)) {
     ROS_FATAL("rocking_monitor: ~linearized_max_alpha = %g rad must be in [0, 1) (0 = off)",
               options_.linearized_max_alpha);
@@ -219,8 +219,17 @@ bool RockingMonitor::init() {
 
   states_pub_ = pnh_.advertise<RockingStateArray>("states", static_cast<std::uint32_t>(state_queue_size_));
   criteria_pub_ = pnh_.advertise<CriterionExceedance>("criteria", 100);
-  alarms_pub_ = pnh_.advertise<OverturnAlarm>("alarms", 1000, true);
-  probability_alarms_pub_ = pnh_.advertise<ProbabilityAlarm>("probability_alarms", 1000, true);
+  // Not latched (a latched topic keeps only its last message): every new subscriber is sent all the
+  // alarms of the open event instead, in journal order, then the live ones (docs/journal.md).
+  open_journal();
+  alarms_pub_ = pnh_.advertise<OverturnAlarm>(
+      "alarms", 1000, [this](const ::ros::SingleSubscriberPublisher& p) {
+        for (const OverturnAlarm& m : event_alarms_) p.publish(m);
+      });
+  probability_alarms_pub_ = pnh_.advertise<ProbabilityAlarm>(
+      "probability_alarms", 1000, [this](const ::ros::SingleSubscriberPublisher& p) {
+        for (const ProbabilityAlarm& m : event_probability_alarms_) p.publish(m);
+      });
   if (publish_markers_) markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 2);
   reset_srv_ = pnh_.advertiseService("reset", &RockingMonitor::on_reset, this);
 
@@ -241,6 +250,7 @@ bool RockingMonitor::init() {
                       [this, i](diagnostic_updater::DiagnosticStatusWrapper& st) { sensor_diagnostics(i, st); });
   }
   diagnostics_->add("catalogue", this, &RockingMonitor::catalogue_diagnostics);
+  diagnostics_->add("alarm journal", this, &RockingMonitor::journal_diagnostics);
 
   for (std::size_t i = 0; i < sensors_.size(); ++i) {
     Sensor& s = sensors_[i];
@@ -312,6 +322,7 @@ void RockingMonitor::reset_all(const std::string& why) {
   }
   for (Item& it : items_) make_models(it);
   for (Sensor& s : sensors_) s.batch.reset();
+  journal_reset(why);  // closes the event: the items alarm again from here
 }
 
 void RockingMonitor::rebuild_batch(Sensor& s) {

@@ -79,13 +79,15 @@ void RockingMonitor::publish_events(Item& it, const core::ItemEvents& ev, const 
     m.rotation_ratio = a.rotation_ratio;
     for (core::CriterionId id : kScreening)
       (it.monitor->screening_exceeded(a.plane, id) ? m.predicted_by : m.not_predicted_by).push_back(core::to_string(id));
+    if (!journal_alarm(it, m, epoch)) continue;  // journaled (fsync'd) before it is published; never twice
     alarms_pub_.publish(m);
     ++alarms_published_;
     const std::string when = core::event_time_text(epoch + a.time, epoch);
     const char* across = a.plane == core::Plane::X ? "across its width" : "across its depth";
     if (a.level == ItemMode::Overturned) {
-      ROS_ERROR("rocking_monitor: OVERTURNED: %s (%s), %s (plane %s), %s", spec.id.c_str(), spec.description.c_str(),
-                across, m.plane.c_str(), when.c_str());
+      ROS_ERROR("rocking_monitor: OVERTURNED: %s (%s), %s (plane %s), %s [event %s #%lu]", spec.id.c_str(),
+                spec.description.c_str(), across, m.plane.c_str(), when.c_str(), m.event_id.c_str(),
+                static_cast<unsigned long>(m.sequence));
     } else {
       ROS_WARN("rocking_monitor: %s: %s (%s), %s (plane %s), %s", core::to_string(a.level), spec.id.c_str(),
                spec.description.c_str(), across, m.plane.c_str(), when.c_str());
@@ -111,6 +113,7 @@ void RockingMonitor::publish_crossings(Item& it, const core::EnsembleEvents& ev,
     m.value.upper = w.upper;
     // Beyond tipping is not an alarm level of its own here (it says little about falling).
     if (c.level == core::Level::BeyondTipping) continue;
+    if (!journal_probability_alarm(it, m, epoch)) continue;  // journaled before it is published; never twice
     probability_alarms_pub_.publish(m);
     ROS_WARN("rocking_monitor: P(%s) of %s (%s) reached %.2f [%.2f, %.2f] over %d members (threshold %.2f), %s",
              core::to_string(static_cast<ItemMode>(m.level)), spec.id.c_str(), spec.description.c_str(),

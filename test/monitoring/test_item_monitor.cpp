@@ -215,5 +215,32 @@ TEST(ItemMonitor, YPlaneRadiusOfGyrationFollowsThePlanUniformRule) {
   EXPECT_EQ(y_plane_body(x, d).radius_of_gyration, 0.7);
 }
 
+// Issue 19: a level already alarmed before a restart (in the journal) is not alarmed again, also
+// across start(); the other levels alarm at the same times as without the mark.
+TEST(ItemMonitor, MarkedLevelIsNotAlarmedAgainButOthersAre) {
+  const std::vector<double> a = pulse(), zero(a.size(), 0.0);
+  ItemMonitor plain(item(0.15, 0.0, 0.35), ItemMonitor::Options{});
+  const Track all = run(plain, a, zero, pulse_dt());
+  ASSERT_EQ(all.alarms.size(), 3u);
+  ItemMonitor marked(item(0.15, 0.0, 0.35), ItemMonitor::Options{});
+  marked.mark_alarmed(ItemMode::Overturned);
+  EXPECT_TRUE(marked.alarmed(ItemMode::Overturned));
+  EXPECT_FALSE(marked.alarmed(ItemMode::Committed));
+  const Track t = run(marked, a, zero, pulse_dt());  // run() calls start(): the mark survives it
+  // The unmarked levels (COMMITTED may come before BEYOND_TIPPING), at the same times.
+  std::vector<std::pair<ItemMode, double>> expected, got;
+  for (const AlarmEvent& e : all.alarms)
+    if (e.level != ItemMode::Overturned) expected.emplace_back(e.level, e.time);
+  for (const AlarmEvent& e : t.alarms) got.emplace_back(e.level, e.time);
+  ASSERT_EQ(expected.size(), 2u);
+  EXPECT_EQ(got, expected);
+  EXPECT_EQ(marked.mode(), ItemMode::Overturned);  // the state is not changed by the mark
+  // A second run on the same monitor (a timing restart): the levels alarmed by the first run alarm
+  // again (start re-arms them), the marked one never does.
+  const Track again = run(marked, a, zero, pulse_dt());
+  EXPECT_EQ(again.alarms.size(), 2u);
+  EXPECT_THROW(marked.mark_alarmed(ItemMode::Rocking), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace rocking_monitor::core

@@ -10,6 +10,7 @@ peaks are the closed form (PGA 4.0 m/s^2, PGV 4 * 0.6 / pi m/s). Then rocking_re
 the node's bag must write the same table."""
 import glob
 import html.parser
+import json
 import os
 import subprocess
 import tempfile
@@ -55,6 +56,25 @@ def parse(path):
     with open(path, encoding='utf-8') as f:
         t.feed(f.read())
     return t
+
+
+class JournalRows(html.parser.HTMLParser):
+    def __init__(self):
+        super().__init__()
+        self.rows = []
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        if tag == 'tr' and 'data-sequence' in a:
+            self.rows.append(a)
+
+
+def journal_rows(path):
+    """The rows of the report's <table id="journal">, as attribute dicts."""
+    t = JournalRows()
+    with open(path, encoding='utf-8') as f:
+        t.feed(f.read())
+    return t.rows
 
 
 def summary(table):
@@ -147,6 +167,39 @@ class Report(unittest.TestCase):
             self.assertEqual(bad.returncode, 2)
             self.assertEqual(bad.stderr.decode().splitlines(), ['rocking_report: error: %s: no such file' % os.path.join(tmp, 'none.yaml')])
             self.assertFalse(os.path.exists(out + '2'))
+
+        # The alarm journal (issue 19): the live report lists the monitor's journal, one row per alarm
+        # received here, each also in the bag.
+        journal = os.path.join(os.environ.get('ROS_HOME') or os.path.expanduser('~/.ros'), 'rocking_monitor',
+                               'journal.jsonl')
+        live_rows = journal_rows(page)
+        self.assertEqual([(r['data-item'], r['data-level'], int(r['data-sequence']), r['data-in-bag']) for r in live_rows],
+                         [(a.item_id, LEVELS[a.level], a.sequence, 'yes') for a in sorted(got['alarms'], key=lambda a: a.sequence)])
+        # Offline with a journal holding one alarm the bag lacks (must_survive OVERTURNED 1.5 s after the
+        # first sample) and a last line cut by a power cut: the alarm is in the items table, the cut named.
+        with open(journal) as f:
+            lines = f.read().splitlines()
+        last = json.loads(lines[-1])
+        first_alarm = got['alarms'][0]
+        t_first = first_alarm.event_time - first_alarm.time_since_first_sample
+        extra = dict(last, item=must_survive, level='OVERTURNED', plane='x', sequence=last['sequence'] + 1,
+                     time=t_first + 1.5, since_event_start=1.5)
+        with tempfile.TemporaryDirectory() as tmp:
+            j = os.path.join(tmp, 'journal.jsonl')
+            with open(j, 'w') as f:
+                f.write('\n'.join(lines + [json.dumps(extra)]) + '\n' + lines[0][:20])
+            out = os.path.join(tmp, 'with_journal.html')
+            tool = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'scripts', 'rocking_report')
+            run = subprocess.run(['/usr/bin/python3', tool, bag, '-o', out, '--journal', j],
+                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=120)
+            self.assertEqual(run.returncode, 0, run.stderr.decode())
+            self.assertIn('%s:%d: last line cut in the middle' % (j, len(lines) + 2), run.stderr.decode())
+            merged = summary(parse(out))
+            self.assertAlmostEqual(merged[must_survive]['OVERTURNED'][0], 1.5, delta=1e-6)
+            self.assertEqual(merged[must_survive]['OVERTURNED'][1], 'x')
+            rows_j = journal_rows(out)
+            self.assertEqual(len(rows_j), len(got['alarms']) + 1)
+            self.assertEqual((rows_j[-1]['data-item'], rows_j[-1]['data-in-bag']), (must_survive, 'no'))
 
 
 if __name__ == '__main__':

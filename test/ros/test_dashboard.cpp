@@ -5,9 +5,15 @@
 
 #include <atomic>
 #include <chrono>
+#include <filesystem>
 #include <map>
 #include <mutex>
+#include <set>
 #include <thread>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <httplib.h>
 #include <nlohmann/json.hpp>
@@ -281,6 +287,47 @@ TEST(Dashboard, ServesThePageTheSnapshotAndTheAlarms) {
     EXPECT_LT(latency_ms, 200.0) << key;
   }
   EXPECT_GT(events.state_events(), 0);
+
+  // Issue 19: a dashboard started after the event, with no monitor to listen to, shows the same alarms
+  // from the monitor's journal alone (its ~monitor names no running monitor).
+  std::string journal;
+  if (pnh.getParam("journal", journal)) {
+    // The dashboard executable sits beside this test's (devel/lib/rocking_monitor).
+    const std::string exe = std::filesystem::read_symlink("/proc/self/exe").parent_path() / "dashboard";
+    const std::string journal_arg = "_journal:=" + journal;
+    const pid_t pid = fork();
+    if (pid == 0) {
+      execl(exe.c_str(), exe.c_str(), "__name:=dashboard_late", "_port:=0", "_monitor:=/no_monitor_here",
+            journal_arg.c_str(), "_journal_window:=1000000000000.0", nullptr);
+      _exit(127);
+    }
+    ASSERT_GT(pid, 0);
+    std::string late_url, late_host;
+    int late_port = 0;
+    const auto t0 = Clock::now();
+    while (!nh.getParam("/dashboard_late/url", late_url) && Clock::now() - t0 < std::chrono::seconds(30))
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    std::set<std::string> late_alarms, ros_keys;
+    if (split_url(late_url, late_host, late_port)) {
+      httplib::Client late(late_host, late_port);
+      late.set_read_timeout(std::chrono::seconds(10));
+      auto r = late.Get("/api/snapshot");
+      std::printf("late dashboard at %s: snapshot %s\n", late_url.c_str(),
+                  r ? (std::to_string(r->status) + ", " + std::to_string(r->body.size()) + " bytes").c_str()
+                    : httplib::to_string(r.error()).c_str());
+      if (r && r->status == 200) {
+        const json snap_late = json::parse(r->body);
+        for (const json& a : snap_late.at("alarms"))
+          late_alarms.insert(a.at("item").get<std::string>() + "/" + a.at("level").get<std::string>());
+      }
+    }
+    kill(pid, SIGINT);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    ASSERT_FALSE(late_url.empty()) << "the late dashboard did not start";
+    for (const auto& [key, t] : on_ros) ros_keys.insert(key);
+    EXPECT_EQ(late_alarms, ros_keys) << "the alarms read from " << journal;
+  }
 }
 
 }  // namespace

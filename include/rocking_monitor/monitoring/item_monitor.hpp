@@ -26,6 +26,13 @@ class ItemMonitor {
   void start(double t, double ax, double ay, double az, double dt_nominal);
   bool started() const { return started_; }
 
+  /// The item already alarmed `level` (BeyondTipping, Committed or Overturned) in this event, e.g. in
+  /// the journal before a restart: that level is not alarmed again by this monitor, also across
+  /// start(); only a new ItemMonitor (the node's ~reset) re-arms it. Other levels are unchanged.
+  void mark_alarmed(ItemMode level);
+  /// Whether `level` was alarmed (or marked) since this monitor was made or last started.
+  bool alarmed(ItemMode level) const;
+
   /// One sample in the item's frame: horizontal ax, ay and vertical az (m/s^2), dt seconds after the
   /// previous one. No allocation.
   const ItemEvents& step(double ax, double ay, double az, double dt);
@@ -48,6 +55,7 @@ class ItemMonitor {
   ItemSpec spec_;
   std::array<std::unique_ptr<PlaneMonitor>, kPlaneCount> planes_;
   std::array<bool, 3> alarmed_{};  // BEYOND_TIPPING, COMMITTED, OVERTURNED reached by the item
+  std::array<bool, 3> marked_{};   // levels marked alarmed by mark_alarmed: kept by start()
   bool started_ = false;
   ItemEvents events_;
   std::array<std::array<double, 2>, kPlaneCount> last_input_{};  // each plane's last (horizontal, vertical), m/s^2

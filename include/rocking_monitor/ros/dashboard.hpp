@@ -107,6 +107,7 @@ class Dashboard {
   void on_diagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& msg);
   void on_update_timer(const ::ros::WallTimerEvent&);
   void on_catalogue_timer(const ::ros::WallTimerEvent&);
+  void read_journal();  // the alarms of the monitor's open event, from its journal (docs/journal.md)
   // ---- the input acceleration (dashboard_input.cpp): the monitor does not republish its input
   void subscribe_input(const std::string& topic, bool imu);
   void on_imu(const sensor_msgs::Imu::ConstPtr& msg);

@@ -24,6 +24,7 @@
 #include "rocking_monitor/ProbabilityAlarm.h"
 #include "rocking_monitor/RockingStateArray.h"
 #include "rocking_monitor/motion/gravity_baseline.hpp"
+#include "rocking_monitor/monitoring/alarm_journal.hpp"
 #include "rocking_monitor/monitoring/item_ensemble.hpp"
 #include "rocking_monitor/monitoring/item_monitor.hpp"
 #include "rocking_monitor/monitoring/monitor_batch.hpp"
@@ -154,6 +155,27 @@ class RockingMonitor {
     double mean() const { return count > 0 ? total_s / static_cast<double>(count) : 0.0; }
   };
   Cost states_cost_, markers_cost_;
+
+  // The alarm journal (issue 19, part 2; docs/journal.md, ros/monitor_journal.cpp): every alarm,
+  // probability alarm, reset and stale period is appended (fsync'd) before it is published; on start
+  // the open event's alarms are read back, their levels marked alarmed in the items, and sent to every
+  // new subscriber of ~alarms / ~probability_alarms.
+  std::string journal_path_;         // ~journal; "" = off (events kept in memory only)
+  double journal_window_ = 3600.0;   // ~journal_window, s of the node's clock
+  core::AlarmJournal journal_;
+  std::string journal_status_;       // why the journal is not on file, if it is not
+  std::uint64_t journal_errors_ = 0, journal_repeats_ = 0, journal_relatched_ = 0;
+  std::vector<OverturnAlarm> event_alarms_;                // the open event's, in journal order
+  std::vector<ProbabilityAlarm> event_probability_alarms_;
+  bool load_journal_parameters();
+  void open_journal();
+  double journal_clock(const ::ros::Time& fallback) const;
+  /// Journals an alarm of item `it` (fills m.event_id, m.sequence); false: a repeat within the open
+  /// event (not to be published).
+  bool journal_alarm(Item& it, OverturnAlarm& m, double run_start);
+  bool journal_probability_alarm(Item& it, ProbabilityAlarm& m, double run_start);
+  void journal_reset(const std::string& why);
+  void journal_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& stat);
 };
 
 }  // namespace rocking_monitor::live

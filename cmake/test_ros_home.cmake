@@ -1,0 +1,20 @@
+# Every test runs with a ROS_HOME of its own under build/test_ros_home/, emptied before the tests run:
+# the monitor's alarm journal (default $ROS_HOME/rocking_monitor/journal.jsonl, docs/journal.md) must
+# not carry one test's (or one run's, or another checkout's) alarms into another. Included last, so
+# that it sees every test.
+if(CATKIN_ENABLE_TESTING OR BUILD_TESTING)
+  add_test(NAME test_ros_home.clean COMMAND ${CMAKE_COMMAND} -E rm -rf ${CMAKE_BINARY_DIR}/test_ros_home)
+  set_tests_properties(test_ros_home.clean PROPERTIES FIXTURES_SETUP test_ros_home)
+  get_property(_all_tests DIRECTORY PROPERTY TESTS)
+  foreach(_test IN LISTS _all_tests)
+    if(_test STREQUAL "test_ros_home.clean")
+      continue()
+    endif()
+    string(MAKE_C_IDENTIFIER "${_test}" _id)
+    string(SUBSTRING "${_id}" 0 80 _id)
+    string(MD5 _hash "${_test}")
+    string(SUBSTRING "${_hash}" 0 8 _hash)
+    set_property(TEST ${_test} APPEND PROPERTY ENVIRONMENT "ROS_HOME=${CMAKE_BINARY_DIR}/test_ros_home/${_id}_${_hash}")
+    set_property(TEST ${_test} APPEND PROPERTY FIXTURES_REQUIRED test_ros_home)
+  endforeach()
+endif()

@@ -1,0 +1,334 @@
+#include "rocking_monitor/monitoring/alarm_journal.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "rocking_monitor/monitoring/event_clock.hpp"
+
+namespace rocking_monitor::core {
+namespace {
+
+using nlohmann::json;
+
+const char* level_name(int level) {
+  switch (level) {
+    case 2: return "BEYOND_TIPPING";
+    case 3: return "COMMITTED";
+    case 4: return "OVERTURNED";
+    default: return nullptr;
+  }
+}
+
+int level_code(const std::string& name) {
+  for (int l = 2; l <= 4; ++l)
+    if (name == level_name(l)) return l;
+  return 0;
+}
+
+bool parse_kind(const std::string& s, JournalKind& k) {
+  for (JournalKind c : {JournalKind::Alarm, JournalKind::ProbabilityAlarm, JournalKind::Reset, JournalKind::Stale})
+    if (s == to_string(c)) { k = c; return true; }
+  return false;
+}
+
+// JSON has no NaN: an unknown number is left out of the line.
+void put(json& j, const char* key, double v) {
+  if (std::isfinite(v)) j[key] = v;
+}
+
+double number(const json& j, const char* key, bool required) {
+  const auto it = j.find(key);
+  if (it == j.end()) {
+    if (required) throw std::runtime_error(std::string("field '") + key + "' missing");
+    return JournalRecord::kNaN;
+  }
+  if (!it->is_number()) throw std::runtime_error(std::string("field '") + key + "' is not a number");
+  return it->get<double>();
+}
+
+std::string text(const json& j, const char* key, bool required) {
+  const auto it = j.find(key);
+  if (it == j.end()) {
+    if (required) throw std::runtime_error(std::string("field '") + key + "' missing");
+    return {};
+  }
+  if (!it->is_string()) throw std::runtime_error(std::string("field '") + key + "' is not a string");
+  return it->get<std::string>();
+}
+
+JournalRecord from_json_line(const std::string& line) {
+  const json j = json::parse(line);  // throws json::parse_error with the column
+  if (!j.is_object()) throw std::runtime_error("not a JSON object");
+  JournalRecord r;
+  const std::string kind = text(j, "kind", true);
+  if (!parse_kind(kind, r.kind)) throw std::runtime_error("unknown kind '" + kind + "'");
+  r.written = number(j, "written", true);
+  r.time = number(j, "time", true);
+  if (r.kind == JournalKind::Reset) {
+    r.reason = text(j, "reason", false);
+    return r;
+  }
+  r.event = text(j, "event", true);
+  if (r.event.empty()) throw std::runtime_error("field 'event' is empty");
+  const double seq = number(j, "sequence", true);
+  if (!(seq >= 1.0) || seq != std::floor(seq)) throw std::runtime_error("field 'sequence' must be an integer >= 1");
+  r.sequence = static_cast<std::uint64_t>(seq);
+  r.event_start = number(j, "event_start", true);
+  r.since_event_start = number(j, "since_event_start", true);
+  r.sensor = text(j, "sensor", r.kind == JournalKind::Stale);
+  if (const auto it = j.find("stamp_ns"); it != j.end()) {
+    if (!it->is_number_integer()) throw std::runtime_error("field 'stamp_ns' is not an integer");
+    r.stamp_ns = it->get<std::int64_t>();
+  }
+  if (r.kind == JournalKind::Stale) {
+    r.end_time = number(j, "end_time", false);
+    return r;
+  }
+  r.item = text(j, "item", true);
+  const std::string level = text(j, "level", true);
+  r.level = level_code(level);
+  if (r.level == 0) throw std::runtime_error("unknown level '" + level + "'");
+  if (r.kind == JournalKind::Alarm) {
+    r.plane = text(j, "plane", true);
+    if (r.plane != "x" && r.plane != "y") throw std::runtime_error("field 'plane' must be \"x\" or \"y\"");
+    r.rotation_ratio = number(j, "rotation_ratio", false);
+  } else {
+    r.probability = number(j, "probability", true);
+    r.lower = number(j, "lower", false);
+    r.upper = number(j, "upper", false);
+    r.threshold = number(j, "threshold", false);
+    r.ensemble_size = static_cast<int>(number(j, "ensemble_size", false) >= 0 ? number(j, "ensemble_size", false) : 0);
+  }
+  return r;
+}
+
+// Within the window either way: a clock that jumped back by more than the window (sim time replaying
+// an old record after a live event) is another event too.
+bool within(double now, double written, double window) { return std::abs(now - written) <= window; }
+
+std::string errno_text(const std::string& what, const std::string& path) {
+  return what + " " + path + ": " + std::strerror(errno);
+}
+
+}  // namespace
+
+const char* to_string(JournalKind kind) {
+  switch (kind) {
+    case JournalKind::Alarm: return "alarm";
+    case JournalKind::ProbabilityAlarm: return "probability_alarm";
+    case JournalKind::Reset: return "reset";
+    case JournalKind::Stale: return "stale";
+  }
+  return "?";
+}
+
+std::string to_json_line(const JournalRecord& r) {
+  json j;
+  j["kind"] = to_string(r.kind);
+  if (r.kind != JournalKind::Reset) {
+    j["event"] = r.event;
+    j["sequence"] = r.sequence;
+  }
+  if (!r.item.empty()) j["item"] = r.item;
+  if (r.level != 0 && level_name(r.level) != nullptr) j["level"] = level_name(r.level);
+  if (!r.plane.empty()) j["plane"] = r.plane;
+  if (!r.sensor.empty()) j["sensor"] = r.sensor;
+  put(j, "time", r.time);
+  j["time_utc"] = iso8601_utc(r.time);  // for a person reading the file; not read back
+  if (r.stamp_ns != 0) j["stamp_ns"] = r.stamp_ns;
+  put(j, "end_time", r.end_time);
+  put(j, "event_start", r.event_start);
+  put(j, "since_event_start", r.since_event_start);
+  put(j, "rotation_ratio", r.rotation_ratio);
+  put(j, "probability", r.probability);
+  put(j, "lower", r.lower);
+  put(j, "upper", r.upper);
+  put(j, "threshold", r.threshold);
+  if (r.kind == JournalKind::ProbabilityAlarm) j["ensemble_size"] = r.ensemble_size;
+  if (r.kind == JournalKind::Reset) j["reason"] = r.reason;
+  put(j, "written", r.written);
+  return j.dump();
+}
+
+JournalReading read_journal(const std::string& path) {
+  JournalReading out;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return out;
+  out.exists = true;
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string all = buffer.str();
+  std::set<std::string> ids;
+  std::size_t pos = 0, line_no = 0;
+  while (pos < all.size()) {
+    ++line_no;
+    const std::size_t nl = all.find('\n', pos);
+    if (nl == std::string::npos) {
+      out.warnings.push_back(path + ":" + std::to_string(line_no) + ": last line cut in the middle (" +
+                             std::to_string(all.size() - pos) +
+                             " bytes without a newline: power cut while writing?); read up to line " +
+                             std::to_string(line_no - 1));
+      break;
+    }
+    std::string line = all.substr(pos, nl - pos);
+    pos = nl + 1;
+    out.whole_bytes = pos;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.find_first_not_of(" \t") == std::string::npos) continue;
+    try {
+      JournalRecord r = from_json_line(line);
+      if (!r.event.empty()) ids.insert(r.event);
+      out.records.push_back(std::move(r));
+    } catch (const std::exception& e) {
+      out.errors.push_back(path + ":" + std::to_string(line_no) + ": not a journal record (skipped): " + e.what());
+    }
+  }
+  out.events = ids.size();
+  return out;
+}
+
+OpenEvent last_event(const JournalReading& reading, bool* closed_by_reset) {
+  OpenEvent ev;
+  if (closed_by_reset) *closed_by_reset = false;
+  // The last event is the one of the last non-reset record; a later reset closes it.
+  std::size_t last = reading.records.size();
+  for (std::size_t i = reading.records.size(); i-- > 0;) {
+    if (reading.records[i].kind != JournalKind::Reset) { last = i; break; }
+    if (closed_by_reset) *closed_by_reset = true;
+  }
+  if (last == reading.records.size()) return ev;
+  ev.id = reading.records[last].event;
+  for (const JournalRecord& r : reading.records) {
+    if (r.event != ev.id) continue;
+    if (ev.records.empty()) ev.start = r.event_start;
+    ev.records.push_back(r);
+    ev.last_sequence = std::max(ev.last_sequence, r.sequence);
+    ev.last_written = r.written;
+  }
+  return ev;
+}
+
+OpenEvent open_event(const JournalReading& reading, double now, double window) {
+  bool reset = false;
+  OpenEvent ev = last_event(reading, &reset);
+  if (reset || !ev.open() || !within(now, ev.last_written, window)) return OpenEvent{};
+  return ev;
+}
+
+AlarmJournal::~AlarmJournal() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+std::string AlarmJournal::open(const std::string& path, double window, double now) {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  path_ = path;
+  window_ = window;
+  memory_ = path.empty();
+  reading_ = JournalReading{};
+  event_ = OpenEvent{};
+  events_ = 0;
+  if (memory_) return {};
+  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!dir.empty()) std::filesystem::create_directories(dir, ec);
+  if (ec) return "cannot create the directory " + dir.string() + ": " + ec.message();
+  reading_ = read_journal(path);
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  if (fd < 0) return errno_text("cannot open", path);
+  // A line cut by a power cut is dropped, so that the next record starts on a line of its own.
+  struct stat st {};
+  if (::fstat(fd, &st) == 0 && static_cast<std::uint64_t>(st.st_size) > reading_.whole_bytes) {
+    if (::ftruncate(fd, static_cast<off_t>(reading_.whole_bytes)) != 0 || ::fsync(fd) != 0) {
+      const std::string e = errno_text("cannot cut the last line of", path);
+      ::close(fd);
+      return e;
+    }
+  }
+  fd_ = fd;
+  events_ = reading_.events;
+  event_ = open_event(reading_, now, window_);
+  return {};
+}
+
+bool AlarmJournal::holds(JournalKind kind, const std::string& item, int level) const {
+  for (const JournalRecord& r : event_.records)
+    if (r.kind == kind && r.level == level && r.item == item) return true;
+  return false;
+}
+
+std::string AlarmJournal::write_line(const JournalRecord& r) {
+  if (memory_) return {};
+  if (fd_ < 0) return "journal not open";
+  const std::string line = to_json_line(r) + "\n";
+  std::size_t done = 0;
+  while (done < line.size()) {
+    const ssize_t n = ::write(fd_, line.data() + done, line.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return errno_text("cannot write", path_);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd_) != 0) return errno_text("cannot fsync", path_);
+  return {};
+}
+
+std::string AlarmJournal::append(JournalRecord& r, double run_start, double now) {
+  const bool expired = event_.open() && !within(now, event_.last_written, window_);
+  OpenEvent next = event_;
+  if (!event_.open() || expired) {
+    next = OpenEvent{};
+    next.id = iso8601_utc(run_start) + "/" + std::to_string(events_ + 1);
+    next.start = run_start;
+  }
+  r.event = next.id;
+  r.sequence = next.last_sequence + 1;
+  r.event_start = next.start;
+  r.since_event_start = r.time - next.start;
+  r.written = now;
+  if (std::string e = write_line(r); !e.empty()) return e;
+  if (next.id != event_.id) ++events_;
+  next.last_sequence = r.sequence;
+  next.last_written = now;
+  next.records.push_back(r);
+  event_ = std::move(next);
+  return {};
+}
+
+std::string AlarmJournal::append_stale(const std::string& sensor, double from, double to, double run_start,
+                                       double now, JournalRecord* written) {
+  JournalRecord r;
+  r.kind = JournalKind::Stale;
+  r.sensor = sensor;
+  r.time = from;
+  r.end_time = to;
+  std::string e = append(r, run_start, now);
+  if (written != nullptr && e.empty()) *written = r;
+  return e;
+}
+
+std::string AlarmJournal::append_reset(const std::string& reason, double now) {
+  JournalRecord r;
+  r.kind = JournalKind::Reset;
+  r.time = now;
+  r.written = now;
+  r.reason = reason;
+  if (std::string e = write_line(r); !e.empty()) return e;
+  event_ = OpenEvent{};
+  return {};
+}
+
+}  // namespace rocking_monitor::core

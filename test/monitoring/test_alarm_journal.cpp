@@ -1,0 +1,238 @@
+// The alarm journal (issue 19, part 2): records written are read back field for field, events open
+// and close by the rules of docs/journal.md, a line cut by a power cut is dropped with a warning that
+// names file and line, a corrupt line is reported as file:line and skipped.
+#include "rocking_monitor/monitoring/alarm_journal.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "temp_root.hpp"
+
+namespace rocking_monitor::core {
+namespace {
+
+const testing::TempRoot& root = testing::TempRoot::registered("rocking_journal_test_");
+
+std::string fresh(const std::string& name) {
+  std::filesystem::create_directories(root.path());
+  const std::string p = (root.path() / name).string();
+  std::filesystem::remove(p);
+  return p;
+}
+
+std::string slurp(const std::string& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+JournalRecord alarm(const std::string& item, int level, double t) {
+  JournalRecord r;
+  r.kind = JournalKind::Alarm;
+  r.item = item;
+  r.level = level;
+  r.plane = "y";
+  r.sensor = "floor";
+  r.time = t;
+  r.rotation_ratio = 1.0 + 1.0 / 3.0;
+  r.stamp_ns = static_cast<std::int64_t>(t * 1e9) + 1;  // not a multiple of 1 us: exact only as an integer
+  return r;
+}
+
+constexpr double kRun = 758809855.0;   // 1994-01-17T12:30:55Z (Northridge): the first sample
+constexpr double kNow = 1700000000.0;  // the node's clock
+
+TEST(AlarmJournal, RecordsAreReadBackExactlyAndNumberedWithinTheEvent) {
+  const std::string p = fresh("a/b/journal.jsonl");  // directories are created
+  AlarmJournal j;
+  ASSERT_EQ(j.open(p, 3600.0, kNow), "");
+  EXPECT_FALSE(j.event().open());
+  JournalRecord a = alarm("vase", 4, kRun + 7.125);
+  ASSERT_EQ(j.append(a, kRun, kNow), "");
+  EXPECT_EQ(a.event, "1994-01-17T12:30:55.000Z/1");
+  EXPECT_EQ(a.sequence, 1u);
+  EXPECT_EQ(a.since_event_start, 7.125);
+  JournalRecord p2;
+  p2.kind = JournalKind::ProbabilityAlarm;
+  p2.item = "urn";
+  p2.level = 3;
+  p2.time = kRun + 9.0;
+  p2.probability = 0.53125;  // 17 of 32
+  p2.lower = 0.36;
+  p2.upper = 0.69;
+  p2.threshold = 0.5;
+  p2.ensemble_size = 32;
+  // Another sensor run later in the same event: the event keeps its first sample.
+  ASSERT_EQ(j.append(p2, kRun + 5.0, kNow + 1.0), "");
+  EXPECT_EQ(p2.event, a.event);
+  EXPECT_EQ(p2.sequence, 2u);
+  EXPECT_EQ(p2.since_event_start, 9.0);
+  JournalRecord stale;
+  ASSERT_EQ(j.append_stale("floor", kRun + 20.0, kRun + 23.5, kRun, kNow + 2.0, &stale), "");
+  EXPECT_EQ(stale.sequence, 3u);
+  EXPECT_TRUE(j.holds(JournalKind::Alarm, "vase", 4));
+  EXPECT_FALSE(j.holds(JournalKind::Alarm, "vase", 3));
+  EXPECT_FALSE(j.holds(JournalKind::ProbabilityAlarm, "vase", 4));
+
+  const JournalReading r = read_journal(p);
+  EXPECT_TRUE(r.warnings.empty());
+  EXPECT_TRUE(r.errors.empty());
+  ASSERT_EQ(r.records.size(), 3u);
+  EXPECT_EQ(r.events, 1u);
+  const JournalRecord& back = r.records[0];
+  EXPECT_EQ(back.kind, JournalKind::Alarm);
+  EXPECT_EQ(back.item, "vase");
+  EXPECT_EQ(back.level, 4);
+  EXPECT_EQ(back.plane, "y");
+  EXPECT_EQ(back.sensor, "floor");
+  EXPECT_EQ(back.time, kRun + 7.125);
+  EXPECT_EQ(back.rotation_ratio, 1.0 + 1.0 / 3.0);  // doubles round-trip exactly
+  EXPECT_EQ(back.stamp_ns, a.stamp_ns);
+  EXPECT_EQ(back.event_start, kRun);
+  EXPECT_EQ(back.written, kNow);
+  EXPECT_EQ(r.records[1].probability, 0.53125);
+  EXPECT_EQ(r.records[1].ensemble_size, 32);
+  EXPECT_EQ(r.records[2].kind, JournalKind::Stale);
+  EXPECT_EQ(r.records[2].end_time, kRun + 23.5);
+  // One line per record, the level by name.
+  const std::string text = slurp(p);
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 3);
+  EXPECT_NE(text.find("\"level\":\"OVERTURNED\""), std::string::npos) << text;
+}
+
+TEST(AlarmJournal, EventStaysOpenWithinTheWindowAndClosesAfterItOrOnReset) {
+  const std::string p = fresh("window.jsonl");
+  {
+    AlarmJournal j;
+    ASSERT_EQ(j.open(p, 3600.0, kNow), "");
+    JournalRecord a = alarm("vase", 2, kRun + 1.0);
+    ASSERT_EQ(j.append(a, kRun, kNow), "");
+  }
+  const JournalReading r = read_journal(p);
+  EXPECT_TRUE(open_event(r, kNow + 3600.0, 3600.0).open());   // at the window's end: still open
+  EXPECT_FALSE(open_event(r, kNow + 3600.5, 3600.0).open());  // past it: closed
+  EXPECT_FALSE(open_event(r, kRun, 3600.0).open());  // a clock far behind (sim time, an old record): closed
+  {
+    // A restarted node within the window continues the event and its numbering.
+    AlarmJournal j;
+    ASSERT_EQ(j.open(p, 3600.0, kNow + 10.0), "");
+    ASSERT_TRUE(j.event().open());
+    EXPECT_EQ(j.event().records.size(), 1u);
+    JournalRecord b = alarm("vase", 3, kRun + 2.0);
+    ASSERT_EQ(j.append(b, kRun + 100.0, kNow + 20.0), "");
+    EXPECT_EQ(b.event, "1994-01-17T12:30:55.000Z/1");
+    EXPECT_EQ(b.sequence, 2u);
+    // A record after the window closed opens event 2, numbered from 1 again.
+    JournalRecord c = alarm("vase", 2, kRun + 9000.0);
+    ASSERT_EQ(j.append(c, kRun + 8990.0, kNow + 20.0 + 3601.0), "");
+    EXPECT_EQ(c.event, "1994-01-17T15:00:45.000Z/2");
+    EXPECT_EQ(c.sequence, 1u);
+    EXPECT_EQ(c.since_event_start, 10.0);
+    // A reset closes it; the next record opens event 3.
+    ASSERT_EQ(j.append_reset("~reset called", kNow + 4000.0), "");
+    EXPECT_FALSE(j.event().open());
+    EXPECT_FALSE(j.holds(JournalKind::Alarm, "vase", 2));
+  }
+  const JournalReading after = read_journal(p);
+  EXPECT_EQ(after.events, 2u);
+  bool reset = false;
+  const OpenEvent last = last_event(after, &reset);
+  EXPECT_TRUE(reset);
+  EXPECT_EQ(last.id, "1994-01-17T15:00:45.000Z/2");  // the report still finds what the reset closed
+  EXPECT_FALSE(open_event(after, kNow + 4001.0, 3600.0).open());
+  AlarmJournal j;
+  ASSERT_EQ(j.open(p, 3600.0, kNow + 4001.0), "");
+  JournalRecord d = alarm("urn", 4, kRun + 9500.0);
+  ASSERT_EQ(j.append(d, kRun + 9490.0, kNow + 4002.0), "");
+  EXPECT_EQ(d.event.substr(d.event.size() - 2), "/3");
+}
+
+TEST(AlarmJournal, LineCutByAPowerCutIsDroppedWithAWarningNamingFileAndLine) {
+  const std::string p = fresh("cut.jsonl");
+  {
+    AlarmJournal j;
+    ASSERT_EQ(j.open(p, 3600.0, kNow), "");
+    JournalRecord a = alarm("vase", 2, kRun + 1.0), b = alarm("vase", 3, kRun + 2.0);
+    ASSERT_EQ(j.append(a, kRun, kNow), "");
+    ASSERT_EQ(j.append(b, kRun, kNow), "");
+  }
+  const std::string whole = slurp(p);
+  const std::string third = to_json_line(alarm("vase", 4, kRun + 3.0));
+  {
+    std::ofstream out(p, std::ios::app | std::ios::binary);
+    out << third.substr(0, third.size() / 2);  // the power went off mid-write
+  }
+  const JournalReading r = read_journal(p);
+  ASSERT_EQ(r.records.size(), 2u);
+  EXPECT_TRUE(r.errors.empty());
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_EQ(r.warnings[0].rfind(p + ":3: last line cut in the middle", 0), 0u) << r.warnings[0];
+  EXPECT_EQ(r.whole_bytes, whole.size());
+  // The writer cuts the file back to its whole lines before it appends.
+  AlarmJournal j;
+  ASSERT_EQ(j.open(p, 3600.0, kNow + 1.0), "");
+  EXPECT_EQ(j.reading().warnings.size(), 1u);
+  EXPECT_EQ(slurp(p), whole);
+  JournalRecord c = alarm("vase", 4, kRun + 3.0);
+  ASSERT_EQ(j.append(c, kRun, kNow + 1.0), "");
+  EXPECT_EQ(c.sequence, 3u);
+  const JournalReading again = read_journal(p);
+  EXPECT_TRUE(again.warnings.empty());
+  EXPECT_TRUE(again.errors.empty());
+  EXPECT_EQ(again.records.size(), 3u);
+}
+
+TEST(AlarmJournal, CorruptLinesAreReportedAsFileAndLineAndSkipped) {
+  const std::string p = fresh("corrupt.jsonl");
+  const std::string good = to_json_line([] {
+    JournalRecord a = alarm("vase", 4, kRun + 3.0);
+    a.event = "E/1";
+    a.sequence = 1;
+    a.event_start = kRun;
+    a.since_event_start = 3.0;
+    a.written = kNow;
+    return a;
+  }());
+  {
+    std::ofstream out(p, std::ios::binary);
+    out << good << "\n"
+        << "{\"kind\": \"alarm\", \"event\": \"E/1\"\n"                  // 2: cut JSON
+        << "\n"                                                           // 3: blank: ignored
+        << "{\"kind\":\"fire\",\"written\":1,\"time\":1}\n"               // 4: unknown kind
+        << "[1,2]\n"                                                      // 5: not an object
+        << good.substr(0, good.find("OVERTURNED")) + "TOPPLED" + good.substr(good.find("OVERTURNED") + 10) << "\n"
+        << good << "\r\n";                                                // 7: CRLF is fine
+  }
+  const JournalReading r = read_journal(p);
+  EXPECT_EQ(r.records.size(), 2u);
+  ASSERT_EQ(r.errors.size(), 4u);
+  EXPECT_EQ(r.errors[0].rfind(p + ":2: not a journal record", 0), 0u) << r.errors[0];
+  EXPECT_EQ(r.errors[1].rfind(p + ":4: ", 0), 0u) << r.errors[1];
+  EXPECT_NE(r.errors[1].find("unknown kind 'fire'"), std::string::npos) << r.errors[1];
+  EXPECT_EQ(r.errors[2].rfind(p + ":5: ", 0), 0u) << r.errors[2];
+  EXPECT_NE(r.errors[3].find(":6: "), std::string::npos) << r.errors[3];
+  EXPECT_NE(r.errors[3].find("unknown level 'TOPPLED'"), std::string::npos) << r.errors[3];
+  EXPECT_TRUE(r.warnings.empty());
+}
+
+TEST(AlarmJournal, MissingFileIsAnEmptyJournalAndAnUnwritablePathIsAnError) {
+  const JournalReading r = read_journal((root.path() / "none.jsonl").string());
+  EXPECT_FALSE(r.exists);
+  EXPECT_TRUE(r.records.empty());
+  const std::string blocker = fresh("file_not_dir");
+  std::ofstream(blocker) << "x";
+  AlarmJournal j;
+  const std::string e = j.open(blocker + "/journal.jsonl", 3600.0, kNow);
+  EXPECT_NE(e.find(blocker), std::string::npos) << e;
+  EXPECT_FALSE(j.is_open());
+  JournalRecord a = alarm("vase", 4, kRun);
+  EXPECT_NE(j.append(a, kRun, kNow), "");
+}
+
+}  // namespace
+}  // namespace rocking_monitor::core
