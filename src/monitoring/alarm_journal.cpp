@@ -239,6 +239,7 @@ std::string AlarmJournal::open(const std::string& path, double window, double no
   memory_ = path.empty();
   reading_ = JournalReading{};
   event_ = OpenEvent{};
+  held_.clear();
   events_ = 0;
   if (memory_) return {};
   const std::filesystem::path dir = std::filesystem::path(path).parent_path();
@@ -260,16 +261,31 @@ std::string AlarmJournal::open(const std::string& path, double window, double no
   fd_ = fd;
   events_ = reading_.events;
   event_ = open_event(reading_, now, window_);
+  index_event();
   return {};
 }
 
-bool AlarmJournal::holds(JournalKind kind, const std::string& item, int level) const {
-  for (const JournalRecord& r : event_.records)
-    if (r.kind == kind && r.level == level && r.item == item) return true;
-  return false;
+std::string AlarmJournal::key(JournalKind kind, const std::string& item, int level) {
+  return std::to_string(static_cast<int>(kind)) + "/" + std::to_string(level) + "/" + item;
 }
 
-std::string AlarmJournal::write_line(const JournalRecord& r) {
+void AlarmJournal::index_event() {
+  held_.clear();
+  for (const JournalRecord& r : event_.records) held_.insert(key(r.kind, r.item, r.level));
+}
+
+bool AlarmJournal::holds(JournalKind kind, const std::string& item, int level) const {
+  return held_.count(key(kind, item, level)) > 0;
+}
+
+std::string AlarmJournal::sync() {
+  if (!unsynced_ || fd_ < 0) return {};
+  unsynced_ = false;
+  if (::fsync(fd_) != 0) return errno_text("cannot fsync", path_);
+  return {};
+}
+
+std::string AlarmJournal::write_line(const JournalRecord& r, bool sync) {
   if (memory_) return {};
   if (fd_ < 0) return "journal not open";
   const std::string line = to_json_line(r) + "\n";
@@ -282,29 +298,31 @@ std::string AlarmJournal::write_line(const JournalRecord& r) {
     }
     done += static_cast<std::size_t>(n);
   }
-  if (::fsync(fd_) != 0) return errno_text("cannot fsync", path_);
-  return {};
+  unsynced_ = true;
+  return sync ? this->sync() : std::string();
 }
 
-std::string AlarmJournal::append(JournalRecord& r, double run_start, double now) {
-  const bool expired = event_.open() && !within(now, event_.last_written, window_);
-  OpenEvent next = event_;
-  if (!event_.open() || expired) {
-    next = OpenEvent{};
-    next.id = iso8601_utc(run_start) + "/" + std::to_string(events_ + 1);
-    next.start = run_start;
-  }
-  r.event = next.id;
-  r.sequence = next.last_sequence + 1;
-  r.event_start = next.start;
-  r.since_event_start = r.time - next.start;
+std::string AlarmJournal::append(JournalRecord& r, double run_start, double now, bool sync) {
+  // The open event is changed only once the line is written (no copy of its records: thousands of
+  // items may alarm in one event).
+  const bool fresh = !event_.open() || !within(now, event_.last_written, window_);
+  r.event = fresh ? iso8601_utc(run_start) + "/" + std::to_string(events_ + 1) : event_.id;
+  r.sequence = fresh ? 1 : event_.last_sequence + 1;
+  r.event_start = fresh ? run_start : event_.start;
+  r.since_event_start = r.time - r.event_start;
   r.written = now;
-  if (std::string e = write_line(r); !e.empty()) return e;
-  if (next.id != event_.id) ++events_;
-  next.last_sequence = r.sequence;
-  next.last_written = now;
-  next.records.push_back(r);
-  event_ = std::move(next);
+  if (std::string e = write_line(r, sync); !e.empty()) return e;
+  if (fresh) {
+    ++events_;
+    event_ = OpenEvent{};
+    event_.id = r.event;
+    event_.start = r.event_start;
+    held_.clear();
+  }
+  event_.last_sequence = r.sequence;
+  event_.last_written = now;
+  event_.records.push_back(r);
+  held_.insert(key(r.kind, r.item, r.level));
   return {};
 }
 
@@ -328,6 +346,7 @@ std::string AlarmJournal::append_reset(const std::string& reason, double now) {
   r.reason = reason;
   if (std::string e = write_line(r); !e.empty()) return e;
   event_ = OpenEvent{};
+  held_.clear();
   return {};
 }
 

@@ -158,7 +158,7 @@ bool RockingMonitor::journal_alarm(Item& it, OverturnAlarm& m, double run_start)
   r.stamp_ns = static_cast<std::int64_t>(m.header.stamp.toNSec());
   r.rotation_ratio = m.rotation_ratio;
   const std::string before = journal_.event().id;
-  if (const std::string e = journal_.append(r, run_start, journal_clock(m.header.stamp)); !e.empty()) {
+  if (const std::string e = journal_.append(r, run_start, journal_clock(m.header.stamp), false); !e.empty()) {
     ++journal_errors_;
     ROS_ERROR("rocking_monitor: alarm journal: %s: alarm of '%s' published without being journaled", e.c_str(),
               m.item_id.c_str());
@@ -193,7 +193,7 @@ bool RockingMonitor::journal_probability_alarm(Item& it, ProbabilityAlarm& m, do
   r.threshold = m.threshold;
   r.ensemble_size = m.ensemble_size;
   const std::string before = journal_.event().id;
-  if (const std::string e = journal_.append(r, run_start, journal_clock(m.header.stamp)); !e.empty()) {
+  if (const std::string e = journal_.append(r, run_start, journal_clock(m.header.stamp), false); !e.empty()) {
     ++journal_errors_;
     ROS_ERROR("rocking_monitor: alarm journal: %s: probability alarm of '%s' published without being journaled",
               e.c_str(), m.item_id.c_str());

@@ -2,6 +2,8 @@
 // sample or on the state timer), and the markers and tf of each item's rotated body.
 #include "rocking_monitor/ros/monitor.hpp"
 
+#include <cstdio>
+
 #include <array>
 #include <chrono>
 #include <cstdint>
@@ -79,20 +81,42 @@ void RockingMonitor::publish_events(Item& it, const core::ItemEvents& ev, const 
     m.rotation_ratio = a.rotation_ratio;
     for (core::CriterionId id : kScreening)
       (it.monitor->screening_exceeded(a.plane, id) ? m.predicted_by : m.not_predicted_by).push_back(core::to_string(id));
-    if (!journal_alarm(it, m, epoch)) continue;  // journaled (fsync'd) before it is published; never twice
-    alarms_pub_.publish(m);
-    ++alarms_published_;
+    if (!journal_alarm(it, m, epoch)) continue;  // journaled (fsync'd before publication); never twice
     const std::string when = core::event_time_text(epoch + a.time, epoch);
     const char* across = a.plane == core::Plane::X ? "across its width" : "across its depth";
+    char text[512];
     if (a.level == ItemMode::Overturned) {
-      ROS_ERROR("rocking_monitor: OVERTURNED: %s (%s), %s (plane %s), %s [event %s #%lu]", spec.id.c_str(),
-                spec.description.c_str(), across, m.plane.c_str(), when.c_str(), m.event_id.c_str(),
-                static_cast<unsigned long>(m.sequence));
+      std::snprintf(text, sizeof text, "rocking_monitor: OVERTURNED: %s (%s), %s (plane %s), %s [event %s #%lu]",
+                    spec.id.c_str(), spec.description.c_str(), across, m.plane.c_str(), when.c_str(),
+                    m.event_id.c_str(), static_cast<unsigned long>(m.sequence));
     } else {
-      ROS_WARN("rocking_monitor: %s: %s (%s), %s (plane %s), %s", core::to_string(a.level), spec.id.c_str(),
-               spec.description.c_str(), across, m.plane.c_str(), when.c_str());
+      std::snprintf(text, sizeof text, "rocking_monitor: %s: %s (%s), %s (plane %s), %s", core::to_string(a.level),
+                    spec.id.c_str(), spec.description.c_str(), across, m.plane.c_str(), when.c_str());
     }
+    pending_alarms_.push_back(std::move(m));
+    pending_logs_.push_back({a.level == ItemMode::Overturned, text});
   }
+}
+
+void RockingMonitor::publish_pending_alarms() {
+  if (pending_alarms_.empty() && pending_probability_alarms_.empty()) return;
+  if (const std::string e = journal_.sync(); !e.empty()) {
+    ++journal_errors_;
+    ROS_ERROR("rocking_monitor: alarm journal: %s: %zu alarms published without being on disk", e.c_str(),
+              pending_alarms_.size() + pending_probability_alarms_.size());
+  }
+  for (const OverturnAlarm& m : pending_alarms_) {
+    alarms_pub_.publish(m);
+    ++alarms_published_;
+  }
+  for (const ProbabilityAlarm& m : pending_probability_alarms_) probability_alarms_pub_.publish(m);
+  for (const PendingLog& l : pending_logs_) {
+    if (l.error) ROS_ERROR("%s", l.text.c_str());
+    else ROS_WARN("%s", l.text.c_str());
+  }
+  pending_alarms_.clear();
+  pending_probability_alarms_.clear();
+  pending_logs_.clear();
 }
 
 void RockingMonitor::publish_crossings(Item& it, const core::EnsembleEvents& ev, const ::ros::Time& stamp) {
@@ -114,11 +138,14 @@ void RockingMonitor::publish_crossings(Item& it, const core::EnsembleEvents& ev,
     // Beyond tipping is not an alarm level of its own here (it says little about falling).
     if (c.level == core::Level::BeyondTipping) continue;
     if (!journal_probability_alarm(it, m, epoch)) continue;  // journaled before it is published; never twice
-    probability_alarms_pub_.publish(m);
-    ROS_WARN("rocking_monitor: P(%s) of %s (%s) reached %.2f [%.2f, %.2f] over %d members (threshold %.2f), %s",
-             core::to_string(static_cast<ItemMode>(m.level)), spec.id.c_str(), spec.description.c_str(),
-             m.value.probability, w.lower, w.upper, e.size(), e.threshold(),
-             core::event_time_text(epoch + c.time, epoch).c_str());
+    char text[512];
+    std::snprintf(text, sizeof text,
+                  "rocking_monitor: P(%s) of %s (%s) reached %.2f [%.2f, %.2f] over %d members (threshold %.2f), %s",
+                  core::to_string(static_cast<ItemMode>(m.level)), spec.id.c_str(), spec.description.c_str(),
+                  m.value.probability, w.lower, w.upper, e.size(), e.threshold(),
+                  core::event_time_text(epoch + c.time, epoch).c_str());
+    pending_probability_alarms_.push_back(std::move(m));
+    pending_logs_.push_back({false, text});
   }
 }
 

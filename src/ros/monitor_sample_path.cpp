@@ -189,6 +189,7 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
     if (ev.change_count > 0 || ev.alarm_count > 0) publish_events(it, ev, header.stamp);
     if (it.ensemble && it.ensemble->events().count > 0) publish_crossings(it, it.ensemble->events(), header.stamp);
   }
+  publish_pending_alarms();  // one fsync of the journal, then the sample's alarms
   s.last_processing_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   s.max_processing_s = std::max(s.max_processing_s, s.last_processing_s);
   s.total_processing_s += s.last_processing_s;

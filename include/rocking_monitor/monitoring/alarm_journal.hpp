@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 namespace rocking_monitor::core {
@@ -100,8 +101,12 @@ class AlarmJournal {
 
   /// Appends r: sets r.event, r.sequence, r.event_start, r.since_event_start and r.written (opening
   /// a new event with first sample `run_start` if none is open at `now`), writes the line and
-  /// fsyncs. Empty string on success, else the error (the record is then not in the file).
-  std::string append(JournalRecord& r, double run_start, double now);
+  /// fsyncs (sync = false: the caller calls sync() before it publishes: one fsync for all the
+  /// alarms of a sample, which matters when thousands of items alarm at once). Empty string on
+  /// success, else the error (the record is then not in the file).
+  std::string append(JournalRecord& r, double run_start, double now, bool sync = true);
+  /// fsync of the lines appended with sync = false (none: nothing to do). Empty string on success.
+  std::string sync();
   /// A stale period of a sensor (its items frozen): from `from` to `to` (s since 1970; NaN `to`: still
   /// stale), in the sensor run that started at `run_start`; `now` is the node clock.
   std::string append_stale(const std::string& sensor, double from, double to, double run_start, double now,
@@ -110,13 +115,17 @@ class AlarmJournal {
   std::string append_reset(const std::string& reason, double now);
 
  private:
-  std::string write_line(const JournalRecord& r);
+  std::string write_line(const JournalRecord& r, bool sync = true);
+  static std::string key(JournalKind kind, const std::string& item, int level);
+  void index_event();  // held_ from event_.records
   int fd_ = -1;
   bool memory_ = false;
   std::string path_;
   double window_ = 3600.0;
   JournalReading reading_;
   OpenEvent event_;
+  std::unordered_set<std::string> held_;  // key() of the open event's alarms: holds() in O(1)
+  bool unsynced_ = false;                 // lines written since the last fsync
   std::uint64_t events_ = 0;  // events in the file, to number the next one
 };
 

@@ -98,6 +98,16 @@ class RockingMonitor {
   bool lookup_rotation(Item& item, const std::string& sensor_frame);
   void publish_events(Item& item, const core::ItemEvents& events, const ::ros::Time& stamp);
   void publish_crossings(Item& item, const core::EnsembleEvents& events, const ::ros::Time& stamp);
+  // A sample's alarms are journaled first (written, not yet fsync'd), then one fsync, then published:
+  // one fsync per sample instead of one per alarm (10,000 items alarm within seconds).
+  struct PendingLog {
+    bool error = false;  // ROS_ERROR, else ROS_WARN
+    std::string text;
+  };
+  std::vector<OverturnAlarm> pending_alarms_;
+  std::vector<ProbabilityAlarm> pending_probability_alarms_;
+  std::vector<PendingLog> pending_logs_;
+  void publish_pending_alarms();
   void make_models(Item& item);  // the nominal ItemMonitor and, for an uncertain item, its ensemble
   void rebuild_batch(Sensor& s);
   void sync_items();  // applies the batches' deferred samples: before anything reads the items
