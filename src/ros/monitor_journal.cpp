@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <unordered_map>
 
 namespace rocking_monitor::live {
 namespace {
@@ -22,12 +23,6 @@ std::string default_journal_path(const std::string& node_name) {
   if (ros_home != nullptr && *ros_home != '\0') return std::string(ros_home) + "/rocking_monitor/" + file;
   const char* home = std::getenv("HOME");
   return std::string(home != nullptr ? home : ".") + "/.ros/rocking_monitor/" + file;
-}
-
-const CatalogueItem* find_item(const std::vector<CatalogueItem>& items, const std::string& id) {
-  for (const CatalogueItem& it : items)
-    if (it.spec.id == id) return &it;
-  return nullptr;
 }
 
 }  // namespace
@@ -82,12 +77,15 @@ void RockingMonitor::open_journal() {
                journal_.reading().records.size(), journal_window_);
     return;
   }
-  std::vector<CatalogueItem> entries;
-  for (const Item& it : items_) entries.push_back(it.entry);
+  // id -> item: an event may hold an alarm of each of tens of thousands of items.
+  std::unordered_map<std::string, Item*> by_id;
+  for (Item& it : items_) by_id.emplace(it.entry.spec.id, &it);
   std::size_t foreign = 0;
   for (const core::JournalRecord& r : ev.records) {
     if (r.kind != core::JournalKind::Alarm && r.kind != core::JournalKind::ProbabilityAlarm) continue;
-    const CatalogueItem* entry = find_item(entries, r.item);
+    const auto found = by_id.find(r.item);
+    Item* item = found == by_id.end() ? nullptr : found->second;
+    const CatalogueItem* entry = item == nullptr ? nullptr : &item->entry;
     if (entry == nullptr) {  // another shard's item, or a catalogue since changed: not ours to re-send
       ++foreign;
       continue;
@@ -96,11 +94,7 @@ void RockingMonitor::open_journal() {
     if (r.stamp_ns > 0) stamp.fromNSec(static_cast<std::uint64_t>(r.stamp_ns));
     else stamp = ::ros::Time(r.time);
     if (r.kind == core::JournalKind::Alarm) {
-      OverturnAlarm m;
-      m.header.stamp = stamp;
-      m.header.frame_id = entry->spec.frame;
-      m.item_id = r.item;
-      m.description = entry->spec.description;
+      OverturnAlarm m = alarm_for<OverturnAlarm>(entry->spec, stamp);
       m.level = static_cast<std::uint8_t>(r.level);
       m.plane = r.plane;
       m.event_time = r.time;
@@ -109,14 +103,9 @@ void RockingMonitor::open_journal() {
       m.event_id = r.event;
       m.sequence = r.sequence;
       event_alarms_.push_back(m);
-      for (Item& it : items_)
-        if (it.entry.spec.id == r.item) it.monitor->mark_alarmed(static_cast<core::ItemMode>(r.level));
+      item->monitor->mark_alarmed(static_cast<core::ItemMode>(r.level));
     } else {
-      ProbabilityAlarm m;
-      m.header.stamp = stamp;
-      m.header.frame_id = entry->spec.frame;
-      m.item_id = r.item;
-      m.description = entry->spec.description;
+      ProbabilityAlarm m = alarm_for<ProbabilityAlarm>(entry->spec, stamp);
       m.level = static_cast<std::uint8_t>(r.level);
       m.threshold = r.threshold;
       m.ensemble_size = static_cast<std::uint16_t>(r.ensemble_size);

@@ -39,17 +39,6 @@ constexpr std::array<core::CriterionId, core::kScreeningCount> kScreening = {
     core::CriterionId::Housner, core::CriterionId::Ishiyama, core::CriterionId::IshiyamaEquivalent,
     core::CriterionId::Proposed};
 
-// The fields every alarm message shares: stamp, the item's frame, id and description.
-template <class Alarm>
-Alarm alarm_for(const core::ItemSpec& spec, const ::ros::Time& stamp) {
-  Alarm m;
-  m.header.stamp = stamp;
-  m.header.frame_id = spec.frame;
-  m.item_id = spec.id;
-  m.description = spec.description;
-  return m;
-}
-
 }  // namespace
 
 void RockingMonitor::publish_events(Item& it, const core::ItemEvents& ev, const ::ros::Time& stamp) {

@@ -33,6 +33,17 @@
 
 namespace rocking_monitor::live {
 
+/// The fields every alarm message shares: stamp, the item's frame, id and description.
+template <class Alarm>
+Alarm alarm_for(const core::ItemSpec& spec, const ::ros::Time& stamp) {
+  Alarm m;
+  m.header.stamp = stamp;
+  m.header.frame_id = spec.frame;
+  m.item_id = spec.id;
+  m.description = spec.description;
+  return m;
+}
+
 /// The live monitor (thin ROS layer over core::ItemMonitor): subscribes to every sensor of the
 /// catalogue, rotates each sample into each item's frame with tf2, removes gravity with a tracked
 /// at-rest baseline, steps the items with dt from the header stamps and publishes states, criterion
