@@ -117,3 +117,17 @@ else()
   message(WARNING "cpp-httplib not found (Debian: libcpp-httplib-dev; scripts/install_deps.sh): "
                   "the dashboard node is not built")
 endif()
+
+if(CATKIN_ENABLE_TESTING)
+  # Issue 19: the fault table (bad stamps, clock step, transport loss) on the Rinaldi record.
+  add_executable(test_monitor_faults EXCLUDE_FROM_ALL test/ros/test_monitor_faults.cpp)
+  target_link_libraries(test_monitor_faults rocking_monitor_ros ${catkin_LIBRARIES} GTest::gtest)
+  target_include_directories(test_monitor_faults PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/support)
+  add_dependencies(tests test_monitor_faults)
+  if(TARGET record_to_bag)
+    add_dependencies(test_monitor_faults record_to_bag monitor)
+  endif()
+  add_rostest(test/ros/monitor_faults.test
+              ARGS records:=${ROCKING_RECORDS_DIR} tools:=${ROCKING_TOOL_DIR}
+              DEPENDENCIES test_monitor_faults)
+endif()
