@@ -131,3 +131,9 @@ if(CATKIN_ENABLE_TESTING)
               ARGS records:=${ROCKING_RECORDS_DIR} tools:=${ROCKING_TOOL_DIR}
               DEPENDENCIES test_monitor_faults)
 endif()
+if(CATKIN_ENABLE_TESTING)
+  # Issue 19 part 3: overload visible, load shed, every sample stepped or counted.
+  add_rostest_gtest(test_monitor_overload test/ros/monitor_overload.test test/ros/test_monitor_overload.cpp)
+  target_link_libraries(test_monitor_overload ${catkin_LIBRARIES})
+  add_dependencies(test_monitor_overload monitor)
+endif()

@@ -127,7 +127,9 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
 // ~overload is published (latched) and the diagnostics at once.
 void RockingMonitor::update_overload(Sensor& s) {
   s.max_backlog_s = std::max(s.max_backlog_s, s.backlog_s);
-  const double behind = std::max(s.lag_s, s.backlog_s);
+  // Idle for longer than ~max_lag (nothing waits, else it would be processed): caught up.
+  const bool idle = !s.last_input_clock.isZero() && (::ros::Time::now() - s.last_input_clock).toSec() > max_lag_;
+  const double behind = idle ? 0.0 : std::max(s.lag_s, s.backlog_s);
   const bool was = s.overloaded;
   if (!s.overloaded && behind > max_lag_) {
     s.overloaded = true;
@@ -245,9 +247,11 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
   }
   s.mean_dt = s.mean_dt == 0.0 ? dt : 0.99 * s.mean_dt + 0.01 * dt;
   {
-    // Lost in transport: whole periods missing at the nominal rate (the catalogue's, unless the stamps
-    // say otherwise), from the stamps alone.
-    const double period = std::abs(s.mean_dt * s.spec.rate - 1.0) < 0.1 ? 1.0 / s.spec.rate : s.mean_dt;
+    // Lost in transport: whole periods missing at the nominal rate, from the stamps alone. The nominal
+    // period is the catalogue's rate when the shortest step seen confirms it (within 20 %), else that
+    // shortest step (not a mean: the gaps themselves would inflate it).
+    if (dt > 0.0 && (s.min_dt == 0.0 || dt < s.min_dt)) s.min_dt = dt;
+    const double period = std::abs(s.min_dt * s.spec.rate - 1.0) < 0.2 ? 1.0 / s.spec.rate : s.min_dt;
     // Samples that arrived but were not stepped (rejected, dropped: counted as such) are not lost.
     const long arrived = static_cast<long>(s.received - s.received_at_last_step) - 1;
     const long missing = (period > 0.0 ? std::lround(dt / period) - 1 : 0) - std::max(0L, arrived);

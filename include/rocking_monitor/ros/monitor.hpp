@@ -81,6 +81,7 @@ class RockingMonitor {
     std::uint64_t overload_episodes = 0;
     std::uint64_t lost_in_transport = 0;  // missing periods at the nominal rate, from the stamps
     std::uint64_t received_at_last_step = 0;
+    double min_dt = 0.0;              // shortest step between stamps seen, s (nominal period check)
     bool overloaded = false;
     std::vector<std::size_t> items;
     std::string frame;                // frame of the last message
