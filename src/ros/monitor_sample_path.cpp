@@ -16,15 +16,23 @@ namespace rocking_monitor::live {
 
 void RockingMonitor::on_imu(std::size_t sensor, const ::ros::MessageEvent<sensor_msgs::Imu const>& e) {
   const sensor_msgs::ImuConstPtr& m = e.getConstMessage();
-  sensors_[sensor].backlog_s = (::ros::Time::now() - e.getReceiptTime()).toSec();
+  sensors_[sensor].backlog_s = queue_wait(e.getReceiptTime());
   on_sample(sensor, m->header,
             Eigen::Vector3d(m->linear_acceleration.x, m->linear_acceleration.y, m->linear_acceleration.z));
 }
 
 void RockingMonitor::on_accel(std::size_t sensor, const ::ros::MessageEvent<geometry_msgs::AccelStamped const>& e) {
   const geometry_msgs::AccelStampedConstPtr& m = e.getConstMessage();
-  sensors_[sensor].backlog_s = (::ros::Time::now() - e.getReceiptTime()).toSec();
+  sensors_[sensor].backlog_s = queue_wait(e.getReceiptTime());
   on_sample(sensor, m->header, Eigen::Vector3d(m->accel.linear.x, m->accel.linear.y, m->accel.linear.z));
+}
+
+// How long a sample waited in the subscriber queue, s. Not under sim time: the receipt time is on
+// /clock, which may jump (a bag started, a test's next case) between receipt and processing; there
+// the lag (stamp vs /clock) tells the overload.
+double RockingMonitor::queue_wait(const ::ros::Time& receipt) {
+  if (::ros::Time::isSimTime() || receipt.isZero()) return 0.0;
+  return (::ros::Time::now() - receipt).toSec();
 }
 
 bool RockingMonitor::lookup_rotation(Item& item, const std::string& sensor_frame) {
@@ -314,11 +322,13 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
   // Lag: how much later than its best so far this sample is stepped (node clock - stamp, minus its
   // minimum): a sensor clock offset from the node's (own clock, epoch records) is no lag.
   const double offset = (s.last_input_clock - header.stamp).toSec();
-  if (!s.have_min_offset || offset < s.min_offset_s) {
+  if (s.last_input_clock.isZero()) {
+    // No clock yet (sim time before the first /clock): no lag to measure.
+  } else if (!s.have_min_offset || offset < s.min_offset_s) {
     s.min_offset_s = offset;
     s.have_min_offset = true;
   }
-  s.lag_s = offset - s.min_offset_s;
+  s.lag_s = s.have_min_offset ? offset - s.min_offset_s : 0.0;
   s.max_lag_s = std::max(s.max_lag_s, s.lag_s);
   update_overload(s);
   if (state_rate_ == 0.0) {

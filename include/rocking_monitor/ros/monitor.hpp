@@ -105,6 +105,7 @@ class RockingMonitor {
   void on_imu(std::size_t sensor, const ::ros::MessageEvent<sensor_msgs::Imu const>& msg);
   void on_accel(std::size_t sensor, const ::ros::MessageEvent<geometry_msgs::AccelStamped const>& msg);
   void update_overload(Sensor& s);
+  static double queue_wait(const ::ros::Time& receipt);
   bool shedding_states() const;
   void on_sample(std::size_t sensor, const std_msgs::Header& header, const Eigen::Vector3d& reading);
   void step_sample(std::size_t sensor, const std_msgs::Header& header, const Eigen::Vector3d& reading,
