@@ -123,3 +123,23 @@ else()
   message(WARNING "cpp-httplib not found (Debian: libcpp-httplib-dev; scripts/install_deps.sh): "
                   "the dashboard node is not built")
 endif()
+
+if(CATKIN_ENABLE_TESTING)
+  # Issue 19: the fault table (bad stamps, clock step, transport loss) on the Rinaldi record.
+  add_executable(test_monitor_faults EXCLUDE_FROM_ALL test/ros/test_monitor_faults.cpp)
+  target_link_libraries(test_monitor_faults rocking_monitor_ros ${catkin_LIBRARIES} GTest::gtest)
+  target_include_directories(test_monitor_faults PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/support)
+  add_dependencies(tests test_monitor_faults)
+  if(TARGET record_to_bag)
+    add_dependencies(test_monitor_faults record_to_bag monitor)
+  endif()
+  add_rostest(test/ros/monitor_faults.test
+              ARGS records:=${ROCKING_RECORDS_DIR} tools:=${ROCKING_TOOL_DIR}
+              DEPENDENCIES test_monitor_faults)
+endif()
+if(CATKIN_ENABLE_TESTING)
+  # Issue 19 part 3: overload visible, load shed, every sample stepped or counted.
+  add_rostest_gtest(test_monitor_overload test/ros/monitor_overload.test test/ros/test_monitor_overload.cpp)
+  target_link_libraries(test_monitor_overload ${catkin_LIBRARIES})
+  add_dependencies(test_monitor_overload monitor)
+endif()

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # Measures the live monitor's processing time per input sample for catalogues of N items:
-#   [THREADS=k] [FIDELITY=adaptive|rocking|contact] [PLANES=2|1] [UNCERTAIN=0|1] bash scripts/measure_monitor_load.sh BAG [N ...]
+#   [THREADS=k] [FIDELITY=adaptive|rocking|contact] [PLANES=2|1] [UNCERTAIN=0|1] [RATE=r] [START_DELAY=s] bash scripts/measure_monitor_load.sh BAG [N ...]
 #   (default N: 1 100 10000)
 # Replays BAG (sensor_msgs/Imu on /ground/imu) at real time through a monitor fed by a synthetic
 # catalogue of N items (two rocking planes each; PLANES=1: no depth; UNCERTAIN=1: ensembles of
-# ~ensemble_size members per item) and prints the mean and max processing time per sample from /diagnostics.
+# ~ensemble_size members per item) and prints the mean and max processing time per sample from /diagnostics;
+# RATE=2 plays the bag at twice real time. Then one line of overload figures (issue 19): lag, queue wait,
+# ~overload, samples stepped and lost in transport, publications shed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export PATH=/usr/bin:$PATH
@@ -19,7 +21,7 @@ for n in "${counts[@]}"; do
   [ "${UNCERTAIN:-0}" = 1 ] && single+=(--uncertain)
   /usr/bin/python3 scripts/make_catalogue.py "$n" "$cat" "${single[@]}"
   log=$(mktemp)
-  roslaunch rocking_monitor replay.launch bag:="$bag" catalogue:="$cat" required:=true start_delay:=3 threads:="${THREADS:-1}" fidelity:="${FIDELITY:-adaptive}" \
+  roslaunch rocking_monitor replay.launch bag:="$bag" catalogue:="$cat" required:=true start_delay:="${START_DELAY:-3}" rate:="${RATE:-1}" threads:="${THREADS:-1}" fidelity:="${FIDELITY:-adaptive}" \
     > "$log" 2>&1 &
   pid=$!
   diag=""
@@ -35,5 +37,11 @@ for n in "${counts[@]}"; do
   markers=$(echo "$diag" | grep -A1 'markers and tf publication, mean' | sed -n 's/.*value: "\(.*\)"/\1/p' | head -1)
   /usr/bin/python3 -c "import sys; print('%8d %14.4f %14.4f %10s %16.3f %16.3f' % (int(sys.argv[1]), float(sys.argv[2])*1e3, float(sys.argv[3])*1e3, sys.argv[4], float(sys.argv[5])*1e3, float(sys.argv[6])*1e3))" \
     "$n" "${mean:-nan}" "${max:-nan}" "${samples:-?}" "${states:-nan}" "${markers:-nan}"
+  field() { echo "$diag" | grep -A1 "key: \"$1\"" | sed -n 's/.*value: "\(.*\)"/\1/p' | head -1; }
+  echo "         overload: $(field overload) (episodes $(field 'overload episodes')), lag max $(field 'lag, max (s)') s," \
+       "queue wait max $(field 'backlog, queue wait max (s)') s, received $(field received), lost in transport" \
+       "$(field 'lost in transport'), shed: $(field 'markers and tf publications shed (overload)') markers+tf," \
+       "$(field 'states publications shed (overload)') states"
+  grep -m1 "overload:" "$log" || true
   rm -f "$cat" "$log"
 done

@@ -58,6 +58,10 @@ bool RockingMonitor::load_parameters() {
             param(pnh_, "gravity_baseline/quiet_threshold", baseline_config_.quiet_threshold, "number") &&
             param(pnh_, "max_gap", timing_config_.max_gap, "number") &&
             param(pnh_, "backward_jump", timing_config_.backward_jump, "number") &&
+            param(pnh_, "max_future", plausibility_config_.max_future, "number") &&
+            param(pnh_, "max_bridge", plausibility_config_.max_bridge, "number") &&
+            param(pnh_, "rebase_samples", plausibility_config_.rebase_samples, "integer") &&
+            param(pnh_, "max_lag", max_lag_, "number") &&
             param(pnh_, "max_abs_acceleration", max_abs_acceleration_, "number") &&
             param(pnh_, "state_rate", state_rate_, "number") &&
             param(pnh_, "state_queue_size", state_queue_size_, "integer") &&
@@ -130,6 +134,10 @@ bool RockingMonitor::load_parameters() {
          positive(baseline_config_.quiet_threshold, "gravity_baseline/quiet_threshold", "m/s^2") &&
          positive(timing_config_.max_gap, "max_gap", "s") &&
          positive(timing_config_.backward_jump, "backward_jump", "s") &&
+         positive(plausibility_config_.max_future, "max_future", "s") &&
+         positive(plausibility_config_.max_bridge, "max_bridge", "s") &&
+         positive(plausibility_config_.rebase_samples, "rebase_samples", "samples") &&
+         positive(max_lag_, "max_lag", "s") &&
          positive(max_abs_acceleration_, "max_abs_acceleration", "m/s^2") &&
          positive(options_.velocity_highpass_hz, "velocity_highpass_hz", "Hz") &&
          positive(marker_rate_, "marker_rate", "Hz") &&
@@ -176,6 +184,11 @@ bool RockingMonitor::init() {
       s.baseline = core::GravityBaseline(c);
     }
     s.timing = core::SampleTiming(timing_config_);
+    core::StampPlausibility::Config pc = plausibility_config_;
+    pc.backward_jump = timing_config_.backward_jump;
+    pc.max_step = timing_config_.max_gap;
+    s.plausibility = core::StampPlausibility(pc);
+    s.held.resize(static_cast<std::size_t>(pc.rebase_samples));
     sensors_.push_back(std::move(s));
   }
   static_broadcaster_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
@@ -231,6 +244,11 @@ bool RockingMonitor::init() {
         for (const ProbabilityAlarm& m : event_probability_alarms_) p.publish(m);
       });
   if (publish_markers_) markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 2);
+  overload_pub_ = pnh_.advertise<std_msgs::Bool>("overload", 1, true);
+  {
+    std_msgs::Bool b;  // latched: a late subscriber learns the current state
+    overload_pub_.publish(b);
+  }
   reset_srv_ = pnh_.advertiseService("reset", &RockingMonitor::on_reset, this);
 
   states_msg_.items.resize(items_.size());
@@ -257,11 +275,16 @@ bool RockingMonitor::init() {
     const auto hints = ::ros::TransportHints().tcpNoDelay();
     if (s.spec.type == SensorSpec::Type::Imu) {
       s.sub = nh_.subscribe<sensor_msgs::Imu>(
-          s.spec.topic, 2000, [this, i](const sensor_msgs::ImuConstPtr& m) { on_imu(i, m); }, {}, hints);
+          s.spec.topic, 2000,
+          boost::function<void(const ::ros::MessageEvent<sensor_msgs::Imu const>&)>(
+              [this, i](const ::ros::MessageEvent<sensor_msgs::Imu const>& m) { on_imu(i, m); }),
+          {}, hints);
     } else {
       s.sub = nh_.subscribe<geometry_msgs::AccelStamped>(
-          s.spec.topic, 2000, [this, i](const geometry_msgs::AccelStampedConstPtr& m) { on_accel(i, m); }, {},
-          hints);
+          s.spec.topic, 2000,
+          boost::function<void(const ::ros::MessageEvent<geometry_msgs::AccelStamped const>&)>(
+              [this, i](const ::ros::MessageEvent<geometry_msgs::AccelStamped const>& m) { on_accel(i, m); }),
+          {}, hints);
     }
   }
   if (state_rate_ > 0.0) state_timer_ = nh_.createTimer(::ros::Duration(1.0 / state_rate_), &RockingMonitor::on_state_timer, this);
@@ -318,6 +341,9 @@ void RockingMonitor::reset_all(const std::string& why) {
     s.timing.restart();
     s.baseline.reset();
     s.have_first = false;
+    s.plausibility.clear();
+    s.held_count = 0;
+    s.have_min_offset = false;
     ++s.resets;
   }
   for (Item& it : items_) make_models(it);

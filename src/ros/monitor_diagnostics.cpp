@@ -21,11 +21,18 @@ void RockingMonitor::sensor_diagnostics(std::size_t i, diagnostic_updater::Diagn
   const core::SampleTiming::Counters& c = s.timing.counters();
   const std::uint64_t dropped = c.duplicates + c.out_of_order + s.zero_stamps;
   const std::uint64_t rejected = s.rejected_nonfinite + s.rejected_limit;
+  const core::StampPlausibility::Counters& pc = s.plausibility.counters();
   if (s.received == 0) st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no data yet");
+  else if (s.overloaded)
+    st.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "overload: lag beyond ~max_lag, shedding markers, tf, states");
+  else if (stale(s))
+    st.summary(diagnostic_msgs::DiagnosticStatus::ERROR, s.plausibility.held() > 0
+                   ? "stale: items frozen, new time base awaiting ~rebase_samples consistent samples"
+                   : "stale: items frozen, no sample for more than ~max_gap");
   else if (s.mean_dt > 0.0 && s.last_processing_s > s.mean_dt)
     st.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "processing slower than the sample rate");
-  else if (dropped + rejected > 0 || c.gaps > 0)
-    st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "samples dropped, rejected or bridged");
+  else if (dropped + rejected > 0 || c.gaps > 0 || pc.rejected > 0 || s.lost_in_transport > 0)
+    st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "samples dropped, rejected, lost or bridged");
   else st.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
   st.add("topic", s.spec.topic);
   st.add("received", s.received);
@@ -38,6 +45,21 @@ void RockingMonitor::sensor_diagnostics(std::size_t i, diagnostic_updater::Diagn
   st.add("gaps bridged", c.gaps);
   st.add("longest gap (s)", c.longest_gap);
   st.add("resets (time jumped back)", s.resets);
+  st.add("rejected implausible stamp", pc.rejected);
+  st.add("rejected stamp ahead of the clock (of those)", pc.rejected_future);
+  st.add("last rejected jump (s)", pc.last_rejected_jump);
+  st.add("held for a new time base", s.plausibility.held());
+  st.add("new time base adopted, items continued", pc.rebased_forward);
+  st.add("earlier time base adopted, items restarted", pc.rebased_backward);
+  st.add("stale", stale(s) ? "true" : "false");
+  st.add("lost in transport", s.lost_in_transport);
+  st.add("clock offset, node clock - stamp, min (s)", s.min_offset_s);
+  st.add("lag (s)", s.lag_s);
+  st.add("lag, max (s)", s.max_lag_s);
+  st.add("backlog, queue wait (s)", s.backlog_s);
+  st.add("backlog, queue wait max (s)", s.max_backlog_s);
+  st.add("overload", s.overloaded ? "true" : "false");
+  st.add("overload episodes", s.overload_episodes);
   st.add("mean sample period (s)", s.mean_dt);
   st.add("processing per sample, last (s)", s.last_processing_s);
   st.add("processing per sample, max (s)", s.max_processing_s);
@@ -92,6 +114,8 @@ void RockingMonitor::catalogue_diagnostics(diagnostic_updater::DiagnosticStatusW
   st.add("markers and tf publication, mean (s)", markers_cost_.mean());
   st.add("markers and tf publication, max (s)", markers_cost_.max_s);
   st.add("markers and tf publications", markers_cost_.count);
+  st.add("markers and tf publications shed (overload)", shed_markers_);
+  st.add("states publications shed (overload)", shed_states_);
   st.add("method", core::to_string(options_.solver.method));
   st.add("fidelity", core::to_string(options_.fidelity));
   int on_contact = 0;

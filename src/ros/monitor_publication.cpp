@@ -173,6 +173,7 @@ void RockingMonitor::fill_state(const Item& it, RockingState& out) const {
   out.slip = w.slip;
   out.model = w.model;
   out.input_stamp = it.stamp;
+  out.stale = stale(sensors_[it.sensor]);
   if (it.ensemble) {
     const core::ItemEnsemble& e = *it.ensemble;
     out.ensemble_size = static_cast<std::uint16_t>(e.size());
@@ -207,10 +208,23 @@ void RockingMonitor::on_state_timer(const ::ros::TimerEvent&) {
     reset_all("ROS time jumped back (sim time restarted?)");
   }
   last_now_ = now;
-  if (state_rate_ > 0.0) publish_states();  // else after every input sample
+  for (Sensor& s : sensors_)
+    if (s.overloaded) update_overload(s);  // recovers once the input is drained
+  // Overload sheds in this order: markers and tf at once; ~states thinned to 1 Hz once the overload
+  // lasted ~max_lag more (wall time: it must work when sim time stalls too).
+  const bool shed_states = shedding_states();
+  if (state_rate_ > 0.0) {
+    if (!shed_states || last_shed_states_.isZero() || (now - last_shed_states_).toSec() >= 1.0 || now < last_shed_states_) {
+      publish_states();  // else after every input sample
+      last_shed_states_ = now;
+    } else {
+      ++shed_states_;
+    }
+  }
   if (last_marker_time_.isZero() || (now - last_marker_time_).toSec() >= 1.0 / marker_rate_ ||
       now < last_marker_time_) {
-    publish_markers_and_tf();
+    if (!overload_) publish_markers_and_tf();
+    else if (publish_markers_ || publish_tf_) ++shed_markers_;
     last_marker_time_ = now;
   }
   diagnostics_->update();

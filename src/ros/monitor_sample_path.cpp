@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 
 #include <geometry_msgs/TransformStamped.h>
 #include <tf2_eigen/tf2_eigen.h>
@@ -14,13 +15,25 @@
 
 namespace rocking_monitor::live {
 
-void RockingMonitor::on_imu(std::size_t sensor, const sensor_msgs::ImuConstPtr& m) {
+void RockingMonitor::on_imu(std::size_t sensor, const ::ros::MessageEvent<sensor_msgs::Imu const>& e) {
+  const sensor_msgs::ImuConstPtr& m = e.getConstMessage();
+  sensors_[sensor].backlog_s = queue_wait(e.getReceiptTime());
   on_sample(sensor, m->header,
             Eigen::Vector3d(m->linear_acceleration.x, m->linear_acceleration.y, m->linear_acceleration.z));
 }
 
-void RockingMonitor::on_accel(std::size_t sensor, const geometry_msgs::AccelStampedConstPtr& m) {
+void RockingMonitor::on_accel(std::size_t sensor, const ::ros::MessageEvent<geometry_msgs::AccelStamped const>& e) {
+  const geometry_msgs::AccelStampedConstPtr& m = e.getConstMessage();
+  sensors_[sensor].backlog_s = queue_wait(e.getReceiptTime());
   on_sample(sensor, m->header, Eigen::Vector3d(m->accel.linear.x, m->accel.linear.y, m->accel.linear.z));
+}
+
+// How long a sample waited in the subscriber queue, s. Not under sim time: the receipt time is on
+// /clock, which may jump (a bag started, a test's next case) between receipt and processing; there
+// the lag (stamp vs /clock) tells the overload.
+double RockingMonitor::queue_wait(const ::ros::Time& receipt) {
+  if (::ros::Time::isSimTime() || receipt.isZero()) return 0.0;
+  return (::ros::Time::now() - receipt).toSec();
 }
 
 bool RockingMonitor::lookup_rotation(Item& item, const std::string& sensor_frame) {
@@ -78,6 +91,123 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
                       s.spec.name.c_str(), reading.norm(), max_abs_acceleration_);
     return;
   }
+  // Issue 19: a stamp is checked against the node's clock and the last accepted stamp before it
+  // steps anything; a lone bad stamp is dropped and counted, a new time base needs
+  // ~rebase_samples consistent samples (held meanwhile, replayed when confirmed).
+  using P = core::StampPlausibility::Verdict;
+  const P plausible = s.plausibility.check(header.stamp.toSec(), ::ros::Time::now().toSec(), s.timing.started(),
+                                           s.timing.last_stamp());
+  switch (plausible) {
+    case P::Plausible:
+      if (s.held_count > 0)
+        ROS_WARN("rocking_monitor: sensor '%s': rejected %zu sample(s) with an implausible stamp (%.3f s from the "
+                 "last; %lu rejected so far)", s.spec.name.c_str(), s.held_count,
+                 s.plausibility.counters().last_rejected_jump,
+                 static_cast<unsigned long>(s.plausibility.counters().rejected));
+      s.held_count = 0;
+      break;
+    case P::Rejected:
+      s.held_count = 0;
+      ROS_WARN_THROTTLE(5.0, "rocking_monitor: sensor '%s': rejected implausible stamp %.6f, %.3f s ahead of the "
+                        "node's clock (%lu rejected so far)", s.spec.name.c_str(), header.stamp.toSec(),
+                        (header.stamp - ::ros::Time::now()).toSec(),
+                        static_cast<unsigned long>(s.plausibility.counters().rejected));
+      return;
+    case P::Held:
+      if (s.plausibility.held() == 1) {
+        if (s.held_count > 0)
+          ROS_WARN("rocking_monitor: sensor '%s': rejected implausible stamp (%lu rejected so far)",
+                   s.spec.name.c_str(), static_cast<unsigned long>(s.plausibility.counters().rejected));
+        s.held_count = 0;
+      }
+      if (s.held_count < s.held.size()) s.held[s.held_count++] = {header.stamp, reading};
+      return;
+    case P::RebaseForward:
+    case P::RebaseBackward:
+      if (s.held_count < s.held.size()) s.held[s.held_count++] = {header.stamp, reading};
+      replay_held(si, header);
+      return;
+  }
+  step_sample(si, header, reading, wall_start);
+}
+
+// Overload (issue 19 part 3): the sensor's lag behind the node's clock, or the time its samples wait
+// in the subscriber queue, beyond ~max_lag. Recovers below half of it (no flapping). On a change
+// ~overload is published (latched) and the diagnostics at once.
+void RockingMonitor::update_overload(Sensor& s) {
+  s.max_backlog_s = std::max(s.max_backlog_s, s.backlog_s);
+  // Idle for longer than ~max_lag (nothing waits, else it would be processed): caught up.
+  const bool idle = !s.last_input_clock.isZero() && (::ros::Time::now() - s.last_input_clock).toSec() > max_lag_;
+  const double behind = idle ? 0.0 : std::max(s.lag_s, s.backlog_s);
+  const bool was = s.overloaded;
+  if (!s.overloaded && behind > max_lag_) {
+    s.overloaded = true;
+    ++s.overload_episodes;
+  } else if (s.overloaded && behind < 0.5 * max_lag_) {
+    s.overloaded = false;
+  }
+  if (s.overloaded == was) return;
+  bool any = false;
+  for (const Sensor& o : sensors_) any = any || o.overloaded;
+  if (any != overload_) {
+    overload_ = any;
+    overload_since_ = ::ros::WallTime::now();
+    std_msgs::Bool b;
+    b.data = any;
+    overload_pub_.publish(b);
+    if (any) ROS_ERROR("rocking_monitor: overload: sensor '%s' %.3f s behind (> ~max_lag %.3f s): shedding markers and "
+                       "tf, then the states rate", s.spec.name.c_str(), behind, max_lag_);
+    else ROS_WARN("rocking_monitor: overload over: every sensor within ~max_lag again");
+  }
+  diagnostics_->force_update();
+}
+
+bool RockingMonitor::shedding_states() const {
+  return overload_ && (::ros::WallTime::now() - overload_since_).toSec() > max_lag_;
+}
+
+bool RockingMonitor::stale(const Sensor& s) const {
+  if (s.plausibility.held() > 0) return true;
+  if (s.last_input_clock.isZero()) return false;
+  return (::ros::Time::now() - s.last_input_clock).toSec() > timing_config_.max_gap;
+}
+
+// A new time base confirmed by ~rebase_samples consistent stamps: later base, the items continue with
+// the offset absorbed (the first held sample one nominal period after the last one stepped); earlier
+// base, the items restart (a bag loop or a simulation restarted). Then the held samples are stepped.
+void RockingMonitor::replay_held(std::size_t si, const std_msgs::Header& header) {
+  Sensor& s = sensors_[si];
+  const bool forward = s.held_count > 0 && s.held[0].stamp.toSec() > s.timing.last_stamp();
+  if (forward) {
+    const double period = s.dt_nominal > 0.0 ? s.dt_nominal : (s.spec.rate > 0.0 ? 1.0 / s.spec.rate : 0.0);
+    const ::ros::Duration offset = s.held[0].stamp - (s.epoch + ::ros::Duration(s.last_t + period));
+    ROS_WARN("rocking_monitor: sensor '%s': new time base confirmed by %zu consistent samples (%.3f s later): "
+             "its %zu items continue", s.spec.name.c_str(), s.held_count, offset.toSec(), s.items.size());
+    s.timing.shift(offset.toSec());
+    s.epoch += offset;
+    s.have_min_offset = false;
+  } else {
+    ++s.resets;
+    ROS_WARN("rocking_monitor: sensor '%s': earlier time base confirmed by %zu consistent samples: restarting its "
+             "%zu items", s.spec.name.c_str(), s.held_count, s.items.size());
+    s.timing.restart();
+    s.baseline.reset();
+    s.have_first = false;
+    s.have_min_offset = false;
+    for (std::size_t idx : s.items) make_models(items_[idx]);
+  }
+  std_msgs::Header h = header;
+  const std::size_t n = s.held_count;
+  s.held_count = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    h.stamp = s.held[k].stamp;
+    step_sample(si, h, s.held[k].reading, std::chrono::steady_clock::now());
+  }
+}
+
+void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header, const Eigen::Vector3d& reading,
+                                 std::chrono::steady_clock::time_point wall_start) {
+  Sensor& s = sensors_[si];
   double dt = 0.0;
   using V = core::SampleTiming::Verdict;
   const V verdict = s.timing.classify(header.stamp.toSec(), dt);
@@ -128,6 +258,17 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
   }
   if (!s.batch) rebuild_batch(s);  // allocates: only after a (re)start
   s.mean_dt = s.mean_dt == 0.0 ? dt : 0.99 * s.mean_dt + 0.01 * dt;
+  {
+    // Lost in transport: whole periods missing at the nominal rate, from the stamps alone. The nominal
+    // period is the catalogue's rate when the shortest step seen confirms it (within 20 %), else that
+    // shortest step (not a mean: the gaps themselves would inflate it).
+    if (dt > 0.0 && (s.min_dt == 0.0 || dt < s.min_dt)) s.min_dt = dt;
+    const double period = std::abs(s.min_dt * s.spec.rate - 1.0) < 0.2 ? 1.0 / s.spec.rate : s.min_dt;
+    // Samples that arrived but were not stepped (rejected, dropped: counted as such) are not lost.
+    const long arrived = static_cast<long>(s.received - s.received_at_last_step) - 1;
+    const long missing = (period > 0.0 ? std::lround(dt / period) - 1 : 0) - std::max(0L, arrived);
+    if (missing > 0) s.lost_in_transport += static_cast<std::uint64_t>(missing);
+  }
   // Serial: items still waiting for their transform, or starting late, are not stepped.
   for (std::size_t k = 0; k < s.items.size(); ++k) {
     Item& it = items_[s.items[k]];
@@ -194,7 +335,30 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
   s.max_processing_s = std::max(s.max_processing_s, s.last_processing_s);
   s.total_processing_s += s.last_processing_s;
   ++s.processed;
-  if (state_rate_ == 0.0) publish_states();
+  s.last_input_clock = ::ros::Time::now();
+  s.received_at_last_step = s.received;
+  // Lag: how much later than its best so far this sample is stepped (node clock - stamp, minus its
+  // minimum): a sensor clock offset from the node's (own clock, epoch records) is no lag.
+  const double offset = (s.last_input_clock - header.stamp).toSec();
+  if (s.last_input_clock.isZero()) {
+    // No clock yet (sim time before the first /clock): no lag to measure.
+  } else if (!s.have_min_offset || offset < s.min_offset_s) {
+    s.min_offset_s = offset;
+    s.have_min_offset = true;
+  }
+  s.lag_s = s.have_min_offset ? offset - s.min_offset_s : 0.0;
+  s.max_lag_s = std::max(s.max_lag_s, s.lag_s);
+  update_overload(s);
+  if (state_rate_ == 0.0) {
+    // A state per sample unless overloaded for long: then 1 Hz of the node's clock.
+    if (!shedding_states() || last_shed_states_.isZero() || (s.last_input_clock - last_shed_states_).toSec() >= 1.0 ||
+        s.last_input_clock < last_shed_states_) {
+      publish_states();
+      last_shed_states_ = s.last_input_clock;
+    } else {
+      ++shed_states_;
+    }
+  }
 }
 
 }  // namespace rocking_monitor::live

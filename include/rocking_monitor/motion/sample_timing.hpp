@@ -64,6 +64,9 @@ class SampleTiming {
   }
 
   void restart() { started_ = false; }
+  /// Moves the last stamp into a new time base (offset s): the next stamp of that base steps by its
+  /// difference from the last one as if the base had never changed (StampPlausibility::RebaseForward).
+  void shift(double offset) { last_ += offset; }
   bool started() const { return started_; }
   double last_stamp() const { return last_; }
   const Counters& counters() const { return counters_; }

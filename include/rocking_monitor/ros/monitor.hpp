@@ -1,6 +1,7 @@
 #pragma once
 
 #include <algorithm>
+#include <chrono>
 #include <memory>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include <geometry_msgs/AccelStamped.h>
 #include <ros/ros.h>
 #include <sensor_msgs/Imu.h>
+#include <std_msgs/Bool.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/static_transform_broadcaster.h>
@@ -29,6 +31,7 @@
 #include "rocking_monitor/monitoring/item_monitor.hpp"
 #include "rocking_monitor/monitoring/monitor_batch.hpp"
 #include "rocking_monitor/motion/sample_timing.hpp"
+#include "rocking_monitor/motion/stamp_plausibility.hpp"
 #include "rocking_monitor/ros/catalogue.hpp"
 
 namespace rocking_monitor::live {
@@ -77,6 +80,22 @@ class RockingMonitor {
     ::ros::Subscriber sub;
     core::GravityBaseline baseline;
     core::SampleTiming timing;
+    // Issue 19: stamps checked before they step anything; candidates for a new time base are held
+    // here (sized ~rebase_samples at init) and replayed once the base is confirmed.
+    core::StampPlausibility plausibility;
+    struct Held { ::ros::Time stamp; Eigen::Vector3d reading; };
+    std::vector<Held> held;
+    std::size_t held_count = 0;
+    ::ros::Time last_input_clock;     // node clock when the last sample was stepped (stale check)
+    double lag_s = 0.0, max_lag_s = 0.0;  // (node clock - stamp) of the last sample stepped minus its minimum, s
+    double min_offset_s = 0.0;        // minimum of node clock - stamp so far (clock offset + transport), s
+    bool have_min_offset = false;
+    double backlog_s = 0.0, max_backlog_s = 0.0;  // node clock at processing - at arrival, s (queue wait)
+    std::uint64_t overload_episodes = 0;
+    std::uint64_t lost_in_transport = 0;  // missing periods at the nominal rate, from the stamps
+    std::uint64_t received_at_last_step = 0;
+    double min_dt = 0.0;              // shortest step between stamps seen, s (nominal period check)
+    bool overloaded = false;
     std::vector<std::size_t> items;
     std::string frame;                // frame of the last message
     bool have_first = false;          // a first sample is stored, models not started yet
@@ -102,9 +121,16 @@ class RockingMonitor {
   };
 
   bool load_parameters();
-  void on_imu(std::size_t sensor, const sensor_msgs::ImuConstPtr& msg);
-  void on_accel(std::size_t sensor, const geometry_msgs::AccelStampedConstPtr& msg);
+  void on_imu(std::size_t sensor, const ::ros::MessageEvent<sensor_msgs::Imu const>& msg);
+  void on_accel(std::size_t sensor, const ::ros::MessageEvent<geometry_msgs::AccelStamped const>& msg);
+  void update_overload(Sensor& s);
+  static double queue_wait(const ::ros::Time& receipt);
+  bool shedding_states() const;
   void on_sample(std::size_t sensor, const std_msgs::Header& header, const Eigen::Vector3d& reading);
+  void step_sample(std::size_t sensor, const std_msgs::Header& header, const Eigen::Vector3d& reading,
+                   std::chrono::steady_clock::time_point wall_start);
+  void replay_held(std::size_t sensor, const std_msgs::Header& header);
+  bool stale(const Sensor& s) const;  // no sample stepped for > max_gap of the node's clock, or a base pending
   void start_items(Sensor& s, double t, const Eigen::Vector3d& a);
   bool lookup_rotation(Item& item, const std::string& sensor_frame);
   void publish_events(Item& item, const core::ItemEvents& events, const ::ros::Time& stamp);
@@ -137,6 +163,15 @@ class RockingMonitor {
   core::ItemMonitor::Options options_;
   core::GravityBaseline::Config baseline_config_;
   core::SampleTiming::Config timing_config_;
+  core::StampPlausibility::Config plausibility_config_;
+  // Overload (issue 19 part 3): past ~max_lag the node sheds markers and tf, then (after
+  // ~max_lag more) thins ~states to 1 Hz, before input has to wait.
+  double max_lag_ = 0.5;
+  bool overload_ = false;
+  ::ros::WallTime overload_since_;
+  std::uint64_t shed_markers_ = 0, shed_states_ = 0;  // publications skipped while overloaded
+  ::ros::Time last_shed_states_;
+  ::ros::Publisher overload_pub_;
   double max_abs_acceleration_ = 50.0;
   double state_rate_ = 20.0;
   int state_queue_size_ = 10;  // ~states messages kept per subscriber while it lags
