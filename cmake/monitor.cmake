@@ -59,14 +59,9 @@ if(CATKIN_ENABLE_TESTING)
   if(TARGET record_to_bag)
     add_dependencies(test_monitor_historical record_to_bag rocking_sim)
   endif()
-  add_rostest(test/ros/monitor_historical.test
-              ARGS records:=${ROCKING_RECORDS_DIR} tools:=${ROCKING_TOOL_DIR}
-              DEPENDENCIES test_monitor_historical)
+  add_rostest(test/ros/monitor_historical.test DEPENDENCIES test_monitor_historical)
   # Issue 19: kill -9 after an OVERTURNED alarm, a cut journal line, restart: alarms once (Python).
-  add_rostest(test/ros/monitor_journal.test
-              ARGS records:=${ROCKING_RECORDS_DIR} tools:=${ROCKING_TOOL_DIR}
-                   python_path:=${CATKIN_DEVEL_PREFIX}/${PYTHON_INSTALL_DIR}
-              DEPENDENCIES monitor)
+  add_rostest(test/ros/monitor_journal.test DEPENDENCIES monitor)
 endif()
 
 # ---------------------------------------------------------------- the live dashboard (issue 14)
@@ -113,8 +108,7 @@ if(CPP_HTTPLIB_FOUND)
     if(CHROMIUM_EXECUTABLE)
       # The test is Python: ctest does not source devel/setup.bash, so it is told where the generated
       # message modules are.
-      add_rostest(test/ros/dashboard_browser.test ARGS python_path:=${CATKIN_DEVEL_PREFIX}/${PYTHON_INSTALL_DIR}
-                  DEPENDENCIES dashboard monitor)
+      add_rostest(test/ros/dashboard_browser.test DEPENDENCIES dashboard monitor)
     else()
       message(STATUS "chromium not found: the dashboard's browser test (test/ros/dashboard_browser.test) is not run")
     endif()
@@ -133,9 +127,7 @@ if(CATKIN_ENABLE_TESTING)
   if(TARGET record_to_bag)
     add_dependencies(test_monitor_faults record_to_bag monitor)
   endif()
-  add_rostest(test/ros/monitor_faults.test
-              ARGS records:=${ROCKING_RECORDS_DIR} tools:=${ROCKING_TOOL_DIR}
-              DEPENDENCIES test_monitor_faults)
+  add_rostest(test/ros/monitor_faults.test DEPENDENCIES test_monitor_faults)
 endif()
 if(CATKIN_ENABLE_TESTING)
   # Issue 19 part 3: overload visible, load shed, every sample stepped or counted.

@@ -19,9 +19,6 @@ if(CATKIN_ENABLE_TESTING)
     add_test(NAME report.from_record_files
              COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/report_from_record.sh ${CMAKE_CURRENT_SOURCE_DIR})
     set_tests_properties(report.from_record_files PROPERTIES TIMEOUT 180)
-    add_rostest(test/ros/report.test
-                ARGS python_path:=${CATKIN_DEVEL_PREFIX}/${PYTHON_INSTALL_DIR}
-                     report_dir:=${CMAKE_CURRENT_BINARY_DIR}/test_results/rocking_report
-                DEPENDENCIES monitor)
+    add_rostest(test/ros/report.test DEPENDENCIES monitor)
   endif()
 endif()

@@ -30,11 +30,9 @@ if(catkin_FOUND AND CATKIN_ENABLE_TESTING)
   target_include_directories(test_seedlink_monitor PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/support)
   add_dependencies(tests test_seedlink_monitor)
   add_dependencies(test_seedlink_monitor seedlink_bridge record_to_mseed rocking_sim monitor)
-  add_rostest(test/ros/seedlink_monitor.test ARGS records:=${ROCKING_RECORDS_DIR} tools:=${ROCKING_TOOL_DIR}
-              DEPENDENCIES test_seedlink_monitor)
+  add_rostest(test/ros/seedlink_monitor.test DEPENDENCIES test_seedlink_monitor)
 endif()
 
 if(catkin_FOUND AND CATKIN_ENABLE_TESTING)
-  add_rostest(test/ros/seedlink_bridge_bad_params.test ARGS tools:=${ROCKING_TOOL_DIR}
-              DEPENDENCIES seedlink_bridge)
+  add_rostest(test/ros/seedlink_bridge_bad_params.test DEPENDENCIES seedlink_bridge)
 endif()

@@ -10,7 +10,6 @@ if(CATKIN_ENABLE_TESTING)
   # A real record sent as datagrams with seeded drops and reordering, text and binary.
   add_rostest(test/ros/udp_accel_bridge.test DEPENDENCIES udp_accel_bridge)
   # Live == offline: the record through bridge and monitor equals rocking_sim on the files.
-  add_rostest(test/ros/shaking_table_live_offline.test ARGS python_path:=${CATKIN_DEVEL_PREFIX}/${PYTHON_INSTALL_DIR}
-              DEPENDENCIES udp_accel_bridge monitor rocking_sim)
+  add_rostest(test/ros/shaking_table_live_offline.test DEPENDENCIES udp_accel_bridge monitor rocking_sim)
 endif()
 

@@ -1,0 +1,27 @@
+# The environment of every test. Included last, so that it sees every test.
+#  - A ROS_HOME of its own under build/test_ros_home/, emptied before the tests run: the monitor's
+#    alarm journal (default $ROS_HOME/rocking_monitor/journal.jsonl, docs/journal.md) must not carry
+#    one test's (or one run's, or another checkout's) alarms into another.
+#  - Where the records, the tools, the generated Python messages and test outputs are: the rostests
+#    read them with $(env ...) rather than as rostest ARGS, which catkin puts into the test's target
+#    and file names (beyond 255 characters in a deep checkout). ctest does not source setup.bash.
+if(CATKIN_ENABLE_TESTING OR BUILD_TESTING)
+  add_test(NAME test_ros_home.clean COMMAND ${CMAKE_COMMAND} -E rm -rf ${CMAKE_BINARY_DIR}/test_ros_home)
+  set_tests_properties(test_ros_home.clean PROPERTIES FIXTURES_SETUP test_ros_home)
+  get_property(_all_tests DIRECTORY PROPERTY TESTS)
+  foreach(_test IN LISTS _all_tests)
+    if(_test STREQUAL "test_ros_home.clean")
+      continue()
+    endif()
+    string(MAKE_C_IDENTIFIER "${_test}" _id)
+    string(SUBSTRING "${_id}" 0 80 _id)
+    string(MD5 _hash "${_test}")
+    string(SUBSTRING "${_hash}" 0 8 _hash)
+    set_property(TEST ${_test} APPEND PROPERTY ENVIRONMENT "ROS_HOME=${CMAKE_BINARY_DIR}/test_ros_home/${_id}_${_hash}")
+    set_property(TEST ${_test} APPEND PROPERTY FIXTURES_REQUIRED test_ros_home)
+    set_property(TEST ${_test} APPEND PROPERTY ENVIRONMENT
+                 "ROCKING_RECORDS_DIR=${ROCKING_RECORDS_DIR}" "ROCKING_TOOL_DIR=${ROCKING_TOOL_DIR}"
+                 "ROCKING_PYTHON_PATH=${CATKIN_DEVEL_PREFIX}/${PYTHON_INSTALL_DIR}"
+                 "ROCKING_TEST_OUTPUT_DIR=${CMAKE_BINARY_DIR}/test_results")
+  endforeach()
+endif()
