@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <unordered_map>
 
 namespace rocking_monitor::live {
@@ -205,6 +206,23 @@ void RockingMonitor::journal_reset(const std::string& why) {
     ++journal_errors_;
     ROS_ERROR("rocking_monitor: alarm journal: %s: reset not journaled", e.c_str());
   }
+}
+
+// A stale period (the sensor's items frozen: no sample for > max_gap, or a new time base pending) is
+// journaled when it opens (to: NaN) and again when it closes, with the stamps of the samples around it.
+void RockingMonitor::journal_stale_period(Sensor& s) {
+  const bool now_stale = stale(s);
+  if (now_stale == s.stale_journaled) return;
+  const double from = now_stale ? s.last_stamp.toSec() : s.stale_from;
+  const double to = now_stale ? std::numeric_limits<double>::quiet_NaN() : s.last_stamp.toSec();
+  if (const std::string e = journal_.append_stale(s.spec.name, from, to, s.epoch.toSec(), journal_clock(::ros::Time::now()));
+      !e.empty()) {
+    ++journal_errors_;
+    ROS_ERROR("rocking_monitor: alarm journal: %s: stale period of sensor '%s' not journaled", e.c_str(),
+              s.spec.name.c_str());
+  }
+  s.stale_from = from;
+  s.stale_journaled = now_stale;
 }
 
 void RockingMonitor::journal_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st) {

@@ -208,8 +208,10 @@ void RockingMonitor::on_state_timer(const ::ros::TimerEvent&) {
     reset_all("ROS time jumped back (sim time restarted?)");
   }
   last_now_ = now;
-  for (Sensor& s : sensors_)
+  for (Sensor& s : sensors_) {
     if (s.overloaded) update_overload(s);  // recovers once the input is drained
+    journal_stale_period(s);
+  }
   // Overload sheds in this order: markers and tf at once; ~states thinned to 1 Hz once the overload
   // lasted ~max_lag more (wall time: it must work when sim time stalls too).
   const bool shed_states = shedding_states();

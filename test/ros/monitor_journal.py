@@ -215,6 +215,14 @@ class Journal(unittest.TestCase):
         final = [json.loads(l) for l in text.splitlines()]
         self.assertEqual(final[-1]['kind'], 'reset')
         final = final[:-1]
+        # Stale periods (the replay stopped while the node ran on) are journaled too: opened without
+        # an end, closed with one after the start.
+        stale = [r for r in final if r['kind'] == 'stale']
+        for r in stale:
+            self.assertTrue(r['sensor'])
+            if 'end_time' in r:
+                self.assertGreaterEqual(r['end_time'], r['time'])
+        final = [r for r in final if r['kind'] != 'stale']
         self.assertEqual(len(final), len(before) + len(after))
         self.assertEqual(len({(r['item'], r['level']) for r in final}), len(final))
 

@@ -87,6 +87,8 @@ class RockingMonitor {
     std::vector<Held> held;
     std::size_t held_count = 0;
     ::ros::Time last_input_clock;     // node clock when the last sample was stepped (stale check)
+    bool stale_journaled = false;     // a stale period of this sensor is open in the journal
+    double stale_from = 0.0;          // its start: stamp of the last sample before it, s since 1970
     double lag_s = 0.0, max_lag_s = 0.0;  // (node clock - stamp) of the last sample stepped minus its minimum, s
     double min_offset_s = 0.0;        // minimum of node clock - stamp so far (clock offset + transport), s
     bool have_min_offset = false;
@@ -231,6 +233,7 @@ class RockingMonitor {
   bool journal_alarm(Item& it, OverturnAlarm& m, double run_start);
   bool journal_probability_alarm(Item& it, ProbabilityAlarm& m, double run_start);
   void journal_reset(const std::string& why);
+  void journal_stale_period(Sensor& s);  // on the state timer: a stale period opened or closed
   void journal_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& stat);
 };
 
