@@ -13,7 +13,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <random>
 #include <set>
@@ -264,6 +266,16 @@ TEST_F(Faults, BadStampsAreRejectedCountedAndChangeNoAlarmAClockStepIsAdoptedAnd
   EXPECT_EQ(sensor_["stale"], "true");
   EXPECT_EQ(level_, diagnostic_msgs::DiagnosticStatus::ERROR) << message_;
   EXPECT_EQ(message_.rfind("stale", 0), 0u) << message_;
+  {  // ... and journaled as an open stale period (docs/journal.md; the state timer writes it)
+    const char* home = std::getenv("ROS_HOME");
+    ASSERT_NE(home, nullptr);
+    std::ifstream journal(std::string(home) + "/rocking_monitor/journal.jsonl");
+    std::string line, open_stale;
+    while (std::getline(journal, line))
+      if (line.find("\"kind\":\"stale\"") != std::string::npos && line.find("\"end_time\"") == std::string::npos)
+        open_stale = line;
+    EXPECT_NE(open_stale.find("\"sensor\":\"floor\""), std::string::npos) << "no open stale period journaled";
+  }
   std::size_t n_clean = 0;
   for (const auto& [id, l] : alarms_[0]) n_clean += l.size();
   EXPECT_GT(n_clean, 3u);
