@@ -155,7 +155,7 @@ bool exceeds_static_uplift(const Body& body, const TableTest& test, int directio
 
 TestPrediction predict_table_test(const BodyParameters& parameters, const std::string& specimen,
                                   const TableTest& test, const ExperimentSettings& settings,
-                                  std::vector<HistorySample>* history) {
+                                  std::vector<TableHistorySample>* history) {
   const Body body(parameters);
   TestPrediction p;
   p.test = test.number;
@@ -167,7 +167,7 @@ TestPrediction predict_table_test(const BodyParameters& parameters, const std::s
   long sample = 0;
   auto keep = [&](double a) {
     if (!history) return;
-    HistorySample h;
+    TableHistorySample h;
     h.t = static_cast<double>(sample) * test.dt;
     h.table_accel_mps2 = a;
     h.theta = model.theta();

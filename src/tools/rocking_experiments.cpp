@@ -123,7 +123,7 @@ int main(int argc, char** argv) {
     }
     std::set<int> history_done;
     long histories_written = 0;
-    std::vector<rm::HistorySample> history;
+    std::vector<rm::TableHistorySample> history;
     rm::ExperimentSettings settings;
     settings.direction = direction;
     settings.tail_s = tail_s;

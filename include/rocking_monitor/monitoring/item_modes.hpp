@@ -42,13 +42,13 @@ struct AlarmEvent {
 
 /// What one step produced. Fixed capacity: no allocation in the sample loop.
 template <int Changes>
-struct StepEvents {
+struct SampleEvents {
   int change_count = 0;
   std::array<CriterionChange, Changes> changes;
   int alarm_count = 0;
   std::array<AlarmEvent, 3> alarms;
 };
-using PlaneEvents = StepEvents<kCriterionIdCount>;
-using ItemEvents = StepEvents<kPlaneCount * kCriterionIdCount>;
+using PlaneEvents = SampleEvents<kCriterionIdCount>;
+using ItemEvents = SampleEvents<kPlaneCount * kCriterionIdCount>;
 
 }  // namespace rocking_monitor::core

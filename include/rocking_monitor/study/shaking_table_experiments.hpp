@@ -56,8 +56,9 @@ struct TestPrediction {
 };
 
 /// One sample of a test's rotation history (predict_table_test with a history): the state after the
-/// table sample at time t.
-struct HistorySample {
+/// table sample at time t. (Not core::HistorySample of monitoring/simulation.hpp: one name for two
+/// structs in one namespace is an ODR violation, which AddressSanitizer caught.)
+struct TableHistorySample {
   double t = 0.0;                 ///< s from the record's first sample
   double table_accel_mps2 = 0.0;  ///< table acceleration fed to the model (offset removed, direction applied), m/s^2
   double theta = 0.0;             ///< rad, > 0 rocking on pivot 1 (corner 1, -x)
@@ -78,7 +79,7 @@ bool exceeds_static_uplift(const Body& body, const TableTest& test, int directio
 /// up to the overturn.
 TestPrediction predict_table_test(const BodyParameters& body, const std::string& specimen,
                                   const TableTest& test, const ExperimentSettings& settings = {},
-                                  std::vector<HistorySample>* history = nullptr);
+                                  std::vector<TableHistorySample>* history = nullptr);
 
 /// Confusion matrix of predicted vs measured overturning (tests without an outcome not counted).
 struct Confusion {
