@@ -56,12 +56,7 @@ void MonitorBatch::refresh(std::size_t k) {
     pl.scene_v = scene.vertical;
     // The inputs the model interpolates from; both models hold the same clock (AdaptiveModel resets
     // its rocking model at its own time on every switch down).
-    const RockingModel& rm = pm.model_;
-    if (adaptive != nullptr) {
-      lane.t = adaptive->time();
-    } else {
-      lane.t = rm.time();
-    }
+    lane.t = adaptive != nullptr ? adaptive->time() : pm.model_.time();
     pm.intensity_->to_lane(pl.intensity);
   }
   if (lane.eligible) {

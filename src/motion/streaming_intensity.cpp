@@ -118,12 +118,8 @@ void StreamingIntensity::push(double accel) {
 namespace rocking_monitor::core {
 
 void StreamingIntensity::to_lane(Lane& l) const {
-  const Biquad& f = velocity_filter_;
-  l.b0 = f.b0; l.b1 = f.b1; l.b2 = f.b2; l.a1 = f.a1; l.a2 = f.a2;
-  l.x1 = f.x1; l.x2 = f.x2; l.y1 = f.y1; l.y2 = f.y2;
-  l.osc = oscillators_[0].coefficients();
-  l.u = oscillators_[0].displacement();
-  l.v = oscillators_[0].velocity();
+  l.velocity = velocity_filter_;
+  l.osc = oscillators_[0];
   l.prev_drive = prev_drive_;
   l.vel = vel_;
   l.pga = pga_;
@@ -133,27 +129,22 @@ void StreamingIntensity::to_lane(Lane& l) const {
 }
 
 void StreamingIntensity::from_lane(const Lane& l) {
-  Biquad& f = velocity_filter_;
-  f.x1 = l.x1; f.x2 = l.x2; f.y1 = l.y1; f.y2 = l.y2;
-  oscillators_[0].set_state(l.u, l.v);
+  velocity_filter_ = l.velocity;
+  oscillators_[0] = l.osc;
   prev_drive_ = l.prev_drive;
   vel_ = l.vel;
   count_ = l.count;  // maxima and their times are unchanged by quiet samples
 }
 
 bool StreamingIntensity::push_quiet(Lane& l, double accel) {
-  // The arithmetic of push() with drive = accel (no pre-filter), in the same order.
-  const double y = l.b0 * accel + l.b1 * l.x1 + l.b2 * l.x2 - l.a1 * l.y1 - l.a2 * l.y2;
-  const NigamJenningsCoefficients& c = l.osc;
-  const double u = c.a11 * l.u + c.a12 * l.v + c.b11 * l.prev_drive + c.b12 * accel;
-  const double v = c.a21 * l.u + c.a22 * l.v + c.b21 * l.prev_drive + c.b22 * accel;
-  if (std::abs(u) > l.max_u || std::abs(accel) > l.pga || std::abs(y) > l.pgv) return false;
-  l.x2 = l.x1;
-  l.x1 = accel;
-  l.y2 = l.y1;
-  l.y1 = y;
-  l.u = u;
-  l.v = v;
+  // push() with drive = accel (no pre-filter), on copies: the same filter and oscillator code.
+  Biquad velocity = l.velocity;
+  NigamJenningsOscillator osc = l.osc;
+  const double y = velocity.step(accel);
+  osc.step(l.prev_drive, accel);
+  if (std::abs(osc.displacement()) > l.max_u || std::abs(accel) > l.pga || std::abs(y) > l.pgv) return false;
+  l.velocity = velocity;
+  l.osc = osc;
   l.prev_drive = accel;
   l.vel = y;
   ++l.count;

@@ -173,7 +173,7 @@ void RockingMonitor::fill_state(const Item& it, RockingState& out) const {
   out.slip = w.slip;
   out.model = w.model;
   out.input_stamp = it.stamp;
-  out.stale = stale(sensors_[it.sensor]);
+  out.stale = sensors_[it.sensor].stale_now;
   if (it.ensemble) {
     const core::ItemEnsemble& e = *it.ensemble;
     out.ensemble_size = static_cast<std::uint16_t>(e.size());
@@ -192,6 +192,7 @@ void RockingMonitor::fill_state(const Item& it, RockingState& out) const {
 void RockingMonitor::publish_states() {
   const auto wall_start = std::chrono::steady_clock::now();
   sync_items();
+  for (Sensor& s : sensors_) s.stale_now = stale(s);
   ::ros::Time newest;
   for (std::size_t i = 0; i < items_.size(); ++i) {
     fill_state(items_[i], states_msg_.items[i]);

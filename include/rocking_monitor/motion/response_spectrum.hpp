@@ -61,10 +61,6 @@ class NigamJenningsOscillator {
     v_ = v;
   }
   void reset() { u_ = v_ = 0.0; }
-  void set_state(double u, double v) {  // StreamingIntensity::from_lane
-    u_ = u;
-    v_ = v;
-  }
 
   double displacement() const { return u_; }  ///< relative displacement u, m
   double velocity() const { return v_; }      ///< relative velocity u', m/s

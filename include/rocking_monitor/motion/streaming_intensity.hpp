@@ -93,13 +93,7 @@ class StreamingIntensity {
   /// The whole state of a one-period intensity without the oscillator pre-filter (the live
   /// monitor's: its item's Housner period) as one flat record. MonitorBatch keeps these records of
   /// many items in one compact array, advances quiet samples there and writes them back.
-  struct Lane {
-    double b0, b1, b2, a1, a2, x1, x2, y1, y2;  // velocity filter
-    NigamJenningsCoefficients osc;
-    double u, v;                                // oscillator state, m and m/s
-    double prev_drive, vel, pga, pgv, max_u;
-    std::size_t count;
-  };
+  struct Lane;
   /// One period, no oscillator pre-filter, at least one sample pushed.
   bool lane_eligible() const { return oscillators_.size() == 1 && !filter_oscillators_ && count_ > 0; }
   void to_lane(Lane& lane) const;    ///< requires lane_eligible()
@@ -127,6 +121,16 @@ class StreamingIntensity {
     }
   };
 
+
+ public:
+  struct Lane {
+    Biquad velocity;              // the velocity filter
+    NigamJenningsOscillator osc;  // the one oscillator
+    double prev_drive, vel, pga, pgv, max_u;
+    std::size_t count;
+  };
+
+ private:
   StreamingIntensityConfig config_;
   Biquad velocity_filter_;    // trapezoidal integration x Butterworth high-pass
   Biquad oscillator_filter_;  // optional Butterworth high-pass on the oscillator input

@@ -88,6 +88,7 @@ class RockingMonitor {
     std::size_t held_count = 0;
     ::ros::Time last_input_clock;     // node clock when the last sample was stepped (stale check)
     bool stale_journaled = false;     // a stale period of this sensor is open in the journal
+    bool stale_now = false;           // stale(), evaluated once per states publication
     double stale_from = 0.0;          // its start: stamp of the last sample before it, s since 1970
     double lag_s = 0.0, max_lag_s = 0.0;  // (node clock - stamp) of the last sample stepped minus its minimum, s
     double min_offset_s = 0.0;        // minimum of node clock - stamp so far (clock offset + transport), s
