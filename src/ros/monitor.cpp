@@ -189,6 +189,7 @@ bool RockingMonitor::init() {
     pc.max_step = timing_config_.max_gap;
     s.plausibility = core::StampPlausibility(pc);
     s.held.resize(static_cast<std::size_t>(pc.rebase_samples));
+    s.suspects.resize(static_cast<std::size_t>(pc.rebase_samples));
     sensors_.push_back(std::move(s));
   }
   static_broadcaster_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
@@ -343,6 +344,7 @@ void RockingMonitor::reset_all(const std::string& why) {
     s.have_first = false;
     s.plausibility.clear();
     s.held_count = 0;
+    s.suspect_count = 0;
     s.have_min_offset = false;
     ++s.resets;
   }

@@ -32,7 +32,7 @@ void RockingMonitor::sensor_diagnostics(std::size_t i, diagnostic_updater::Diagn
   else if (s.mean_dt > 0.0 && s.last_processing_s > s.mean_dt)
     st.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "processing slower than the sample rate");
   else if (dropped + rejected > 0 || c.gaps > 0 || pc.rejected > 0 || s.lost_in_transport > 0)
-    st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "samples dropped, rejected, lost or bridged");
+    st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "samples dropped, rejected, lost or gaps");
   else st.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
   st.add("topic", s.spec.topic);
   st.add("received", s.received);
@@ -42,11 +42,12 @@ void RockingMonitor::sensor_diagnostics(std::size_t i, diagnostic_updater::Diagn
   st.add("dropped zero stamp", s.zero_stamps);
   st.add("rejected non-finite", s.rejected_nonfinite);
   st.add("rejected beyond max_abs_acceleration", s.rejected_limit);
-  st.add("gaps bridged", c.gaps);
+  st.add("data gaps (not bridged)", c.gaps);
   st.add("longest gap (s)", c.longest_gap);
   st.add("resets (time jumped back)", s.resets);
   st.add("rejected implausible stamp", pc.rejected);
   st.add("rejected stamp ahead of the clock (of those)", pc.rejected_future);
+  st.add("re-stamped from their sequence and stepped (of those)", pc.restamped);
   st.add("last rejected jump (s)", pc.last_rejected_jump);
   st.add("held for a new time base", s.plausibility.held());
   st.add("new time base adopted, items continued", pc.rebased_forward);

@@ -97,34 +97,37 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
   using P = core::StampPlausibility::Verdict;
   const P plausible = s.plausibility.check(header.stamp.toSec(), ::ros::Time::now().toSec(), s.timing.started(),
                                            s.timing.last_stamp());
+  auto suspect = [&] {
+    if (s.suspect_count < s.suspects.size()) s.suspects[s.suspect_count] = {header.stamp, reading};
+    ++s.suspect_count;  // beyond the buffer: counted, so that the sequence no longer fits
+  };
   switch (plausible) {
     case P::Plausible:
-      if (s.held_count > 0)
+      if (s.suspect_count > 0 && !restamp_suspects(si, header))
         ROS_WARN("rocking_monitor: sensor '%s': rejected %zu sample(s) with an implausible stamp (%.3f s from the "
-                 "last; %lu rejected so far)", s.spec.name.c_str(), s.held_count,
+                 "last; %lu rejected so far)", s.spec.name.c_str(), s.suspect_count,
                  s.plausibility.counters().last_rejected_jump,
                  static_cast<unsigned long>(s.plausibility.counters().rejected));
       s.held_count = 0;
+      s.suspect_count = 0;
       break;
     case P::Rejected:
       s.held_count = 0;
+      suspect();
       ROS_WARN_THROTTLE(5.0, "rocking_monitor: sensor '%s': rejected implausible stamp %.6f, %.3f s ahead of the "
                         "node's clock (%lu rejected so far)", s.spec.name.c_str(), header.stamp.toSec(),
                         (header.stamp - ::ros::Time::now()).toSec(),
                         static_cast<unsigned long>(s.plausibility.counters().rejected));
       return;
     case P::Held:
-      if (s.plausibility.held() == 1) {
-        if (s.held_count > 0)
-          ROS_WARN("rocking_monitor: sensor '%s': rejected implausible stamp (%lu rejected so far)",
-                   s.spec.name.c_str(), static_cast<unsigned long>(s.plausibility.counters().rejected));
-        s.held_count = 0;
-      }
+      if (s.plausibility.held() == 1) s.held_count = 0;  // a new run: the previous one was dropped (counted)
       if (s.held_count < s.held.size()) s.held[s.held_count++] = {header.stamp, reading};
+      suspect();
       return;
     case P::RebaseForward:
     case P::RebaseBackward:
       if (s.held_count < s.held.size()) s.held[s.held_count++] = {header.stamp, reading};
+      s.suspect_count = 0;
       replay_held(si, header);
       return;
   }
@@ -172,6 +175,38 @@ bool RockingMonitor::stale(const Sensor& s) const {
   return (::ros::Time::now() - s.last_input_clock).toSec() > timing_config_.max_gap;
 }
 
+// The nominal sample period, s: the catalogue's rate when the shortest step seen confirms it (within
+// 20 %), else that shortest step (not a mean: gaps would inflate it); before any step, the rate.
+double RockingMonitor::nominal_period(const Sensor& s) {
+  if (s.min_dt == 0.0) return s.spec.rate > 0.0 ? 1.0 / s.spec.rate : 0.0;
+  return std::abs(s.min_dt * s.spec.rate - 1.0) < 0.2 ? 1.0 / s.spec.rate : s.min_dt;
+}
+
+// The samples dropped for their stamps since the last one stepped, when this good stamp lies exactly
+// as many periods after the last as they fill and nothing else arrived in between: only their stamps
+// were bad (a glitch in the packets), so their readings are stepped at the stamps of their places in
+// the sequence (spaced evenly between the two good stamps) rather than lost (issue 19).
+bool RockingMonitor::restamp_suspects(std::size_t si, const std_msgs::Header& header) {
+  Sensor& s = sensors_[si];
+  const std::size_t k = s.suspect_count;
+  const bool in_sequence = k <= s.suspects.size() && s.received == s.received_at_last_step + k + 1;
+  if (!in_sequence || !s.timing.started() || s.have_first ||
+      !s.plausibility.restamp(s.timing.last_stamp(), header.stamp.toSec(), k, nominal_period(s)))
+    return false;
+  ROS_WARN("rocking_monitor: sensor '%s': %zu sample(s) with an implausible stamp (%.3f s from the last) sat in "
+           "sequence: re-stamped in place and stepped (%lu re-stamped so far)", s.spec.name.c_str(), k,
+           s.plausibility.counters().last_rejected_jump,
+           static_cast<unsigned long>(s.plausibility.counters().restamped));
+  const ::ros::Time last = s.last_stamp;
+  const ::ros::Duration span = header.stamp - last;
+  std_msgs::Header h = header;
+  for (std::size_t i = 0; i < k; ++i) {
+    h.stamp = last + span * (static_cast<double>(i + 1) / static_cast<double>(k + 1));
+    step_sample(si, h, s.suspects[i].reading, std::chrono::steady_clock::now());
+  }
+  return true;
+}
+
 // A new time base confirmed by ~rebase_samples consistent stamps: later base, the items continue with
 // the offset absorbed (the first held sample one nominal period after the last one stepped); earlier
 // base, the items restart (a bag loop or a simulation restarted). Then the held samples are stepped.
@@ -179,7 +214,7 @@ void RockingMonitor::replay_held(std::size_t si, const std_msgs::Header& header)
   Sensor& s = sensors_[si];
   const bool forward = s.held_count > 0 && s.held[0].stamp.toSec() > s.timing.last_stamp();
   if (forward) {
-    const double period = s.dt_nominal > 0.0 ? s.dt_nominal : (s.spec.rate > 0.0 ? 1.0 / s.spec.rate : 0.0);
+    const double period = nominal_period(s);
     const ::ros::Duration offset = s.held[0].stamp - (s.epoch + ::ros::Duration(s.last_t + period));
     ROS_WARN("rocking_monitor: sensor '%s': new time base confirmed by %zu consistent samples (%.3f s later): "
              "its %zu items continue", s.spec.name.c_str(), s.held_count, offset.toSec(), s.items.size());
@@ -225,16 +260,26 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
       for (std::size_t idx : s.items) make_models(items_[idx]);
       s.batch.reset();
       break;
-    case V::AcceptGap:
-      ROS_WARN_THROTTLE(5.0, "rocking_monitor: sensor '%s': %.3f s gap bridged by a straight line (%lu gaps)",
-                        s.spec.name.c_str(), dt, static_cast<unsigned long>(s.timing.counters().gaps));
+    case V::AcceptGap: {
+      // Issue 19: a data gap is not bridged by invented motion. The items were frozen (stale) through
+      // it and continue from their state as if this sample followed the last one by one period: the
+      // gap's time is skipped (the epoch moves), its missing periods are counted as lost in transport.
+      const double period = nominal_period(s);
+      if (period > 0.0 && period < dt) {
+        s.epoch += ::ros::Duration(dt - period);
+        ROS_WARN_THROTTLE(5.0, "rocking_monitor: sensor '%s': %.3f s data gap, not bridged: its items were frozen and "
+                          "continue from their state (%lu gaps)", s.spec.name.c_str(), dt,
+                          static_cast<unsigned long>(s.timing.counters().gaps));
+      }
       break;
+    }
     default: break;
   }
   if (verdict == V::First || verdict == V::BackwardJump) {
     s.epoch = header.stamp;
     s.last_t = 0.0;
   }
+  const double stamp_dt = dt;  // between the stamps, s (a gap's full length)
   const double t = (header.stamp - s.epoch).toSec();
   if (verdict == V::Accept || verdict == V::AcceptGap) {
     dt = t - s.last_t;
@@ -259,14 +304,12 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
   if (!s.batch) rebuild_batch(s);  // allocates: only after a (re)start
   s.mean_dt = s.mean_dt == 0.0 ? dt : 0.99 * s.mean_dt + 0.01 * dt;
   {
-    // Lost in transport: whole periods missing at the nominal rate, from the stamps alone. The nominal
-    // period is the catalogue's rate when the shortest step seen confirms it (within 20 %), else that
-    // shortest step (not a mean: the gaps themselves would inflate it).
-    if (dt > 0.0 && (s.min_dt == 0.0 || dt < s.min_dt)) s.min_dt = dt;
-    const double period = std::abs(s.min_dt * s.spec.rate - 1.0) < 0.2 ? 1.0 / s.spec.rate : s.min_dt;
+    // Lost in transport: whole periods missing at the nominal rate, from the stamps alone.
+    if (stamp_dt > 0.0 && (s.min_dt == 0.0 || stamp_dt < s.min_dt)) s.min_dt = stamp_dt;
+    const double period = nominal_period(s);
     // Samples that arrived but were not stepped (rejected, dropped: counted as such) are not lost.
     const long arrived = static_cast<long>(s.received - s.received_at_last_step) - 1;
-    const long missing = (period > 0.0 ? std::lround(dt / period) - 1 : 0) - std::max(0L, arrived);
+    const long missing = (period > 0.0 ? std::lround(stamp_dt / period) - 1 : 0) - std::max(0L, arrived);
     if (missing > 0) s.lost_in_transport += static_cast<std::uint64_t>(missing);
   }
   // Serial: items still waiting for their transform, or starting late, are not stepped.

@@ -128,10 +128,31 @@ TEST(StampPlausibility, FutureCandidatesCanNeverConfirm) {
 TEST(StampPlausibility, GapWithinMaxBridgeIsLeftToSampleTiming) {
   Feed f;
   ASSERT_EQ(f.push(kT0, 0.0), V::Plausible);
-  EXPECT_EQ(f.push(kT0 + 0.5, 0.0), V::Plausible);  // SampleTiming bridges it (max_gap), counted there
+  EXPECT_EQ(f.push(kT0 + 0.5, 0.0), V::Plausible);  // a data gap for SampleTiming (max_gap), counted there
   EXPECT_EQ(f.timing.counters().gaps, 1u);
   EXPECT_EQ(f.push(kT0 + 0.5 + 1.0 + 1e-3, 0.0), V::Held);  // beyond max_bridge: never bridged
   EXPECT_EQ(f.timing.counters().gaps, 1u);
+}
+
+// A burst whose stamps were bad but which sat in sequence: the next good stamp is k + 1 periods after
+// the last accepted one, so the k samples are re-stamped (still counted as rejected) rather than lost.
+TEST(StampPlausibility, RejectedSamplesInSequenceAreRestampedOnlyWhenTheNextStampLeavesExactlyTheirRoom) {
+  Feed f;
+  for (int k = 0; k < 10; ++k) ASSERT_EQ(f.push(kT0 + k * kDt, kT0 + k * kDt), V::Plausible);
+  const double last = f.timing.last_stamp();
+  for (int k = 0; k < 5; ++k) ASSERT_EQ(f.push(kT0 - 1000.0 + k * kDt, kT0 + (10 + k) * kDt), V::Held);
+  ASSERT_EQ(f.guard.check(kT0 + 15 * kDt, kT0 + 15 * kDt, true, last), V::Plausible);
+  EXPECT_EQ(f.guard.counters().rejected, 5u);
+  // One period more or fewer than the five (a sample also lost, or one too many): not in sequence.
+  EXPECT_FALSE(f.guard.restamp(last, kT0 + 16 * kDt, 5, kDt));
+  EXPECT_FALSE(f.guard.restamp(last, kT0 + 14 * kDt, 5, kDt));
+  EXPECT_FALSE(f.guard.restamp(last, kT0 + 15.3 * kDt, 5, kDt));  // beyond a quarter period
+  EXPECT_FALSE(f.guard.restamp(last, kT0 + 15 * kDt, 5, 0.0));    // no nominal period known
+  EXPECT_FALSE(f.guard.restamp(last, kT0 + 11 * kDt, 0, kDt));    // nothing to re-stamp
+  EXPECT_EQ(f.guard.counters().restamped, 0u);
+  EXPECT_TRUE(f.guard.restamp(last, kT0 + 15.2 * kDt, 5, kDt));   // jitter within a quarter period
+  EXPECT_EQ(f.guard.counters().restamped, 5u);
+  EXPECT_EQ(f.guard.counters().rejected, 5u) << "re-stamped samples stay counted as rejected stamps";
 }
 
 }  // namespace

@@ -11,13 +11,13 @@ class SampleTiming {
   enum class Verdict : std::uint8_t {
     First,         ///< first sample (or first after a reset): starts the models, no step
     Accept,        ///< step by dt
-    AcceptGap,     ///< step by dt > max_gap: the gap is bridged by a straight line (reported)
+    AcceptGap,     ///< dt > max_gap: a data gap (reported); the caller does not bridge it (issue 19)
     Duplicate,     ///< same stamp as the previous sample (within 1 us): dropped and counted
     OutOfOrder,    ///< older than the previous sample by less than the jump threshold: dropped
     BackwardJump,  ///< older by more than the threshold (bag loop, sim time restart): reset
   };
   struct Config {
-    double max_gap = 0.1;          ///< s, longer intervals are bridged and reported
+    double max_gap = 0.1;          ///< s, longer intervals are data gaps, reported
     double backward_jump = 1.0;    ///< s, a stamp this much older than the last resets the models
     double duplicate_window = 1e-6;  ///< s
   };

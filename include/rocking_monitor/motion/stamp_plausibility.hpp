@@ -1,5 +1,7 @@
 #pragma once
 
+#include <cmath>
+#include <cstddef>
 #include <cstdint>
 
 namespace rocking_monitor::core {
@@ -31,6 +33,7 @@ class StampPlausibility {
     std::uint64_t rejected_future = 0;  ///< of which ahead of the node's clock
     std::uint64_t rebased_forward = 0, rebased_backward = 0;
     double last_rejected_jump = 0.0;    ///< s, stamp - last accepted of the latest dropped sample
+    std::uint64_t restamped = 0;        ///< of the rejected, re-stamped from their sequence and stepped
   };
 
   StampPlausibility() = default;
@@ -69,6 +72,20 @@ class StampPlausibility {
     }
     ++counters_.rebased_backward;
     return Verdict::RebaseBackward;
+  }
+
+  /// The k samples rejected since the last accepted stamp `last` (their stamps were implausible, their
+  /// readings passed every check) are re-stamped from their sequence when the next plausible stamp t
+  /// lies k + 1 nominal periods after `last` (within a quarter period) and nothing else arrived in
+  /// between: then they sat in order in the stream and only their stamps were wrong (a clock glitch in
+  /// the packets), so their data is stepped at the stamps it must have had instead of being lost.
+  /// Returns whether they fit; if so they are counted as restamped (they stay counted as rejected).
+  bool restamp(double last, double t, std::size_t k, double period) {
+    if (k == 0 || !(period > 0.0)) return false;
+    const double expected = last + static_cast<double>(k + 1) * period;
+    if (std::abs(t - expected) > 0.25 * period) return false;
+    counters_.restamped += k;
+    return true;
   }
 
   /// Forgets a held run without counting it (~reset: the caller drops what it held).

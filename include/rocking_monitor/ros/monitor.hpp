@@ -86,6 +86,10 @@ class RockingMonitor {
     struct Held { ::ros::Time stamp; Eigen::Vector3d reading; };
     std::vector<Held> held;
     std::size_t held_count = 0;
+    // Every sample dropped for its stamp since the last one stepped (rejected or in a held run), in
+    // arrival order: re-stamped from their sequence when the next good stamp shows they were in order.
+    std::vector<Held> suspects;
+    std::size_t suspect_count = 0;
     ::ros::Time last_input_clock;     // node clock when the last sample was stepped (stale check)
     bool stale_journaled = false;     // a stale period of this sensor is open in the journal
     bool stale_now = false;           // stale(), evaluated once per states publication
@@ -133,6 +137,8 @@ class RockingMonitor {
   void step_sample(std::size_t sensor, const std_msgs::Header& header, const Eigen::Vector3d& reading,
                    std::chrono::steady_clock::time_point wall_start);
   void replay_held(std::size_t sensor, const std_msgs::Header& header);
+  bool restamp_suspects(std::size_t sensor, const std_msgs::Header& header);
+  static double nominal_period(const Sensor& s);
   bool stale(const Sensor& s) const;  // no sample stepped for > max_gap of the node's clock, or a base pending
   void start_items(Sensor& s, double t, const Eigen::Vector3d& a);
   bool lookup_rotation(Item& item, const std::string& sensor_frame);

@@ -265,7 +265,7 @@ function renderHealth() {
     rows.push('<tr><td>' + esc(s.name) + '</td><td class="lvl-' + s.level + '">' +
       esc(['OK', 'WARN', 'ERROR', 'STALE'][s.level] || s.level) + (s.messages.length ? ': ' + esc(s.messages.join('; ')) : '') +
       '</td><td>' + fmt(num(v['Actual frequency (Hz)']), 1) + '</td><td>' + esc(v['received'] || '–') + '</td><td>' +
-      [dropped, rejected, num(v['gaps bridged'])].map((x) => (isFinite(x) ? x : '–')).join(' / ') + '</td><td>' +
+      [dropped, rejected, num(v['data gaps (not bridged)'])].map((x) => (isFinite(x) ? x : '–')).join(' / ') + '</td><td>' +
       fmt(proc * 1e3, 3) + ' ms of ' + fmt(period * 1e3, 2) + ' ms' + share + '</td></tr>');
   }
   $('health').tBodies[0].innerHTML = rows.join('') || '<tr><td colspan="6" class="hint">no diagnostics yet</td></tr>';
