@@ -2,7 +2,7 @@
 // integrators (issue 6). Writes CSV files that scripts/plot_performance.py turns into the charts
 // of docs/performance/ (run everything with `bash scripts/make_performance_charts.sh`).
 //
-//   rocking_accuracy [--out DIR] [--records DIR] [--jobs N] [--quick]
+//   rocking_accuracy [--out DIR] [--records DIR] [--jobs N] [--quick] [--batch-lanes N]
 //                    [work-precision] [overturn] [stability]     (default: all three)
 //
 // Reference: dopri5 at tol = 1e-12 on the same piecewise-linear input re-sampled 8x finer (the
@@ -11,7 +11,10 @@
 //
 // work_precision.csv   one row per (model, input, case, method setting): cost (ns per simulated
 //                      second, ns per item-step) and errors (max |theta|/alpha, first-10 impact
-//                      times, overturn time) against the reference
+//                      times, overturn time) against the reference; the nonlinear dopri5
+//                      settings also through the batch engine (BatchRocking, --batch-lanes
+//                      identical lanes, exact and fast trig: cost per lane-step; the exact-trig
+//                      batch must reproduce the scalar run bit for bit, else exit status 1)
 // overturn_agreement.csv  every .AT2 record x 4 bodies x every method: overturned or not, against
 //                      the reference (dopri5 1e-12 on the record's own samples)
 // stability_map.csv    per (method setting, p, alpha): free-rocking impacts, impact-time error,
@@ -22,6 +25,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -31,10 +35,12 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "bench_common.hpp"
 #include "command_line.hpp"
+#include "rocking_monitor/model/batch_rocking.hpp"
 
 namespace rb = rocking_monitor::bench;
 using namespace rocking_monitor::core;
@@ -57,6 +63,8 @@ struct Run {
   int max_steps = 0;        // most integrator steps in one sample
   int max_impacts = 0;      // most impacts in one sample
   double duration = 0.0;    // simulated seconds
+  std::size_t stepped = 0;  // input samples stepped (fewer than the input's after an overturn)
+  double final_theta = 0.0;
 };
 
 GroundMotion upsample(const GroundMotion& g, int factor) {
@@ -72,39 +80,49 @@ GroundMotion upsample(const GroundMotion& g, int factor) {
   return r;
 }
 
-/// Runs one item over `g` (optionally released at theta0), summarising every `group` samples as
-/// one (so a run on an upsampled input reports on the original sample grid).
-Run run_once(const BodyParameters& body, const SolverSettings& s, const GroundMotion& g,
-             double theta0, int group = 1) {
+/// Summarises stepping one lane over `g` (already reset to g.t0 and released), every `group`
+/// samples as one (so a run on an upsampled input reports on the original sample grid). `lane`
+/// has step(ax, ay, dt) -> const StepReport&, mode(), outcome() and theta(): a RockingModel, or
+/// one lane of a BatchRocking.
+template <class Lane>
+Run summarise(Lane& lane, const GroundMotion& g, int group) {
   Run r;
-  RockingModel m(body, s);
-  m.reset(g.t0, g.horizontal[0], g.ay(0));
-  if (theta0 != 0.0) m.set_state(theta0, 0.0);
   const std::size_t n = g.size();
   const std::size_t groups = (n - 1) / static_cast<std::size_t>(group);
   r.impacts.assign(groups, 0);
   r.first_impact.assign(groups, kNaN);
   r.peak.assign(groups, 0.0);
-  bool was_rocking = m.mode() == Mode::Rocking;
+  bool was_rocking = lane.mode() == Mode::Rocking;
   std::vector<int> steps(groups, 0);
   for (std::size_t i = 1; i < n; ++i) {
-    const StepReport& rep = m.step(g.horizontal[i], g.ay(i), g.dt);
+    const StepReport& rep = lane.step(g.horizontal[i], g.ay(i), g.dt);
+    r.stepped = i;
     const std::size_t k = std::min((i - 1) / static_cast<std::size_t>(group), groups - 1);
     if (rep.impacts > 0 && std::isnan(r.first_impact[k])) r.first_impact[k] = rep.first_impact_time;
     r.impacts[k] += rep.impacts;
     r.peak[k] = std::max(r.peak[k], rep.peak_ratio);
     steps[k] += rep.integrator_steps;
-    if (m.mode() == Mode::Rocking) was_rocking = true;
-    if (was_rocking && m.mode() == Mode::Rest && std::isnan(r.rest_time)) {
+    if (lane.mode() == Mode::Rocking) was_rocking = true;
+    if (was_rocking && lane.mode() == Mode::Rest && std::isnan(r.rest_time)) {
       r.rest_time = g.t0 + static_cast<double>(k + 1) * g.dt * group;
     }
-    if (m.mode() == Mode::Overturned) break;
+    if (lane.mode() == Mode::Overturned) break;
   }
-  r.outcome = m.outcome();
+  r.outcome = lane.outcome();
+  r.final_theta = lane.theta();
   r.max_steps = *std::max_element(steps.begin(), steps.end());
   r.max_impacts = *std::max_element(r.impacts.begin(), r.impacts.end());
   r.duration = g.dt * static_cast<double>(n - 1);
   return r;
+}
+
+/// Runs one item over `g` (optionally released at theta0); see summarise() for `group`.
+Run run_once(const BodyParameters& body, const SolverSettings& s, const GroundMotion& g,
+             double theta0, int group = 1) {
+  RockingModel m(body, s);
+  m.reset(g.t0, g.horizontal[0], g.ay(0));
+  if (theta0 != 0.0) m.set_state(theta0, 0.0);
+  return summarise(m, g, group);
 }
 
 /// Thread CPU time of stepping one item over `g` (nothing else in the loop), s.
@@ -119,23 +137,107 @@ double time_once(const BodyParameters& body, const SolverSettings& s, const Grou
   return rb::thread_cpu_seconds() - t0;
 }
 
-/// run_once() plus its cost: the best of 5 batches of pure stepping, each repeated until it
-/// takes at least min_seconds (the minimum filters out interference from other processes).
-Run run_timed(const BodyParameters& body, const SolverSettings& s, const GroundMotion& g,
-              double theta0, double min_seconds = 0.01) {
-  Run r = run_once(body, s, g, theta0);  // also warms the caches
+/// The best of 5 batches of `once()` (seconds), each repeated until it takes at least
+/// min_seconds (the minimum filters out interference from other processes).
+template <class Once>
+double best_time(Once once, double min_seconds = 0.01) {
   double best = std::numeric_limits<double>::infinity();
   for (int batch = 0; batch < 5; ++batch) {
     int reps = 0;
     double total = 0.0;
     do {
-      total += time_once(body, s, g, theta0);
+      total += once();
       ++reps;
     } while (total < min_seconds && reps < 1000);
     best = std::min(best, total / reps);
   }
-  r.seconds = best;
+  return best;
+}
+
+/// run_once() plus its cost (best_time of pure stepping).
+Run run_timed(const BodyParameters& body, const SolverSettings& s, const GroundMotion& g,
+              double theta0) {
+  Run r = run_once(body, s, g, theta0);  // also warms the caches
+  r.seconds = best_time([&] { return time_once(body, s, g, theta0); });
   return r;
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+/// Field by field (the struct has padding bytes), doubles bit for bit.
+bool same_outcome(const RockingOutcome& a, const RockingOutcome& b) {
+  return a.beyond_tipping == b.beyond_tipping && a.committed == b.committed &&
+         a.overturned == b.overturned && same_bits(a.max_rotation_ratio, b.max_rotation_ratio) &&
+         a.max_rotation_side == b.max_rotation_side && a.impacts == b.impacts &&
+         a.rest_captures == b.rest_captures && a.forced_rest_captures == b.forced_rest_captures &&
+         a.integrator_steps == b.integrator_steps && a.samples == b.samples &&
+         same_bits(a.uplift_time, b.uplift_time) &&
+         same_bits(a.beyond_tipping_time, b.beyond_tipping_time) &&
+         same_bits(a.committed_time, b.committed_time) && same_bits(a.overturn_time, b.overturn_time);
+}
+
+/// Lane 0 of a batch whose lanes all share the input, seen as one model (summarise()). Reading
+/// lane 0 after each sample brings only that lane up to date; the other lanes run as in a
+/// catalogue (deferred rest included).
+struct BatchLane {
+  BatchRocking& batch;
+  const StepReport& step(double ax, double ay, double dt) {
+    batch.step_all(ax, ay, dt);
+    return batch.report(0);
+  }
+  Mode mode() const { return std::as_const(batch).model(0).mode(); }
+  const RockingOutcome& outcome() const { return std::as_const(batch).model(0).outcome(); }
+  double theta() const { return std::as_const(batch).model(0).theta(); }
+};
+
+void release(BatchRocking& batch, const GroundMotion& g, double theta0) {
+  batch.reset(g.t0, g.horizontal[0], g.ay(0));
+  if (theta0 != 0.0)
+    for (std::size_t k = 0; k < batch.size(); ++k) batch.model(k).set_state(theta0, 0.0);
+}
+
+/// The same case through BatchRocking with `lanes` identical lanes: lane 0's run and the cost
+/// per lane (the batch's time / lanes, so that the cost is the amortized one of a full batch).
+/// The timed loop steps as many samples as the summarised run did (it stops at an overturn).
+/// `lanes_differing`: lanes whose final outcome or theta is not lane 0's, bit for bit.
+Run run_batch_timed(const BodyParameters& body, const SolverSettings& s, const GroundMotion& g,
+                    double theta0, BatchTrig trig, std::size_t lanes, long& lanes_differing) {
+  BatchRocking batch(std::vector<BodyParameters>(lanes, body), s, trig);
+  release(batch, g, theta0);
+  BatchLane lane{batch};
+  Run r = summarise(lane, g, 1);
+  lanes_differing = 0;
+  for (std::size_t k = 1; k < lanes; ++k) {
+    const RockingModel& m = std::as_const(batch).model(k);
+    lanes_differing += !same_outcome(m.outcome(), r.outcome) || !same_bits(m.theta(), r.final_theta);
+  }
+  r.seconds = best_time([&] {
+                const double t0 = rb::thread_cpu_seconds();
+                release(batch, g, theta0);
+                for (std::size_t i = 1; i <= r.stepped; ++i)
+                  batch.step_all(g.horizontal[i], g.ay(i), g.dt);
+                return rb::thread_cpu_seconds() - t0;
+              }) /
+              static_cast<double>(lanes);
+  return r;
+}
+
+/// What differs, bit for bit, between two summarised runs of the same case (empty: nothing):
+/// every per-sample impact count, first impact time and peak, the outcome and the final theta.
+std::string bitwise_difference(const Run& a, const Run& b) {
+  auto same = [](const auto& x, const auto& y) {
+    return x.size() == y.size() &&
+           (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof x[0]) == 0);
+  };
+  std::string d;
+  auto add = [&](const char* what) { d += std::string(d.empty() ? "" : ", ") + what; };
+  if (!same(a.impacts, b.impacts)) add("impacts per sample");
+  if (!same(a.first_impact, b.first_impact)) add("impact times");
+  if (!same(a.peak, b.peak)) add("peaks");
+  if (!same_outcome(a.outcome, b.outcome)) add("outcome");
+  if (!same_bits(a.final_theta, b.final_theta)) add("final theta");
+  if (a.stepped != b.stepped) add("samples stepped");
+  return d;
 }
 
 Run reference_run(const BodyParameters& body, ModelKind model, const GroundMotion& g, double theta0) {
@@ -287,35 +389,76 @@ std::vector<Case> work_precision_cases(const std::string& records, bool quick) {
   return cases;
 }
 
-void work_precision(const std::string& out_dir, const std::string& records, bool quick) {
+/// Returns the number of exact-trig batch runs that are not the scalar dopri5 run bit for bit
+/// (0 expected: BatchTrig::Exact is documented bit-identical).
+int work_precision(const std::string& out_dir, const std::string& records, bool quick,
+                   std::size_t batch_lanes) {
   const std::vector<Case> cases = work_precision_cases(records, quick);
   std::ofstream os(out_dir + "/work_precision.csv");
   os << "model,input,case,sample_rate_hz,method,label,param,ns_per_sim_s,ns_per_item_step,"
         "steps_per_sample,err_peak,err_impact_s,err_overturn_s,overturned,ref_overturned,impacts,"
-        "ref_impacts,max_ratio,ref_max_ratio\n";
+        "ref_impacts,max_ratio,ref_max_ratio,lanes\n";
+  std::fprintf(stderr, "work-precision: batch engine with %zu identical lanes, SIMD target %s\n",
+               batch_lanes, BatchRocking::simd_target());
+  int mismatches = 0;
   for (ModelKind model : {ModelKind::Nonlinear, ModelKind::Linearized}) {
     const std::vector<rb::MethodSetting> settings = rb::all_settings(model, !quick);
     for (const Case& c : cases) {
       const Run ref = reference_run(c.body, model, c.motion, c.theta0);
-      for (const rb::MethodSetting& ms : settings) {
-        const Run r = run_timed(c.body, ms.settings, c.motion, c.theta0);
-        const double samples = static_cast<double>(c.motion.size() - 1);
+      const double samples = static_cast<double>(c.motion.size() - 1);
+      auto write_row = [&](const std::string& method, const std::string& label, double param,
+                           const Run& r, std::size_t lanes) {
         const double e_over = r.outcome.overturned && ref.outcome.overturned
                                   ? std::abs(r.outcome.overturn_time - ref.outcome.overturn_time)
                                   : kNaN;
         os << to_string(model) << ',' << c.kind << ',' << c.name << ',' << fmt(1.0 / c.motion.dt)
-           << ',' << ms.method << ',' << ms.label << ',' << fmt(ms.param) << ','
+           << ',' << method << ',' << label << ',' << fmt(param) << ','
            << fmt(1e9 * r.seconds / r.duration) << ',' << fmt(1e9 * r.seconds / samples) << ','
            << fmt(static_cast<double>(r.outcome.integrator_steps) / samples) << ','
            << fmt(peak_error(r, ref)) << ',' << fmt(impact_time_error(r, ref)) << ','
-           << fmt(e_over) << ',' << r.outcome.overturned << ',' << ref.outcome.overturned << ',' << r.outcome.impacts << ','
-           << ref.outcome.impacts << ',' << fmt(r.outcome.max_rotation_ratio) << ','
-           << fmt(ref.outcome.max_rotation_ratio) << '\n';
+           << fmt(e_over) << ',' << r.outcome.overturned << ',' << ref.outcome.overturned << ','
+           << r.outcome.impacts << ',' << ref.outcome.impacts << ','
+           << fmt(r.outcome.max_rotation_ratio) << ',' << fmt(ref.outcome.max_rotation_ratio) << ','
+           << lanes << '\n';
+      };
+      for (const rb::MethodSetting& ms : settings) {
+        const Run r = run_timed(c.body, ms.settings, c.motion, c.theta0);
+        write_row(ms.method, ms.label, ms.param, r, 1);
+        // The batch engine vectorizes nonlinear dopri5 only (other settings: RockingModel::step).
+        if (model != ModelKind::Nonlinear || ms.method != "dopri5") continue;
+        for (BatchTrig trig : {BatchTrig::Exact, BatchTrig::Fast}) {
+          const bool exact = trig == BatchTrig::Exact;
+          long lanes_differing = 0;
+          const Run b = run_batch_timed(c.body, ms.settings, c.motion, c.theta0, trig, batch_lanes,
+                                        lanes_differing);
+          char tol[16];
+          std::snprintf(tol, sizeof tol, "%.0e", ms.param);
+          write_row(exact ? "batch_exact" : "batch_fast",
+                    std::string("batch dopri5 (") + (exact ? "exact" : "fast") + " trig) tol=" + tol,
+                    ms.param, b, batch_lanes);
+          if (!exact) continue;
+          std::string d = bitwise_difference(b, r);
+          if (lanes_differing != 0) {
+            d += (d.empty() ? "" : ", ") + std::to_string(lanes_differing) +
+                 " lanes differ from lane 0";
+          }
+          if (!d.empty()) {
+            ++mismatches;
+            std::fprintf(stderr,
+                         "rocking_accuracy: error: batch dopri5 (exact trig) is not bit-identical to "
+                         "scalar dopri5 on %s, tol %s: %s\n",
+                         c.name.c_str(), tol, d.c_str());
+          }
+        }
       }
       std::fprintf(stderr, "work-precision: %s %s %s done\n", to_string(model), c.kind.c_str(),
                    c.name.c_str());
     }
   }
+  if (mismatches == 0)
+    std::fprintf(stderr, "work-precision: batch dopri5 (exact trig) bit-identical to scalar dopri5 "
+                         "in every nonlinear case and tolerance\n");
+  return mismatches;
 }
 
 // ------------------------------------------------------------------ overturn decisions
@@ -598,6 +741,7 @@ int main(int argc, char** argv) {
   std::string out = "docs/performance";
   std::string records = rb::records_dir();
   int jobs = 2;
+  std::size_t batch_lanes = 128;
   bool quick = false;
   std::vector<std::string> parts;
   CLI::App app{"rocking_accuracy: work-precision, overturn-agreement and stability-map tables (docs/performance)",
@@ -606,18 +750,30 @@ int main(int argc, char** argv) {
   app.add_option("--records", records, "Strong-motion records directory")->default_val(records);
   app.add_option("--jobs", jobs, "Worker threads")->default_val(jobs)->check(CLI::PositiveNumber);
   app.add_flag("--quick", quick, "Fewer cases (a smoke run)");
+  app.add_option("--batch-lanes", batch_lanes,
+                 "Identical lanes of the batch engine in work-precision (cost per lane-step)")
+      ->default_val(batch_lanes)
+      ->check(CLI::PositiveNumber);
   app.add_option("parts", parts, "work-precision | overturn | stability (default: all)")
       ->check(CLI::IsMember({"work-precision", "overturn", "stability"}));
   if (const auto status = rocking_monitor::tools::parse_command_line(app, argc, argv, "rocking_accuracy")) return *status;
   if (parts.empty()) parts = {"work-precision", "overturn", "stability"};
   std::filesystem::create_directories(out);
+  int status = 0;
   for (const std::string& p : parts) {
     const auto t0 = std::chrono::steady_clock::now();
-    if (p == "work-precision") work_precision(out, records, quick);
-    else if (p == "overturn") overturn_agreement(out, records, jobs, quick);
-    else stability_maps(out, jobs, quick);
+    if (p == "work-precision") {
+      if (work_precision(out, records, quick, batch_lanes) != 0) status = 1;
+    } else if (p == "overturn") {
+      overturn_agreement(out, records, jobs, quick);
+    } else {
+      stability_maps(out, jobs, quick);
+    }
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::fprintf(stderr, "rocking_accuracy: %s written to %s in %.0f s\n", p.c_str(), out.c_str(), s);
   }
-  return 0;
+  if (status != 0)
+    std::fprintf(stderr, "rocking_accuracy: error: the exact-trig batch engine differs from the "
+                         "scalar model (see the lines above)\n");
+  return status;
 }

@@ -3,7 +3,8 @@
 #   1. builds rocking_benchmarks and rocking_accuracy (Release) in build-bench/,
 #   2. runs the Google benchmarks (ns per item-step, real-time capacity at 200 Hz) -> JSON,
 #   3. runs the accuracy driver (work-precision, overturn agreement over every .AT2 record,
-#      stability maps) -> CSV,
+#      stability maps) -> CSV; work-precision also runs the batch engine (BatchRocking) and fails,
+#      stopping this script, if its exact-trig lanes are not the scalar model's bits,
 #   4. draws the charts (PNG + SVG) and docs/performance/summary.md.
 # Raw data stays in build-bench/performance/ (large, regenerable); charts go to docs/performance/.
 #

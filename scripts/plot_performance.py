@@ -12,6 +12,7 @@ and writes PNG + SVG charts and a markdown summary of the numbers into the outpu
   cost_per_item_step.*, capacity.*, work_precision_nonlinear.*, work_precision_linearized.*,
   overturn_agreement.*, stability_summary.*, stability_rk4.*, stability_dopri5.*,
   stability_analytic.*, summary.md
+A missing data file leaves its charts alone and keeps its sections of the existing summary.md.
 Uses Debian's python3-matplotlib only (no pandas).
 """
 import argparse
@@ -29,8 +30,14 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
 from matplotlib.colors import LogNorm, ListedColormap, BoundaryNorm  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
 
-METHOD_COLOURS = {"dopri5": "#1f77b4", "rk4": "#d62728", "analytic": "#2ca02c"}
+METHOD_COLOURS = {"dopri5": "#1f77b4", "rk4": "#d62728", "analytic": "#2ca02c",
+                  "batch_exact": "#9467bd", "batch_fast": "#ff7f0e"}
+# Work-precision series: legend name, marker, marker size (the batch engine runs dopri5 only).
+WP_SERIES = {"dopri5": ("dopri5", "o", 5), "batch_exact": ("batch dopri5 (exact trig)", "s", 5),
+             "batch_fast": ("batch dopri5 (fast trig)", "^", 6), "rk4": ("rk4", "o", 5),
+             "analytic": ("analytic", "*", 11)}
 FLOOR = 1e-14  # errors of exactly zero are drawn here
 
 
@@ -56,7 +63,7 @@ def read_csv(path):
 
 def short_param(method, param):
     p = fnum(param)
-    if method == "dopri5":
+    if method in ("dopri5", "batch_exact", "batch_fast"):
         return f"1e{int(round(math.log10(p)))}"
     if method == "rk4":
         return f"{int(p)}"
@@ -251,6 +258,8 @@ def plot_work_precision(directory, rows, summary):
         sub = [r for r in rows if r["model"] == model]
         if not sub:
             continue
+        batch_lanes = {r.get("lanes") for r in sub if r["method"].startswith("batch")}
+        lanes = "/".join(sorted(l for l in batch_lanes if l))
         fig, axes = plt.subplots(len(metrics), len(kinds), figsize=(5.0 * len(kinds), 4.2 * len(metrics)),
                                  squeeze=False)
         for col, kind in enumerate(kinds):
@@ -265,15 +274,16 @@ def plot_work_precision(directory, rows, summary):
                 ax = axes[row][col]
                 for g in groups:
                     style = "-" if g.startswith("200") or g.startswith("native") else "--"
-                    for method in ("dopri5", "rk4", "analytic"):
+                    for method, (name, marker, size) in WP_SERIES.items():
                         mr = [r for r in kr if r["method"] == method and rate_group(r) == g]
                         if not mr:
                             continue
+                        tol_axis = method != "rk4" and method != "analytic"
                         by_label = defaultdict(list)
                         for r in mr:
                             by_label[(fnum(r["param"]), r["label"])].append(r)
                         pts = []
-                        for (param, _label), rs in sorted(by_label.items(), key=lambda kv: -kv[0][0] if method == "dopri5" else kv[0][0]):
+                        for (param, _label), rs in sorted(by_label.items(), key=lambda kv: -kv[0][0] if tol_axis else kv[0][0]):
                             costs = sorted(fnum(r["ns_per_sim_s"]) for r in rs)
                             cost = costs[len(costs) // 2]
                             errs = [fnum(r[metric]) for r in rs]
@@ -288,9 +298,10 @@ def plot_work_precision(directory, rows, summary):
                             continue
                         pts = merge_coincident(pts)
                         xs, ys, ls = zip(*pts)
-                        ax.plot(xs, ys, style, marker="o" if method != "analytic" else "*",
-                                ms=5 if method != "analytic" else 11, color=METHOD_COLOURS[method],
-                                label=f"{method}, {g}", alpha=0.9)
+                        ax.plot(xs, ys, style, marker=marker, ms=size, color=METHOD_COLOURS[method],
+                                label=f"{name}, {g}", alpha=0.9)
+                        if method.startswith("batch"):
+                            continue  # same tolerances as the dopri5 labels at the same heights
                         for x, y, lab in pts:
                             if lab:
                                 ax.annotate(lab, (x, y), textcoords="offset points", xytext=(3, 3),
@@ -302,16 +313,32 @@ def plot_work_precision(directory, rows, summary):
                 if row == 0:
                     ax.set_title(f"{kind} input ({model} model)")
                 if row == len(metrics) - 1:
-                    ax.set_xlabel("cost: ns per simulated second (one item)")
+                    ax.set_xlabel("cost: ns per simulated second (one item)" if not lanes else
+                                  f"cost: ns per simulated second (one item; batch: per lane of {lanes})")
                 if col == 0:
                     ax.set_ylabel(mlabel)
-                ax.legend(fontsize=6.5, loc="upper right")
+        # One legend for the figure (per-panel legends hid the points): colour and marker = method,
+        # line style = input rate.
+        present = [m for m in WP_SERIES if any(r["method"] == m for r in sub)]
+        handles = [Line2D([], [], color=METHOD_COLOURS[m], marker=WP_SERIES[m][1], ms=WP_SERIES[m][2],
+                          label=WP_SERIES[m][0]) for m in present]
+        handles += [Line2D([], [], color="k", ls="-", label="200 Hz; records at their own rate (100-250 Hz)"),
+                    Line2D([], [], color="k", ls="--", label="50 Hz")]
+        fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=8,
+                   bbox_to_anchor=(0.5, -0.035))
         fig.suptitle(f"Work-precision, {model} model: worst error over the cases of each input kind "
-                     "(labels: dopri5 tol, rk4 sub-steps; error 0 drawn at 1e-14)", fontsize=10)
+                     "(labels: dopri5 tol, rk4 sub-steps; error 0 drawn at 1e-14)"
+                     + ("\nbatch dopri5 = BatchRocking, same tolerances; exact trig has the scalar dopri5's "
+                        "errors bit for bit" if lanes else ""), fontsize=10)
         fig.tight_layout()
         save(fig, directory, f"work_precision_{model}")
 
     summary.append("## Work-precision (worst error over the cases of each kind; cost = median ns per simulated second)\n")
+    lanes = sorted({r.get("lanes") for r in rows if r["method"].startswith("batch") and r.get("lanes")})
+    if lanes:
+        summary.append(f"batch dopri5 rows: `BatchRocking` with {'/'.join(lanes)} identical lanes, cost per lane "
+                       "(the batch's time / lanes); exact trig is checked bit-identical to the scalar dopri5 "
+                       "by rocking_accuracy.\n")
     summary.append("| model | input | rate | setting | ns/sim-s | ns/item-step | peak err (alpha) | impact err (s) | overturn t err (s) |")
     summary.append("|---|---|---|---|---|---|---|---|---|")
     key = defaultdict(list)
@@ -593,6 +620,28 @@ def plot_stability(directory, rows, summary):
     summary.append("")
 
 
+# Headings of summary.md that each data file produces (see the plot_* functions).
+SUMMARY_SECTIONS = {"benchmarks.json": ("## Cost per item-step", "## Real-time capacity"),
+                    "work_precision.csv": ("## Work-precision",),
+                    "overturn_agreement.csv": ("## Overturn decision agreement",),
+                    "stability_map.csv": ("## Stability maps",)}
+
+
+def kept_sections(path, prefixes):
+    """Lines of the sections of an existing summary.md whose headings start with one of prefixes
+    (so that regenerating one part, e.g. work-precision alone, keeps the others' numbers)."""
+    if not os.path.exists(path):
+        return []
+    out, keep = [], False
+    with open(path) as f:
+        for line in f.read().splitlines():
+            if line.startswith("## "):
+                keep = line.startswith(prefixes)
+            if keep:
+                out.append(line)
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--data", default="build-bench/performance",
@@ -603,14 +652,21 @@ def main():
     if not os.path.isdir(d):
         sys.exit(f"plot_performance: no such directory {d}")
     os.makedirs(out, exist_ok=True)
+    summary_path = os.path.join(out, "summary.md")
     summary = ["# Performance summary (generated by scripts/plot_performance.py)\n",
                "Numbers behind the charts of this folder; see ../performance.md for their reading.\n"]
+
+    def missing(name):
+        kept = kept_sections(summary_path, SUMMARY_SECTIONS[name])
+        summary.extend(kept)
+        print(f"  ({name} not found: skipped" + ("; its summary sections kept)" if kept else ")"))
+
     bj = os.path.join(d, "benchmarks.json")
     if os.path.exists(bj):
         rows, ctx = parse_benchmarks(bj)
         plot_benchmarks(out, rows, ctx, summary)
     else:
-        print("  (benchmarks.json not found: skipped)")
+        missing("benchmarks.json")
     for name, fn in (("work_precision.csv", plot_work_precision),
                      ("overturn_agreement.csv", plot_overturn),
                      ("stability_map.csv", plot_stability)):
@@ -618,8 +674,8 @@ def main():
         if os.path.exists(p):
             fn(out, read_csv(p), summary)
         else:
-            print(f"  ({name} not found: skipped)")
-    with open(os.path.join(out, "summary.md"), "w") as f:
+            missing(name)
+    with open(summary_path, "w") as f:
         f.write("\n".join(summary) + "\n")
     print(f"  wrote {os.path.join(out, 'summary.md')}")
 

@@ -211,6 +211,42 @@ TEST(BatchRocking, FreeRockingImpactsAndRestCapture) {
   expect_exact(c);
 }
 
+// Where the tolerance binds (as in rocking_accuracy work-precision at 50 Hz; here 50 and 20 Hz
+// inputs, tol 1e-3 ... 1e-12): several dopri5 steps per sample, which the 200 Hz inputs at the
+// default tolerance above hardly need. Same bits as the scalar model.
+TEST(BatchRocking, CoarseInputsAndBindingTolerancesGiveTheScalarBits) {
+  std::vector<BodyParameters> bodies;
+  std::vector<double> theta0;
+  for (int k = 0; k < 11; ++k) {
+    bodies.push_back(rectangle_with(2.0 + 0.6 * k, deg(10.0 + 0.5 * k)));  // p up to 8 rad/s
+    theta0.push_back((k % 2 ? -1.0 : 1.0) * deg(10.0) * (0.2 + 0.07 * k));
+  }
+  for (double dt : {0.02, 0.05}) {
+    Input free{"free"};
+    free.dt = dt;
+    free.ax.assign(static_cast<std::size_t>(6.0 / dt), 0.0);
+    const double w = 5.0, tp = 2.0 * kPi / w;
+    const Input pulse = sine_pulse(0.5 * kGravity, w, dt, tp + 5.0);
+    for (double tol : {1e-3, 1e-6, 1e-10, 1e-12}) {
+      SolverSettings s;
+      s.tol = tol;
+      SCOPED_TRACE(std::to_string(dt) + " s, tol " + std::to_string(tol));
+      const Compare cf = run_compare(bodies, free, BatchTrig::Exact, theta0, s);
+      expect_exact(cf);
+      EXPECT_GT(cf.totals.rocking_fast, 0u);  // the vector kernel did step clean samples
+      expect_exact(run_compare(bodies, pulse, BatchTrig::Exact, {}, s));
+    }
+  }
+  // The tolerance does bind there: the stiffest body takes several steps per 50 ms sample.
+  SolverSettings tight;
+  tight.tol = 1e-10;
+  RockingModel m(bodies.back(), tight);
+  m.reset(0.0);
+  m.set_state(theta0.back(), 0.0);
+  for (int i = 0; i < 40; ++i) m.step(0.0, 0.0, 0.05);
+  EXPECT_GT(static_cast<double>(m.outcome().integrator_steps) / 40.0, 2.0);
+}
+
 TEST(BatchRocking, EccentricBodiesAndVerticalAcceleration) {
   const double w = 5.0, tp = 2.0 * kPi / w;
   for (double av : {0.0, 0.3 * kGravity}) {
