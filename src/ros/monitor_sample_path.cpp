@@ -120,7 +120,11 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
                         static_cast<unsigned long>(s.plausibility.counters().rejected));
       return;
     case P::Held:
-      if (s.plausibility.held() == 1) s.held_count = 0;  // a new run: the previous one was dropped (counted)
+      if (s.plausibility.held() == 1 && s.held_count > 0) {  // a new run: the previous one was dropped (counted)
+        ROS_WARN_THROTTLE(5.0, "rocking_monitor: sensor '%s': rejected implausible stamp (%lu rejected so far)",
+                          s.spec.name.c_str(), static_cast<unsigned long>(s.plausibility.counters().rejected));
+        s.held_count = 0;
+      }
       if (s.held_count < s.held.size()) s.held[s.held_count++] = {header.stamp, reading};
       suspect();
       return;
