@@ -101,7 +101,9 @@ void ContactModel::enter_flat(const GroundInput& in, double tau) {
   x_[0] = x_base + body_.nu1() * body_.width();
   const Pivot& pv = body_.pivot(1);
   const double v_tiny = settings_.rest_capture_ratio * pv.p * pv.alpha * pv.radius;
-  if (std::abs(x_[1]) <= v_tiny) x_[1] = 0.0;
+  // Without a kinetic friction limit the base cannot slide: friction stops it at once (an impulse).
+  // (Before: a landing with a leftover horizontal velocity entered Slide, which ran to infinity.)
+  if (std::abs(x_[1]) <= v_tiny || std::isinf(mu_k_)) x_[1] = 0.0;
   const double ax = in.ax(tau), G = in.ay(tau) + kGravity;
   if (x_[1] != 0.0) {
     set_mode(ContactMode::Slide, 0, sgn(x_[1]), tau);

@@ -242,5 +242,34 @@ TEST(ItemMonitor, MarkedLevelIsNotAlarmedAgainButOthersAre) {
   EXPECT_THROW(marked.mark_alarmed(ItemMode::Rocking), std::invalid_argument);
 }
 
+// Contact fidelity without a friction coefficient (mu_s not given: no friction limit) must never slip:
+// the no-slip constraint holds to rounding in every sample. Found by the MonitorBatch block test: a
+// landing with a leftover horizontal velocity entered the Slide phase with mu_k = inf, and the slip
+// ran to infinity (this body on Kobe Takatori at 0.5 g-scale with vertical input: at 2.42 s).
+TEST(ItemMonitor, ContactModelWithoutAFrictionLimitNeverSlips) {
+  const Component rec =
+      read_record(std::string(ROCKING_RECORDS_DIR) + "/kobe_1995/RSN1120_KOBE_TAK090.AT2").front();
+  const std::vector<double>& a = rec.accel;
+  const std::size_t m = a.size();
+  ItemSpec s = item(0.293848, 0.765748, 0.510499, 0.478914);
+  s.body.mu_s = std::numeric_limits<double>::infinity();
+  ItemMonitor::Options o;
+  o.fidelity = Fidelity::Contact;
+  for (double scale : {0.5, 0.8, 1.0}) {
+    ItemMonitor it(s, o);
+    it.start(0.0, scale * a[0], 0.7 * scale * a[m - 1], 0.3 * scale * a[0], rec.dt);
+    std::size_t uplifted = 0;
+    for (std::size_t i = 1; i < m; ++i) {
+      it.step(scale * a[i], 0.7 * scale * a[m - 1 - i], 0.3 * scale * a[(i * 7) % m], rec.dt);
+      for (int p = 0; p < it.plane_count(); ++p) {
+        const PlaneMonitor& pm = it.plane(static_cast<Plane>(p));
+        ASSERT_LT(std::abs(pm.slip()), 1e-9) << "scale " << scale << " plane " << p << " sample " << i;
+        if (pm.theta() != 0.0) ++uplifted;
+      }
+    }
+    EXPECT_GT(uplifted, 10u) << "scale " << scale << ": the body never rocked, nothing was tested";
+  }
+}
+
 }  // namespace
 }  // namespace rocking_monitor::core
