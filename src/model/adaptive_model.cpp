@@ -407,6 +407,17 @@ void AdaptiveModel::apply_rest_samples(double t, double ax, double ay, double dt
   ay_prev_ = ay;
 }
 
+void AdaptiveModel::prefetch() const {
+  auto lines = [](const void* p, std::size_t bytes) {
+    const char* c = static_cast<const char*>(p);
+    for (std::size_t o = 0; o < bytes; o += 64) __builtin_prefetch(c + o);
+  };
+  lines(&settings_, 128);
+  lines(&rocking_model(), sizeof(RockingModel));
+  lines(&outcome_, sizeof(outcome_));
+  lines(&report_, sizeof(report_));
+}
+
 const AdaptiveReport& AdaptiveModel::step(double ax, double ay, double dt) {
   require_valid_sample(ax, ay, dt, "AdaptiveModel::step");
   report_ = AdaptiveReport{};

@@ -1,5 +1,6 @@
 #include "rocking_monitor/monitoring/monitor_batch.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -100,26 +101,79 @@ bool MonitorBatch::quiet(Lane& lane, double ax, double ay, double az) const {
   return true;
 }
 
+namespace {
+
+// A hint to start loading the cache lines of [p, p + bytes); no effect on any result.
+void prefetch(const void* p, std::size_t bytes = 64) {
+  const char* c = static_cast<const char*>(p);
+  for (std::size_t o = 0; o < bytes; o += 64) __builtin_prefetch(c + o);
+}
+
+}  // namespace
+
+// An item that is not quiet touches ~10 KB of its objects, spread over the heap: with 10,000 items
+// none of it is in cache, and every first touch stalls (perf). The objects of the items a few places
+// ahead are prefetched along the pointer chain in three stages (the item, its planes, their models),
+// each stage reading only pointers the stage before brought in.
+void MonitorBatch::prefetch_item(std::size_t k) const { prefetch(items_[k], sizeof(ItemMonitor)); }
+
+void MonitorBatch::prefetch_planes(std::size_t k) const {
+  const ItemMonitor& item = *items_[k];
+  for (int p = 0; p < lanes_[k].planes; ++p) {
+    const PlaneMonitor* pm = item.planes_[p].get();
+    prefetch(&pm->events_, sizeof(pm->events_));
+    prefetch(&pm->adaptive_);
+    prefetch(&pm->intensity_);
+  }
+}
+
+void MonitorBatch::prefetch_models(std::size_t k) const {
+  const ItemMonitor& item = *items_[k];
+  for (int p = 0; p < lanes_[k].planes; ++p) {
+    const PlaneMonitor& pm = *item.planes_[p];
+    if (pm.intensity_) prefetch(pm.intensity_.get(), sizeof(StreamingIntensity));
+    if (pm.adaptive_) pm.adaptive_->prefetch();
+  }
+}
+
 std::size_t MonitorBatch::step(std::size_t begin, std::size_t end, const double* ax, const double* ay,
                                const double* az, double dt, const std::uint8_t* active) {
   std::size_t deferred = 0;
-  for (std::size_t k = begin; k < end; ++k) {
-    Lane& lane = lanes_[k];
-    lane.stepped = false;
-    if (active != nullptr && active[k] == 0) continue;
-    // Invalid samples (non-finite, dt <= 0) go to ItemMonitor::step, which rejects them.
-    if (lane.eligible && std::isfinite(ax[k]) && std::isfinite(ay[k]) && std::isfinite(az[k]) && dt > 0.0 &&
-        std::isfinite(dt) && quiet(lane, ax[k], ay[k], az[k])) {
-      lane.t += dt;
-      lane.dt = dt;
-      ++lane.deferred;
-      ++deferred;
-      continue;
+  // Per block: first the quiet test over the compact lanes, then the other items stepped in order,
+  // their objects prefetched ahead. Items are independent: the order changes no result.
+  constexpr std::size_t kBlock = 64;
+  std::size_t busy[kBlock];
+  for (std::size_t b = begin; b < end; b += kBlock) {
+    const std::size_t e = std::min(end, b + kBlock);
+    std::size_t n = 0;
+    for (std::size_t k = b; k < e; ++k) {
+      Lane& lane = lanes_[k];
+      lane.stepped = false;
+      if (active != nullptr && active[k] == 0) continue;
+      // Invalid samples (non-finite, dt <= 0) go to ItemMonitor::step, which rejects them.
+      if (lane.eligible && std::isfinite(ax[k]) && std::isfinite(ay[k]) && std::isfinite(az[k]) && dt > 0.0 &&
+          std::isfinite(dt) && quiet(lane, ax[k], ay[k], az[k])) {
+        lane.t += dt;
+        lane.dt = dt;
+        ++lane.deferred;
+        ++deferred;
+        continue;
+      }
+      busy[n++] = k;
     }
-    sync(k);
-    items_[k]->step(ax[k], ay[k], az[k], dt);
-    lane.stepped = true;
-    refresh(k);
+    for (std::size_t j = 0; j < std::min<std::size_t>(n, 6); ++j) prefetch_item(busy[j]);
+    for (std::size_t j = 0; j < std::min<std::size_t>(n, 4); ++j) prefetch_planes(busy[j]);
+    for (std::size_t j = 0; j < std::min<std::size_t>(n, 2); ++j) prefetch_models(busy[j]);
+    for (std::size_t j = 0; j < n; ++j) {
+      if (j + 6 < n) prefetch_item(busy[j + 6]);
+      if (j + 4 < n) prefetch_planes(busy[j + 4]);
+      if (j + 2 < n) prefetch_models(busy[j + 2]);
+      const std::size_t k = busy[j];
+      sync(k);
+      items_[k]->step(ax[k], ay[k], az[k], dt);
+      lanes_[k].stepped = true;
+      refresh(k);
+    }
   }
   return deferred;
 }

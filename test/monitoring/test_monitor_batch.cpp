@@ -203,6 +203,19 @@ TEST(MonitorBatch, SubsetsAndRangesDoNotMatter) {
   }
 }
 
+// The step loop works in blocks of 64 items (quiet test, then the others with their objects
+// prefetched ahead): ranges across and inside block boundaries give the same bits.
+TEST(MonitorBatch, BlocksOfTheStepLoopDoNotMatter) {
+  const Catalogue cat = random_catalogue(150, 13);
+  const Component rec = record("kobe_1995/RSN1120_KOBE_TAK090.AT2");
+  for (std::size_t range : {150u, 65u, 63u}) {
+    const BatchRun r = compare(cat, rec, 0.5, 0.9, range, static_cast<unsigned>(range));
+    ASSERT_FALSE(HasFailure()) << "range " << range;
+    EXPECT_GT(r.deferred, 0u);
+    EXPECT_GT(r.rocked, 10u);
+  }
+}
+
 TEST(MonitorBatch, InvalidSamplesAreRejectedAsByTheItem) {
   const Catalogue cat = random_catalogue(3, 5);
   std::vector<std::unique_ptr<ItemMonitor>> items;

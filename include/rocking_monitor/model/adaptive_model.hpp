@@ -160,6 +160,9 @@ class AdaptiveModel {
   double slip() const;  ///< m, horizontal displacement of the base (constant while rocking)
   double time() const { return t_; }
   const AdaptiveOutcome& outcome() const { return outcome_; }
+  /// A hint that the model is stepped soon: starts loading the state a step touches (MonitorBatch:
+  /// its objects are not in cache with thousands of items). No effect on any result.
+  void prefetch() const;
   const AdaptiveReport& last_report() const { return report_; }
   const std::vector<SwitchRecord>& switches() const { return switches_; }
   SwitchReason initial_reason() const { return initial_reason_; }

@@ -79,6 +79,9 @@ class MonitorBatch {
     PlaneLane plane[kPlaneCount];
   };
   bool quiet(Lane& lane, double ax, double ay, double az) const;
+  void prefetch_item(std::size_t k) const;
+  void prefetch_planes(std::size_t k) const;
+  void prefetch_models(std::size_t k) const;
 
   static const ItemEvents kNoEvents;
   std::vector<ItemMonitor*> items_;
