@@ -237,8 +237,11 @@ void RockingMonitor::publish_markers_and_tf() {
   if (!publish_markers_ && !publish_tf_) return;
   sync_items();
   const auto wall_start = std::chrono::steady_clock::now();
-  visualization_msgs::MarkerArray markers;
-  std::vector<geometry_msgs::TransformStamped> transforms;
+  // Kept messages, refilled in place: a field's strings keep their capacity (no allocation per item).
+  std::vector<visualization_msgs::Marker>& markers = markers_msg_.markers;
+  std::vector<geometry_msgs::TransformStamped>& transforms = tf_msg_.transforms;
+  if (publish_markers_) markers.resize(2 * items_.size());
+  if (publish_tf_) transforms.resize(items_.size());
   const ::ros::Time now = ::ros::Time::now();
   for (std::size_t i = 0; i < items_.size(); ++i) {
     const Item& it = items_[i];
@@ -272,18 +275,17 @@ void RockingMonitor::publish_markers_and_tf() {
     const Eigen::Matrix3d r = pose.linear();
     const Eigen::Vector3d shift = pose.translation();
     if (publish_tf_) {
-      geometry_msgs::TransformStamped t;
+      geometry_msgs::TransformStamped& t = transforms[i];
       t.header.stamp = now;
       t.header.frame_id = it.entry.spec.frame;
-      t.child_frame_id = it.entry.spec.frame + marker_frame_suffix_;
+      t.child_frame_id.assign(it.entry.spec.frame).append(marker_frame_suffix_);
       t.transform.translation.x = shift.x();
       t.transform.translation.y = shift.y();
       t.transform.translation.z = shift.z();
       t.transform.rotation = tf2::toMsg(Eigen::Quaterniond(r));
-      transforms.push_back(t);
     }
     if (publish_markers_) {
-      visualization_msgs::Marker mk;
+      visualization_msgs::Marker& mk = markers[2 * i];
       mk.header.stamp = now;
       mk.header.frame_id = it.entry.spec.frame;
       mk.ns = "items";
@@ -300,27 +302,34 @@ void RockingMonitor::publish_markers_and_tf() {
       mk.scale.y = depth;
       mk.scale.z = 2.0 * b.cg_height();
       mk.color = color(it.monitor->mode(), valid);
-      markers.markers.push_back(mk);
-      visualization_msgs::Marker label = mk;
+      // The label: the box's fields but these (what a copy of the box, then changed, would be).
+      visualization_msgs::Marker& label = markers[2 * i + 1];
+      label.header = mk.header;
       label.ns = "labels";
+      label.id = mk.id;
       label.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
+      label.action = mk.action;
+      label.pose.position.x = mk.pose.position.x;
+      label.pose.position.y = mk.pose.position.y;
+      label.pose.position.z = 2.0 * b.cg_height() + 0.15;
       label.pose.orientation.w = 1.0;
       label.pose.orientation.x = label.pose.orientation.y = label.pose.orientation.z = 0.0;
-      label.pose.position.z = 2.0 * b.cg_height() + 0.15;
+      label.scale.x = mk.scale.x;
+      label.scale.y = mk.scale.y;
       label.scale.z = 0.1;
-      label.text = it.entry.spec.id + " " + core::to_string(it.monitor->mode());
-      if (it.monitor->two_planes() && it.monitor->mode() != ItemMode::Rest)
-        label.text += std::string(" (") + core::to_string(it.monitor->worst_plane()) + ")";
+      const ItemMode mode = it.monitor->mode();
+      label.text.assign(it.entry.spec.id).append(" ").append(core::to_string(mode));
+      if (it.monitor->two_planes() && mode != ItemMode::Rest)
+        label.text.append(" (").append(core::to_string(it.monitor->worst_plane())).append(")");
       label.color.r = label.color.g = label.color.b = label.color.a = 1.0f;
-      markers.markers.push_back(label);
     }
   }
   // tf2 rejects a second transform with the same stamp (sim time may not have advanced).
   if (publish_tf_ && !transforms.empty() && now > last_tf_stamp_) {
-    tf_broadcaster_->sendTransform(transforms);
+    tf_pub_.publish(tf_msg_);
     last_tf_stamp_ = now;
   }
-  if (publish_markers_) markers_pub_.publish(markers);
+  if (publish_markers_) markers_pub_.publish(markers_msg_);
   markers_cost_.add(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
 }
 

@@ -37,20 +37,29 @@ double RockingMonitor::queue_wait(const ::ros::Time& receipt) {
 }
 
 bool RockingMonitor::lookup_rotation(Item& item, const std::string& sensor_frame) {
+  // Called only while the item has no rotation. The last one found stops the listener: nothing
+  // else reads tf, and it would otherwise take the node's own body transforms back in.
+  auto found = [&] {
+    item.has_rotation = true;
+    if (items_without_rotation_ > 0 && --items_without_rotation_ == 0 && tf_listener_) {
+      tf_listener_.reset();
+      tf_buffer_->clear();
+      ROS_DEBUG("rocking_monitor: every item has its transform: tf listener stopped");
+    }
+    return true;
+  };
   if (sensor_frame.empty() || sensor_frame == item.entry.spec.frame) {
     item.rotation.setIdentity();
-    item.has_rotation = true;
-    return true;
+    return found();
   }
   try {
     // Static mounting: the latest transform is the one.
     const geometry_msgs::TransformStamped t =
         tf_buffer_->lookupTransform(item.entry.spec.frame, sensor_frame, ::ros::Time(0));
     item.rotation = tf2::transformToEigen(t).rotation();
-    item.has_rotation = true;
     ROS_DEBUG("rocking_monitor: item '%s' uses the transform %s <- %s", item.entry.spec.id.c_str(),
               item.entry.spec.frame.c_str(), sensor_frame.c_str());
-    return true;
+    return found();
   } catch (const tf2::TransformException& e) {
     ROS_WARN_THROTTLE(5.0, "rocking_monitor: item '%s' is not monitored yet: no transform %s <- %s (%s)",
                       item.entry.spec.id.c_str(), item.entry.spec.frame.c_str(), sensor_frame.c_str(), e.what());
