@@ -361,6 +361,10 @@ void RockingMonitor::rebuild_batch(Sensor& s) {
   s.in_y.assign(s.items.size(), 0.0);
   s.in_z.assign(s.items.size(), 0.0);
   s.in_ready.assign(s.items.size(), 0);
+  s.rotations.assign(s.items.size(), Eigen::Matrix3d::Identity());
+  s.all_ready = false;
+  s.has_ensembles = false;
+  for (std::size_t idx : s.items) s.has_ensembles = s.has_ensembles || items_[idx].ensemble != nullptr;
 }
 
 void RockingMonitor::sync_items() {

@@ -172,7 +172,7 @@ void RockingMonitor::fill_state(const Item& it, RockingState& out) const {
   out.contact_mode = w.contact_mode;
   out.slip = w.slip;
   out.model = w.model;
-  out.input_stamp = it.stamp;
+  out.input_stamp = input_stamp(it);
   out.stale = sensors_[it.sensor].stale_now;
   if (it.ensemble) {
     const core::ItemEnsemble& e = *it.ensemble;
@@ -196,7 +196,7 @@ void RockingMonitor::publish_states() {
   ::ros::Time newest;
   for (std::size_t i = 0; i < items_.size(); ++i) {
     fill_state(items_[i], states_msg_.items[i]);
-    if (items_[i].stamp > newest) newest = items_[i].stamp;
+    if (states_msg_.items[i].input_stamp > newest) newest = states_msg_.items[i].input_stamp;
   }
   states_msg_.header.stamp = newest;
   states_pub_.publish(states_msg_);

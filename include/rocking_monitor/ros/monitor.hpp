@@ -72,7 +72,7 @@ class RockingMonitor {
     std::size_t sensor = 0;
     bool has_rotation = false;
     Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // item <- sensor
-    ::ros::Time stamp;           // input stamp of the last step
+    ::ros::Time stamp;           // input stamp of the last step while not ready (else the sensor's stepped_stamp)
     std::uint64_t samples_without_transform = 0;
     bool ready = false;          // stepped in the current sample
   };
@@ -121,6 +121,14 @@ class RockingMonitor {
     std::unique_ptr<core::MonitorBatch> batch;
     std::vector<double> in_x, in_y, in_z;   // m/s^2
     std::vector<std::uint8_t> in_ready;     // the item steps this sample
+    // Each item's rotation (item <- sensor), contiguous: the per-sample rotation reads 72 B per item
+    // instead of a cache miss into each Item. Filled when the item becomes ready.
+    std::vector<Eigen::Matrix3d> rotations;
+    // Every item has its transform and is started: in_ready and Item::ready stay as they are until
+    // the batch is rebuilt (a restart), so the per-sample readiness check over the items is skipped.
+    bool all_ready = false;
+    bool has_ensembles = false;             // some item is uncertain (its members step after the batch)
+    ::ros::Time stepped_stamp;              // stamp of the last sample whose items were stepped
     std::uint64_t deferred = 0;             // item-samples deferred by the batch (quiet)
   };
 
@@ -137,6 +145,9 @@ class RockingMonitor {
   bool stale(const Sensor& s) const;  // no sample stepped for > max_gap of the node's clock, or a base pending
   void start_items(Sensor& s, double t, const Eigen::Vector3d& a);
   bool lookup_rotation(Item& item, const std::string& sensor_frame);
+  ::ros::Time input_stamp(const Item& item) const {
+    return item.ready ? sensors_[item.sensor].stepped_stamp : item.stamp;
+  }
   void publish_events(Item& item, const core::ItemEvents& events, const ::ros::Time& stamp);
   void publish_crossings(Item& item, const core::EnsembleEvents& events, const ::ros::Time& stamp);
   // A sample's alarms are journaled first (written, not yet fsync'd), then one fsync, then published:
