@@ -71,19 +71,27 @@ void RockingMonitor::publish_events(Item& it, const core::ItemEvents& ev, const 
     for (core::CriterionId id : kScreening)
       (it.monitor->screening_exceeded(a.plane, id) ? m.predicted_by : m.not_predicted_by).push_back(core::to_string(id));
     if (!journal_alarm(it, m, epoch)) continue;  // journaled (fsync'd before publication); never twice
-    const std::string when = core::event_time_text(epoch + a.time, epoch);
-    const char* across = a.plane == core::Plane::X ? "across its width" : "across its depth";
-    char text[512];
-    if (a.level == ItemMode::Overturned) {
-      std::snprintf(text, sizeof text, "rocking_monitor: OVERTURNED: %s (%s), %s (plane %s), %s [event %s #%lu]",
-                    spec.id.c_str(), spec.description.c_str(), across, m.plane.c_str(), when.c_str(),
-                    m.event_id.c_str(), static_cast<unsigned long>(m.sequence));
+    if (pending_logs_.size() < kAlarmLinesPerSample) {
+      const std::string when = core::event_time_text(epoch + a.time, epoch);
+      const char* across = a.plane == core::Plane::X ? "across its width" : "across its depth";
+      char text[512];
+      if (a.level == ItemMode::Overturned) {
+        std::snprintf(text, sizeof text, "rocking_monitor: OVERTURNED: %s (%s), %s (plane %s), %s [event %s #%lu]",
+                      spec.id.c_str(), spec.description.c_str(), across, m.plane.c_str(), when.c_str(),
+                      m.event_id.c_str(), static_cast<unsigned long>(m.sequence));
+      } else {
+        std::snprintf(text, sizeof text, "rocking_monitor: %s: %s (%s), %s (plane %s), %s", core::to_string(a.level),
+                      spec.id.c_str(), spec.description.c_str(), across, m.plane.c_str(), when.c_str());
+      }
+      pending_logs_.push_back({a.level == ItemMode::Overturned, text});
+    } else if (a.level == ItemMode::Overturned) {
+      ++unlogged_overturned_;
+    } else if (a.level == ItemMode::Committed) {
+      ++unlogged_committed_;
     } else {
-      std::snprintf(text, sizeof text, "rocking_monitor: %s: %s (%s), %s (plane %s), %s", core::to_string(a.level),
-                    spec.id.c_str(), spec.description.c_str(), across, m.plane.c_str(), when.c_str());
+      ++unlogged_beyond_;
     }
     pending_alarms_.push_back(std::move(m));
-    pending_logs_.push_back({a.level == ItemMode::Overturned, text});
   }
 }
 
@@ -102,6 +110,18 @@ void RockingMonitor::publish_pending_alarms() {
   for (const PendingLog& l : pending_logs_) {
     if (l.error) ROS_ERROR("%s", l.text.c_str());
     else ROS_WARN("%s", l.text.c_str());
+  }
+  const std::size_t unlogged = unlogged_overturned_ + unlogged_committed_ + unlogged_beyond_ + unlogged_probability_;
+  if (unlogged > 0) {
+    char text[512];
+    std::snprintf(text, sizeof text,
+                  "rocking_monitor: and %zu more alarms of this sample (%zu OVERTURNED, %zu COMMITTED, %zu BEYOND_TIPPING, "
+                  "%zu probability alarms), not logged one by one: each is on ~alarms / ~probability_alarms and in "
+                  "the journal",
+                  unlogged, unlogged_overturned_, unlogged_committed_, unlogged_beyond_, unlogged_probability_);
+    if (unlogged_overturned_ > 0) ROS_ERROR("%s", text);
+    else ROS_WARN("%s", text);
+    unlogged_overturned_ = unlogged_committed_ = unlogged_beyond_ = unlogged_probability_ = 0;
   }
   pending_alarms_.clear();
   pending_probability_alarms_.clear();
@@ -127,14 +147,18 @@ void RockingMonitor::publish_crossings(Item& it, const core::EnsembleEvents& ev,
     // Beyond tipping is not an alarm level of its own here (it says little about falling).
     if (c.level == core::Level::BeyondTipping) continue;
     if (!journal_probability_alarm(it, m, epoch)) continue;  // journaled before it is published; never twice
-    char text[512];
-    std::snprintf(text, sizeof text,
-                  "rocking_monitor: P(%s) of %s (%s) reached %.2f [%.2f, %.2f] over %d members (threshold %.2f), %s",
-                  core::to_string(static_cast<ItemMode>(m.level)), spec.id.c_str(), spec.description.c_str(),
-                  m.value.probability, w.lower, w.upper, e.size(), e.threshold(),
-                  core::event_time_text(epoch + c.time, epoch).c_str());
+    if (pending_logs_.size() < kAlarmLinesPerSample) {
+      char text[512];
+      std::snprintf(text, sizeof text,
+                    "rocking_monitor: P(%s) of %s (%s) reached %.2f [%.2f, %.2f] over %d members (threshold %.2f), %s",
+                    core::to_string(static_cast<ItemMode>(m.level)), spec.id.c_str(), spec.description.c_str(),
+                    m.value.probability, w.lower, w.upper, e.size(), e.threshold(),
+                    core::event_time_text(epoch + c.time, epoch).c_str());
+      pending_logs_.push_back({false, text});
+    } else {
+      ++unlogged_probability_;
+    }
     pending_probability_alarms_.push_back(std::move(m));
-    pending_logs_.push_back({false, text});
   }
 }
 
