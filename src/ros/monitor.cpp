@@ -229,7 +229,8 @@ bool RockingMonitor::init() {
 
   tf_buffer_ = std::make_unique<tf2_ros::Buffer>();
   tf_listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_buffer_, nh_);
-  tf_broadcaster_ = std::make_unique<tf2_ros::TransformBroadcaster>();
+  items_without_rotation_ = items_.size();
+  tf_pub_ = nh_.advertise<tf2_msgs::TFMessage>("/tf", 100);  // as tf2_ros::TransformBroadcaster
 
   states_pub_ = pnh_.advertise<RockingStateArray>("states", static_cast<std::uint32_t>(state_queue_size_));
   criteria_pub_ = pnh_.advertise<CriterionExceedance>("criteria", 100);
@@ -362,6 +363,10 @@ void RockingMonitor::rebuild_batch(Sensor& s) {
   s.in_y.assign(s.items.size(), 0.0);
   s.in_z.assign(s.items.size(), 0.0);
   s.in_ready.assign(s.items.size(), 0);
+  s.rotations.assign(s.items.size(), Eigen::Matrix3d::Identity());
+  s.all_ready = false;
+  s.has_ensembles = false;
+  for (std::size_t idx : s.items) s.has_ensembles = s.has_ensembles || items_[idx].ensemble != nullptr;
 }
 
 void RockingMonitor::sync_items() {

@@ -71,19 +71,27 @@ void RockingMonitor::publish_events(Item& it, const core::ItemEvents& ev, const 
     for (core::CriterionId id : kScreening)
       (it.monitor->screening_exceeded(a.plane, id) ? m.predicted_by : m.not_predicted_by).push_back(core::to_string(id));
     if (!journal_alarm(it, m, epoch)) continue;  // journaled (fsync'd before publication); never twice
-    const std::string when = core::event_time_text(epoch + a.time, epoch);
-    const char* across = a.plane == core::Plane::X ? "across its width" : "across its depth";
-    char text[512];
-    if (a.level == ItemMode::Overturned) {
-      std::snprintf(text, sizeof text, "rocking_monitor: OVERTURNED: %s (%s), %s (plane %s), %s [event %s #%lu]",
-                    spec.id.c_str(), spec.description.c_str(), across, m.plane.c_str(), when.c_str(),
-                    m.event_id.c_str(), static_cast<unsigned long>(m.sequence));
+    if (pending_logs_.size() < kAlarmLinesPerSample) {
+      const std::string when = core::event_time_text(epoch + a.time, epoch);
+      const char* across = a.plane == core::Plane::X ? "across its width" : "across its depth";
+      char text[512];
+      if (a.level == ItemMode::Overturned) {
+        std::snprintf(text, sizeof text, "rocking_monitor: OVERTURNED: %s (%s), %s (plane %s), %s [event %s #%lu]",
+                      spec.id.c_str(), spec.description.c_str(), across, m.plane.c_str(), when.c_str(),
+                      m.event_id.c_str(), static_cast<unsigned long>(m.sequence));
+      } else {
+        std::snprintf(text, sizeof text, "rocking_monitor: %s: %s (%s), %s (plane %s), %s", core::to_string(a.level),
+                      spec.id.c_str(), spec.description.c_str(), across, m.plane.c_str(), when.c_str());
+      }
+      pending_logs_.push_back({a.level == ItemMode::Overturned, text});
+    } else if (a.level == ItemMode::Overturned) {
+      ++unlogged_overturned_;
+    } else if (a.level == ItemMode::Committed) {
+      ++unlogged_committed_;
     } else {
-      std::snprintf(text, sizeof text, "rocking_monitor: %s: %s (%s), %s (plane %s), %s", core::to_string(a.level),
-                    spec.id.c_str(), spec.description.c_str(), across, m.plane.c_str(), when.c_str());
+      ++unlogged_beyond_;
     }
     pending_alarms_.push_back(std::move(m));
-    pending_logs_.push_back({a.level == ItemMode::Overturned, text});
   }
 }
 
@@ -102,6 +110,18 @@ void RockingMonitor::publish_pending_alarms() {
   for (const PendingLog& l : pending_logs_) {
     if (l.error) ROS_ERROR("%s", l.text.c_str());
     else ROS_WARN("%s", l.text.c_str());
+  }
+  const std::size_t unlogged = unlogged_overturned_ + unlogged_committed_ + unlogged_beyond_ + unlogged_probability_;
+  if (unlogged > 0) {
+    char text[512];
+    std::snprintf(text, sizeof text,
+                  "rocking_monitor: and %zu more alarms of this sample (%zu OVERTURNED, %zu COMMITTED, %zu BEYOND_TIPPING, "
+                  "%zu probability alarms), not logged one by one: each is on ~alarms / ~probability_alarms and in "
+                  "the journal",
+                  unlogged, unlogged_overturned_, unlogged_committed_, unlogged_beyond_, unlogged_probability_);
+    if (unlogged_overturned_ > 0) ROS_ERROR("%s", text);
+    else ROS_WARN("%s", text);
+    unlogged_overturned_ = unlogged_committed_ = unlogged_beyond_ = unlogged_probability_ = 0;
   }
   pending_alarms_.clear();
   pending_probability_alarms_.clear();
@@ -127,14 +147,18 @@ void RockingMonitor::publish_crossings(Item& it, const core::EnsembleEvents& ev,
     // Beyond tipping is not an alarm level of its own here (it says little about falling).
     if (c.level == core::Level::BeyondTipping) continue;
     if (!journal_probability_alarm(it, m, epoch)) continue;  // journaled before it is published; never twice
-    char text[512];
-    std::snprintf(text, sizeof text,
-                  "rocking_monitor: P(%s) of %s (%s) reached %.2f [%.2f, %.2f] over %d members (threshold %.2f), %s",
-                  core::to_string(static_cast<ItemMode>(m.level)), spec.id.c_str(), spec.description.c_str(),
-                  m.value.probability, w.lower, w.upper, e.size(), e.threshold(),
-                  core::event_time_text(epoch + c.time, epoch).c_str());
+    if (pending_logs_.size() < kAlarmLinesPerSample) {
+      char text[512];
+      std::snprintf(text, sizeof text,
+                    "rocking_monitor: P(%s) of %s (%s) reached %.2f [%.2f, %.2f] over %d members (threshold %.2f), %s",
+                    core::to_string(static_cast<ItemMode>(m.level)), spec.id.c_str(), spec.description.c_str(),
+                    m.value.probability, w.lower, w.upper, e.size(), e.threshold(),
+                    core::event_time_text(epoch + c.time, epoch).c_str());
+      pending_logs_.push_back({false, text});
+    } else {
+      ++unlogged_probability_;
+    }
     pending_probability_alarms_.push_back(std::move(m));
-    pending_logs_.push_back({false, text});
   }
 }
 
@@ -172,7 +196,7 @@ void RockingMonitor::fill_state(const Item& it, RockingState& out) const {
   out.contact_mode = w.contact_mode;
   out.slip = w.slip;
   out.model = w.model;
-  out.input_stamp = it.stamp;
+  out.input_stamp = input_stamp(it);
   out.stale = sensors_[it.sensor].stale_now;
   if (it.ensemble) {
     const core::ItemEnsemble& e = *it.ensemble;
@@ -196,7 +220,7 @@ void RockingMonitor::publish_states() {
   ::ros::Time newest;
   for (std::size_t i = 0; i < items_.size(); ++i) {
     fill_state(items_[i], states_msg_.items[i]);
-    if (items_[i].stamp > newest) newest = items_[i].stamp;
+    if (states_msg_.items[i].input_stamp > newest) newest = states_msg_.items[i].input_stamp;
   }
   states_msg_.header.stamp = newest;
   states_pub_.publish(states_msg_);
@@ -237,8 +261,11 @@ void RockingMonitor::publish_markers_and_tf() {
   if (!publish_markers_ && !publish_tf_) return;
   sync_items();
   const auto wall_start = std::chrono::steady_clock::now();
-  visualization_msgs::MarkerArray markers;
-  std::vector<geometry_msgs::TransformStamped> transforms;
+  // Kept messages, refilled in place: a field's strings keep their capacity (no allocation per item).
+  std::vector<visualization_msgs::Marker>& markers = markers_msg_.markers;
+  std::vector<geometry_msgs::TransformStamped>& transforms = tf_msg_.transforms;
+  if (publish_markers_) markers.resize(2 * items_.size());
+  if (publish_tf_) transforms.resize(items_.size());
   const ::ros::Time now = ::ros::Time::now();
   for (std::size_t i = 0; i < items_.size(); ++i) {
     const Item& it = items_[i];
@@ -272,18 +299,17 @@ void RockingMonitor::publish_markers_and_tf() {
     const Eigen::Matrix3d r = pose.linear();
     const Eigen::Vector3d shift = pose.translation();
     if (publish_tf_) {
-      geometry_msgs::TransformStamped t;
+      geometry_msgs::TransformStamped& t = transforms[i];
       t.header.stamp = now;
       t.header.frame_id = it.entry.spec.frame;
-      t.child_frame_id = it.entry.spec.frame + marker_frame_suffix_;
+      t.child_frame_id.assign(it.entry.spec.frame).append(marker_frame_suffix_);
       t.transform.translation.x = shift.x();
       t.transform.translation.y = shift.y();
       t.transform.translation.z = shift.z();
       t.transform.rotation = tf2::toMsg(Eigen::Quaterniond(r));
-      transforms.push_back(t);
     }
     if (publish_markers_) {
-      visualization_msgs::Marker mk;
+      visualization_msgs::Marker& mk = markers[2 * i];
       mk.header.stamp = now;
       mk.header.frame_id = it.entry.spec.frame;
       mk.ns = "items";
@@ -300,27 +326,34 @@ void RockingMonitor::publish_markers_and_tf() {
       mk.scale.y = depth;
       mk.scale.z = 2.0 * b.cg_height();
       mk.color = color(it.monitor->mode(), valid);
-      markers.markers.push_back(mk);
-      visualization_msgs::Marker label = mk;
+      // The label: the box's fields but these (what a copy of the box, then changed, would be).
+      visualization_msgs::Marker& label = markers[2 * i + 1];
+      label.header = mk.header;
       label.ns = "labels";
+      label.id = mk.id;
       label.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
+      label.action = mk.action;
+      label.pose.position.x = mk.pose.position.x;
+      label.pose.position.y = mk.pose.position.y;
+      label.pose.position.z = 2.0 * b.cg_height() + 0.15;
       label.pose.orientation.w = 1.0;
       label.pose.orientation.x = label.pose.orientation.y = label.pose.orientation.z = 0.0;
-      label.pose.position.z = 2.0 * b.cg_height() + 0.15;
+      label.scale.x = mk.scale.x;
+      label.scale.y = mk.scale.y;
       label.scale.z = 0.1;
-      label.text = it.entry.spec.id + " " + core::to_string(it.monitor->mode());
-      if (it.monitor->two_planes() && it.monitor->mode() != ItemMode::Rest)
-        label.text += std::string(" (") + core::to_string(it.monitor->worst_plane()) + ")";
+      const ItemMode mode = it.monitor->mode();
+      label.text.assign(it.entry.spec.id).append(" ").append(core::to_string(mode));
+      if (it.monitor->two_planes() && mode != ItemMode::Rest)
+        label.text.append(" (").append(core::to_string(it.monitor->worst_plane())).append(")");
       label.color.r = label.color.g = label.color.b = label.color.a = 1.0f;
-      markers.markers.push_back(label);
     }
   }
   // tf2 rejects a second transform with the same stamp (sim time may not have advanced).
   if (publish_tf_ && !transforms.empty() && now > last_tf_stamp_) {
-    tf_broadcaster_->sendTransform(transforms);
+    tf_pub_.publish(tf_msg_);
     last_tf_stamp_ = now;
   }
-  if (publish_markers_) markers_pub_.publish(markers);
+  if (publish_markers_) markers_pub_.publish(markers_msg_);
   markers_cost_.add(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
 }
 

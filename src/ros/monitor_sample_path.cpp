@@ -37,20 +37,29 @@ double RockingMonitor::queue_wait(const ::ros::Time& receipt) {
 }
 
 bool RockingMonitor::lookup_rotation(Item& item, const std::string& sensor_frame) {
+  // Called only while the item has no rotation. The last one found stops the listener: nothing
+  // else reads tf, and it would otherwise take the node's own body transforms back in.
+  auto found = [&] {
+    item.has_rotation = true;
+    if (items_without_rotation_ > 0 && --items_without_rotation_ == 0 && tf_listener_) {
+      tf_listener_.reset();
+      tf_buffer_->clear();
+      ROS_DEBUG("rocking_monitor: every item has its transform: tf listener stopped");
+    }
+    return true;
+  };
   if (sensor_frame.empty() || sensor_frame == item.entry.spec.frame) {
     item.rotation.setIdentity();
-    item.has_rotation = true;
-    return true;
+    return found();
   }
   try {
     // Static mounting: the latest transform is the one.
     const geometry_msgs::TransformStamped t =
         tf_buffer_->lookupTransform(item.entry.spec.frame, sensor_frame, ::ros::Time(0));
     item.rotation = tf2::transformToEigen(t).rotation();
-    item.has_rotation = true;
     ROS_DEBUG("rocking_monitor: item '%s' uses the transform %s <- %s", item.entry.spec.id.c_str(),
               item.entry.spec.frame.c_str(), sensor_frame.c_str());
-    return true;
+    return found();
   } catch (const tf2::TransformException& e) {
     ROS_WARN_THROTTLE(5.0, "rocking_monitor: item '%s' is not monitored yet: no transform %s <- %s (%s)",
                       item.entry.spec.id.c_str(), item.entry.spec.frame.c_str(), sensor_frame.c_str(), e.what());
@@ -316,25 +325,34 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
     const long missing = (period > 0.0 ? std::lround(stamp_dt / period) - 1 : 0) - std::max(0L, arrived);
     if (missing > 0) s.lost_in_transport += static_cast<std::uint64_t>(missing);
   }
-  // Serial: items still waiting for their transform, or starting late, are not stepped.
-  for (std::size_t k = 0; k < s.items.size(); ++k) {
-    Item& it = items_[s.items[k]];
-    it.ready = false;
-    s.in_ready[k] = 0;
-    if (!it.has_rotation && !lookup_rotation(it, s.frame)) {
-      ++it.samples_without_transform;
-      continue;
+  // Serial: items still waiting for their transform, or starting late, are not stepped. Once all
+  // step, that stays so until the batch is rebuilt: the check (a cache miss per item) is skipped.
+  if (!s.all_ready) {
+    bool all = true;
+    for (std::size_t k = 0; k < s.items.size(); ++k) {
+      Item& it = items_[s.items[k]];
+      if (it.ready) it.stamp = s.stepped_stamp;  // keeps its last step's stamp while not ready
+      it.ready = false;
+      s.in_ready[k] = 0;
+      if (!it.has_rotation && !lookup_rotation(it, s.frame)) {
+        ++it.samples_without_transform;
+        all = false;
+        continue;
+      }
+      if (!it.monitor->started()) {  // its transform arrived late: start now
+        const Eigen::Vector3d ai = it.rotation * a;
+        it.monitor->start(t, ai.x(), ai.y(), ai.z(), s.dt_nominal);
+        if (it.ensemble) it.ensemble->start(t, ai.x(), ai.y(), ai.z(), s.dt_nominal);
+        it.stamp = header.stamp;
+        s.batch->refresh(k);
+        all = false;
+        continue;
+      }
+      it.ready = true;
+      s.in_ready[k] = 1;
+      s.rotations[k] = it.rotation;
     }
-    if (!it.monitor->started()) {  // its transform arrived late: start now
-      const Eigen::Vector3d ai = it.rotation * a;
-      it.monitor->start(t, ai.x(), ai.y(), ai.z(), s.dt_nominal);
-      if (it.ensemble) it.ensemble->start(t, ai.x(), ai.y(), ai.z(), s.dt_nominal);
-      it.stamp = header.stamp;
-      s.batch->refresh(k);
-      continue;
-    }
-    it.ready = true;
-    s.in_ready[k] = 1;
+    s.all_ready = all;
   }
   // Items are independent: step them in parallel when ~threads > 1 (results do not depend on it).
   // The batch defers quiet item-samples (at rest or overturned: docs/performance.md), exactly.
@@ -342,22 +360,20 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
   auto step_range = [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
       if (!s.in_ready[k]) continue;
-      const Eigen::Vector3d ai = items_[s.items[k]].rotation * a;
+      const Eigen::Vector3d ai = s.rotations[k] * a;
       s.in_x[k] = ai.x();
       s.in_y[k] = ai.y();
       s.in_z[k] = ai.z();
     }
     deferred += s.batch->step(begin, end, s.in_x.data(), s.in_y.data(), s.in_z.data(), dt, s.in_ready.data());
+    if (!s.has_ensembles) return;
     for (std::size_t k = begin; k < end; ++k) {
       Item& it = items_[s.items[k]];
-      if (!it.ready) continue;
-      if (it.ensemble) {
-        const Eigen::Vector3d ai(s.in_x[k], s.in_y[k], s.in_z[k]);
-        const auto e0 = std::chrono::steady_clock::now();
-        it.ensemble->step(ai.x(), ai.y(), ai.z(), dt);
-        it.ensemble_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - e0).count();
-      }
-      it.stamp = header.stamp;
+      if (!s.in_ready[k] || !it.ensemble) continue;
+      const Eigen::Vector3d ai(s.in_x[k], s.in_y[k], s.in_z[k]);
+      const auto e0 = std::chrono::steady_clock::now();
+      it.ensemble->step(ai.x(), ai.y(), ai.z(), dt);
+      it.ensemble_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - e0).count();
     }
   };
   if (arena_ && s.items.size() >= 64) {
@@ -369,12 +385,14 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
     step_range(0, s.items.size());
   }
   s.deferred += deferred.load();
-  // Serial: publish what happened, in catalogue order.
+  s.stepped_stamp = header.stamp;  // the input stamp of every ready item (input_stamp())
+  // Serial: publish what happened, in catalogue order (an Item is touched only when it has events).
   for (std::size_t k = 0; k < s.items.size(); ++k) {
-    Item& it = items_[s.items[k]];
-    if (!it.ready) continue;
+    if (!s.in_ready[k]) continue;
     const core::ItemEvents& ev = s.batch->events(k);
-    if (ev.change_count > 0 || ev.alarm_count > 0) publish_events(it, ev, header.stamp);
+    if (ev.change_count > 0 || ev.alarm_count > 0) publish_events(items_[s.items[k]], ev, header.stamp);
+    if (!s.has_ensembles) continue;
+    Item& it = items_[s.items[k]];
     if (it.ensemble && it.ensemble->events().count > 0) publish_crossings(it, it.ensemble->events(), header.stamp);
   }
   publish_pending_alarms();  // one fsync of the journal, then the sample's alarms
