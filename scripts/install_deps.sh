@@ -12,7 +12,7 @@ packages=(
   python3-roslaunch python3-rosmaster python3-rosbag python3-rostopic python3-diagnostic-msgs rosbash ros-message-generation
   ros-std-msgs ros-std-srvs libstd-srvs-dev ros-geometry-msgs ros-sensor-msgs
   ros-visualization-msgs ros-diagnostic-msgs libdiagnostic-updater-dev libnodeletlib-dev libnodeletlib-tools
-  libtf2-ros-dev libtf2-eigen-dev tf2-tools python3-sensor-msgs python3-std-srvs
+  libtf2-ros-dev libtf2-msgs-dev libtf2-eigen-dev tf2-tools python3-sensor-msgs python3-std-srvs
   libcpp-httplib-dev chromium
   zlib1g-dev
 )

@@ -243,6 +243,7 @@ void RockingMonitor::replay_held(std::size_t si, const std_msgs::Header& header)
     s.have_first = false;
     s.have_min_offset = false;
     for (std::size_t idx : s.items) make_models(items_[idx]);
+    s.batch.reset();  // it points into the old models
   }
   std_msgs::Header h = header;
   const std::size_t n = s.held_count;
