@@ -128,6 +128,8 @@ if(CATKIN_ENABLE_TESTING)
     add_dependencies(test_monitor_faults record_to_bag monitor)
   endif()
   add_rostest(test/ros/monitor_faults.test DEPENDENCIES test_monitor_faults)
+  # The same faults with ~restamp_in_sequence false: the bad-stamped samples are dropped.
+  add_rostest(test/ros/monitor_faults.test ARGS restamp:=false DEPENDENCIES test_monitor_faults)
 endif()
 if(CATKIN_ENABLE_TESTING)
   # Issue 19 part 3: overload visible, load shed, every sample stepped or counted.

@@ -61,6 +61,7 @@ bool RockingMonitor::load_parameters() {
             param(pnh_, "max_future", plausibility_config_.max_future, "number") &&
             param(pnh_, "max_bridge", plausibility_config_.max_bridge, "number") &&
             param(pnh_, "rebase_samples", plausibility_config_.rebase_samples, "integer") &&
+            param(pnh_, "restamp_in_sequence", restamp_in_sequence_, "bool") &&
             param(pnh_, "max_lag", max_lag_, "number") &&
             param(pnh_, "max_abs_acceleration", max_abs_acceleration_, "number") &&
             param(pnh_, "state_rate", state_rate_, "number") &&

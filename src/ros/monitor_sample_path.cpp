@@ -203,7 +203,7 @@ bool RockingMonitor::restamp_suspects(std::size_t si, const std_msgs::Header& he
   Sensor& s = sensors_[si];
   const std::size_t k = s.suspect_count;
   const bool in_sequence = k <= s.suspects.size() && s.received == s.received_at_last_step + k + 1;
-  if (!in_sequence || !s.timing.started() || s.have_first ||
+  if (!restamp_in_sequence_ || !in_sequence || !s.timing.started() || s.have_first ||
       !s.plausibility.restamp(s.timing.last_stamp(), header.stamp.toSec(), k, nominal_period(s)))
     return false;
   ROS_WARN("rocking_monitor: sensor '%s': %zu sample(s) with an implausible stamp (%.3f s from the last) sat in "

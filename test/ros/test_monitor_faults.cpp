@@ -215,8 +215,8 @@ class Faults : public ::testing::Test {
     return sensor_.count(key) ? std::stol(sensor_[key]) : -1;
   }
 
-  // Same items, same levels, times within one period of the record (10 ms).
-  void expect_same_alarms(int k, const char* what) {
+  // Same items, same levels, times within `samples` periods of the record (10 ms).
+  void expect_same_alarms(int k, const char* what, int samples = 1) {
     ASSERT_FALSE(alarms_[0].empty());
     std::set<std::string> items;
     for (const auto& [id, levels] : alarms_[0]) items.insert(id);
@@ -227,7 +227,7 @@ class Faults : public ::testing::Test {
       ASSERT_EQ(got.size(), clean.size()) << what << ": item " << id;
       for (const auto& [level, a] : clean) {
         ASSERT_TRUE(got.count(level)) << what << ": item " << id << " level " << level;
-        EXPECT_NEAR(got.at(level).time, a.time, 0.01 + 1e-7) << what << ": item " << id << " level " << level;
+        EXPECT_NEAR(got.at(level).time, a.time, 0.01 * samples + 1e-7) << what << ": item " << id << " level " << level;
         worst_ = std::max(worst_, std::abs(got.at(level).time - a.time));
       }
     }
@@ -293,6 +293,10 @@ TEST_F(Faults, BadStampsAreRejectedCountedAndChangeNoAlarmAClockStepIsAdoptedAnd
              {Kind::Burst, "5 stamps -1000 s", 5, 0}};
   long restamped = counter("re-stamped from their sequence and stepped (of those)");
   EXPECT_EQ(restamped, 0);
+  // ~restamp_in_sequence false (the second registration of this test): the bad-stamped samples are
+  // dropped; the burst's 50 ms at the strongest shaking then move overturn times by up to 1.2 samples.
+  bool restamp = true;
+  ros::NodeHandle("~").getParam("restamp", restamp);
   int k = 1;
   for (const auto& c : bad) {
     run_case(k, c.kind);
@@ -302,15 +306,17 @@ TEST_F(Faults, BadStampsAreRejectedCountedAndChangeNoAlarmAClockStepIsAdoptedAnd
     EXPECT_EQ(counter("rejected stamp ahead of the clock (of those)") - future, c.future) << c.what;
     EXPECT_EQ(counter("resets (time jumped back)") - resets, 1) << c.what << ": only ~reset may restart the items";
     EXPECT_EQ(counter("lost in transport") - lost, 0) << c.what << ": a rejected sample is not also lost";
-    EXPECT_EQ(counter("re-stamped from their sequence and stepped (of those)") - restamped, c.rejected) << c.what;
+    EXPECT_EQ(counter("re-stamped from their sequence and stepped (of those)") - restamped, restamp ? c.rejected : 0)
+        << c.what;
     restamped = counter("re-stamped from their sequence and stepped (of those)");
     rejected = counter("rejected implausible stamp");
     future = counter("rejected stamp ahead of the clock (of those)");
     resets = counter("resets (time jumped back)");
     lost = counter("lost in transport");
     worst_ = 0.0;
-    expect_same_alarms(k, c.what);
-    std::printf("[ measured ] %s: alarm times within %.4f s of the clean run\n", c.what, worst_);
+    expect_same_alarms(k, c.what, restamp || c.rejected == 1 ? 1 : 2);
+    std::printf("[ measured ] %s (%s): alarm times within %.4f s of the clean run\n", c.what,
+                restamp ? "re-stamped" : "dropped", worst_);
     ++k;
   }
 

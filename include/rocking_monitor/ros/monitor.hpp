@@ -193,6 +193,7 @@ class RockingMonitor {
   // Overload (issue 19 part 3): past ~max_lag the node sheds markers and tf, then (after
   // ~max_lag more) thins ~states to 1 Hz, before input has to wait.
   double max_lag_ = 0.5;
+  bool restamp_in_sequence_ = true;  // ~restamp_in_sequence: bad-stamped samples in sequence are re-stamped
   bool overload_ = false;
   ::ros::WallTime overload_since_;
   std::uint64_t shed_markers_ = 0, shed_states_ = 0;  // publications skipped while overloaded
