@@ -35,23 +35,27 @@ if(CATKIN_ENABLE_TESTING)
   target_compile_definitions(catalogue_tests PRIVATE ROCKING_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
 
   find_package(rostest REQUIRED)
-  add_rostest_gtest(test_monitor_replay test/ros/monitor_replay.test test/ros/test_monitor_replay.cpp)
+  add_rostest_gtest(test_monitor_replay test/ros/monitor_replay.test test/ros/test_monitor_replay.cpp
+                  test/support/rostest_main.cpp)
   target_link_libraries(test_monitor_replay rocking_monitor_ros ${catkin_LIBRARIES})
   add_rostest(test/ros/monitor_nodelet.test DEPENDENCIES test_monitor_replay rocking_monitor_nodelet)
   add_rostest(test/ros/monitor_adaptive.test DEPENDENCIES test_monitor_replay rocking_monitor_nodelet)
   add_rostest(test/ros/monitor_ensemble.test DEPENDENCIES test_monitor_replay monitor)
-  add_rostest_gtest(test_monitor_sharded test/ros/monitor_sharded.test test/ros/test_monitor_sharded.cpp)
+  add_rostest_gtest(test_monitor_sharded test/ros/monitor_sharded.test test/ros/test_monitor_sharded.cpp
+                  test/support/rostest_main.cpp)
   target_link_libraries(test_monitor_sharded ${catkin_LIBRARIES})
   add_dependencies(test_monitor_sharded monitor)
-  add_rostest_gtest(test_monitor_accel test/ros/monitor_accel.test test/ros/test_monitor_accel.cpp)
+  add_rostest_gtest(test_monitor_accel test/ros/monitor_accel.test test/ros/test_monitor_accel.cpp
+                  test/support/rostest_main.cpp)
   target_link_libraries(test_monitor_accel rocking_monitor_ros ${catkin_LIBRARIES})
-  add_rostest_gtest(test_monitor_bad_input test/ros/monitor_bad_input.test test/ros/test_monitor_bad_input.cpp)
+  add_rostest_gtest(test_monitor_bad_input test/ros/monitor_bad_input.test test/ros/test_monitor_bad_input.cpp
+                  test/support/rostest_main.cpp)
   target_link_libraries(test_monitor_bad_input rocking_monitor_ros ${catkin_LIBRARIES})
 endif()
 
 if(CATKIN_ENABLE_TESTING)
   # Needs the records (skips with a notice without them) and the record_to_bag / rocking_sim tools.
-  add_executable(test_monitor_historical EXCLUDE_FROM_ALL test/ros/test_monitor_historical.cpp)
+  add_executable(test_monitor_historical EXCLUDE_FROM_ALL test/ros/test_monitor_historical.cpp test/support/rostest_main.cpp)
   target_link_libraries(test_monitor_historical rocking_monitor_ros ${catkin_LIBRARIES} GTest::gtest
                         nlohmann_json::nlohmann_json)
   target_include_directories(test_monitor_historical PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/support)
@@ -98,7 +102,8 @@ if(CPP_HTTPLIB_FOUND)
           LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
           ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
   if(CATKIN_ENABLE_TESTING)
-    add_rostest_gtest(test_dashboard test/ros/dashboard.test test/ros/test_dashboard.cpp)
+    add_rostest_gtest(test_dashboard test/ros/dashboard.test test/ros/test_dashboard.cpp
+                  test/support/rostest_main.cpp)
     target_link_libraries(test_dashboard rocking_dashboard ${catkin_LIBRARIES})
     add_dependencies(test_dashboard dashboard monitor)
     add_rostest(test/ros/dashboard_restart.test DEPENDENCIES dashboard monitor)
@@ -120,7 +125,7 @@ endif()
 
 if(CATKIN_ENABLE_TESTING)
   # Issue 19: the fault table (bad stamps, clock step, transport loss) on the Rinaldi record.
-  add_executable(test_monitor_faults EXCLUDE_FROM_ALL test/ros/test_monitor_faults.cpp)
+  add_executable(test_monitor_faults EXCLUDE_FROM_ALL test/ros/test_monitor_faults.cpp test/support/rostest_main.cpp)
   target_link_libraries(test_monitor_faults rocking_monitor_ros ${catkin_LIBRARIES} GTest::gtest)
   target_include_directories(test_monitor_faults PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/support)
   add_dependencies(tests test_monitor_faults)
@@ -133,7 +138,8 @@ if(CATKIN_ENABLE_TESTING)
 endif()
 if(CATKIN_ENABLE_TESTING)
   # Issue 19 part 3: overload visible, load shed, every sample stepped or counted.
-  add_rostest_gtest(test_monitor_overload test/ros/monitor_overload.test test/ros/test_monitor_overload.cpp)
+  add_rostest_gtest(test_monitor_overload test/ros/monitor_overload.test test/ros/test_monitor_overload.cpp
+                  test/support/rostest_main.cpp)
   target_link_libraries(test_monitor_overload ${catkin_LIBRARIES})
   add_dependencies(test_monitor_overload monitor)
 endif()

@@ -25,7 +25,7 @@ endif()
 if(catkin_FOUND AND CATKIN_ENABLE_TESTING)
   # A real record over SeedLink into the monitor, with a server restart (needs the records; skips
   # with a notice without them).
-  add_executable(test_seedlink_monitor EXCLUDE_FROM_ALL test/ros/test_seedlink_monitor.cpp)
+  add_executable(test_seedlink_monitor EXCLUDE_FROM_ALL test/ros/test_seedlink_monitor.cpp test/support/rostest_main.cpp)
   target_link_libraries(test_seedlink_monitor rocking_monitor_ros ${catkin_LIBRARIES} GTest::gtest nlohmann_json::nlohmann_json)
   target_include_directories(test_seedlink_monitor PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/support)
   add_dependencies(tests test_seedlink_monitor)

@@ -333,9 +333,4 @@ TEST(Dashboard, ServesThePageTheSnapshotAndTheAlarms) {
 }  // namespace
 }  // namespace rocking_monitor::test
 
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_dashboard");
-  ros::NodeHandle nh;
-  return RUN_ALL_TESTS();
-}
+// main(): test/support/rostest_main.cpp

@@ -71,9 +71,4 @@ TEST(MonitorAccel, AccelStampedInputAndRotatedFrame) {
   EXPECT_LT(cabinet_first_theta, 0.0);
 }
 
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_monitor_accel");
-  ros::NodeHandle nh;
-  return RUN_ALL_TESTS();
-}
+// main(): test/support/rostest_main.cpp

@@ -179,9 +179,4 @@ TEST_F(BadInput, AGapIsNotBridgedTheItemsContinueFromTheirState) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_monitor_bad_input");
-  ros::NodeHandle nh;
-  return RUN_ALL_TESTS();
-}
+// main(): test/support/rostest_main.cpp

@@ -347,9 +347,4 @@ TEST_F(Faults, BadStampsAreRejectedCountedAndChangeNoAlarmAClockStepIsAdoptedAnd
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_monitor_faults");
-  ros::NodeHandle nh;
-  return RUN_ALL_TESTS();
-}
+// main(): test/support/rostest_main.cpp

@@ -101,9 +101,4 @@ TEST(Overload, IsVisibleShedsLoadCountsEverySampleAndRecovers) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_monitor_overload");
-  ros::NodeHandle nh;
-  return RUN_ALL_TESTS();
-}
+// main(): test/support/rostest_main.cpp

@@ -204,9 +204,4 @@ TEST(MonitorReplay, LiveEqualsOfflineSampleForSample) {
 }  // namespace
 }  // namespace rocking_monitor::test
 
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_monitor_replay");
-  ros::NodeHandle nh;
-  return RUN_ALL_TESTS();
-}
+// main(): test/support/rostest_main.cpp

@@ -100,9 +100,4 @@ TEST(MonitorSharded, ShardsTogetherEqualTheWholeCatalogue) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_monitor_sharded");
-  ros::NodeHandle nh;
-  return RUN_ALL_TESTS();
-}
+// main(): test/support/rostest_main.cpp

@@ -226,9 +226,4 @@ TEST(SeedLinkMonitor, LiveEqualsOfflineAcrossAServerRestart) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_seedlink_monitor");
-  ros::NodeHandle nh;
-  return RUN_ALL_TESTS();
-}
+// main(): test/support/rostest_main.cpp
