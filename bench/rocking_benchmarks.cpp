@@ -32,6 +32,7 @@
 
 #include "bench_common.hpp"
 #include "rocking_monitor/model/batch_rocking.hpp"
+#include "rocking_monitor/model/rocking_3d_model.hpp"
 
 #include "allocation_counter.hpp"  // counts heap allocations (replaces operator new)
 
@@ -96,6 +97,41 @@ void BM_Item(benchmark::State& state, const Scenario* sc, rb::MethodSetting ms) 
       const Mode before = m.mode();
       const StepReport& r = m.step(a[i], sc->motion.ay(i), dt);
       rocking += rocked(before, m, r);
+    }
+    const double stop = rb::thread_cpu_seconds();
+    t.allocations += static_cast<double>(rocking_monitor::testing::allocation_count() - allocs0);
+    t.seconds += stop - start;
+    t.item_steps += static_cast<double>(n - 1);
+    t.rocking_steps += static_cast<double>(rocking);
+    t.int_steps += static_cast<double>(m.outcome().integrator_steps);
+    t.impacts += static_cast<double>(m.outcome().impacts);
+    benchmark::DoNotOptimize(m.outcome());
+  }
+  set_counters(state, t);
+}
+
+// ------------------------------------------------------------------ one item in 3-D
+// The same scenario with the 3-D model: the item as a box of depth = width on its four corners,
+// the horizontal input along x (the planar case: every sample comparable with BM_Item) or along
+// the base's diagonal (both components at 1/sqrt 2: the corner wobble).
+void BM_Item3D(benchmark::State& state, const Scenario* sc, rb::MethodSetting ms, bool diagonal) {
+  const BaseBody body(box_base_body(sc->body, sc->body.width, 0.5, std::nan("")));
+  Rocking3DModel m(body, ms.settings);
+  const std::vector<double>& a = sc->motion.horizontal;
+  const std::size_t n = a.size();
+  const double dt = sc->motion.dt;
+  const double cx = diagonal ? std::sqrt(0.5) : 1.0, cy = diagonal ? std::sqrt(0.5) : 0.0;
+  Tally t;
+  for (auto _ : state) {
+    m.reset(0.0, Eigen::Vector3d(cx * a[0], cy * a[0], sc->motion.ay(0)));
+    if (sc->theta0_ratio > 0.0) m.set_edge_state(3, sc->theta0_ratio * body.edge(3).pivot.alpha, 0.0);
+    long rocking = 0;
+    const long allocs0 = rocking_monitor::testing::allocation_count();
+    const double start = rb::thread_cpu_seconds();
+    for (std::size_t i = 1; i < n; ++i) {
+      const bool before = m.mode() == Mode3D::Edge || m.mode() == Mode3D::Vertex;
+      const StepReport& r = m.step(Eigen::Vector3d(cx * a[i], cy * a[i], sc->motion.ay(i)), dt);
+      rocking += before || r.uplift || m.mode() == Mode3D::Edge || m.mode() == Mode3D::Vertex;
     }
     const double stop = rb::thread_cpu_seconds();
     t.allocations += static_cast<double>(rocking_monitor::testing::allocation_count() - allocs0);
@@ -246,6 +282,14 @@ void register_item(const Scenario* sc) {
           ->Unit(benchmark::kMicrosecond)
           ->MinTime(0.2);
     }
+  }
+  const rb::MethodSetting ms = rb::dopri5_setting(1e-8, ModelKind::Nonlinear);
+  for (bool diagonal : {false, true}) {
+    const std::string name = "item3d/" + sc->name + (diagonal ? "/diagonal" : "/along_x") + "/dopri5" +
+                             rb::setting_suffix(ms);
+    benchmark::RegisterBenchmark(name.c_str(), BM_Item3D, sc, ms, diagonal)
+        ->Unit(benchmark::kMicrosecond)
+        ->MinTime(0.2);
   }
 }
 

@@ -118,6 +118,57 @@ class Entry {
   std::string where_;
 };
 
+// A list of `n` numbers (n = 0: any length), each finite: "<field>: <what>".
+std::vector<double> numbers(const Entry& e, const json& x, const std::string& f, std::size_t n, const std::string& what) {
+  if (!x.is_array()) e.fail(f, what + ": must be a list, found " + type_name(x));
+  if (n != 0 && x.size() != n)
+    e.fail(f, what + ": must have " + std::to_string(n) + " numbers, found " + std::to_string(x.size()));
+  std::vector<double> out;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const double d = e.scalar(x[k], f, what + " entry " + std::to_string(k + 1));
+    if (!std::isfinite(d)) e.fail(f, what + " entry " + std::to_string(k + 1) + ": must be finite");
+    out.push_back(d);
+  }
+  return out;
+}
+
+// The 3-D description (model/rocking_3d_model.hpp): base_polygon, centre_of_mass, central_inertia
+// and mass come together; restitution_factor is optional.
+void parse_solid(const Entry& e, ItemSpec& s) {
+  const char* keys[] = {"mass", "centre_of_mass", "central_inertia", "base_polygon"};
+  bool any = false;
+  for (const char* k : keys) any = any || e.has(k);
+  if (!any) {
+    if (e.has("restitution_factor")) e.fail("restitution_factor", "needs the 3-D description (base_polygon, ...)");
+    return;
+  }
+  for (const char* k : keys)
+    if (!e.has(k)) e.fail(k, "missing: the 3-D description needs mass, centre_of_mass, central_inertia and base_polygon");
+  BaseBodyParameters b;
+  b.mass = e.number("mass", true, 0.0, "kg");
+  const auto c = numbers(e, e.member("centre_of_mass"), "centre_of_mass", 3, "[x, y, z] in m");
+  b.centre_of_mass = Eigen::Vector3d(c[0], c[1], c[2]);
+  const json& inertia = e.member("central_inertia");
+  if (!inertia.is_array() || inertia.size() != 3)
+    e.fail("central_inertia", "must be 3 rows of 3 numbers (kg m^2)");
+  for (int r = 0; r < 3; ++r) {
+    const auto row = numbers(e, inertia[static_cast<std::size_t>(r)], "central_inertia", 3, "row " + std::to_string(r + 1) + " (kg m^2)");
+    for (int k = 0; k < 3; ++k) b.central_inertia(r, k) = row[static_cast<std::size_t>(k)];
+  }
+  const json& poly = e.member("base_polygon");
+  if (!poly.is_array()) e.fail("base_polygon", "must be a list of [x, y] vertices (m)");
+  for (std::size_t k = 0; k < poly.size(); ++k) {
+    const auto v = numbers(e, poly[k], "base_polygon", 2, "vertex " + std::to_string(k + 1) + " [x, y] (m)");
+    b.base.emplace_back(v[0], v[1]);
+  }
+  b.mu_s = s.body.mu_s;
+  b.overturn_angle = s.body.overturn_angle;
+  if (e.has("restitution_factor"))
+    b.restitution_factor = e.number("restitution_factor", false, 1.0, "multiplies the 3-D impact law's angular velocity");
+  if (const std::string err = validate(b); !err.empty()) e.fail("", err);
+  s.solid = b;
+}
+
 std::string label(const char* list, int i, const std::string& name) {
   std::ostringstream os;
   os << list << "[" << i << "]";
@@ -164,7 +215,8 @@ CatalogueItem parse_item(const json& v, int i, const std::set<std::string>* sens
   const Entry e(v, label("items", i, name_of(v, "id")));
   e.only({"id", "description", "sensor", "frame", "shape", "width", "depth", "cg_height", "eccentricity",
           "eccentricity_y", "radius_of_gyration", "radius_of_gyration_y", "mu_s", "mu_k", "restitution",
-          "restitution_shift", "overturn_angle", "pose", "ensemble_size"});
+          "restitution_shift", "overturn_angle", "pose", "ensemble_size", "mass", "centre_of_mass",
+          "central_inertia", "base_polygon", "restitution_factor"});
   CatalogueItem item;
   ItemSpec& s = item.spec;
   s.id = e.text("id", true);
@@ -214,6 +266,7 @@ CatalogueItem parse_item(const json& v, int i, const std::set<std::string>* sens
   if (e.has("restitution_shift"))
     b.restitution_shift = e.number("restitution_shift", false, 0.0, "added to each pivot's angular-velocity ratio");
   if (e.has("overturn_angle")) b.overturn_angle = e.number("overturn_angle", false, 0.0, "rad");
+  parse_solid(e, s);
   u.nominal = s;
   for (const std::string& err : {validate(s), validate(u)}) {
     // core messages read "item '<id>': <field> ..."; keep the list position too.

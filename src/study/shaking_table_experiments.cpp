@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "rocking_monitor/constants.hpp"
+#include "rocking_monitor/model/rocking_3d_model.hpp"
 #include "rocking_monitor/physics/criteria.hpp"
 
 namespace rocking_monitor::core {
@@ -191,6 +192,77 @@ TestPrediction predict_table_test(const BodyParameters& parameters, const std::s
   }
   for (long i = 0; i < tail && !model.outcome().overturned; ++i) {
     model.step(0.0, 0.0, test.dt);
+    ++sample;
+    keep(0.0);
+  }
+  const auto& o = model.outcome();
+  p.predicted = o.overturned;
+  p.uplift = !std::isnan(o.uplift_time);
+  p.max_rotation_ratio = o.max_rotation_ratio;
+  p.overturn_time = o.overturned ? o.overturn_time : std::numeric_limits<double>::quiet_NaN();
+  p.impacts = o.impacts;
+  return p;
+}
+
+TestPrediction predict_table_test_3d(const BaseBodyParameters& parameters, const std::string& specimen,
+                                     const TableTest& test, const ExperimentSettings& settings,
+                                     std::vector<TableHistorySample>* history) {
+  const BaseBody body(parameters);
+  SolverSettings solver = settings.adaptive.rocking;
+  solver.method = Method::Dopri5;
+  solver.model = ModelKind::Nonlinear;
+  Rocking3DModel model(body, solver);
+  TestPrediction p;
+  p.test = test.number;
+  p.specimen = specimen;
+  const double s = settings.direction >= 0 ? 1.0 : -1.0;
+  // Static uplift in 3-D: some hull edge's moment lifts it at some sample (the table is along x).
+  for (double a : test.accel_mps2) {
+    for (int k = 0; k < body.vertex_count() && !p.exceeds_static_uplift; ++k) {
+      const BaseEdge& e = body.edge(k);
+      const double a_n = -(s * a) * e.normal.x();
+      p.exceeds_static_uplift = uplift_function(e.pivot, 1, ModelKind::Nonlinear, a_n, 0.0) > 0.0;
+    }
+    if (p.exceeds_static_uplift) break;
+  }
+  const long tail = static_cast<long>(std::ceil(settings.tail_s / test.dt));
+  long sample = 0;
+  const Eigen::Vector3d centre = body.centre_of_mass();
+  auto keep = [&](double a) {
+    if (!history) return;
+    TableHistorySample h;
+    h.t = static_cast<double>(sample) * test.dt;
+    h.table_accel_mps2 = a;
+    // Tilt signed by where the contact lies: on the -x side of the centre of mass > 0.
+    const double tilt = model.tilt();
+    double side = 1.0;
+    if (model.contact() >= 0) {
+      const Eigen::Vector3d& where = model.mode() == Mode3D::Edge
+                                         ? body.vertex(body.edge(model.contact()).a).position
+                                         : body.vertex(model.contact()).position;
+      side = where.x() <= centre.x() ? 1.0 : -1.0;
+    }
+    h.theta = side * tilt;
+    h.omega = model.angular_velocity().norm();
+    h.rotation_ratio = model.rotation_ratio();
+    h.max_rotation_ratio = model.outcome().max_rotation_ratio;
+    h.mode = to_string(model.mode());
+    history->push_back(h);
+  };
+  if (history) {
+    history->clear();
+    history->reserve(test.accel_mps2.size() + static_cast<std::size_t>(tail));
+  }
+  model.reset(0.0, Eigen::Vector3d(s * test.accel_mps2.front(), 0.0, 0.0));
+  keep(s * test.accel_mps2.front());
+  for (std::size_t i = 1; i < test.accel_mps2.size(); ++i) {
+    model.step(Eigen::Vector3d(s * test.accel_mps2[i], 0.0, 0.0), test.dt);
+    ++sample;
+    keep(s * test.accel_mps2[i]);
+    if (model.outcome().overturned) break;
+  }
+  for (long i = 0; i < tail && !model.outcome().overturned; ++i) {
+    model.step(Eigen::Vector3d::Zero(), test.dt);
     ++sample;
     keep(0.0);
   }

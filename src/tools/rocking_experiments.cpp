@@ -51,6 +51,14 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({-1, 1}));
   app.add_option("--tail", tail_s, "s of table at rest after each record (default 5)");
   app.add_option("--max-tests", max_tests, "only the first N tests (0 = all)");
+  std::string model_name = "planar";
+  double restitution_factor = std::nan("");
+  app.add_option("--model", model_name, "planar: each specimen's x-z plane (pivots on a line across "
+                 "the shaking); 3d: the rigid body on its base polygon (needs the catalogue's 3-D keys: "
+                 "base_polygon, centre_of_mass, central_inertia, mass)")
+      ->check(CLI::IsMember({"planar", "3d"}));
+  app.add_option("--restitution-factor", restitution_factor, "3d: multiplies the angular velocity "
+                 "after each impact of the 3-D law, in [0, 1] (default: the catalogue's, else 1)");
   std::string histories, history_tests = "misses";
   int history_every = 1;
   app.add_option("--histories", histories, "write rotation histories here: one CSV per chosen test "
@@ -66,7 +74,9 @@ int main(int argc, char** argv) {
     const auto items = rm::load_catalogue_items_file(catalogue);
     // Items "SP1#3" are members of SP1's ensemble (rocking_geometry.py --ensemble): P(overturn) is
     // the fraction of members that overturn, the prediction P >= 0.5.
-    struct Specimen { std::string id; std::vector<rm::BodyParameters> members; int column; };
+    const bool solid = model_name == "3d";
+    struct Member { rm::BodyParameters planar; rm::BaseBodyParameters solid; };
+    struct Specimen { std::string id; std::vector<Member> members; int column; };
     std::vector<Specimen> specimens;
     for (const auto& item : items) {
       const std::string name = item.spec.id.substr(0, item.spec.id.find('#'));
@@ -79,19 +89,42 @@ int main(int argc, char** argv) {
       if (!std::isnan(mu_s)) b.mu_s = mu_s;
       const std::string problem = rm::validate(b);
       if (!problem.empty()) throw std::runtime_error("item '" + item.spec.id + "': " + problem);
+      Member member{b, {}};
+      if (solid) {
+        if (!item.spec.solid)
+          throw std::runtime_error(catalogue + ": item '" + item.spec.id + "': --model 3d needs its 3-D "
+                                   "description (base_polygon, centre_of_mass, central_inertia, mass: "
+                                   "scripts/rocking_geometry.py writes them)");
+        member.solid = *item.spec.solid;
+        if (!std::isnan(restitution_factor)) member.solid.restitution_factor = restitution_factor;
+        if (!std::isnan(mu_s)) member.solid.mu_s = mu_s;
+        const std::string p3 = rm::validate(member.solid);
+        if (!p3.empty()) throw std::runtime_error("item '" + item.spec.id + "': " + p3);
+      }
       auto group = std::find_if(specimens.begin(), specimens.end(),
                                 [&](const Specimen& sp) { return sp.id == name; });
       if (group != specimens.end()) {
-        group->members.push_back(b);
+        group->members.push_back(member);
         continue;
       }
-      specimens.push_back({name, {b}, static_cast<int>(it - outcomes.specimens.begin())});
+      specimens.push_back({name, {member}, static_cast<int>(it - outcomes.specimens.begin())});
       const rm::Body body(b);
       for (int side : {1, -1}) {
         const auto& p = body.pivot(side);
         std::printf("%s pivot %d: alpha %.3f deg, R %.4f m, p %.3f rad/s, uplift at %.3f g, "
                     "restitution %.4f\n", item.spec.id.c_str(), side > 0 ? 1 : 2,
                     p.alpha * 180.0 / M_PI, p.radius, p.p, p.tan_alpha, p.restitution);
+      }
+      if (solid) {
+        const rm::BaseBody body3(member.solid);
+        for (int k = 0; k < body3.vertex_count(); ++k) {
+          const auto& e = body3.edge(k);
+          // only the edges the table (along x) can tip it over
+          if (std::abs(e.normal.x()) < 0.2) continue;
+          std::printf("%s edge %d (normal %+.2f, %+.2f): alpha %.3f deg, R %.4f m, uplift at %.3f g "
+                      "along the normal\n", item.spec.id.c_str(), k + 1, e.normal.x(), e.normal.y(),
+                      e.pivot.alpha * 180.0 / M_PI, e.pivot.radius, e.pivot.tan_alpha);
+        }
       }
     }
     std::vector<std::string> files;
@@ -127,6 +160,11 @@ int main(int argc, char** argv) {
     rm::ExperimentSettings settings;
     settings.direction = direction;
     settings.tail_s = tail_s;
+    auto predict = [&](const Member& m, const std::string& id, const rm::TableTest& test,
+                       std::vector<rm::TableHistorySample>* h) {
+      return solid ? rm::predict_table_test_3d(m.solid, id, test, settings, h)
+                   : rm::predict_table_test(m.planar, id, test, settings, h);
+    };
     std::ofstream table;
     if (!out.empty()) {
       table.open(out);
@@ -155,10 +193,10 @@ int main(int argc, char** argv) {
       const auto row = outcomes.by_test.find(test.number);
       for (const auto& s : specimens) {
         // the first member (the nominal geometry) gives the row's details, the members P(overturn)
-        auto p = rm::predict_table_test(s.members.front(), s.id, test, settings);
+        auto p = predict(s.members.front(), s.id, test, nullptr);
         long over = p.predicted;
         for (std::size_t k = 1; k < s.members.size(); ++k)
-          over += rm::predict_table_test(s.members[k], s.id, test, settings).predicted;
+          over += predict(s.members[k], s.id, test, nullptr).predicted;
         const double prob = static_cast<double>(over) / static_cast<double>(s.members.size());
         const bool predicted = prob >= 0.5;
         if (row != outcomes.by_test.end()) p.measured = row->second[s.column];
@@ -172,7 +210,7 @@ int main(int argc, char** argv) {
         const bool wrong = p.measured >= 0 && predicted != (p.measured == 1);
         if (!histories.empty() && (history_all || (history_misses && wrong) ||
                                    history_numbers.count(test.number))) {
-          rm::predict_table_test(s.members.front(), s.id, test, settings, &history);
+          predict(s.members.front(), s.id, test, &history);
           char name[64];
           std::snprintf(name, sizeof name, "Test%03d_%s.csv", test.number, s.id.c_str());
           const std::string path = (fs::path(histories) / name).string();

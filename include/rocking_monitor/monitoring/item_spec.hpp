@@ -1,7 +1,9 @@
 #pragma once
 
+#include <optional>
 #include <string>
 
+#include "rocking_monitor/physics/base_body.hpp"
 #include "rocking_monitor/physics/body.hpp"
 #include "rocking_monitor/physics/principal_planes.hpp"
 
@@ -15,6 +17,9 @@ struct ItemSpec {
   std::string frame;        ///< tf frame: x across the base width, y across the depth, z up
   BodyParameters body;      ///< the x-z plane: width, eccentricity, radius of gyration, friction
   DepthParameters depth;    ///< the y-z plane; depth not given: the item rocks in its x plane only
+  /// The 3-D description (base polygon, centre of mass, inertia tensor): the 3-D rocking model
+  /// can run this item (model/rocking_3d_model.hpp). Not given: planar only.
+  std::optional<BaseBodyParameters> solid;
 
   bool two_planes() const { return depth.given(); }
 };

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "rocking_monitor/model/adaptive_model.hpp"
+#include "rocking_monitor/physics/base_body.hpp"
 #include "rocking_monitor/physics/body.hpp"
 
 namespace rocking_monitor::core {
@@ -80,6 +81,14 @@ bool exceeds_static_uplift(const Body& body, const TableTest& test, int directio
 TestPrediction predict_table_test(const BodyParameters& body, const std::string& specimen,
                                   const TableTest& test, const ExperimentSettings& settings = {},
                                   std::vector<TableHistorySample>* history = nullptr);
+
+/// The same with the 3-D model (model/rocking_3d_model.hpp) on the specimen's base polygon: the
+/// table moves along the floor frame's x. History samples carry the tilt of the base as theta
+/// (signed by the side of the centre of mass the active contact lies on: > 0 on -x, as the planar
+/// pivot 1) and the 3-D rotation ratio.
+TestPrediction predict_table_test_3d(const BaseBodyParameters& body, const std::string& specimen,
+                                     const TableTest& test, const ExperimentSettings& settings = {},
+                                     std::vector<TableHistorySample>* history = nullptr);
 
 /// Confusion matrix of predicted vs measured overturning (tests without an outcome not counted).
 struct Confusion {

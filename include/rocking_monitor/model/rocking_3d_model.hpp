@@ -1,0 +1,140 @@
+#pragma once
+
+// Rigid-body rocking in 3-D on a convex polygonal base (issue 27), beside the planar RockingModel
+// it generalises. Modes: REST; EDGE (rocking about one hull edge: the planar equation of motion
+// with that edge's alpha, R, p and the ground acceleration projected onto the edge's outward
+// normal, integrated by the same Dopri5Stepper and event scan as RockingModel); VERTEX (pivoting
+// on one hull vertex without slip: 3 rotational degrees of freedom, the corner wobble);
+// OVERTURNED. Transitions: uplift from rest about the edge or vertex whose moment first lifts the
+// base; EDGE -> VERTEX when one end of the edge would be pulled off the floor (its reaction turns
+// negative); impacts (physics/impact_3d.hpp) when the base lands flat (EDGE, theta -> 0) or a
+// vertex touches down (VERTEX). The ground frame is non-inertial: gravity plus the ground's
+// acceleration act at the centre of mass. Sliding and flight are not modelled (flagged only).
+//
+// Frames: the item's floor frame at rest (x, y horizontal, z up); the body keeps a footprint
+// (yaw and shift on the floor) that changes only when it turns while pivoting on a vertex.
+
+#include <cstdint>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "rocking_monitor/integrate/dopri5_stepper.hpp"
+#include "rocking_monitor/integrate/dopri5_vector.hpp"
+#include "rocking_monitor/integrate/solver_settings.hpp"
+#include "rocking_monitor/model/rocking_model.hpp"
+#include "rocking_monitor/physics/base_body.hpp"
+
+namespace rocking_monitor::core {
+
+enum class Mode3D : std::uint8_t { Rest, Edge, Vertex, Overturned };
+const char* to_string(Mode3D mode);
+
+/// Ground acceleration over one sample, linear in the local time (first-order hold), m/s^2.
+struct GroundInput3 {
+  Eigen::Vector3d a0 = Eigen::Vector3d::Zero();     ///< x, y horizontal, z vertical (up)
+  Eigen::Vector3d slope = Eigen::Vector3d::Zero();  ///< m/s^3
+  Eigen::Vector3d at(double tau) const { return a0 + slope * tau; }
+};
+
+/// What the 3-D model adds to RockingOutcome.
+struct Rocking3DOutcome {
+  long edge_to_vertex = 0;        ///< an end of the rocking edge lifted: corner wobble began
+  long vertex_impacts = 0;        ///< impacts while pivoting on a vertex
+  long flat_impacts = 0;          ///< impacts of the whole base (edge rocking back to flat)
+  double max_tilt = 0.0;          ///< largest tilt of the base from the floor, rad
+  /// Largest kinetic energy after / before of any impact (<= 1 by the law; tests check it).
+  double max_impact_energy_ratio = 0.0;
+};
+
+class Rocking3DModel {
+ public:
+  /// Throws std::invalid_argument for invalid settings (the body was validated by BaseBody).
+  Rocking3DModel(const BaseBody& body, const SolverSettings& settings);
+
+  /// REST at time t with the current ground acceleration (m/s^2); clears the outcome.
+  void reset(double t, const Eigen::Vector3d& a = Eigen::Vector3d::Zero());
+
+  /// One input sample: ground acceleration linear from the previous sample to `a` over dt s.
+  /// dt finite > 0 and `a` finite, else std::invalid_argument (state unchanged). No allocation.
+  const StepReport& step(const Eigen::Vector3d& a, double dt);
+
+  /// Rocking about edge k at theta (> 0) and omega (tests, free rocking).
+  void set_edge_state(int edge, double theta, double omega);
+  /// Pivoting on vertex v with the body turned by `rotation` about it (from its rest pose) and
+  /// angular velocity `omega` (world, rad/s) (tests).
+  void set_vertex_state(int vertex, const Eigen::Quaterniond& rotation, const Eigen::Vector3d& omega);
+
+  Mode3D mode() const { return mode_; }
+  /// The active edge (EDGE) or vertex (VERTEX); -1 otherwise.
+  int contact() const { return mode_ == Mode3D::Edge || mode_ == Mode3D::Vertex ? contact_ : -1; }
+  double theta() const { return mode_ == Mode3D::Edge ? theta_ : 0.0; }  ///< EDGE: rad
+  double omega() const { return mode_ == Mode3D::Edge ? omega_ : 0.0; }  ///< EDGE: rad/s
+  /// The body's pose: a body point x (floor frame at rest) is now at rotation() * x + translation().
+  Eigen::Matrix3d rotation() const;
+  Eigen::Vector3d translation() const;
+  /// Angular velocity in the world (ground) frame, rad/s.
+  Eigen::Vector3d angular_velocity() const;
+  /// Tilt of the base from the floor, rad.
+  double tilt() const;
+  /// EDGE: theta / alpha of the edge; VERTEX: how far the centre of mass has turned towards the
+  /// vertical through the vertex, as a fraction of the way (1 above it, > 1 beyond); 0 at rest.
+  double rotation_ratio() const;
+  /// Kinetic energy per unit mass, J/kg.
+  double kinetic_energy() const;
+  double time() const { return t_; }
+  const StepReport& last_report() const { return report_; }
+  const RockingOutcome& outcome() const { return outcome_; }
+  const Rocking3DOutcome& outcome_3d() const { return outcome3_; }
+  const BaseBody& body() const { return body_; }
+
+ private:
+  using Vec7 = Eigen::Matrix<double, 7, 1>;
+  enum class Event { None, Impact, Overturn, Lift, Degenerate };
+
+  Eigen::Matrix3d yaw_matrix() const;
+  Eigen::Vector3d to_footprint(const Eigen::Vector3d& world) const;  ///< rotate a world vector
+  GroundInput edge_input(const GroundInput3& in, int edge) const;
+  double uplift_at(const GroundInput3& in, int edge, double tau) const;
+  double find_uplift(const GroundInput3& in, double tau, double tau_end) const;
+  void start_motion(const GroundInput3& in, double tau);
+  void endpoint_reactions(int edge, double theta, double omega, double theta_ddot,
+                          const Eigen::Vector3d& a_footprint, double& fa, double& fb) const;
+  Event advance_edge(const GroundInput3& in, double& tau, double tau_end, int& lift_vertex);
+  Event advance_vertex(const GroundInput3& in, double& tau, double tau_end, int& touching);
+  void enter_vertex_from_edge(int vertex);
+  int edge_between(int v, int u) const;
+  void enter_vertex(int vertex, const Eigen::Vector3d& pivot_world, const Eigen::Matrix3d& rotation,
+                    const Eigen::Vector3d& omega_world);
+  void enter_edge_from_pose(int edge, const Eigen::Matrix3d& rotation, const Eigen::Vector3d& pivot_world,
+                            int pivot_vertex, double omega_axis);
+  void flat_impact(double tau);
+  void vertex_impact(int touching, double tau);
+  void record_impact(double tau, double energy_before);
+  void go_to_rest();
+  void note_ratio();
+  void vertex_rhs(const GroundInput3& in, double t, const Vec7& y, Vec7& dy) const;
+  Eigen::Matrix3d vertex_rotation(const Vec7& y) const;
+
+  BaseBody body_;
+  SolverSettings settings_;
+  Dopri5Stepper dopri5_;     // EDGE: the planar stepper
+  Dopri5Vector<7> vector_;   // VERTEX: quaternion + angular velocity
+
+  Mode3D mode_ = Mode3D::Rest;
+  int contact_ = -1;
+  double theta_ = 0.0, omega_ = 0.0;   // EDGE
+  Vec7 y_ = Vec7::Zero();              // VERTEX: q (w, x, y, z), omega (world)
+  Eigen::Vector3d pivot_world_ = Eigen::Vector3d::Zero();  // VERTEX
+  double yaw_ = 0.0;                   // footprint
+  Eigen::Vector2d shift_ = Eigen::Vector2d::Zero();
+  double t_ = 0.0;
+  Eigen::Vector3d a_prev_ = Eigen::Vector3d::Zero();
+  double sample_dt_ = 0.0;
+  bool armed_[kMaxBaseVertices] = {};                // VERTEX: vertex i has left the floor since the pivot began
+  StepReport report_;
+  RockingOutcome outcome_;
+  Rocking3DOutcome outcome3_;
+};
+
+}  // namespace rocking_monitor::core
