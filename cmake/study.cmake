@@ -33,7 +33,8 @@ target_compile_options(rocking_experiments PRIVATE -Wall -Wextra -Wpedantic)
 set_target_properties(rocking_experiments PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_TOOL_DIR})
 
 if(BUILD_TESTING)
-  # rocking_geometry.py (issue 20) on closed forms: box, off-centre hollow, box turned about z.
+  # rocking_geometry.py (issue 20) on closed forms: box, off-centre hollow, box turned about z; the
+  # entry's 3-D keys (base polygon CCW, centre of mass, inertia) and --com-shift.
   add_test(NAME rocking_geometry_closed_forms
            COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/test_rocking_geometry.py)
   set_tests_properties(rocking_geometry_closed_forms PROPERTIES TIMEOUT 60)
