@@ -38,6 +38,11 @@ if(BUILD_TESTING)
   add_test(NAME rocking_geometry_closed_forms
            COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/test_rocking_geometry.py)
   set_tests_properties(rocking_geometry_closed_forms PROPERTIES TIMEOUT 60)
+  # calibrate_experiments.py: the fit recovers a known grid point and noise from synthetic data, CV
+  # never sees a held-out outcome; the pipeline on box meshes with a stub rocking_experiments.
+  add_test(NAME calibrate_experiments_synthetic
+           COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/test_calibrate_experiments.py)
+  set_tests_properties(calibrate_experiments_synthetic PROPERTIES TIMEOUT 120)
 endif()
 
 if(BUILD_TESTING)
