@@ -213,16 +213,23 @@ def evaluate(pred, y, folds_k=10, seed=20, e_grid=None, method="integrate", loo=
            "cv_folds": cv_fits, "fold_of_test": folds}
     # the noise-aware predictive (1 - 2e) P + e: what the likelihood itself says of a held-out test
     out["in_sample"]["brier_with_e"] = float((((1 - 2 * full["e_mean"]) * p_in + full["e_mean"] - y) ** 2).mean())
-    p_cv_e = np.empty_like(p_cv)
-    for f in cv_fits:
-        held = folds == f["fold"]
-        p_cv_e[held] = (1 - 2 * f["e_mean"]) * p_cv[held] + f["e_mean"]
-    out["cv"]["brier_with_e"] = float(((p_cv_e - y) ** 2).mean())
+    out["cv"]["brier_with_e"] = brier_with_e(p_cv, y, folds, cv_fits)
     if loo:
-        p_loo, _ = cross_validate(pred, y, np.arange(len(y)), e_grid, method)
+        loo_folds = np.arange(len(y))
+        p_loo, loo_fits = cross_validate(pred, y, loo_folds, e_grid, method)
         out["p_loo"] = p_loo
         out["loo"] = scores(p_loo, y)
+        out["loo"]["brier_with_e"] = brier_with_e(p_loo, y, loo_folds, loo_fits)
     return out
+
+
+def brier_with_e(p, y, folds, fits):
+    """Brier of each fold's noise-aware P: (1 - 2e) P + e with that fold's own e."""
+    q = np.empty_like(p)
+    for f in fits:
+        held = folds == f["fold"]
+        q[held] = (1 - 2 * f["e_mean"]) * p[held] + f["e_mean"]
+    return float(((q - y) ** 2).mean())
 
 
 # ================================================================ the grid
@@ -318,12 +325,23 @@ def grid_from_flags(a):
             "geometry_args": shlex.split(a.geometry_args), "common_args": shlex.split(a.common_args)}
 
 
-def describe(geo, runtime):
-    parts = [f"tol {geo['contact_tolerance_m'] * 1000:g} mm", f"com {geo['com']}"]
-    if any(geo["com_shift_m"]):
-        parts.append("shift ({:g}, {:g}) mm".format(*(1000 * x for x in geo["com_shift_m"])))
-    parts.append(" ".join(runtime) if runtime else "defaults")
-    return ", ".join(parts)
+def describe(geo, runtime, aliases=()):
+    """One line per grid point; settings that gave the same model (aliases) joined with '='
+    where they differ, e.g. SP1's 'com stated = homogeneous' (SP1 has no stated centre)."""
+    def parts(g):
+        p = [f"tol {g['contact_tolerance_m'] * 1000:g} mm", f"com {g['com']}"]
+        p.append("shift ({:g}, {:g}) mm".format(*(1000 * x for x in g["com_shift_m"]))
+                 if any(g["com_shift_m"]) else "")
+        return p
+    cols = [parts(geo)] + [parts(g) for g in aliases]
+    out = []
+    for k in range(len(cols[0])):
+        vals = list(dict.fromkeys(c[k] for c in cols if c[k]))
+        if vals:
+            out.append(vals[0] + "".join(" = " + v.split(" ", 1)[-1] if v.split(" ")[0] == vals[0].split(" ")[0]
+                                         else " = " + v for v in vals[1:]))
+    out.append(" ".join(runtime) if runtime else "defaults")
+    return ", ".join(out)
 
 
 # ================================================================ running
@@ -450,22 +468,23 @@ def build_matrices(grid, a):
     jobs = []  # (specimen, geo, runtime, catalogue path, items text)
     refused = []
     for name, pts in grid["points"].items():
-        seen = set()
+        seen = {}
         for geo, runtime in pts:
             path, items, why = make_geometry(a.python, tool, a.granite, name, geo, grid["geometry_args"], a.cache_dir)
             if items is None:
                 refused.append({"specimen": name, "setting": describe(geo, runtime), "reason": why})
                 continue
             key = (items, runtime)
-            if key in seen:  # e.g. SP1 has no stated centre: 'homogeneous' is the same model
+            if key in seen:  # e.g. SP1 has no stated centre: 'homogeneous' is the same model, once
+                seen[key][5].append(geo)
                 continue
-            seen.add(key)
-            jobs.append((name, geo, runtime, path, items))
+            seen[key] = (name, geo, runtime, path, items, [])
+            jobs.append(seen[key])
     t0 = time.time()
     done = {"cached": 0, "run": 0}
 
     def one(job):
-        name, geo, runtime, path, items = job
+        name, geo, runtime, path, items, _ = job
         args = list(runtime) + grid["common_args"]
         out, cached = run_point(a.experiments, a.granite, path, args, a.cache_dir, bhash, items, a.max_tests, dhash)
         done["cached" if cached else "run"] += 1
@@ -476,12 +495,12 @@ def build_matrices(grid, a):
     print(f"calibrate_experiments: {len(jobs)} grid points ({done['run']} run, {done['cached']} cached) "
           f"in {time.time() - t0:.0f} s; {len(refused)} geometries refused", file=sys.stderr)
     out = {}
-    for (name, geo, runtime, path, items), (tests, p, y) in zip(jobs, tables):
+    for (name, geo, runtime, path, items, aliases), (tests, p, y) in zip(jobs, tables):
         s = out.setdefault(name, {"points": [], "rows": [], "tests": tests, "y": y})
         if not np.array_equal(tests, s["tests"]) or not np.array_equal(y, s["y"]):
             raise CalibrationError(f"{name}: grid points ran different tests or read different outcomes")
         s["points"].append({"geometry": geo, "runtime": list(runtime), "catalogue": path, "items": items,
-                            "label": describe(geo, runtime)})
+                            "label": describe(geo, runtime, aliases), "same_model_as": aliases})
         s["rows"].append(p)
     for name, s in out.items():
         keep = s["y"] >= 0
@@ -521,7 +540,7 @@ def markdown(summary):
     lines += ["", "| specimen | e (posterior mean) | MAP grid point (its own accuracy) | top 5 (weight) |",
               "|---|---|---|---|"]
     for name, s in summary["specimens"].items():
-        t5 = "; ".join(f"{t['setting']} ({t['weight']:.3f})" for t in s["top5"])
+        t5 = "; ".join(f"{t['setting']} ({t['weight']:.3g})" for t in s["top5"])
         lines.append(f"| {name} | {s['e_mean']:.3f} | {s['map']['setting']} ({s['map']['accuracy']:.3f}) | {t5} |")
     lines += ["", "MAP grid point of each CV fold's fit: " + "; ".join(
         f"{n}: " + ", ".join(str(k) for k in s["cv_map_per_fold"]) for n, s in summary["specimens"].items())]

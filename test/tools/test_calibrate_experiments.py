@@ -251,6 +251,7 @@ class Pipeline(unittest.TestCase):
         self.assertEqual(len(s["refused"]), 8)  # SP2, 500 mm: 2 tolerances x 2 centres x 2 runtimes
         self.assertIn("not over the base", s["refused"][0]["reason"])
         self.assertIn("6 grid points (6 run, 0 cached)", err)
+        self.assertEqual(s["specimens"]["SP1"]["points"][0]["setting"], "tol 1 mm = 2 mm, com stated = homogeneous, defaults")
         sp1, sp2 = self.grid_columns("SP1"), self.grid_columns("SP2")
         k1, k2 = 1, 2  # the truth: SP1 with --restitution 0.8, SP2's third point
         rng = np.random.default_rng(4)
