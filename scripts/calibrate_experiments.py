@@ -78,9 +78,9 @@ def posterior_from_loglik(ll, e_grid, method="integrate"):
     integrate: marginal likelihood, uniform prior on e over the grid; max: profile likelihood.
     Returns weights (K,), e's posterior mean, the MAP point's e (its own maximum)."""
     e_grid = np.asarray(e_grid, dtype=float)
-    if method == "integrate":
-        top = ll.max()
-        score = np.log(np.exp(ll - top).mean(axis=1)) + top
+    if method == "integrate":  # log of the mean over e, each row scaled by its own maximum
+        top = ll.max(axis=1, keepdims=True)
+        score = np.log(np.exp(ll - top).mean(axis=1)) + top[:, 0]
     elif method == "max":
         score = ll.max(axis=1)
     else:
@@ -547,7 +547,7 @@ def markdown(summary):
     return "\n".join(lines) + "\n"
 
 
-def write_catalogue(path, results, data, command, members, rel, cap):
+def write_catalogue(path, results, data, command, members, rel, cap, common_args=()):
     """The posterior's support as ensemble members in proportion to weight (rocking_experiments
     counts members unweighted)."""
     head = ["# calibrate_experiments: calibrated catalogue (posterior over the grid, fitted on ALL tests:",
@@ -585,8 +585,9 @@ def write_catalogue(path, results, data, command, members, rel, cap):
                 lines += [f"    {key}: {val}" for key, val in keys]
                 body.append("\n".join(lines) + "\n")
                 j += 1
-    if common:
-        head.append("# Run with these arguments (common to every member): " + " ".join(common))
+    run_with = list(common or []) + list(common_args)
+    if run_with:
+        head.append("# Run rocking_experiments with these arguments (common to every member): " + " ".join(run_with))
     write_atomic(path, "\n".join(head) + "\nitems:\n" + "".join(body))
 
 
@@ -692,7 +693,7 @@ def main(argv=None):
             fh.write(md)
         sys.stdout.write(md)
         if a.write_catalogue:
-            write_catalogue(a.write_catalogue, results, data, command, a.members, 1e-3, 20)
+            write_catalogue(a.write_catalogue, results, data, command, a.members, 1e-3, 20, grid["common_args"])
             print(f"calibrate_experiments: calibrated catalogue written to {a.write_catalogue}", file=sys.stderr)
     except CalibrationError as e:
         print(f"calibrate_experiments: error: {e}", file=sys.stderr)

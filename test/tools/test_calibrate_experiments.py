@@ -214,7 +214,8 @@ class Pipeline(unittest.TestCase):
                 "SP1": {"contact_tolerance_mm": [1, 2], "com": ["stated", "homogeneous"]},
                 "SP2": {"contact_tolerance_mm": [1, 2], "com": ["stated", "homogeneous"],
                         "com_shift_mm": [[0, 0], [500, 0]]}},
-                "runtime": [[], ["--restitution", "0.8"]], "geometry_args": ["--planar-only"]}, fh)
+                "runtime": [[], ["--restitution", "0.8"]], "geometry_args": ["--planar-only"],
+                "common_args": ["--direction", "1"]}, fh)
 
     def tearDown(self):
         self.tmp.cleanup()
@@ -276,6 +277,7 @@ class Pipeline(unittest.TestCase):
             text = fh.read()
         self.assertIn("# made by: calibrate_experiments.py", text)
         self.assertIn("systematic resampling", text)
+        self.assertIn("# Run rocking_experiments with these arguments (common to every member): --direction 1\n", text)
         items = yaml.safe_load(text)["items"]
         self.assertEqual([i["id"] for i in items], [f"SP1#{j}" for j in range(10)] + [f"SP2#{j}" for j in range(10)])
         # the SP1 posterior sits on the --restitution 0.8 point: its members carry the key
