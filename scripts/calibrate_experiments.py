@@ -212,24 +212,27 @@ def evaluate(pred, y, folds_k=10, seed=20, e_grid=None, method="integrate", loo=
     out = {"fit": full, "p_in": p_in, "p_cv": p_cv, "in_sample": scores(p_in, y), "cv": scores(p_cv, y),
            "cv_folds": cv_fits, "fold_of_test": folds}
     # the noise-aware predictive (1 - 2e) P + e: what the likelihood itself says of a held-out test
-    out["in_sample"]["brier_with_e"] = float((((1 - 2 * full["e_mean"]) * p_in + full["e_mean"] - y) ** 2).mean())
-    out["cv"]["brier_with_e"] = brier_with_e(p_cv, y, folds, cv_fits)
+    out["p_in_e"] = (1 - 2 * full["e_mean"]) * p_in + full["e_mean"]
+    out["in_sample"]["brier_with_e"] = float(((out["p_in_e"] - y) ** 2).mean())
+    out["p_cv_e"] = with_e(p_cv, folds, cv_fits)
+    out["cv"]["brier_with_e"] = float(((out["p_cv_e"] - y) ** 2).mean())
     if loo:
         loo_folds = np.arange(len(y))
         p_loo, loo_fits = cross_validate(pred, y, loo_folds, e_grid, method)
         out["p_loo"] = p_loo
         out["loo"] = scores(p_loo, y)
-        out["loo"]["brier_with_e"] = brier_with_e(p_loo, y, loo_folds, loo_fits)
+        out["p_loo_e"] = with_e(p_loo, loo_folds, loo_fits)
+        out["loo"]["brier_with_e"] = float(((out["p_loo_e"] - y) ** 2).mean())
     return out
 
 
-def brier_with_e(p, y, folds, fits):
-    """Brier of each fold's noise-aware P: (1 - 2e) P + e with that fold's own e."""
+def with_e(p, folds, fits):
+    """Each fold's noise-aware P: (1 - 2e) P + e with that fold's own e."""
     q = np.empty_like(p)
     for f in fits:
         held = folds == f["fold"]
         q[held] = (1 - 2 * f["e_mean"]) * p[held] + f["e_mean"]
-    return float(((q - y) ** 2).mean())
+    return q
 
 
 # ================================================================ the grid
@@ -648,7 +651,7 @@ def main(argv=None):
                    "likelihood": "P(outcome = prediction) = 1 - e, e uniform on (0, 0.5); uniform prior over "
                                  "distinct grid points; predictive = posterior-weighted mean of predictions",
                    "refused": refused, "specimens": {}}
-        results, all_y, all_in, all_cv, all_loo = {}, [], [], [], []
+        results, all_y = {}, []
         for name, s in data.items():
             r = evaluate(s["pred"], s["y"], a.folds, a.seed, method=a.e_method, loo=not a.no_loo)
             results[name] = r
@@ -666,10 +669,6 @@ def main(argv=None):
                 "points": [{"index": i, "setting": p["label"], "geometry": p["geometry"], "runtime": p["runtime"],
                             "accuracy": float(acc[i]), "weight": float(w[i])} for i, p in enumerate(s["points"])]}
             all_y.append(s["y"])
-            all_in.append(r["p_in"])
-            all_cv.append(r["p_cv"])
-            if "p_loo" in r:
-                all_loo.append(r["p_loo"])
             with open(os.path.join(a.out_dir, f"predictions_{name}.csv"), "w") as fh:
                 fh.write("test,measured,p_in_sample,p_cv,fold" + (",p_loo" if "p_loo" in r else "") + "," +
                          ",".join(f"grid{i}" for i in range(len(s["points"]))) + "\n")
@@ -681,10 +680,13 @@ def main(argv=None):
                     fh.write(",".join(row) + "\n")
         if len(data) > 1:
             y = np.concatenate(all_y)
-            both = {"grid_points": "per specimen", "in_sample": scores(np.concatenate(all_in), y),
-                    "cv": scores(np.concatenate(all_cv), y)}
-            if all_loo:
-                both["loo"] = scores(np.concatenate(all_loo), y)
+            both = {"grid_points": "per specimen"}
+            for kind in ("in", "cv", "loo"):
+                key = {"in": "in_sample"}.get(kind, kind)
+                if all(f"p_{kind}" in r for r in results.values()):
+                    both[key] = scores(np.concatenate([results[n][f"p_{kind}"] for n in data]), y)
+                    q = np.concatenate([results[n][f"p_{kind}_e"] for n in data])
+                    both[key]["brier_with_e"] = float(((q - y) ** 2).mean())
             summary["both"] = both
         with open(os.path.join(a.out_dir, "summary.json"), "w") as fh:
             json.dump(summary, fh, indent=1)

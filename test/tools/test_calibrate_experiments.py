@@ -273,6 +273,10 @@ class Pipeline(unittest.TestCase):
             self.assertGreater(s["specimens"][name]["cv"]["accuracy"], 0.8)
             self.assertLess(abs(s["specimens"][name]["e_mean"] - 0.1), 0.05)
         self.assertEqual(s["both"]["cv"]["tests"], 2 * self.n)
+        for kind in ("in_sample", "cv", "loo"):  # equal test counts: both = the mean of the two
+            for key in ("accuracy", "brier", "brier_with_e"):
+                self.assertAlmostEqual(s["both"][kind][key], (s["specimens"]["SP1"][kind][key] +
+                                                              s["specimens"]["SP2"][kind][key]) / 2, places=12)
         with open(os.path.join(self.tmp.name, "cal.yaml")) as fh:
             text = fh.read()
         self.assertIn("# made by: calibrate_experiments.py", text)
