@@ -626,10 +626,12 @@ def main(argv=None):
     ap.add_argument("--com-shift-mm", nargs="+", default=["0,0"], metavar="DX,DY")
     ap.add_argument("--runtime", nargs="+", default=[""], metavar="'ARGS'",
                     help="one quoted argument string per runtime setting ('' = the defaults), passed "
-                         "to rocking_experiments, e.g. '' '--restitution 0.8' '--model 3d'")
+                         "to rocking_experiments, e.g. '' '--restitution 0.8' '--model 3d' (a string "
+                         "without a space that starts with '-' is taken for a flag: use the grid file)")
     ap.add_argument("--geometry-args", default="", metavar="'ARGS'",
-                    help="for every rocking_geometry.py call, e.g. '--planar-only'")
-    ap.add_argument("--common-args", default="", metavar="'ARGS'", help="for every rocking_experiments run")
+                    help="for every rocking_geometry.py call, e.g. --geometry-args=--planar-only (with '=')")
+    ap.add_argument("--common-args", default="", metavar="'ARGS'",
+                    help="for every rocking_experiments run, e.g. --common-args='--model 3d' (with '=')")
     ap.add_argument("--cache-dir", required=True)
     ap.add_argument("--out-dir", required=True)
     ap.add_argument("--jobs", type=int, default=2, help="parallel runs (at most 2)")
