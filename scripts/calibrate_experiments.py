@@ -49,7 +49,8 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 # Runtime flags with an equivalent catalogue key: a calibrated catalogue's members carry them as keys
 # (rocking_experiments applies a flag to every member, so members that differ need the key).
-RUNTIME_TO_KEY = {"--restitution": "restitution", "--mu-s": "mu_s"}
+RUNTIME_TO_KEY = {"--restitution": "restitution", "--mu-s": "mu_s",
+                  "--restitution-factor": "restitution_factor"}  # the last: 3-D items only
 
 
 class CalibrationError(Exception):

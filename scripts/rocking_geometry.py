@@ -246,9 +246,15 @@ def sig9(x):
     return float(f"{x:.9g}")
 
 
-def base_polygon(hull, tolerance=POLYGON_TOLERANCE):
+# The 3-D reader's limit (physics/base_body.hpp, kMaxBaseVertices).
+MAX_BASE_VERTICES = 64
+
+
+def base_polygon(hull, tolerance=POLYGON_TOLERANCE, max_vertices=MAX_BASE_VERTICES):
     """The hull as written: rounded to 9 digits, counter-clockwise, vertices within `tolerance` of
-    their neighbours' chord (or of their predecessor) dropped. Raises if fewer than 3 remain."""
+    their neighbours' chord (or of their predecessor) dropped. Raises if fewer than 3 remain.
+    Beyond max_vertices, the vertex cutting off the smallest triangle goes first (the polygon only
+    shrinks: the base errs toward less stable)."""
     pts = convex_hull_2d([[sig9(x), sig9(y)] for x, y in np.asarray(hull).tolist()])
     pts = [tuple(p) for p in np.asarray(pts).tolist()]
     changed = True
@@ -263,6 +269,11 @@ def base_polygon(hull, tolerance=POLYGON_TOLERANCE):
                 del pts[k]
                 changed = True
                 break
+    while len(pts) > max_vertices:
+        area = [abs((pts[k][0] - pts[k - 1][0]) * (pts[(k + 1) % len(pts)][1] - pts[k - 1][1])
+                    - (pts[k][1] - pts[k - 1][1]) * (pts[(k + 1) % len(pts)][0] - pts[k - 1][0]))
+                for k in range(len(pts))]
+        del pts[int(np.argmin(area))]
     if len(pts) < 3:
         raise GeometryError(f"base contact polygon has {len(pts)} vertices after dropping collinear ones "
                             f"(a point or a line): increase --contact-tolerance or check the placement")

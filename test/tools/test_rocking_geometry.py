@@ -270,6 +270,19 @@ class Test3dKeys(unittest.TestCase, Close):
         with self.assertRaisesRegex(rg.GeometryError, "vertices after dropping collinear"):
             rg.base_polygon([(0, 0), (0.1, 0.1), (0.2, 0.2 + 1e-8)])
 
+    def test_base_polygon_keeps_at_most_64_vertices(self):
+        n, r = 200, 0.2
+        circle = [(r * math.cos(2 * math.pi * k / n), r * math.sin(2 * math.pi * k / n)) for k in range(n)]
+        poly = rg.base_polygon(circle)
+        self.assertEqual(len(poly), 64)
+        area = 0.5 * sum(poly[k - 1][0] * poly[k][1] - poly[k][0] * poly[k - 1][1] for k in range(64))
+        full = 0.5 * n * r * r * math.sin(2 * math.pi / n)
+        self.assertGreater(area, 0.99 * full)  # a round base loses < 1 % of its area
+        self.assertLess(area, full)
+        for k in range(64):  # still strictly convex counter-clockwise
+            (ax, ay), (bx, by), (cx, cy) = poly[k - 2], poly[k - 1], poly[k]
+            self.assertGreater((bx - ax) * (cy - ay) - (by - ay) * (cx - ax), 0)
+
     def test_com_shift_moves_centre_with_parallel_axis_inertia(self):
         a, b, c, m, dx, dy = 0.4, 0.3, 1.0, 20.0, 0.03, -0.02
         v, f = box((-a / 2, -b / 2, 0.0), (a / 2, b / 2, c))
