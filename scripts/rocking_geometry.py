@@ -11,7 +11,11 @@ computes, exactly for the polyhedron (signed tetrahedra, homogeneous density):
     axis, about the horizontal axis perpendicular to the shaking);
   - the same across it (world y): the catalogue's second plane;
   - the catalogue entry (width, cg_height, eccentricity, radius_of_gyration; depth, eccentricity_y,
-    radius_of_gyration_y) that the monitor, rocking_sim and rocking_experiments read.
+    radius_of_gyration_y) that the monitor, rocking_sim and rocking_experiments read;
+  - the 3-D description in the same entry (mass, centre_of_mass, base_polygon, central_inertia), in
+    the floor frame of the placed body: z up, z = 0 the floor (the lowest vertex), x the shaking axis
+    (world x), y = z cross x (world y); base_polygon is the contact's convex hull, counter-clockwise
+    seen from above, without duplicate or (within 1 um) collinear vertices.
 
 The planar model (docs/validation.md) assumes both pivots on one flat floor: the entry uses the
 height of the centre of mass above the lowest vertex; the pivots' own heights (within the tolerance)
@@ -19,6 +23,8 @@ are reported, with the exact per-pivot alpha they would give.
 
   rocking_geometry.py MESH [--quaternion X Y Z W] [--mass KG] [--com X Y Z] ...
   rocking_geometry.py --granite DIR [--yaml OUT] [--plot-dir DIR]   (the two granite specimens)
+  ... [--com-shift DX DY]: the centre of mass moved horizontally after placement (calibration)
+  ... [--planar-only]: without the 3-D keys (for a catalogue reader that does not know them yet)
 """
 import argparse
 import gzip
@@ -229,10 +235,63 @@ def point_in_convex(hull, p):
     return True
 
 
+# A base_polygon vertex closer than this to the chord of its neighbours, or to its predecessor, is
+# dropped: far below a scan's resolution, and far above the 1e-10 m of the 9 printed digits, so the
+# printed polygon stays strictly convex (the 3-D catalogue reader rejects collinear vertices).
+POLYGON_TOLERANCE = 1e-6
+
+
+def sig9(x):
+    """x as printed with 9 significant digits, back as a float (what the YAML reader sees)."""
+    return float(f"{x:.9g}")
+
+
+# The 3-D reader's limit (physics/base_body.hpp, kMaxBaseVertices).
+MAX_BASE_VERTICES = 64
+
+
+def base_polygon(hull, tolerance=POLYGON_TOLERANCE, max_vertices=MAX_BASE_VERTICES):
+    """The hull as written: rounded to 9 digits, counter-clockwise, vertices within `tolerance` of
+    their neighbours' chord (or of their predecessor) dropped. Raises if fewer than 3 remain.
+    Beyond max_vertices, the vertex cutting off the smallest triangle goes first (the polygon only
+    shrinks: the base errs toward less stable)."""
+    pts = convex_hull_2d([[sig9(x), sig9(y)] for x, y in np.asarray(hull).tolist()])
+    pts = [tuple(p) for p in np.asarray(pts).tolist()]
+    changed = True
+    while changed and len(pts) >= 3:
+        changed = False
+        for k in range(len(pts)):
+            a, b, c = np.array(pts[k - 1]), np.array(pts[k]), np.array(pts[(k + 1) % len(pts)])
+            chord = c - a
+            length = np.linalg.norm(chord)
+            off = abs(chord[0] * (b - a)[1] - chord[1] * (b - a)[0]) / length if length > 0 else 0.0
+            if np.linalg.norm(b - a) < tolerance or off < tolerance:
+                del pts[k]
+                changed = True
+                break
+    while len(pts) > max_vertices:
+        area = [abs((pts[k][0] - pts[k - 1][0]) * (pts[(k + 1) % len(pts)][1] - pts[k - 1][1])
+                    - (pts[k][1] - pts[k - 1][1]) * (pts[(k + 1) % len(pts)][0] - pts[k - 1][0]))
+                for k in range(len(pts))]
+        del pts[int(np.argmin(area))]
+    if len(pts) < 3:
+        raise GeometryError(f"base contact polygon has {len(pts)} vertices after dropping collinear ones "
+                            f"(a point or a line): increase --contact-tolerance or check the placement")
+    # convex_hull_2d is counter-clockwise and dropping vertices keeps it convex: a check, not a repair
+    for k in range(len(pts)):
+        (ax, ay), (bx, by), (cx, cy) = pts[k - 2], pts[k - 1], pts[k]
+        if not (bx - ax) * (cy - ay) - (by - ay) * (cx - ax) > 0:
+            raise GeometryError("base contact polygon is not strictly convex counter-clockwise")
+    return [list(p) for p in pts]
+
+
 def rocking_geometry(vertices, faces, rotation=np.eye(3), mass=1.0, contact_tolerance=1e-3,
-                     com=None, settle_on_hull=False):
+                     com=None, settle_on_hull=False, com_shift=None):
     """All the quantities of the module docstring; `com` (mesh frame) overrides the homogeneous
-    centre of mass (a specimen's measured one); the inertia stays the mesh's about that point."""
+    centre of mass (a specimen's measured one); the inertia stays the mesh's about that point.
+    `com_shift` (dx, dy), m, floor frame: moves the centre of mass horizontally after placement and
+    settling (the settled face stays the one found for the unshifted centre); the inertia again the
+    mesh's about the moved point."""
     if not mass > 0:
         raise GeometryError(f"mass must be > 0 kg, got {mass}")
     if not contact_tolerance >= 0:
@@ -253,22 +312,54 @@ def rocking_geometry(vertices, faces, rotation=np.eye(3), mass=1.0, contact_tole
     placed = placed - np.array([0.0, 0.0, floor])  # floor at z = 0
     c = rotation @ com_mesh - np.array([0.0, 0.0, floor])
     inertia = rotation @ inertia_mesh @ rotation.T
+    if com_shift is not None:
+        d = np.array([com_shift[0], com_shift[1], 0.0], dtype=float)
+        if not np.all(np.isfinite(d)):
+            raise GeometryError(f"com shift must be finite, got {list(com_shift)}")
+        inertia = inertia + mass * (np.dot(d, d) * np.eye(3) - np.outer(d, d))
+        c = c + d
+    inertia = 0.5 * (inertia + inertia.T)  # exactly symmetric: the entry writes Ixy once for both
     used = np.unique(faces)
     low = placed[used]
     contact = low[low[:, 2] <= contact_tolerance]
     hull = convex_hull_2d(contact[:, :2])
+    px, py = plane(contact, c, inertia, mass, 0), plane(contact, c, inertia, mass, 1)
+    polygon = base_polygon(hull)
+    # over both pivot pairs is not enough in 3-D: an oblique base can leave the centre outside
+    if not point_in_convex(np.asarray(polygon), c[:2]):
+        raise GeometryError(f"centre of mass (x, y = {c[0]:.6g}, {c[1]:.6g} m) is not over the base "
+                            f"polygon: the placement is not at rest")
     result = {"volume": volume, "mass": mass, "density": mass / volume, "com": c.tolist(),
               "inertia": inertia.tolist(), "principal_inertia": sorted(np.linalg.eigvalsh(inertia).tolist()),
               "contact_points": int(len(contact)), "contact_tolerance": contact_tolerance,
               "settle_angle_deg": math.degrees(settle_angle), "rotation": rotation.tolist(),
-              "hull": hull.tolist(), "x": plane(contact, c, inertia, mass, 0),
-              "y": plane(contact, c, inertia, mass, 1)}
+              "hull": hull.tolist(), "base_polygon": polygon, "com_shift": None if com_shift is None
+              else [float(com_shift[0]), float(com_shift[1])], "x": px, "y": py}
     return result, placed
 
 
-def catalogue_entry(item_id, g, sensor="table", restitution_shift=None, mu_s=None):
-    """YAML text of a catalogue item (both planes), with the derivation in comments; an ensemble
-    member may also carry its restitution_shift (added to eq. 34 per pivot) and mu_s."""
+def fmt(x):
+    return f"{x:.9g}"
+
+
+def entry_3d(g):
+    """The entry's 3-D keys (floor frame, module docstring), one per line."""
+    c, i = g["com"], g["inertia"]
+    poly = ", ".join(f"[{fmt(x)}, {fmt(y)}]" for x, y in g["base_polygon"])
+    rows = ", ".join("[" + ", ".join(fmt(i[r][k]) for k in range(3)) + "]" for r in range(3))
+    shift = "" if not g.get("com_shift") else \
+        f", shifted by ({fmt(g['com_shift'][0])}, {fmt(g['com_shift'][1])}) m after placement"
+    return [f"    mass: {fmt(g['mass'])}   # kg",
+            f"    centre_of_mass: [{fmt(c[0])}, {fmt(c[1])}, {fmt(c[2])}]   # m, floor frame{shift}",
+            f"    base_polygon: [{poly}]   # m, contact hull, counter-clockwise from above",
+            f"    central_inertia: [{rows}]   # kg m^2, about the centre of mass (the homogeneous "
+            "mesh's about that point)"]
+
+
+def catalogue_entry(item_id, g, sensor="table", restitution_shift=None, mu_s=None, planar_only=False):
+    """YAML text of a catalogue item (both planes and the 3-D description), with the derivation in
+    comments; an ensemble member may also carry its restitution_shift (added to eq. 34 per pivot) and
+    mu_s. planar_only: without the 3-D keys."""
     x, y = g["x"], g["y"]
     lines = [f"  - id: {item_id}",
              f"    sensor: {sensor}",
@@ -283,6 +374,8 @@ def catalogue_entry(item_id, g, sensor="table", restitution_shift=None, mu_s=Non
         for k, piv in enumerate(p["pivots"], 1):
             lines.append(f"    # {name}-plane pivot {k}: alpha {math.degrees(piv['alpha']):.4f} deg, R "
                          f"{piv['radius']:.6f} m, I_O {piv['inertia']:.4f} kg m^2")
+    if not planar_only:
+        lines += entry_3d(g)
     if restitution_shift is not None:
         lines.append(f"    restitution_shift: {restitution_shift:.6f}   # added to eq. 34's ratio of each pivot")
     if mu_s is not None:
@@ -343,22 +436,36 @@ def plot_outline(path, title, placed, g):
     plt.close(fig)
 
 
-def granite(directory, tolerance, plot_dir=None, settle_on_hull=True):
+def specimen_specs(homogeneous=False, names=None):
+    """GRANITE, optionally every centre of mass homogeneous and only the named specimens."""
+    names = list(GRANITE) if not names else list(names)
+    for n in names:
+        if n not in GRANITE:
+            raise GeometryError(f"--specimen {n}: not one of {', '.join(GRANITE)}")
+    return {n: dict(GRANITE[n], com=None if homogeneous else GRANITE[n]["com"]) for n in names}
+
+
+def granite(directory, tolerance, plot_dir=None, settle_on_hull=True, homogeneous=False,
+            com_shift=None, names=None, planar_only=False):
     entries, results = [], {}
-    for name, spec in GRANITE.items():
+    for name, spec in specimen_specs(homogeneous, names).items():
         v, f = read_obj(os.path.join(directory, spec["mesh"]))
-        g, placed = rocking_geometry(v, f, quaternion_matrix(*spec["quaternion"]), spec["mass"],
-                                     tolerance, spec["com"], settle_on_hull)
+        try:
+            g, placed = rocking_geometry(v, f, quaternion_matrix(*spec["quaternion"]), spec["mass"],
+                                         tolerance, spec["com"], settle_on_hull, com_shift)
+        except GeometryError as e:
+            raise GeometryError(f"{name}: {e}")
         g["open_edges"] = open_edges(v, f)
         results[name] = g
-        entries.append(catalogue_entry(name, g))
+        entries.append(catalogue_entry(name, g, planar_only=planar_only))
         if plot_dir:
             plot_outline(os.path.join(plot_dir, f"granite_{name}.png"), name, placed, g)
     return results, entries
 
 
 def granite_ensemble(directory, members, seed, tolerance, max_tilt_deg=5.0, tol_range=(5e-4, 2e-3),
-                     restitution_spread=0.05, mu_range=(0.5, 0.8)):
+                     restitution_spread=0.05, mu_range=(0.5, 0.8), homogeneous=False, com_shift=None,
+                     names=None, planar_only=False):
     """Members of each specimen's geometric uncertainty, member 0 the nominal (granite()): the
     placement tilted by up to max_tilt_deg about a random horizontal axis (the configuration's
     orientation is itself uncertain) then settled, the contact tolerance log-uniform in tol_range,
@@ -367,12 +474,13 @@ def granite_ensemble(directory, members, seed, tolerance, max_tilt_deg=5.0, tol_
     each pivot; 0 = not sampled) and mu_s uniform in mu_range (None = not sampled: pure rocking),
     each from its own generator so that the geometry draws do not depend on them.
     Returns the YAML entries (ids SP1#k) and the number of members refused (no resting face or a
-    line contact), which are reported, not replaced."""
+    line contact), which are reported, not replaced. com_shift moves every member's centre of mass.
+    With names, only those specimens (the draws are then not those of the full ensemble's)."""
     rng = np.random.default_rng(seed)
     rng_e = np.random.default_rng([seed, 1])
     rng_mu = np.random.default_rng([seed, 2])
     entries, refused = [], 0
-    for name, spec in GRANITE.items():
+    for name, spec in specimen_specs(homogeneous, names).items():
         v, f = read_obj(os.path.join(directory, spec["mesh"]))
         q = quaternion_matrix(*spec["quaternion"])
         for k in range(members):
@@ -393,12 +501,13 @@ def granite_ensemble(directory, members, seed, tolerance, max_tilt_deg=5.0, tol_
                 if spec["com"] is not None and rng.uniform() < 0.5:
                     com = None
             try:
-                g, _ = rocking_geometry(v, f, rot, spec["mass"], tol, com, True)
+                g, _ = rocking_geometry(v, f, rot, spec["mass"], tol, com, True, com_shift)
             except GeometryError as e:
                 refused += 1
                 print(f"rocking_geometry: {name} member {k} refused: {e}", file=sys.stderr)
                 continue
-            entries.append(catalogue_entry(f"{name}#{k}", g, restitution_shift=shift, mu_s=mu))
+            entries.append(catalogue_entry(f"{name}#{k}", g, restitution_shift=shift, mu_s=mu,
+                                           planar_only=planar_only))
     return entries, refused
 
 
@@ -419,6 +528,14 @@ def main(argv=None):
     ap.add_argument("--no-settle", action="store_true", help="with --granite: use the placement as given")
     ap.add_argument("--homogeneous", action="store_true",
                     help="with --granite: the mesh's own centre of mass for every specimen")
+    ap.add_argument("--specimen", action="append", metavar="NAME",
+                    help="with --granite: only this specimen (repeatable; default all)")
+    ap.add_argument("--com-shift", nargs=2, type=float, metavar=("DX", "DY"),
+                    help="move the centre of mass by DX, DY m (floor frame, horizontal) after "
+                         "placement and settling: the scanned rock's centre is uncertain (calibration)")
+    ap.add_argument("--planar-only", action="store_true",
+                    help="omit the 3-D keys (mass, centre_of_mass, base_polygon, central_inertia): "
+                         "for a rocking_experiments/monitor built before its reader knew them")
     ap.add_argument("--ensemble", type=int, default=0, metavar="N",
                     help="with --granite: N members per specimen of its geometric uncertainty "
                          "(ids SP1#k; rocking_experiments gives P(overturn))")
@@ -436,10 +553,9 @@ def main(argv=None):
     ap.add_argument("--plot-dir", help="outline pictures (PNG) here")
     a = ap.parse_args(argv)
     try:
+        if not a.granite and (a.homogeneous or a.specimen):
+            raise GeometryError("--homogeneous and --specimen need --granite DIR")
         if a.granite:
-            if a.homogeneous:
-                for spec in GRANITE.values():
-                    spec["com"] = None
             if a.ensemble > 0:
                 if not 0.0 <= a.restitution_spread <= 1.0:
                     raise GeometryError(f"--restitution-spread {a.restitution_spread}: must lie in [0, 1]")
@@ -448,18 +564,20 @@ def main(argv=None):
                 entries, refused = granite_ensemble(
                     a.granite, a.ensemble, a.seed, a.contact_tolerance,
                     restitution_spread=a.restitution_spread,
-                    mu_range=None if a.no_friction else tuple(a.mu_s))
+                    mu_range=None if a.no_friction else tuple(a.mu_s), homogeneous=a.homogeneous,
+                    com_shift=a.com_shift, names=a.specimen, planar_only=a.planar_only)
                 results = {}
                 print(f"rocking_geometry: {len(entries)} members written, {refused} refused",
                       file=sys.stderr)
             else:
-                results, entries = granite(a.granite, a.contact_tolerance, a.plot_dir, not a.no_settle)
+                results, entries = granite(a.granite, a.contact_tolerance, a.plot_dir, not a.no_settle,
+                                           a.homogeneous, a.com_shift, a.specimen, a.planar_only)
         elif a.mesh:
             v, f = read_obj(a.mesh)
             g, placed = rocking_geometry(v, f, quaternion_matrix(*a.quaternion), a.mass,
-                                         a.contact_tolerance, a.com, a.settle)
+                                         a.contact_tolerance, a.com, a.settle, a.com_shift)
             g["open_edges"] = open_edges(v, f)
-            results, entries = {a.id: g}, [catalogue_entry(a.id, g)]
+            results, entries = {a.id: g}, [catalogue_entry(a.id, g, planar_only=a.planar_only)]
             if a.plot_dir:
                 plot_outline(os.path.join(a.plot_dir, f"{a.id}.png"), a.id, placed, g)
         else:
@@ -467,8 +585,9 @@ def main(argv=None):
     except GeometryError as e:
         print(f"rocking_geometry: {e}", file=sys.stderr)
         return 2
+    made_by = " ".join(["rocking_geometry.py"] + list(sys.argv[1:] if argv is None else argv))
     text = ("# rocking_geometry: catalogue entries derived from meshes "
-            f"(contact tolerance {a.contact_tolerance} m)\nitems:\n" + "".join(entries))
+            f"(contact tolerance {a.contact_tolerance} m)\n# made by: {made_by}\nitems:\n" + "".join(entries))
     if a.yaml:
         with open(a.yaml, "w") as out:
             out.write(text)
