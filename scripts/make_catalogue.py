@@ -21,6 +21,8 @@ p.add_argument("--rate", type=float, default=200.0)
 p.add_argument("--single-plane", action="store_true", help="no depth: x-z plane only")
 p.add_argument("--uncertain", action="store_true",
                help="mu_s uniform +-0.1 and cg_height normal (sd 4 %%) around the drawn values: ensembles")
+p.add_argument("--solid", action="store_true",
+               help="also the 3-D description of each item (a homogeneous box on its four corners)")
 a = p.parse_args()
 rng = random.Random(a.seed)
 with open(a.out, "w") as f:
@@ -39,6 +41,14 @@ with open(a.out, "w") as f:
             muv = "{uniform: [%.2f, %.2f], nominal: %.2f}" % (max(0.05, mu - 0.1), mu + 0.1, mu)
         else:
             hv, muv = "%.3f" % h, "%.2f" % mu
+        solid = ""
+        if a.solid:
+            dd = 0.5 * b if a.single_plane else d
+            ny = 0.5 if a.single_plane else nu_y
+            solid = ("mass: 1.0, centre_of_mass: [%.6f, %.6f, %.3f], central_inertia: [[%.6g, 0, 0], [0, %.6g, 0], "
+                     "[0, 0, %.6g]], base_polygon: [[0, 0], [%.3f, 0], [%.3f, %.3f], [0, %.3f]], " % (
+                         nu * b, ny * dd, h, (dd * dd + 4 * h * h) / 12, (b * b + 4 * h * h) / 12,
+                         (b * b + dd * dd) / 12, b, b, dd, dd))
         f.write("  - {id: item%05d, sensor: floor, width: %.3f, %scg_height: %s, eccentricity: %.2f, "
-                "mu_s: %s, pose: {parent_frame: %s, x: %.2f, y: %.2f, yaw: %.3f}}\n" % (
-                    i, b, depth, hv, nu, muv, a.frame, x, y, yaw))
+                "mu_s: %s, %spose: {parent_frame: %s, x: %.2f, y: %.2f, yaw: %.3f}}\n" % (
+                    i, b, depth, hv, nu, muv, solid, a.frame, x, y, yaw))

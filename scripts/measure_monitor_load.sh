@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Measures the live monitor's processing time per input sample for catalogues of N items:
-#   [THREADS=k] [FIDELITY=adaptive|rocking|contact] [PLANES=2|1] [UNCERTAIN=0|1] [RATE=r] [START_DELAY=s] bash scripts/measure_monitor_load.sh BAG [N ...]
+#   [THREADS=k] [FIDELITY=adaptive|rocking|contact] [PLANES=2|1] [UNCERTAIN=0|1] [SOLID=0|1] [RATE=r] [START_DELAY=s] bash scripts/measure_monitor_load.sh BAG [N ...]
 #   (default N: 1 100 10000)
 # Replays BAG (sensor_msgs/Imu on /ground/imu) at real time through a monitor fed by a synthetic
 # catalogue of N items (two rocking planes each; PLANES=1: no depth; UNCERTAIN=1: ensembles of
@@ -19,9 +19,10 @@ for n in "${counts[@]}"; do
   cat=$(mktemp --suffix=.yaml)
   single=(); [ "${PLANES:-2}" = 1 ] && single=(--single-plane)
   [ "${UNCERTAIN:-0}" = 1 ] && single+=(--uncertain)
+  [ "${SOLID:-0}" = 1 ] && single+=(--solid)  # with solid_model 3d: every item runs the 3-D model
   /usr/bin/python3 scripts/make_catalogue.py "$n" "$cat" "${single[@]}"
   log=$(mktemp)
-  roslaunch rocking_monitor replay.launch bag:="$bag" catalogue:="$cat" required:=true start_delay:="${START_DELAY:-3}" rate:="${RATE:-1}" threads:="${THREADS:-1}" fidelity:="${FIDELITY:-adaptive}" \
+  roslaunch rocking_monitor replay.launch bag:="$bag" catalogue:="$cat" required:=true start_delay:="${START_DELAY:-3}" rate:="${RATE:-1}" threads:="${THREADS:-1}" fidelity:="${FIDELITY:-adaptive}" solid_model:="$([ "${SOLID:-0}" = 1 ] && echo 3d || echo auto)" \
     > "$log" 2>&1 &
   pid=$!
   diag=""

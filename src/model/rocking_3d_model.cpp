@@ -130,6 +130,22 @@ double Rocking3DModel::rotation_ratio() const {
   return beyond ? 1.0 + phi / v.alpha : 1.0 - phi / v.alpha;
 }
 
+OverturnMargin Rocking3DModel::margin() const {
+  switch (mode_) {
+    case Mode3D::Rest: return {1.0, false};
+    case Mode3D::Overturned: return {-1.0, true};
+    case Mode3D::Edge:
+      return overturn_margin(body_.edge(contact_).pivot, 1, ModelKind::Nonlinear, theta_, omega_);
+    case Mode3D::Vertex: break;
+  }
+  const BaseVertex& v = body_.vertex(contact_);
+  const double height = (vertex_rotation(y_) * v.to_centre).z();
+  const double energy = kinetic_energy() + kGravity * height;
+  const double tip = kGravity * v.radius, rest = kGravity * v.to_centre.z();
+  const double m = (tip - energy) / (tip - rest);
+  return {m, m < 0.0};
+}
+
 double Rocking3DModel::kinetic_energy() const {
   if (mode_ == Mode3D::Edge) return 0.5 * body_.edge(contact_).pivot.inertia * omega_ * omega_;
   if (mode_ != Mode3D::Vertex) return 0.0;

@@ -12,11 +12,49 @@ const ItemSpec& checked(const ItemSpec& spec) {
 
 int level_index(ItemMode m) { return static_cast<int>(m) - static_cast<int>(ItemMode::BeyondTipping); }
 
+// A rectangle with its sides along the item's x and y (within 1e-6 of its size): the planar pair is
+// exact for it under one component along a side.
+bool axis_aligned_rectangle(const BaseBodyParameters& b) {
+  if (b.base.size() != 4) return false;
+  double size = 0.0;
+  for (const auto& v : b.base) size = std::max(size, (v - b.base[0]).norm());
+  for (std::size_t i = 0; i < 4; ++i) {
+    const Eigen::Vector2d d = b.base[(i + 1) % 4] - b.base[i];
+    if (std::min(std::abs(d.x()), std::abs(d.y())) > 1e-6 * size) return false;
+  }
+  return true;
+}
+
 }  // namespace
+
+const char* to_string(SolidChoice choice) {
+  switch (choice) {
+    case SolidChoice::Planar: return "planar";
+    case SolidChoice::Solid: return "3d";
+    case SolidChoice::Auto: return "auto";
+  }
+  return "unknown";
+}
+
+bool parse_solid_choice(const std::string& text, SolidChoice& choice) {
+  if (text == "planar") choice = SolidChoice::Planar;
+  else if (text == "3d") choice = SolidChoice::Solid;
+  else if (text == "auto") choice = SolidChoice::Auto;
+  else return false;
+  return true;
+}
 
 ItemMonitor::ItemMonitor(const ItemSpec& spec, const Options& options) : spec_(checked(spec)) {
   planes_[0] = std::make_unique<PlaneMonitor>(spec_.body, options);
   if (spec_.two_planes()) planes_[1] = std::make_unique<PlaneMonitor>(y_plane_body(spec_.body, spec_.depth), options);
+  if (spec_.solid && options.solid != SolidChoice::Planar) {
+    SolverSettings s = options.solver;
+    s.method = Method::Dopri5;  // the 3-D model's only integrator
+    s.model = ModelKind::Nonlinear;
+    solid_ = std::make_unique<Rocking3DModel>(BaseBody(*spec_.solid), s);
+    solid_always_ = options.solid == SolidChoice::Solid || !axis_aligned_rectangle(*spec_.solid);
+    bidirectional_ratio_ = options.bidirectional_ratio;
+  }
 }
 
 void ItemMonitor::start(double t, double ax, double ay, double az, double dt_nominal) {
@@ -27,11 +65,31 @@ void ItemMonitor::start(double t, double ax, double ay, double az, double dt_nom
   alarmed_ = marked_;
   events_ = ItemEvents{};
   started_ = true;
+  t_ = t;
+  last_a_ = Eigen::Vector3d(ax, ay, az);
+  peak_x_ = std::abs(ax);
+  peak_y_ = std::abs(ay);
+  if (solid_) {
+    solid_->reset(t, last_a_);
+    solid_active_ = solid_always_;
+  }
 }
 
 const ItemEvents& ItemMonitor::step(double ax, double ay, double az, double dt) {
   events_.change_count = 0;
   events_.alarm_count = 0;
+  if (solid_ && !solid_active_) {
+    // Auto: the 3-D model takes over at rest once the shaking is bidirectional; until then it only
+    // needs the time and the last input (reset below when it takes over).
+    peak_x_ = std::max(peak_x_, std::abs(ax));
+    peak_y_ = std::max(peak_y_, std::abs(ay));
+    const bool at_rest = mode() == ItemMode::Rest;
+    if (at_rest && std::min(peak_x_, peak_y_) >= bidirectional_ratio_ * std::max(peak_x_, peak_y_) &&
+        std::max(peak_x_, peak_y_) > 0.0) {
+      solid_->reset(t_, last_a_);
+      solid_active_ = true;
+    }
+  }
   const PlaneEvents* ev[kPlaneCount] = {&planes_[0]->step(ax, az, dt), nullptr};
   last_input_[0] = {ax, az};
   if (planes_[1]) {
@@ -45,6 +103,28 @@ const ItemEvents& ItemMonitor::step(double ax, double ay, double az, double dt) 
       c = ev[p]->changes[i];
       c.plane = static_cast<Plane>(p);
     }
+  }
+  t_ += dt;
+  last_a_ = Eigen::Vector3d(ax, ay, az);
+  if (solid_active_) {
+    // The 3-D model decides the item's levels (reported in the x plane's slot).
+    const RockingOutcome& o = solid_->outcome();
+    const bool tipped = o.beyond_tipping, committed = o.committed, overturned = o.overturned;
+    solid_->step(last_a_, dt);
+    auto alarm = [&](ItemMode level, bool before, bool now, double time) {
+      const int l = level_index(level);
+      if (before || !now || alarmed_[l]) return;
+      alarmed_[l] = true;
+      AlarmEvent& a = events_.alarms[events_.alarm_count++];
+      a.level = level;
+      a.plane = Plane::X;
+      a.time = time;
+      a.rotation_ratio = solid_->rotation_ratio();
+    };
+    alarm(ItemMode::BeyondTipping, tipped, o.beyond_tipping, o.beyond_tipping_time);
+    alarm(ItemMode::Committed, committed, o.committed, o.committed_time);
+    alarm(ItemMode::Overturned, overturned, o.overturned, o.overturn_time);
+    return events_;
   }
   // Item-level alarms: each level once, from the plane that reached it first in this sample (tie: x).
   for (ItemMode level : {ItemMode::BeyondTipping, ItemMode::Committed, ItemMode::Overturned}) {
@@ -83,6 +163,15 @@ bool ItemMonitor::alarmed(ItemMode level) const {
 }
 
 ItemMode ItemMonitor::mode() const {
+  if (solid_active_) {
+    switch (solid_->mode()) {
+      case Mode3D::Rest: return ItemMode::Rest;
+      case Mode3D::Overturned: return ItemMode::Overturned;
+      default: break;
+    }
+    if (solid_->committed_now()) return ItemMode::Committed;
+    return solid_->rotation_ratio() > 1.0 ? ItemMode::BeyondTipping : ItemMode::Rocking;
+  }
   const ItemMode x = planes_[0]->mode();
   if (!planes_[1]) return x;
   const ItemMode y = planes_[1]->mode();

@@ -22,7 +22,8 @@ void MonitorBatch::refresh(std::size_t k) {
   Lane& lane = lanes_[k];
   lane.deferred = 0;
   lane.planes = item.plane_count();
-  lane.eligible = item.started();
+  // Items with a 3-D model are stepped one by one (its lanes in the batch: issue 28).
+  lane.eligible = item.started() && item.solid() == nullptr;
   for (int p = 0; p < lane.planes && lane.eligible; ++p) {
     const PlaneMonitor& pm = *item.planes_[p];
     PlaneLane& pl = lane.plane[p];

@@ -1,8 +1,10 @@
 // Dashboard's HTTP server (cpp-httplib): the page and its assets, /api/snapshot and /api/events.
 // Read-only: GET only, no commands.
-#include <httplib.h>
-
+// The project's headers first: httplib pulls in <resolv.h>, whose `_res` macro breaks Eigen's
+// headers (reached through the catalogue's 3-D items) when they come after it.
 #include "rocking_monitor/ros/dashboard.hpp"
+
+#include <httplib.h>
 
 namespace rocking_monitor::live {
 

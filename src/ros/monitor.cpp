@@ -47,7 +47,7 @@ RockingMonitor::RockingMonitor(::ros::NodeHandle nh, ::ros::NodeHandle pnh) : nh
 RockingMonitor::~RockingMonitor() = default;
 
 bool RockingMonitor::load_parameters() {
-  std::string method = "dopri5", model = "nonlinear", baseline = "tracked", fidelity = "adaptive";
+  std::string method = "dopri5", model = "nonlinear", baseline = "tracked", fidelity = "adaptive", solid = "auto";
   int substeps = options_.solver.substeps;
   bool ok = param(pnh_, "method", method, "string") && param(pnh_, "model", model, "string") &&
             param(pnh_, "tol", options_.solver.tol, "number") && param(pnh_, "substeps", substeps, "integer") &&
@@ -70,6 +70,8 @@ bool RockingMonitor::load_parameters() {
             param(pnh_, "publish_tf", publish_tf_, "bool") && param(pnh_, "threads", threads_, "integer") &&
             param(pnh_, "marker_rate", marker_rate_, "number") &&
             param(pnh_, "fidelity", fidelity, "string") && param(pnh_, "shard", shard_, "string (k/n)") &&
+            param(pnh_, "solid_model", solid, "string") &&
+            param(pnh_, "bidirectional_ratio", options_.bidirectional_ratio, "number") &&
             param(pnh_, "ensemble_size", ensemble_size_, "integer") && param(pnh_, "ensemble_seed", ensemble_seed_, "integer") &&
             param(pnh_, "alarm_probability", alarm_probability_, "number");
   double scene_h = 0.0, scene_v = 0.0;
@@ -108,6 +110,15 @@ bool RockingMonitor::load_parameters() {
   }
   if (!core::parse_fidelity(fidelity.c_str(), options_.fidelity)) {
     ROS_FATAL("rocking_monitor: ~fidelity '%s' is not one of rocking, adaptive, contact", fidelity.c_str());
+    return false;
+  }
+  if (!core::parse_solid_choice(solid, options_.solid)) {
+    ROS_FATAL("rocking_monitor: ~solid_model '%s' is not one of auto, 3d, planar (items with a base_polygon)",
+              solid.c_str());
+    return false;
+  }
+  if (!(options_.bidirectional_ratio >= 0.0 && options_.bidirectional_ratio <= 1.0)) {
+    ROS_FATAL("rocking_monitor: ~bidirectional_ratio = %g must be in [0, 1]", options_.bidirectional_ratio);
     return false;
   }
   if (!core::parse_model(model, options_.solver.model)) {

@@ -196,6 +196,20 @@ void RockingMonitor::fill_state(const Item& it, RockingState& out) const {
   out.contact_mode = w.contact_mode;
   out.slip = w.slip;
   out.model = w.model;
+  if (const core::Rocking3DModel* solid = im.solid(); solid && im.solid_active()) {
+    out.model = "rocking_3d";
+    out.pivot = 0;
+    out.tilt = solid->tilt();
+    out.theta = out.tilt;
+    out.theta_dot = solid->angular_velocity().norm();
+    out.rotation_ratio = solid->rotation_ratio();
+    out.impacts = static_cast<std::uint32_t>(solid->outcome().impacts);
+    out.energy_margin = solid->margin().margin;
+    const int k = solid->contact();
+    out.contact.clear();
+    if (solid->mode() == core::Mode3D::Edge) out.contact.append("edge ").append(std::to_string(k + 1));
+    if (solid->mode() == core::Mode3D::Vertex) out.contact.append("vertex ").append(std::to_string(k + 1));
+  }
   out.input_stamp = input_stamp(it);
   out.stale = sensors_[it.sensor].stale_now;
   if (it.ensemble) {
@@ -295,6 +309,14 @@ void RockingMonitor::publish_markers_and_tf() {
       depth = d.width();
       valid = valid && py.violations() == 0;
       centre_y = (d.nu2() - d.nu1()) * d.width() / 2.0;
+    }
+    if (const core::Rocking3DModel* solid = it.monitor->solid(); solid && it.monitor->solid_active()) {
+      // The 3-D model's own pose (full orientation, the pivot it turns about), moved from the
+      // catalogue's floor frame to the item frame (origin on the floor below the centre of mass).
+      const Eigen::Vector3d& c = solid->body().centre_of_mass();
+      const Eigen::Vector3d below(c.x(), c.y(), 0.0);
+      pose.linear() = solid->rotation();
+      pose.translation() = solid->rotation() * below + solid->translation() - below;
     }
     const Eigen::Matrix3d r = pose.linear();
     const Eigen::Vector3d shift = pose.translation();

@@ -216,11 +216,12 @@ TestPrediction predict_table_test_3d(const BaseBodyParameters& parameters, const
   p.test = test.number;
   p.specimen = specimen;
   const double s = settings.direction >= 0 ? 1.0 : -1.0;
-  // Static uplift in 3-D: some hull edge's moment lifts it at some sample (the table is along x).
+  const Eigen::Vector3d axis(std::cos(settings.table_azimuth), std::sin(settings.table_azimuth), 0.0);
+  // Static uplift in 3-D: some hull edge's moment lifts it at some sample.
   for (double a : test.accel_mps2) {
     for (int k = 0; k < body.vertex_count() && !p.exceeds_static_uplift; ++k) {
       const BaseEdge& e = body.edge(k);
-      const double a_n = -(s * a) * e.normal.x();
+      const double a_n = -(s * a) * e.normal.dot(axis);
       p.exceeds_static_uplift = uplift_function(e.pivot, 1, ModelKind::Nonlinear, a_n, 0.0) > 0.0;
     }
     if (p.exceeds_static_uplift) break;
@@ -253,10 +254,10 @@ TestPrediction predict_table_test_3d(const BaseBodyParameters& parameters, const
     history->clear();
     history->reserve(test.accel_mps2.size() + static_cast<std::size_t>(tail));
   }
-  model.reset(0.0, Eigen::Vector3d(s * test.accel_mps2.front(), 0.0, 0.0));
+  model.reset(0.0, s * test.accel_mps2.front() * axis);
   keep(s * test.accel_mps2.front());
   for (std::size_t i = 1; i < test.accel_mps2.size(); ++i) {
-    model.step(Eigen::Vector3d(s * test.accel_mps2[i], 0.0, 0.0), test.dt);
+    model.step(s * test.accel_mps2[i] * axis, test.dt);
     ++sample;
     keep(s * test.accel_mps2[i]);
     if (model.outcome().overturned) break;

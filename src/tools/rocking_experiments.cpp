@@ -51,12 +51,16 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({-1, 1}));
   app.add_option("--tail", tail_s, "s of table at rest after each record (default 5)");
   app.add_option("--max-tests", max_tests, "only the first N tests (0 = all)");
-  std::string model_name = "planar";
+  std::string model_name = "auto";
   double restitution_factor = std::nan("");
   app.add_option("--model", model_name, "planar: each specimen's x-z plane (pivots on a line across "
                  "the shaking); 3d: the rigid body on its base polygon (needs the catalogue's 3-D keys: "
-                 "base_polygon, centre_of_mass, central_inertia, mass)")
-      ->check(CLI::IsMember({"planar", "3d"}));
+                 "base_polygon, centre_of_mass, central_inertia, mass); auto (default): 3d for a "
+                 "catalogue whose items all have them, else planar")
+      ->check(CLI::IsMember({"planar", "3d", "auto"}));
+  double azimuth_deg = 0.0;
+  app.add_option("--table-azimuth", azimuth_deg, "3d: the table's axis turned from the catalogue's x "
+                 "towards y by this angle, deg (the specimen's placement on the table is uncertain)");
   app.add_option("--restitution-factor", restitution_factor, "3d: multiplies the angular velocity "
                  "after each impact of the 3-D law, in [0, 1] (default: the catalogue's, else 1)");
   std::string histories, history_tests = "misses";
@@ -74,7 +78,9 @@ int main(int argc, char** argv) {
     const auto items = rm::load_catalogue_items_file(catalogue);
     // Items "SP1#3" are members of SP1's ensemble (rocking_geometry.py --ensemble): P(overturn) is
     // the fraction of members that overturn, the prediction P >= 0.5.
-    const bool solid = model_name == "3d";
+    bool solid = model_name == "3d";
+    if (model_name == "auto")
+      solid = !items.empty() && std::all_of(items.begin(), items.end(), [](const auto& i) { return i.spec.solid.has_value(); });
     struct Member { rm::BodyParameters planar; rm::BaseBodyParameters solid; };
     struct Specimen { std::string id; std::vector<Member> members; int column; };
     std::vector<Specimen> specimens;
@@ -160,6 +166,9 @@ int main(int argc, char** argv) {
     rm::ExperimentSettings settings;
     settings.direction = direction;
     settings.tail_s = tail_s;
+    settings.table_azimuth = azimuth_deg * M_PI / 180.0;
+    if (!solid && azimuth_deg != 0.0)
+      throw std::runtime_error("--table-azimuth needs the 3-D model (--model 3d): a planar plane has one axis");
     auto predict = [&](const Member& m, const std::string& id, const rm::TableTest& test,
                        std::vector<rm::TableHistorySample>* h) {
       return solid ? rm::predict_table_test_3d(m.solid, id, test, settings, h)
@@ -242,9 +251,11 @@ int main(int argc, char** argv) {
         }
       }
     }
-    std::printf("rocking_experiments: %zu tests x %zu specimens, direction %+d, restitution %s\n",
-                files.size(), specimens.size(), direction,
-                std::isnan(restitution) ? "eq. 34" : std::to_string(restitution).c_str());
+    std::printf("rocking_experiments: %zu tests x %zu specimens, direction %+d, model %s, restitution %s\n",
+                files.size(), specimens.size(), direction, solid ? "3d" : "planar",
+                solid ? (std::isnan(restitution_factor) ? "3-D law x the catalogue's factor"
+                                                        : ("3-D law x " + std::to_string(restitution_factor)).c_str())
+                      : (std::isnan(restitution) ? "eq. 34" : std::to_string(restitution).c_str()));
     for (const auto& [id, c] : per) print_scores(id, c);
     print_scores("all", all);
     if (std::any_of(specimens.begin(), specimens.end(), [](const Specimen& sp) { return sp.members.size() > 1; })) {

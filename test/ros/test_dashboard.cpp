@@ -15,13 +15,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <httplib.h>
 #include <nlohmann/json.hpp>
 #include <ros/ros.h>
 
 #include "rocking_monitor/OverturnAlarm.h"
 #include "rocking_monitor/RockingStateArray.h"
 #include "rocking_monitor/ros/catalogue.hpp"
+
+// After the project's headers: httplib's <resolv.h> defines `_res`, which breaks Eigen's headers.
+#include <httplib.h>
 
 namespace rocking_monitor::test {
 namespace {

@@ -80,6 +80,12 @@ class Rocking3DModel {
   /// EDGE: theta / alpha of the edge; VERTEX: how far the centre of mass has turned towards the
   /// vertical through the vertex, as a fraction of the way (1 above it, > 1 beyond); 0 at rest.
   double rotation_ratio() const;
+  /// Energy distance to overturning if the shaking stopped now, in units of the energy that lifts
+  /// the body from rest to its tipping point (+1 at rest, < 0 committed). EDGE: the planar margin
+  /// about the edge; VERTEX: kinetic plus potential energy against the centre of mass standing
+  /// straight above the vertex (necessary for falling over it, not sufficient: the body may pass by).
+  OverturnMargin margin() const;
+  bool committed_now() const { return margin().committed; }
   /// Kinetic energy per unit mass, J/kg.
   double kinetic_energy() const;
   double time() const { return t_; }

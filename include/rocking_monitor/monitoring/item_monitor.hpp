@@ -3,6 +3,7 @@
 #include <array>
 #include <memory>
 
+#include "rocking_monitor/model/rocking_3d_model.hpp"
 #include "rocking_monitor/monitoring/item_modes.hpp"
 #include "rocking_monitor/monitoring/item_spec.hpp"
 #include "rocking_monitor/monitoring/plane_monitor.hpp"
@@ -47,6 +48,10 @@ class ItemMonitor {
   Plane worst_plane() const;
   /// The more severe mode of the planes; OVERTURNED once any plane overturned.
   ItemMode mode() const;
+  /// The 3-D model, when the item has a 3-D description and the options allow it (else null).
+  const Rocking3DModel* solid() const { return solid_.get(); }
+  /// Whether the 3-D model decides the item's state and alarms now (SolidChoice, Options::solid).
+  bool solid_active() const { return solid_active_; }
   /// Screening criterion exceeded so far in plane p.
   bool screening_exceeded(Plane p, CriterionId id) const { return plane(p).screening_exceeded(id); }
 
@@ -59,6 +64,13 @@ class ItemMonitor {
   bool started_ = false;
   ItemEvents events_;
   std::array<std::array<double, 2>, kPlaneCount> last_input_{};  // each plane's last (horizontal, vertical), m/s^2
+  // 3-D: the model, whether it is in charge, whether it always is (base not an axis-aligned
+  // rectangle, or SolidChoice::Solid), the running horizontal peaks for the bidirectional test.
+  std::unique_ptr<Rocking3DModel> solid_;
+  bool solid_active_ = false, solid_always_ = false;
+  double bidirectional_ratio_ = 0.3;
+  double peak_x_ = 0.0, peak_y_ = 0.0, t_ = 0.0;
+  Eigen::Vector3d last_a_ = Eigen::Vector3d::Zero();
 };
 
 }  // namespace rocking_monitor::core

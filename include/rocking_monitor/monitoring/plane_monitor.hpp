@@ -13,6 +13,14 @@
 
 namespace rocking_monitor::core {
 
+/// Planar: the planar pair always; Solid: the 3-D model always; Auto: the 3-D model when the base is
+/// not an axis-aligned rectangle (oblique or irregular) or the shaking is bidirectional, else the
+/// planar pair (the cheaper model where it is exact: a rectangle under one component along a side).
+enum class SolidChoice : std::uint8_t { Planar, Solid, Auto };
+const char* to_string(SolidChoice choice);
+/// "planar" | "3d" | "auto"; false for an unknown name.
+bool parse_solid_choice(const std::string& text, SolidChoice& choice);
+
 /// One rocking plane of a live item: the planar rocking model plus its running screening criteria
 /// (Housner from the running 5 %-damped pseudo-velocity at housner_period(), Ishiyama and variants from
 /// running PGA and high-pass PGV of the plane's own horizontal input) and the model-validity criteria.
@@ -30,6 +38,12 @@ class PlaneMonitor {
     SceneEnvelope scene{};
     /// Adaptive: linearized tier for slender items (AdaptiveSettings::linearized_max_alpha, rad; 0 = off).
     double linearized_max_alpha = 0.0;
+    /// ItemMonitor, items with a 3-D description (ItemSpec::solid): which model decides the item's
+    /// state and alarms (model/rocking_3d_model.hpp, docs/fidelity.md).
+    SolidChoice solid = SolidChoice::Auto;
+    /// SolidChoice::Auto: the 3-D model takes over (at rest) once the weaker horizontal component's
+    /// running peak reaches this fraction of the stronger one's (bidirectional shaking).
+    double bidirectional_ratio = 0.3;
   };
 
   /// Throws BodyError (naming the field) for a bad body.

@@ -8,12 +8,7 @@
 #include <string>
 #include <vector>
 
-// <resolv.h> (which cpp-httplib pulls in before the catalogue in some ROS sources) defines `_res`,
-// a parameter name inside Eigen's headers: keep it out of Eigen's way.
-#pragma push_macro("_res")
-#undef _res
 #include <Eigen/Core>
-#pragma pop_macro("_res")
 
 #include "rocking_monitor/physics/body.hpp"
 

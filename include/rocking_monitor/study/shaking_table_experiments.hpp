@@ -42,6 +42,9 @@ struct ExperimentSettings {
   double tail_s = 5.0;
   /// +1: table acceleration positive toward +x (pivot 2 side), as recorded; -1: reversed.
   int direction = 1;
+  /// 3-D model only: the table's axis turned by this angle from the floor frame's x towards y, rad
+  /// (how the specimen stood on the table is itself uncertain).
+  double table_azimuth = 0.0;
 };
 
 struct TestPrediction {

@@ -1,0 +1,102 @@
+// ItemMonitor with a 3-D description (ItemSpec::solid): which model decides (SolidChoice), and the
+// live monitor's 3-D answer equals the 3-D model run alone (live == offline).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "rocking_monitor/constants.hpp"
+#include "rocking_monitor/monitoring/item_monitor.hpp"
+
+namespace rocking_monitor::core {
+namespace {
+
+ItemSpec box_item(double b, double d, double h) {
+  ItemSpec s;
+  s.id = "cabinet";
+  s.sensor = "floor";
+  s.frame = "cabinet";
+  s.body.width = b;
+  s.body.cg_height = h;
+  s.depth.depth = d;
+  s.solid = box_base_body(s.body, d, 0.5, std::nan(""));
+  return s;
+}
+
+struct Input {
+  std::vector<Eigen::Vector3d> a;
+  double dt = 0.01;
+};
+
+// A 1 Hz sine pulse of amplitude amp (m/s^2) along direction (cx, cy), then 6 s at rest.
+Input pulse(double amp, double cx, double cy) {
+  Input in;
+  for (double t = 0.0; t < 7.0; t += in.dt) {
+    const double s = t < 1.0 ? std::sin(2.0 * kPi * t) : 0.0;
+    in.a.emplace_back(amp * cx * s, amp * cy * s, 0.0);
+  }
+  return in;
+}
+
+std::vector<AlarmEvent> run(ItemMonitor& im, const Input& in) {
+  std::vector<AlarmEvent> alarms;
+  im.start(0.0, in.a[0].x(), in.a[0].y(), in.a[0].z(), in.dt);
+  for (std::size_t i = 1; i < in.a.size(); ++i) {
+    const ItemEvents& ev = im.step(in.a[i].x(), in.a[i].y(), in.a[i].z(), in.dt);
+    for (int k = 0; k < ev.alarm_count; ++k) alarms.push_back(ev.alarms[k]);
+  }
+  return alarms;
+}
+
+TEST(ItemMonitor3D, AutoKeepsThePlanarPairForARectangleUnderOneComponent) {
+  ItemMonitor im(box_item(0.4, 0.3, 0.6), ItemMonitor::Options{});
+  ASSERT_NE(im.solid(), nullptr);
+  run(im, pulse(0.45 * kGravity, 1.0, 0.0));
+  EXPECT_FALSE(im.solid_active());
+  EXPECT_GT(im.plane(Plane::X).impacts(), 0);  // it rocked, in the planar pair
+}
+
+// Bidirectional shaking: the 3-D model takes over, and the item's alarms are the 3-D model's own,
+// sample for sample.
+TEST(ItemMonitor3D, BidirectionalShakingHandsTheItemToThe3DModelWhichDecidesItsAlarms) {
+  const ItemSpec spec = box_item(0.4, 0.3, 0.7);
+  const Input in = pulse(0.6 * kGravity, std::sqrt(0.5), std::sqrt(0.5));
+  ItemMonitor im(spec, ItemMonitor::Options{});
+  const std::vector<AlarmEvent> alarms = run(im, in);
+  ASSERT_TRUE(im.solid_active());
+  SolverSettings s;
+  Rocking3DModel alone(BaseBody(*spec.solid), s);
+  alone.reset(0.0, in.a[0]);
+  for (std::size_t i = 1; i < in.a.size(); ++i) alone.step(in.a[i], in.dt);
+  const RockingOutcome& o = alone.outcome();
+  ASSERT_TRUE(o.overturned);  // the case is one that reaches every level
+  ASSERT_EQ(alarms.size(), 3u);
+  EXPECT_EQ(alarms[0].level, ItemMode::BeyondTipping);
+  EXPECT_EQ(alarms[2].level, ItemMode::Overturned);
+  EXPECT_NEAR(alarms[0].time, o.beyond_tipping_time, 1e-9);
+  EXPECT_NEAR(alarms[1].time, o.committed_time, 1e-9);
+  EXPECT_NEAR(alarms[2].time, o.overturn_time, 1e-9);
+  EXPECT_EQ(im.mode(), ItemMode::Overturned);
+  EXPECT_EQ(im.solid()->outcome().impacts, o.impacts);
+}
+
+TEST(ItemMonitor3D, AnIrregularBaseAlwaysRunsThe3DModelAndPlanarOnlyNever) {
+  ItemSpec spec = box_item(0.4, 0.3, 0.6);
+  spec.solid->base = {Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(0.4, 0.05), Eigen::Vector2d(0.35, 0.3),
+                      Eigen::Vector2d(0.02, 0.28)};
+  ItemMonitor im(spec, ItemMonitor::Options{});
+  im.start(0.0, 0.0, 0.0, 0.0, 0.01);
+  EXPECT_TRUE(im.solid_active());
+  ItemMonitor::Options planar;
+  planar.solid = SolidChoice::Planar;
+  ItemMonitor only_planar(spec, planar);
+  EXPECT_EQ(only_planar.solid(), nullptr);
+  ItemMonitor::Options solid;
+  solid.solid = SolidChoice::Solid;
+  ItemMonitor rect(box_item(0.4, 0.3, 0.6), solid);
+  rect.start(0.0, 0.0, 0.0, 0.0, 0.01);
+  EXPECT_TRUE(rect.solid_active());
+}
+
+}  // namespace
+}  // namespace rocking_monitor::core
