@@ -56,4 +56,10 @@ if(BUILD_TESTING)
                    $<TARGET_FILE:rocking_experiments> ${ROCKING_EXPERIMENTS_DIR}/granite_pbr
                    ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/granite_specimens.yaml)
   set_tests_properties(rocking_experiments_histories PROPERTIES TIMEOUT 60 SKIP_RETURN_CODE 77)
+  # The same accounting through the 3-D model (the catalogue's base polygons: --model auto picks it).
+  add_test(NAME rocking_experiments_histories_3d
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/experiments_histories.sh
+                   $<TARGET_FILE:rocking_experiments> ${ROCKING_EXPERIMENTS_DIR}/granite_pbr
+                   ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/granite_specimens_3d.yaml)
+  set_tests_properties(rocking_experiments_histories_3d PROPERTIES TIMEOUT 60 SKIP_RETURN_CODE 77)
 endif()
