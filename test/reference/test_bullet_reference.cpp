@@ -536,8 +536,10 @@ TEST(Bullet3D, DISABLED_BoxUnderAnObliquePulseIsNotPutDownWhileSwinging) {
 // rest chosen near the specimens' overturning boundary, both ways in the experiment.
 const int kTests[] = {11, 61, 110, 253, 281, 519};
 constexpr int kQuiet[] = {11, 253};
-// Bullet's step on the records: 1/2000 s (outcomes the same as at 1/4000 s on these tests for the
-// prism; halving it costs 2x on a 40 s record).
+// Bullet's step on the records: 1/2000 s. On the prism the outcomes are the same at 1/4000 s; on
+// the scanned hull SP1's Test061 and Test110 are marginal for Bullet (it overturns late, at 15.8
+// and 7.0 s, at 1/2000 s; it stands at 1/4000 s), which the hull test's assertions allow. Halving
+// the step doubles the cost (2-4 s per 45 s record).
 constexpr double kRecordStep = 1.0 / 2000;
 constexpr double kRecordTail = 3.0;  // s of table at rest after each record
 
