@@ -38,7 +38,9 @@ struct BulletSettings {
   /// m, Bullet's contact breaking threshold (a manifold point is dropped beyond it) and the body's
   /// contact processing threshold (points farther than this are not given to the solver).
   double contact_threshold = 1e-3;
-  int solver_iterations = 100;     ///< sequential-impulse iterations per step
+  /// Sequential-impulse iterations per step (one body, <= 4 contacts: the box's peaks change by
+  /// < 0.1 % from 30 to 100 at 1/8000 s; the records cost 2.3x more at 100).
+  int solver_iterations = 30;
   bool split_impulse = true;       ///< penetration recovery without adding momentum
   double settle_time = 0.5;        ///< s under gravity alone before t = 0 (the contact settles)
   double overturn_tilt = 1.5707963267948966;  ///< rad: tilt at which the body counts overturned

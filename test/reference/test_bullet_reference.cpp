@@ -536,10 +536,10 @@ TEST(Bullet3D, DISABLED_BoxUnderAnObliquePulseIsNotPutDownWhileSwinging) {
 // rest chosen near the specimens' overturning boundary, both ways in the experiment.
 const int kTests[] = {11, 61, 110, 253, 281, 519};
 constexpr int kQuiet[] = {11, 253};
-// Bullet's step on the records: 1/2000 s. On the prism the outcomes are the same at 1/4000 s; on
-// the scanned hull SP1's Test061 and Test110 are marginal for Bullet (it overturns late, at 15.8
-// and 7.0 s, at 1/2000 s; it stands at 1/4000 s), which the hull test's assertions allow. Halving
-// the step doubles the cost (2-4 s per 45 s record).
+// Bullet's step on the records: 1/2000 s. On the prism the outcomes are the same at 1/4000 s (12
+// of 12 agree at both); on the scanned hull SP1's Test061 is marginal for Bullet (it stands at
+// 1/2000 s and overturns late, at 13.1 s, at 1/4000 s), which the hull test's assertions allow.
+// Halving the step doubles the cost (1-2 s per 45 s record).
 constexpr double kRecordStep = 1.0 / 2000;
 constexpr double kRecordTail = 3.0;  // s of table at rest after each record
 
@@ -586,7 +586,7 @@ bool quiet(int test) { return std::find(std::begin(kQuiet), std::end(kQuiet), te
 // Bullet on the same geometry (Prism): the overturn decision agrees on every record (measured 12
 // of 12, at 1/2000 and 1/4000 s). One disagreement is allowed: after tens of impacts the response
 // is chaotic and the two impact treatments differ, so a marginal record may flip. Overturn times
-// and peak tilts of survivors are printed, not compared (measured: overturn times 0.1-2 s apart
+// and peak tilts of survivors are printed, not compared (measured: overturn times 0.01-2 s apart
 // after many impacts, wobble peaks a factor 2-4 apart, and Bullet's own change with its step).
 TEST(Bullet3D, GraniteCatalogueBodiesOverturnAlikeOnRealTests) {
   REQUIRE_GRANITE();
@@ -607,7 +607,7 @@ TEST(Bullet3D, GraniteCatalogueBodiesOverturnAlikeOnRealTests) {
 // gently beyond the 1 mm contact patch, so tipping over it takes far more tilt than over the base
 // polygon's edge (toward +x: SP1 0.26 rad against alpha 0.050, SP2 0.39 against 0.23). The core
 // knows only the base polygon: where the codes disagree, the core overturns and Bullet stands
-// (measured: 3 of 12 disagree at 1/2000 s, 5 at 1/4000 s, all that way), never the reverse.
+// (measured: 5 of 12 disagree at 1/2000 s, 4 at 1/4000 s, all that way), never the reverse.
 TEST(Bullet3D, GraniteScannedHullOnlyAddsStability) {
   REQUIRE_GRANITE();
   const std::vector<RecordRun> runs = run_records(Geometry::Flattened);
