@@ -65,7 +65,7 @@ BulletRocking::BulletRocking(const BulletBody& body, const BulletSettings& setti
   // Contact: up to 4 manifold points from the plane-convex algorithm; with perturbation it finds
   // all the corners a flat base rests on (the default finds one per step).
   w_->config.setPlaneConvexMultipointIterations(3, 3);
-  gContactBreakingThreshold = settings.contact_threshold;
+  gContactBreakingThreshold = settings.contact_threshold;  // Bullet's global (default 2 cm)
   btContactSolverInfo& info = w_->world.getSolverInfo();
   info.m_numIterations = settings.solver_iterations;
   info.m_splitImpulse = settings.split_impulse ? 1 : 0;
