@@ -14,9 +14,10 @@
 // The impacts agree this closely because the box lands on a whole edge (or flat on its diagonal)
 // and Bullet's restitution-0 impulses at the landing edge, with no slip, conserve the angular
 // momentum about it much as the core's law does (the peak after each landing: 0.71-0.72 of the
-// one before in both, <= 1.9 % apart). They differ on the symmetric landing of a diagonal pulse (three corners at once: the core gives the impulse to the
-// far corner, Bullet shares it by its solver's order; the next peak is 35 % higher in Bullet) and
-// on the chatter of DISABLED_BoxUnderAnObliquePulseIsNotPutDownWhileSwinging (a core problem).
+// one before in both, <= 1.9 % apart). They differ on the symmetric landing of a diagonal pulse
+// (three corners at once: the core gives the impulse to the far corner, Bullet shares it by its
+// solver's order; the next peak is 35 % higher in Bullet) and on the chatter of
+// DISABLED_BoxUnderAnObliquePulseIsNotPutDownWhileSwinging (a core problem).
 //
 // Granite SP1 and SP2 (../shared/experiments/granite_pbr, skipped without it) on six real tests:
 // with Bullet on the core's own geometry (the base polygon as a prism) the overturn decision
