@@ -87,3 +87,37 @@ if(BUILD_TESTING)
                    "reference_tests not built")
   endif()
 endif()
+
+# ---------------------------------------------------------------- Bullet 3-D reference tests
+# reference_3d_tests: Rocking3DModel against Bullet Physics (test/reference/bullet_rocking.*),
+# Debian's double-precision build (libbullet-dev: pkg-config bullet-float64).
+if(BUILD_TESTING)
+  find_package(PkgConfig QUIET)
+  if(PkgConfig_FOUND)
+    pkg_check_modules(ROCKING_BULLET QUIET IMPORTED_TARGET bullet-float64)
+  endif()
+  if(ROCKING_BULLET_FOUND)
+    find_package(GTest REQUIRED)
+    find_package(ZLIB REQUIRED)
+    include(GoogleTest)
+    add_executable(reference_3d_tests test/reference/test_bullet_reference.cpp test/reference/bullet_rocking.cpp)
+    target_include_directories(reference_3d_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/reference)
+    target_link_libraries(reference_3d_tests PRIVATE rocking_monitor_core GTest::gtest_main
+                          PkgConfig::ROCKING_BULLET ZLIB::ZLIB nlohmann_json::nlohmann_json)
+    # The granite case runs scripts/rocking_geometry.py (numpy, scipy) for the specimens' geometry.
+    set(ROCKING_BULLET_PYTHON "${PYTHON_EXECUTABLE}")
+    if(NOT ROCKING_BULLET_PYTHON)
+      set(ROCKING_BULLET_PYTHON python3)
+    endif()
+    target_compile_definitions(reference_3d_tests PRIVATE
+                               ROCKING_EXPERIMENTS_DIR="${ROCKING_EXPERIMENTS_DIR}"
+                               ROCKING_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}"
+                               ROCKING_PYTHON="${ROCKING_BULLET_PYTHON}")
+    target_compile_options(reference_3d_tests PRIVATE -Wall -Wextra)
+    gtest_discover_tests(reference_3d_tests TEST_PREFIX "reference3d." DISCOVERY_TIMEOUT 60
+                         PROPERTIES TIMEOUT 600)
+  else()
+    message(STATUS "rocking_monitor: Bullet not found (libbullet-dev, pkg-config bullet-float64): "
+                   "reference_3d_tests not built")
+  endif()
+endif()

@@ -15,6 +15,7 @@ packages=(
   libtf2-ros-dev libtf2-msgs-dev libtf2-eigen-dev tf2-tools python3-sensor-msgs python3-std-srvs
   libcpp-httplib-dev chromium
   zlib1g-dev
+  libbullet-dev
 )
 
 missing=()
