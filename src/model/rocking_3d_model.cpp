@@ -237,6 +237,21 @@ void Rocking3DModel::endpoint_reactions(int edge, double theta, double omega, do
   fa = -moment(e.b).cross(e.axis).z() / e.length;
 }
 
+// Pivoting on end `stays` of the rocking edge alone (the vertex mode's equations at this state), the
+// vertical acceleration of the other end, m/s^2 (> 0: it rises).
+double Rocking3DModel::end_rise(int edge, double theta, double omega, const Eigen::Vector3d& a_fp, int stays) const {
+  const BaseEdge& e = body_.edge(edge);
+  const int other = stays == e.a ? e.b : e.a;
+  const BaseVertex& v = body_.vertex(stays);
+  const Eigen::Matrix3d re = Eigen::AngleAxisd(theta, e.axis).toRotationMatrix();
+  const Eigen::Matrix3d j = re * v.inertia * re.transpose();
+  const Eigen::Vector3d w = omega * e.axis;
+  const Eigen::Vector3d w_dot =
+      re * v.inertia_inverse * re.transpose() * ((re * v.to_centre).cross(gravity_and_inertia(a_fp)) - w.cross(j * w));
+  // The edge's ends lie on the axis: no centripetal term.
+  return w_dot.cross(body_.vertex(other).position - v.position).z();
+}
+
 Rocking3DModel::Event Rocking3DModel::advance_edge(const GroundInput3& in, double& tau, double tau_end,
                                                    int& lift_vertex) {
   const BaseEdge& edge = body_.edge(contact_);
@@ -274,16 +289,27 @@ Rocking3DModel::Event Rocking3DModel::advance_edge(const GroundInput3& in, doubl
     {
       double th, om;
       dopri5_.eval(t_end_step, th, om);
+      // < 0 when one end lets go: its reaction would have to pull (f < 0) AND, pivoting on the other
+      // end alone, it rises (the vertex mode's own acceleration of it, > 0). With sticking contacts
+      // the two tests can disagree (the end's friction force is released too); then the edge holds,
+      // which keeps the modes from chattering.
       auto lift_margin = [&](double t, double theta, double omega, int& stays) {
         const Eigen::Vector3d a_fp = to_footprint(in.at(t));
         double fa, fb;
         endpoint_reactions(contact_, theta, omega, ode.angular_acceleration(t, theta), a_fp, fa, fb);
         stays = fb < fa ? edge.a : edge.b;
-        return (fa + fb > 0.0) ? std::min(fa, fb) : 1.0;
+        if (!(fa + fb > 0.0)) return 1.0;
+        const double f = std::min(fa, fb);
+        if (f >= 0.0) return f;
+        return std::max(f, -end_rise(contact_, theta, omega, a_fp, stays));
       };
       int stays = -1;
-      const double m1 = lift_margin(t_end_step, th, om, stays);
+      // Bounded: after kMaxLiftsPerSample lifts in one sample the edge holds for the rest of it (a
+      // body whose end neither holds nor lifts consistently, where the real one slips: flagged by
+      // the count in the outcome, never a loop without time advancing).
+      const double m1 = lifts_ < kMaxLiftsPerSample ? lift_margin(t_end_step, th, om, stays) : 1.0;
       if (m1 < 0.0) {
+        ++lifts_;
         auto f = [&](double t) {
           double a, b;
           dopri5_.eval(t, a, b);
@@ -413,6 +439,7 @@ Rocking3DModel::Event Rocking3DModel::advance_vertex(const GroundInput3& in, dou
   const int n = body_.vertex_count();
   const BaseVertex& pivot = body_.vertex(contact_);
   const double eps = 1e-12 * pivot.radius;
+  const double sink = 1e-9 * pivot.radius;  // an unarmed vertex this far below the floor touches down
   const double cos_over = std::cos(body_.overturn_angle());
   auto height = [&](const Vec7& y, int i) {
     return (vertex_rotation(y) * (body_.vertex(i).position - pivot.position)).z();
@@ -435,7 +462,7 @@ Rocking3DModel::Event Rocking3DModel::advance_vertex(const GroundInput3& in, dou
         const bool armed = armed_[i] || za > eps;
         // An unarmed vertex that sinks clearly below the floor is a touchdown too (the pivot
         // turned the wrong way for the vertex it left): resolved as an impact.
-        if ((armed && zb <= 0.0 && za > 0.0) || zb < -1e3 * eps) {
+        if ((armed && zb <= 0.0 && za > 0.0) || zb < -sink) {
           const double te = za > 0.0 ? bracketed_root(
                                            [&](double t) { return height(Vec7(vector_.eval(t)), i); },
                                            ta, tb, za, zb, t_tol)
@@ -665,6 +692,7 @@ const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
     throw std::invalid_argument("Rocking3DModel::step: dt must be finite and > 0 and the acceleration finite");
   report_ = StepReport{};
   sample_dt_ = dt;
+  lifts_ = 0;
   GroundInput3 in;
   in.a0 = a_prev_;
   in.slope = (a - a_prev_) / dt;

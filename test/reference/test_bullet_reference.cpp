@@ -16,8 +16,8 @@
 // momentum about it much as the core's law does (the peak after each landing: 0.71-0.72 of the
 // one before in both, <= 1.9 % apart). They differ on the symmetric landing of a diagonal pulse
 // (three corners at once: the core gives the impulse to the far corner, Bullet shares it by its
-// solver's order; the next peak is 35 % higher in Bullet) and on the chatter of
-// DISABLED_BoxUnderAnObliquePulseIsNotPutDownWhileSwinging (a core problem).
+// solver's order; the next peak is 35 % higher in Bullet); BoxUnderAnObliquePulseIsNotPutDownWhileSwinging
+// is the case that found the core's edge-to-vertex chatter (fixed).
 //
 // Granite SP1 and SP2 (../shared/experiments/granite_pbr, skipped without it) on six real tests:
 // with Bullet on the core's own geometry (the base polygon as a prism) the overturn decision
@@ -507,24 +507,15 @@ TEST(Bullet3D, BoxLandingsLoseEnergyAlike) {
   }
 }
 
-// DISABLED: fails on the core, not on Bullet (a reproducer for the core's owner). The same box
-// under 0.6 g along (1, 2): it rocks about edge 0 (y = 0) and is swinging back (tilt 0.0116 rad,
-// -0.776 rad/s) when, at t = 0.357382 s, the floor's reaction at the x = 0 end of that edge comes
-// to zero (the ground's x component unloads it). Neither of the core's modes is then consistent:
-// EDGE needs a (slightly) pulling reaction at x = 0, and VERTEX on x = 0.3 turns the body about
-// the vertical as well (yaw acceleration -11.5 rad/s^2, no longer held by friction at x = 0), which
-// drives the x = 0 corner into the floor at 0.8 m/s^2 (checked by hand from the rigid-body
-// equations; the model's own heights show the same). The real body slips at the unloaded end
-// (Bullet: it yaws 0.01 rad on its rocking edge). Rocking3DModel instead alternates EDGE ->
-// VERTEX -> vertex impact -> VERTEX on the other end -> EDGE ... without time advancing (a Zeno
-// sequence: 280 edge-to-vertex transitions and 720 vertex impacts in sample 358; 500,000 with
-// max_events_per_sample = 10^6), hits the event bound and is put down flat (forced_rest) while
-// still tilted 0.0116 rad and turning at 0.78 rad/s: 0.09 J/kg of kinetic energy vanish. It then
-// barely rocks (peak 0.020 rad) and survives. Bullet (1/4000 to 1/16000 s, the same to 0.5 %)
-// lands at 0.371 s and rocks over to the other side, which the pulse's second half drives to an
-// overturn (at 1.47 s). The same at tol 1e-6 ... 1e-12. At 0.55 g (no chatter) both rock over to
-// the other side alike (tilt 0.266 and 0.235 rad at 1.0 s).
-TEST(Bullet3D, DISABLED_BoxUnderAnObliquePulseIsNotPutDownWhileSwinging) {
+// The same box under 0.6 g along (1, 2): it rocks about edge 0 (y = 0) and is swinging back (tilt
+// 0.0116 rad, -0.776 rad/s) when, at t = 0.357382 s, the floor's reaction at the x = 0 end of that
+// edge comes to zero. Pivoting on the other end alone would turn the body about the vertical as well
+// and drive that end into the floor (the real body slips there; Bullet: it yaws 0.01 rad on its
+// edge). Found by this test: the core then alternated EDGE -> VERTEX -> impact ... without time
+// advancing until the event bound put it down flat (0.09 J/kg lost; it survived while Bullet
+// overturns at 1.47 s). Now an end lets go only when pivoting on the other end really lifts it, and
+// the body keeps rocking on the edge; both overturn.
+TEST(Bullet3D, BoxUnderAnObliquePulseIsNotPutDownWhileSwinging) {
   const Compared c = compare_box_pulse(Eigen::Vector3d(1.0, 2.0, 0.0), 0.6);
   EXPECT_EQ(c.core.forced_rests, 0);
   EXPECT_EQ(c.core.overturned, c.bullet.overturned);

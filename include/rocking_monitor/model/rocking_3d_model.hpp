@@ -106,6 +106,7 @@ class Rocking3DModel {
   void start_motion(const GroundInput3& in, double tau);
   void endpoint_reactions(int edge, double theta, double omega, double theta_ddot,
                           const Eigen::Vector3d& a_footprint, double& fa, double& fb) const;
+  double end_rise(int edge, double theta, double omega, const Eigen::Vector3d& a_footprint, int stays) const;
   Event advance_edge(const GroundInput3& in, double& tau, double tau_end, int& lift_vertex);
   Event advance_vertex(const GroundInput3& in, double& tau, double tau_end, int& touching);
   void enter_vertex_from_edge(int vertex);
@@ -137,7 +138,9 @@ class Rocking3DModel {
   double t_ = 0.0;
   Eigen::Vector3d a_prev_ = Eigen::Vector3d::Zero();
   double sample_dt_ = 0.0;
-  bool armed_[kMaxBaseVertices] = {};                // VERTEX: vertex i has left the floor since the pivot began
+  bool armed_[kMaxBaseVertices] = {};
+  static constexpr int kMaxLiftsPerSample = 8;
+  int lifts_ = 0;                      // EDGE -> VERTEX switches in the current sample                // VERTEX: vertex i has left the floor since the pivot began
   StepReport report_;
   RockingOutcome outcome_;
   Rocking3DOutcome outcome3_;
