@@ -609,6 +609,22 @@ void Rocking3DModel::vertex_impact(int touching, double tau) {
   const BaseVertex& nv = body_.vertex(touching);
   const Eigen::Vector3d w_v = kappa * (r * nv.inertia_inverse * r.transpose() * h);
   const int edge = edge_between(old, touching);
+  // Rest capture (the Zeno rule of the planar engine, by energy): the base lands almost flat with
+  // almost no energy left, e.g. a body see-sawing on two corners as it comes to rest.
+  const double tilt_now = std::acos(std::clamp(r(2, 2), -1.0, 1.0));
+  const double tip = kGravity * (nv.radius - nv.to_centre.z());
+  if (tilt_now < settings_.rest_capture_ratio * body_.min_alpha() &&
+      rotation_energy(r * nv.inertia * r.transpose(), w_v) <
+          settings_.rest_capture_ratio * settings_.rest_capture_ratio * tip) {
+    yaw_ = std::atan2(r(1, 0), r(0, 0));
+    const Eigen::Vector3d placed = yaw_matrix() * nv.position;
+    shift_ = Eigen::Vector2d(q.x() - placed.x(), q.y() - placed.y());
+    go_to_rest();
+    report_.rest_capture = true;
+    ++outcome_.rest_captures;
+    record_impact(tau, before);
+    return;
+  }
   const bool old_lifts = w_v.cross(pivot_world_ - q).z() >= 0.0;
   if (old_lifts || edge < 0) {
     enter_vertex(touching, q, r, w_v);
