@@ -1,5 +1,5 @@
-# Tests of the package as a whole: the core's layering, package.xml's dependencies and every
-# executable's voice on a bad flag.
+# Tests of the package as a whole: the core's layering, package.xml's dependencies, the documentation's
+# links and every executable's voice on a bad flag.
 if(NOT BUILD_TESTING)
   return()
 endif()
@@ -15,6 +15,13 @@ add_test(NAME package.deps_match_install_deps
 add_test(NAME package.deps_check_names_mismatches
          COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/check_package_deps_detects.sh ${CMAKE_CURRENT_SOURCE_DIR})
 set_tests_properties(package.deps_match_install_deps package.deps_check_names_mismatches PROPERTIES TIMEOUT 60)
+
+# README.md is the front door into docs/ (issue 30): every relative link and #anchor there leads somewhere.
+add_test(NAME docs.links_resolve
+         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/check_doc_links.py ${CMAKE_CURRENT_SOURCE_DIR})
+add_test(NAME docs.link_check_names_dead_links
+         COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/check_doc_links_detects.sh ${CMAKE_CURRENT_SOURCE_DIR})
+set_tests_properties(docs.links_resolve docs.link_check_names_dead_links PROPERTIES TIMEOUT 60)
 
 foreach(tool rocking_sim rocking_study record_to_bag rocking_accuracy rocking_benchmarks)
   if(TARGET ${tool})
