@@ -23,6 +23,14 @@ add_test(NAME docs.link_check_names_dead_links
          COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/check_doc_links_detects.sh ${CMAKE_CURRENT_SOURCE_DIR})
 set_tests_properties(docs.links_resolve docs.link_check_names_dead_links PROPERTIES TIMEOUT 60)
 
+# A ROS user's install space: every launched node, the tools, launch files resolved there, and a
+# downstream package built against the installed core (test/tools/install_space.sh).
+if(catkin_FOUND)
+  add_test(NAME install.space_serves_a_ros_user
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/install_space.sh ${CMAKE_CURRENT_SOURCE_DIR} ${CMAKE_BINARY_DIR})
+  set_tests_properties(install.space_serves_a_ros_user PROPERTIES TIMEOUT 600)
+endif()
+
 foreach(tool rocking_sim rocking_study record_to_bag rocking_accuracy rocking_benchmarks)
   if(TARGET ${tool})
     add_test(NAME cli.${tool}.unknown_flag_is_one_error_line
