@@ -1,5 +1,7 @@
 # rocking_sim and the core's GoogleTest suite (no ROS master needed).
-add_executable(rocking_sim src/tools/rocking_sim.cpp)
+# src/tools/rocking_sim*.cpp: main, the command line, the output, the ensemble (one job per file).
+add_executable(rocking_sim src/tools/rocking_sim.cpp src/tools/rocking_sim_options.cpp
+                           src/tools/rocking_sim_output.cpp src/tools/rocking_sim_ensemble.cpp)
 target_link_libraries(rocking_sim PRIVATE rocking_monitor_core CLI11::CLI11 nlohmann_json::nlohmann_json)
 set_target_properties(rocking_sim PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_TOOL_DIR})
 
@@ -14,7 +16,8 @@ if(BUILD_TESTING)
   endforeach()
   # command-line tests with their own executables (they need rocking_study / ROS tools)
   list(FILTER ROCKING_CORE_TESTS EXCLUDE REGEX "/test_(study_cli|record_to_bag|record_to_mseed)\\.cpp$")
-  add_executable(core_tests ${ROCKING_CORE_TESTS})
+  # test/support/record_writers.cpp: the record-format writers (also the fuzzer's seeds, cmake/fuzz.cmake)
+  add_executable(core_tests ${ROCKING_CORE_TESTS} ${CMAKE_CURRENT_SOURCE_DIR}/test/support/record_writers.cpp)
   target_link_libraries(core_tests PRIVATE rocking_monitor_core GTest::gtest_main
                         nlohmann_json::nlohmann_json)
   target_include_directories(core_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/support)

@@ -1,4 +1,5 @@
-# Tests of the package as a whole: the core's layering and every executable's voice on a bad flag.
+# Tests of the package as a whole: the core's layering, package.xml's dependencies, the documentation's
+# links and every executable's voice on a bad flag.
 if(NOT BUILD_TESTING)
   return()
 endif()
@@ -7,6 +8,28 @@ add_test(NAME layers.core_keeps_its_layering
          COMMAND ${CMAKE_COMMAND} -DROOT=${CMAKE_CURRENT_SOURCE_DIR} -P ${CMAKE_CURRENT_SOURCE_DIR}/cmake/check_layers.cmake)
 add_test(NAME layers.check_names_wrong_way_includes
          COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/check_layers_detects.sh ${CMAKE_CURRENT_SOURCE_DIR})
+
+# package.xml declares what scripts/install_deps.sh installs, and no more (rosdep users get the same).
+add_test(NAME package.deps_match_install_deps
+         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/check_package_deps.py ${CMAKE_CURRENT_SOURCE_DIR})
+add_test(NAME package.deps_check_names_mismatches
+         COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/check_package_deps_detects.sh ${CMAKE_CURRENT_SOURCE_DIR})
+set_tests_properties(package.deps_match_install_deps package.deps_check_names_mismatches PROPERTIES TIMEOUT 60)
+
+# README.md is the front door into docs/ (issue 30): every relative link and #anchor there leads somewhere.
+add_test(NAME docs.links_resolve
+         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/check_doc_links.py ${CMAKE_CURRENT_SOURCE_DIR})
+add_test(NAME docs.link_check_names_dead_links
+         COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/check_doc_links_detects.sh ${CMAKE_CURRENT_SOURCE_DIR})
+set_tests_properties(docs.links_resolve docs.link_check_names_dead_links PROPERTIES TIMEOUT 60)
+
+# A ROS user's install space: every launched node, the tools, launch files resolved there, and a
+# downstream package built against the installed core (test/tools/install_space.sh).
+if(catkin_FOUND)
+  add_test(NAME install.space_serves_a_ros_user
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/install_space.sh ${CMAKE_CURRENT_SOURCE_DIR} ${CMAKE_BINARY_DIR})
+  set_tests_properties(install.space_serves_a_ros_user PROPERTIES TIMEOUT 600)
+endif()
 
 foreach(tool rocking_sim rocking_study record_to_bag rocking_accuracy rocking_benchmarks)
   if(TARGET ${tool})

@@ -9,10 +9,10 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libsundials-dev libhwy-dev
   python3-matplotlib python3-numpy python3-yaml python3-scipy parallel
   catkin ros-core-dev libroscpp-dev librosbag-dev librostest-dev python3-rostest
-  python3-roslaunch python3-rosmaster python3-rosbag python3-rostopic python3-diagnostic-msgs rosbash ros-message-generation
+  python3-roslaunch python3-rosmaster python3-rosbag python3-rostopic python3-diagnostic-msgs rosbash ros-message-generation ros-message-runtime
   ros-std-msgs ros-std-srvs libstd-srvs-dev ros-geometry-msgs ros-sensor-msgs
   ros-visualization-msgs ros-diagnostic-msgs libdiagnostic-updater-dev libnodeletlib-dev libnodeletlib-tools
-  libtf2-ros-dev libtf2-msgs-dev libtf2-eigen-dev tf2-tools python3-sensor-msgs python3-std-srvs
+  libtf2-dev libtf2-ros-dev libtf2-msgs-dev libtf2-eigen-dev tf2-tools python3-sensor-msgs python3-std-srvs
   libcpp-httplib-dev chromium
   zlib1g-dev
   libbullet-dev

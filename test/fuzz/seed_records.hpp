@@ -1,7 +1,7 @@
 #pragma once
 // The fuzzer's seeds: real records from the shared records directory, and the formats it lacks
-// (miniSEED, COSMOS V2, K-NET, CSV) written here from the real Rinaldi 228 record, as the format
-// tests do (test/motion/test_record_formats.cpp).
+// (miniSEED, COSMOS V2, K-NET, CSV) written here from the real Rinaldi 228 record, by the writers the
+// format tests use (test/support/record_writers.hpp).
 
 #include <string>
 #include <vector>

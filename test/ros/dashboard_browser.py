@@ -4,7 +4,8 @@
 Loads the page (with ?poll=1: a headless browser's virtual time never runs out while an event stream
 is open, so the page polls the snapshot instead) and checks the DOM: every catalogue item has a row
 carrying its id and mode, the item that overturned is OVERTURNED, the one that survives is not, and the
-red banner is shown, and the input acceleration chart holds the pulse. Saves a screenshot (~screenshot, default $ROS_HOME/dashboard_browser.png)."""
+red banner is shown, the input acceleration chart holds the pulse, and at a 1280-pixel window the alarm
+log's "predicted by" column is not cut. Saves a screenshot (~screenshot, default $ROS_HOME/dashboard_browser.png)."""
 import os
 import re
 import shutil
@@ -48,7 +49,8 @@ class DashboardBrowser(unittest.TestCase):
             self.assertLess(time.time(), deadline, 'replay did not end with %s overturned' % must_overturn)
             time.sleep(0.1)
 
-        dom = chromium(['--dump-dom', url + '?poll=1']).decode('utf-8', 'replace')
+        # At a 1280-pixel window: the alarm log must be readable there (checked below).
+        dom = chromium(['--window-size=1280,1000', '--dump-dom', url + '?poll=1']).decode('utf-8', 'replace')
         rows = {}
         for tag in re.findall(r'<tr [^>]*>', dom):  # item rows carry data-item and data-mode (alarm rows: data-level)
             item, mode = re.search(r'data-item="([^"]+)"', tag), re.search(r'data-mode="([^"]+)"', tag)
@@ -72,7 +74,24 @@ class DashboardBrowser(unittest.TestCase):
         self.assertIsNotNone(points, 'input chart never drawn: %s' % chart.group(0))
         self.assertGreater(int(points.group(1)), 100)
         self.assertAlmostEqual(float(peak.group(1)), 4.0, delta=1e-6)
-        print('DOM rows: %s' % rows)
+        # The alarm log's last column ("predicted by") shows whole without scrolling at 1280 px: app.js
+        # records on the table where the column lies and what of the log is visible (markAlarmLayout).
+        alarm_rows = re.findall(r'<tr data-item="[^"]+" data-level="[^"]+">', dom)
+        self.assertGreater(len(alarm_rows), 0, 'no alarm rows in the DOM')
+        table = re.search(r'<table id="alarms"[^>]*>', dom)
+        self.assertIsNotNone(table, 'no alarm log in the DOM')
+        layout = dict(re.findall(r'data-([a-z-]+)="([^"]*)"', table.group(0)))
+        self.assertIn('last-column', layout, 'alarm log layout never recorded: %s' % table.group(0))
+        # the window really was 1280 px wide (less a vertical scrollbar)
+        self.assertGreater(int(layout['viewport']), 1200, layout)
+        self.assertLessEqual(int(layout['viewport']), 1280, layout)
+        col_left, col_right = map(int, layout['last-column'].split(','))
+        vis_left, vis_right = map(int, layout['visible'].split(','))
+        self.assertGreater(col_right - col_left, 50, 'the "predicted by" column has no width: %s' % layout)
+        self.assertGreaterEqual(col_left, vis_left, layout)
+        self.assertLessEqual(col_right, vis_right,
+                             'the alarm log\'s "predicted by" column is cut at 1280 px: %s' % layout)
+        print('DOM rows: %s; alarm log at 1280 px: %s' % (rows, layout))
 
         shot = rospy.get_param('~screenshot', '') or os.path.join(
             os.environ.get('ROS_HOME', os.path.expanduser('~/.ros')), 'dashboard_browser.png')

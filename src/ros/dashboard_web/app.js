@@ -235,7 +235,23 @@ function renderAlarms() {
     '</td><td>' + esc((a.predicted_by || []).join(', ') || 'none') + '</td></tr>');
   $('alarms').tBodies[0].innerHTML = rows.join('') ||
     '<tr><td colspan="7" class="hint">no alarms</td></tr>';
+  markAlarmLayout();
 }
+
+// Where the alarm log's last column ("predicted by") lies and what of it shows without scrolling, as
+// data attributes on the table: the headless browser test (test/ros/dashboard_browser.py) cannot
+// measure layout itself, and checks from these that the column is not cut at a 1280-pixel window.
+function markAlarmLayout() {
+  const table = $('alarms');
+  const col = table.tHead.rows[0].lastElementChild.getBoundingClientRect();
+  const scroller = table.parentElement;  // the .scroll box
+  const left = scroller.getBoundingClientRect().left + scroller.clientLeft;
+  const viewport = document.documentElement.clientWidth;
+  table.dataset.viewport = viewport;
+  table.dataset.lastColumn = Math.round(col.left) + ',' + Math.round(col.right);
+  table.dataset.visible = Math.round(left) + ',' + Math.round(Math.min(left + scroller.clientWidth, viewport));
+}
+window.addEventListener('resize', markAlarmLayout);
 
 function esc(s) {
   return String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' }[c]));

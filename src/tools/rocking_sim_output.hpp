@@ -1,0 +1,44 @@
+#pragma once
+// rocking_sim's output: one plane through its record (its single-plane JSON and text lines), and the
+// whole answer printed as JSON or text, one plane or two (with the item's verdict and the ensemble).
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+#include "rocking_monitor/physics/item_verdict.hpp"
+#include "rocking_sim_options.hpp"
+
+namespace rocking_monitor::tools::sim {
+
+using nlohmann::json;
+
+// One plane's answer: the single-plane JSON of its fidelity, its text summary lines and its level
+// times for combine().
+struct PlaneRun {
+  json out;
+  std::vector<std::string> lines;
+  rm::LevelTimes levels;
+};
+
+struct EnsembleRun;  // rocking_sim_ensemble.hpp
+
+/// NaN (never) as JSON null.
+json nullable(double v);
+
+/// printf into a std::string (lines up to 1023 characters).
+std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+
+// One plane through its record, exactly as the single-plane tool: simulate() for --fidelity rocking,
+// the AdaptiveModel loop for contact / adaptive.
+PlaneRun run_plane(const RunOptions& opt, const rm::BodyParameters& params,
+                   const rm::GroundMotion& motion, const std::string& history_path);
+
+/// Prints the answer: with --json one object (the top level is the x plane's single-plane output, then
+/// "planes", "item" and "ensemble"); else the planes' lines ([x]/[y] with two), the item line and the
+/// ensemble's lines. `y`, `item_entry` and `ensemble` may be null.
+void print_result(bool as_json, const PlaneRun& x, const PlaneRun* y, const rm::ItemVerdict& item,
+                  const rm::CatalogueItem* item_entry, const EnsembleRun* ensemble);
+
+}  // namespace rocking_monitor::tools::sim
