@@ -38,14 +38,16 @@ def main(argv=None):
     ap.add_argument("--title", default="")
     ap.add_argument("--out", required=True)
     a = ap.parse_args(argv)
-    p, s = read(a.planar), read(a.solid)
+    # An overturned body has no rotation ratio any more: its history ends at the overturn.
+    p = [r for r in read(a.planar) if r["mode"] != "OVERTURNED"]
+    s = [r for r in read(a.solid) if r["mode"] != "OVERTURNED"]
     t_p = [float(r["t_s"]) for r in p]
     t_s = [float(r["t_s"]) for r in s]
     fig, (ax0, ax1) = plt.subplots(2, 1, figsize=(10, 6), sharex=True, gridspec_kw={"height_ratios": [1, 2]})
     ax0.plot(t_p, [float(r["table_accel_mps2"]) / 9.80665 for r in p], color="0.3", lw=0.6)
     ax0.set_ylabel("table (g)")
     if a.title:
-        ax0.set_title(a.title)
+        ax0.set_title(a.title, fontsize=10)
     sign = lambda r: 1.0 if float(r["theta_rad"]) >= 0.0 else -1.0  # noqa: E731
     ax1.plot(t_p, [sign(r) * float(r["rotation_ratio"]) for r in p], color="tab:blue", lw=1.0,
              label="planar: theta / alpha of the pivot")
