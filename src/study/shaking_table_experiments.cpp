@@ -154,6 +154,44 @@ bool exceeds_static_uplift(const Body& body, const TableTest& test, int directio
   return false;
 }
 
+namespace {
+
+// One test through a model, the same for the planar and the 3-D model: reset with the first sample,
+// each record sample (the table acceleration a, direction applied), then the tail at rest, up to an
+// overturn. Model: reset(a), step(a), overturned(); record(t, a) keeps a history sample (or not).
+template <class Reset, class Step, class Over, class Record>
+void run_test(const TableTest& test, double s, long tail, bool history, Reset&& reset, Step&& step,
+              Over&& overturned, Record&& record) {
+  long sample = 0;
+  auto keep = [&](double a) {
+    if (history) record(static_cast<double>(sample) * test.dt, a);
+  };
+  reset(s * test.accel_mps2.front());
+  keep(s * test.accel_mps2.front());
+  for (std::size_t i = 1; i < test.accel_mps2.size(); ++i) {
+    step(s * test.accel_mps2[i]);
+    ++sample;
+    keep(s * test.accel_mps2[i]);
+    if (overturned()) break;
+  }
+  for (long i = 0; i < tail && !overturned(); ++i) {
+    step(0.0);
+    ++sample;
+    keep(0.0);
+  }
+}
+
+template <class Outcome>
+void fill_outcome(TestPrediction& p, const Outcome& o) {
+  p.predicted = o.overturned;
+  p.uplift = !std::isnan(o.uplift_time);
+  p.max_rotation_ratio = o.max_rotation_ratio;
+  p.overturn_time = o.overturned ? o.overturn_time : std::numeric_limits<double>::quiet_NaN();
+  p.impacts = o.impacts;
+}
+
+}  // namespace
+
 TestPrediction predict_table_test(const BodyParameters& parameters, const std::string& specimen,
                                   const TableTest& test, const ExperimentSettings& settings,
                                   std::vector<TableHistorySample>* history) {
@@ -165,42 +203,25 @@ TestPrediction predict_table_test(const BodyParameters& parameters, const std::s
   AdaptiveModel model(body, settings.adaptive);
   const double s = settings.direction >= 0 ? 1.0 : -1.0;
   const long tail = static_cast<long>(std::ceil(settings.tail_s / test.dt));
-  long sample = 0;
-  auto keep = [&](double a) {
-    if (!history) return;
-    TableHistorySample h;
-    h.t = static_cast<double>(sample) * test.dt;
-    h.table_accel_mps2 = a;
-    h.theta = model.theta();
-    h.omega = model.omega();
-    h.rotation_ratio = h.theta == 0.0 ? 0.0 : std::abs(h.theta) / body.pivot(h.theta > 0.0 ? 1 : -1).alpha;
-    h.max_rotation_ratio = model.outcome().max_rotation_ratio;
-    h.mode = model.mode_name();
-    history->push_back(h);
-  };
   if (history) {
     history->clear();
     history->reserve(test.accel_mps2.size() + static_cast<std::size_t>(tail));
   }
-  model.reset(0.0, s * test.accel_mps2.front(), 0.0);
-  keep(s * test.accel_mps2.front());
-  for (std::size_t i = 1; i < test.accel_mps2.size(); ++i) {
-    model.step(s * test.accel_mps2[i], 0.0, test.dt);
-    ++sample;
-    keep(s * test.accel_mps2[i]);
-    if (model.outcome().overturned) break;
-  }
-  for (long i = 0; i < tail && !model.outcome().overturned; ++i) {
-    model.step(0.0, 0.0, test.dt);
-    ++sample;
-    keep(0.0);
-  }
-  const auto& o = model.outcome();
-  p.predicted = o.overturned;
-  p.uplift = !std::isnan(o.uplift_time);
-  p.max_rotation_ratio = o.max_rotation_ratio;
-  p.overturn_time = o.overturned ? o.overturn_time : std::numeric_limits<double>::quiet_NaN();
-  p.impacts = o.impacts;
+  run_test(
+      test, s, tail, history != nullptr, [&](double a) { model.reset(0.0, a, 0.0); },
+      [&](double a) { model.step(a, 0.0, test.dt); }, [&] { return model.outcome().overturned; },
+      [&](double t, double a) {
+        TableHistorySample h;
+        h.t = t;
+        h.table_accel_mps2 = a;
+        h.theta = model.theta();
+        h.omega = model.omega();
+        h.rotation_ratio = h.theta == 0.0 ? 0.0 : std::abs(h.theta) / body.pivot(h.theta > 0.0 ? 1 : -1).alpha;
+        h.max_rotation_ratio = model.outcome().max_rotation_ratio;
+        h.mode = model.mode_name();
+        history->push_back(h);
+      });
+  fill_outcome(p, model.outcome());
   return p;
 }
 
@@ -227,52 +248,34 @@ TestPrediction predict_table_test_3d(const BaseBodyParameters& parameters, const
     if (p.exceeds_static_uplift) break;
   }
   const long tail = static_cast<long>(std::ceil(settings.tail_s / test.dt));
-  long sample = 0;
   const Eigen::Vector3d centre = body.centre_of_mass();
-  auto keep = [&](double a) {
-    if (!history) return;
-    TableHistorySample h;
-    h.t = static_cast<double>(sample) * test.dt;
-    h.table_accel_mps2 = a;
-    // Tilt signed by where the contact lies: on the -x side of the centre of mass > 0.
-    const double tilt = model.tilt();
-    double side = 1.0;
-    if (model.contact() >= 0) {
-      const Eigen::Vector3d& where = model.mode() == Mode3D::Edge
-                                         ? body.vertex(body.edge(model.contact()).a).position
-                                         : body.vertex(model.contact()).position;
-      side = where.x() <= centre.x() ? 1.0 : -1.0;
-    }
-    h.theta = side * tilt;
-    h.omega = model.angular_velocity().norm();
-    h.rotation_ratio = model.rotation_ratio();
-    h.max_rotation_ratio = model.outcome().max_rotation_ratio;
-    h.mode = to_string(model.mode());
-    history->push_back(h);
-  };
   if (history) {
     history->clear();
     history->reserve(test.accel_mps2.size() + static_cast<std::size_t>(tail));
   }
-  model.reset(0.0, s * test.accel_mps2.front() * axis);
-  keep(s * test.accel_mps2.front());
-  for (std::size_t i = 1; i < test.accel_mps2.size(); ++i) {
-    model.step(s * test.accel_mps2[i] * axis, test.dt);
-    ++sample;
-    keep(s * test.accel_mps2[i]);
-    if (model.outcome().overturned) break;
-  }
-  for (long i = 0; i < tail && !model.outcome().overturned; ++i) {
-    model.step(Eigen::Vector3d::Zero(), test.dt);
-    ++sample;
-    keep(0.0);
-  }
-  const auto& o = model.outcome();
-  p.predicted = o.overturned;
-  p.uplift = !std::isnan(o.uplift_time);
-  p.max_rotation_ratio = o.max_rotation_ratio;
-  p.overturn_time = o.overturned ? o.overturn_time : std::numeric_limits<double>::quiet_NaN();
-  p.impacts = o.impacts;
+  run_test(
+      test, s, tail, history != nullptr, [&](double a) { model.reset(0.0, a * axis); },
+      [&](double a) { model.step(a * axis, test.dt); }, [&] { return model.outcome().overturned; },
+      [&](double t, double a) {
+        TableHistorySample h;
+        h.t = t;
+        h.table_accel_mps2 = a;
+        // Tilt signed by where the contact lies: on the -x side of the centre of mass > 0.
+        double side = 1.0;
+        if (model.contact() >= 0) {
+          const Eigen::Vector3d& where = model.mode() == Mode3D::Edge
+                                             ? body.vertex(body.edge(model.contact()).a).position
+                                             : body.vertex(model.contact()).position;
+          side = where.x() <= centre.x() ? 1.0 : -1.0;
+        }
+        h.theta = side * model.tilt();
+        h.omega = model.angular_velocity().norm();
+        h.rotation_ratio = model.rotation_ratio();
+        h.max_rotation_ratio = model.outcome().max_rotation_ratio;
+        h.mode = to_string(model.mode());
+        history->push_back(h);
+      });
+  fill_outcome(p, model.outcome());
   return p;
 }
 
