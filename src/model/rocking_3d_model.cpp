@@ -122,9 +122,7 @@ double Rocking3DModel::rotation_ratio() const {
   const Eigen::Vector3d lever = r * v.to_centre;
   // Which side of the vertical through the vertex the centre of mass is on: the side of the base
   // (inside, ratio < 1) or beyond it (ratio > 1).
-  Eigen::Vector3d inside = Eigen::Vector3d::Zero();
-  for (int i = 0; i < body_.vertex_count(); ++i) inside += body_.vertex(i).position - v.position;
-  inside = r * inside;
+  const Eigen::Vector3d inside = r * (body_.centroid() - v.position);
   const double phi = std::atan2(std::hypot(lever.x(), lever.y()), lever.z());
   const bool beyond = lever.x() * inside.x() + lever.y() * inside.y() < 0.0;
   return beyond ? 1.0 + phi / v.alpha : 1.0 - phi / v.alpha;

@@ -88,6 +88,7 @@ BaseBody::BaseBody(const BaseBodyParameters& parameters) : params_(parameters) {
     v.inertia_inverse = v.inertia.inverse();
     v.radius = v.to_centre.norm();
     v.alpha = std::atan2(std::hypot(v.to_centre.x(), v.to_centre.y()), v.to_centre.z());
+    centroid_ += v.position / n;
   }
   edges_.resize(static_cast<std::size_t>(n));
   min_alpha_ = kPi;

@@ -72,6 +72,8 @@ class BaseBody {
   /// Central inertia / mass, m^2.
   const Eigen::Matrix3d& central_inertia_per_mass() const { return central_; }
   const Eigen::Vector3d& centre_of_mass() const { return params_.centre_of_mass; }
+  /// Mean of the base vertices (on the floor): a point inside the base.
+  const Eigen::Vector3d& centroid() const { return centroid_; }
   double overturn_angle() const { return params_.overturn_angle; }
   double restitution_factor() const { return params_.restitution_factor; }
   /// Smallest edge tipping angle and the largest p of any edge (step-size scales).
@@ -81,6 +83,7 @@ class BaseBody {
  private:
   BaseBodyParameters params_;
   Eigen::Matrix3d central_;
+  Eigen::Vector3d centroid_ = Eigen::Vector3d::Zero();
   std::vector<BaseVertex> vertices_;
   std::vector<BaseEdge> edges_;
   double min_alpha_ = 0.0, max_p_ = 0.0;
