@@ -62,4 +62,10 @@ if(BUILD_TESTING)
                    $<TARGET_FILE:rocking_experiments> ${ROCKING_EXPERIMENTS_DIR}/granite_pbr
                    ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/granite_specimens_3d.yaml)
   set_tests_properties(rocking_experiments_histories_3d PROPERTIES TIMEOUT 60 SKIP_RETURN_CODE 77)
+  # A specimen's catalogue yaw is the table azimuth with the opposite sign (the calibrated catalogue's).
+  add_test(NAME rocking_experiments_yaw
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/experiments_yaw.sh
+                   $<TARGET_FILE:rocking_experiments> ${ROCKING_EXPERIMENTS_DIR}/granite_pbr
+                   ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/granite_specimens_3d.yaml)
+  set_tests_properties(rocking_experiments_yaw PROPERTIES TIMEOUT 120 SKIP_RETURN_CODE 77)
 endif()

@@ -50,7 +50,15 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 # Runtime flags with an equivalent catalogue key: a calibrated catalogue's members carry them as keys
 # (rocking_experiments applies a flag to every member, so members that differ need the key).
 RUNTIME_TO_KEY = {"--restitution": "restitution", "--mu-s": "mu_s",
-                  "--restitution-factor": "restitution_factor"}  # the last: 3-D items only
+                  "--restitution-factor": "restitution_factor",  # 3-D items only
+                  "--table-azimuth": "pose"}  # 3-D: the specimen's yaw on the table, see runtime_keys
+
+
+def azimuth_pose(value):
+    """--table-azimuth A (deg, the table's axis in the specimen's frame) as the specimen's catalogue
+    pose: turned by yaw = -A (rad) on the table, which rocking_experiments and the node read alike."""
+    yaw = -math.radians(float(value))
+    return f"{{parent_frame: table, yaw: {yaw!r}}}   # rad: the table's axis at {float(value):g} deg in the item's frame"
 
 
 class CalibrationError(Exception):
@@ -608,7 +616,9 @@ def runtime_keys(runtime, where):
         if runtime[k] in RUNTIME_TO_KEY:
             if k + 1 >= len(runtime):
                 raise CalibrationError(f"{where}: {runtime[k]} without a value")
-            keys.append((RUNTIME_TO_KEY[runtime[k]], runtime[k + 1]))
+            value = runtime[k + 1]
+            keys.append((RUNTIME_TO_KEY[runtime[k]],
+                         azimuth_pose(value) if runtime[k] == "--table-azimuth" else value))
             k += 2
         else:
             rest.append(runtime[k])

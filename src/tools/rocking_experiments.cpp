@@ -81,7 +81,9 @@ int main(int argc, char** argv) {
     bool solid = model_name == "3d";
     if (model_name == "auto")
       solid = !items.empty() && std::all_of(items.begin(), items.end(), [](const auto& i) { return i.spec.solid.has_value(); });
-    struct Member { rm::BodyParameters planar; rm::BaseBodyParameters solid; };
+    // A member's table azimuth (rad): --table-azimuth minus the item's own yaw on the table (its
+    // catalogue pose), the same rotation the node applies to a sensor's input through tf.
+    struct Member { rm::BodyParameters planar; rm::BaseBodyParameters solid; double azimuth; };
     struct Specimen { std::string id; std::vector<Member> members; int column; };
     std::vector<Specimen> specimens;
     for (const auto& item : items) {
@@ -95,7 +97,16 @@ int main(int argc, char** argv) {
       if (!std::isnan(mu_s)) b.mu_s = mu_s;
       const std::string problem = rm::validate(b);
       if (!problem.empty()) throw std::runtime_error("item '" + item.spec.id + "': " + problem);
-      Member member{b, {}};
+      Member member{b, {}, azimuth_deg * M_PI / 180.0};
+      if (item.pose.given) {
+        if (item.pose.roll != 0.0 || item.pose.pitch != 0.0)
+          throw std::runtime_error(catalogue + ": item '" + item.spec.id + "': pose: a specimen stands on the "
+                                   "table: only its yaw is used, roll and pitch must be 0");
+        if (item.pose.yaw != 0.0 && !solid)
+          throw std::runtime_error(catalogue + ": item '" + item.spec.id + "': pose.yaw needs the 3-D model "
+                                   "(--model 3d): a planar plane has one axis");
+        member.azimuth -= item.pose.yaw;
+      }
       if (solid) {
         if (!item.spec.solid)
           throw std::runtime_error(catalogue + ": item '" + item.spec.id + "': --model 3d needs its 3-D "
@@ -166,12 +177,13 @@ int main(int argc, char** argv) {
     rm::ExperimentSettings settings;
     settings.direction = direction;
     settings.tail_s = tail_s;
-    settings.table_azimuth = azimuth_deg * M_PI / 180.0;
     if (!solid && azimuth_deg != 0.0)
       throw std::runtime_error("--table-azimuth needs the 3-D model (--model 3d): a planar plane has one axis");
     auto predict = [&](const Member& m, const std::string& id, const rm::TableTest& test,
                        std::vector<rm::TableHistorySample>* h) {
-      return solid ? rm::predict_table_test_3d(m.solid, id, test, settings, h)
+      rm::ExperimentSettings member_settings = settings;
+      member_settings.table_azimuth = m.azimuth;
+      return solid ? rm::predict_table_test_3d(m.solid, id, test, member_settings, h)
                    : rm::predict_table_test(m.planar, id, test, settings, h);
     };
     std::ofstream table;

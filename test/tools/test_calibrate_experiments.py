@@ -8,6 +8,7 @@ import gzip
 import io
 import json
 import os
+import math
 import re
 import sys
 import tempfile
@@ -143,6 +144,14 @@ class Helpers(unittest.TestCase):
     def test_runtime_keys(self):
         self.assertEqual(ce.runtime_keys(["--model", "3d", "--restitution", "0.8"], "p"),
                          ([("restitution", "0.8")], ["--model", "3d"]))
+
+    def test_table_azimuth_becomes_the_items_yaw(self):
+        # the table's axis at -5 deg in the specimen's frame: the specimen turned by +5 deg on it
+        keys, rest = ce.runtime_keys(["--table-azimuth", "-5"], "p")
+        self.assertEqual(rest, [])
+        self.assertEqual(keys[0][0], "pose")
+        yaw = float(keys[0][1].split("yaw:")[1].split("}")[0])
+        self.assertAlmostEqual(yaw, math.radians(5.0), places=12)
 
 
 # ---------------------------------------------------------------- the pipeline, end to end
