@@ -1,7 +1,8 @@
 # rocking_sim and the core's GoogleTest suite (no ROS master needed).
 # src/tools/rocking_sim*.cpp: main, the command line, the output, the ensemble (one job per file).
 add_executable(rocking_sim src/tools/rocking_sim.cpp src/tools/rocking_sim_options.cpp
-                           src/tools/rocking_sim_output.cpp src/tools/rocking_sim_ensemble.cpp)
+                           src/tools/rocking_sim_output.cpp src/tools/rocking_sim_ensemble.cpp
+                           src/tools/rocking_sim_solid.cpp)
 target_link_libraries(rocking_sim PRIVATE rocking_monitor_core CLI11::CLI11 nlohmann_json::nlohmann_json)
 set_target_properties(rocking_sim PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_TOOL_DIR})
 

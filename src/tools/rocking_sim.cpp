@@ -2,7 +2,8 @@
 // planes, uncoupled) with the ROS-free core.
 // Thin command-line layer: parse, read, simulate, print. All physics lives in the core library.
 // The parts, one job each: rocking_sim_options.* (the command line, the body and the records),
-// rocking_sim_output.* (one plane's run, the JSON and text output), rocking_sim_ensemble.* (--samples).
+// rocking_sim_output.* (one plane's run, the JSON and text output), rocking_sim_ensemble.* (--samples),
+// rocking_sim_solid.* (the 3-D model, --solid-model).
 #include <iostream>
 #include <optional>
 
@@ -12,6 +13,7 @@
 #include "rocking_sim_ensemble.hpp"
 #include "rocking_sim_options.hpp"
 #include "rocking_sim_output.hpp"
+#include "rocking_sim_solid.hpp"
 
 namespace rm = rocking_monitor::core;
 namespace sim = rocking_monitor::tools::sim;
@@ -36,12 +38,16 @@ int main(int argc, char** argv) {
       std::cerr << "rocking_sim: note: the y plane's history is in " << c.history_y_path
                 << " (--history-y to choose)\n";
     const rm::ItemVerdict item = rm::combine(x.levels, y ? &y->levels : nullptr);
+    std::optional<sim::SolidRun> solid;
+    if (s.solid_item)
+      solid = sim::run_solid(c.opt, *s.solid_item, s.solid_choice, c.bidirectional_ratio, m.x, m.y ? &*m.y : nullptr,
+                             c.history_3d_path);
     std::optional<sim::EnsembleRun> ensemble;
     if (c.samples > 0)
       ensemble = sim::run_ensemble(c.opt, s.item_entry->uncertain, c.samples, c.ensemble_seed, c.alarm_probability,
                                    m.x, m.y ? &*m.y : nullptr);
     sim::print_result(c.as_json, x, y ? &*y : nullptr, item, s.item_entry ? &*s.item_entry : nullptr,
-                      ensemble ? &*ensemble : nullptr);
+                      ensemble ? &*ensemble : nullptr, solid ? &*solid : nullptr);
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "rocking_sim: error: " << e.what() << "\n";

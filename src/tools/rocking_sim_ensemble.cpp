@@ -1,4 +1,5 @@
 #include "rocking_sim_ensemble.hpp"
+#include "rocking_sim_solid.hpp"
 
 #include <algorithm>
 #include <ctime>
@@ -22,16 +23,7 @@ EnsembleRun run_ensemble(const RunOptions& opt, const rm::UncertainItemSpec& spe
                          double threshold, const rm::GroundMotion& mx, const rm::GroundMotion* my) {
   std::vector<int> pulled;
   const std::vector<rm::ItemSpec> members = rm::draw_members(spec, samples, seed, &pulled);
-  rm::ItemMonitor::Options o;
-  o.solver = opt.settings;
-  o.fidelity = opt.fidelity;
-  o.linearized_max_alpha = opt.linearized_max_alpha;
-  o.scene = parse_scene(opt.scene_text, mx);
-  if (my != nullptr) {  // one envelope for both planes: the larger of each
-    const rm::SceneEnvelope sy = parse_scene(opt.scene_text, *my);
-    o.scene.horizontal = std::max(o.scene.horizontal, sy.horizontal);
-    o.scene.vertical = std::max(o.scene.vertical, sy.vertical);
-  }
+  const rm::ItemMonitor::Options o = monitor_options(opt, mx, my);
   rm::ItemEnsemble ensemble(members, o, threshold);
   auto ay = [&](std::size_t i) { return my != nullptr ? my->horizontal[i] : 0.0; };
   auto az = [&](std::size_t i) { return mx.vertical.empty() ? 0.0 : mx.vertical[i]; };

@@ -146,6 +146,22 @@ void add_options(CLI::App& app, CommandLine& c) {
                  "With --depth and --history: the y plane's history (default: the --history name "
                  "with _y before its extension, h.csv -> h_y.csv)");
   app.add_flag("--json", as_json, "Print one JSON object instead of a text summary");
+  app.add_option("--solid-model", c.solid_model_text,
+                 "The 3-D model (docs/rocking_3d.md), as the node's ~solid_model: auto (default: a "
+                 "--catalogue item with an oblique or irregular base_polygon runs it; a rectangle when "
+                 "the shaking is bidirectional) | 3d (always; from the flags: the box --width x --depth) "
+                 "| planar (the planes only)")
+      ->check(CLI::IsMember({"auto", "3d", "planar"}))
+      ->default_val("auto");
+  app.add_option("--bidirectional-ratio", c.bidirectional_ratio,
+                 "--solid-model auto, a rectangle: the 3-D model takes over (at rest) once the weaker "
+                 "horizontal's running peak reaches this fraction of the stronger's (the node's "
+                 "~bidirectional_ratio)")
+      ->default_val(c.bidirectional_ratio)
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--history-3d", c.history_3d_path,
+                 "With the 3-D model: its time history (CSV: tilt, contact, orientation quaternion, "
+                 "angular velocity)");
 }
 
 Setup resolve(const CLI::App& app, CommandLine& c) {
@@ -203,6 +219,31 @@ Setup resolve(const CLI::App& app, CommandLine& c) {
   }
   if (!history_y_path.empty() && history_path.empty())
     throw std::invalid_argument("--history-y needs --history");
+  // The 3-D model: a catalogue item's own description, or the box of the flags when asked for.
+  rm::parse_solid_choice(c.solid_model_text, s.solid_choice);
+  if (s.solid_choice != rm::SolidChoice::Planar) {
+    if (item_entry && item_entry->spec.solid) {
+      s.solid_item = item_entry->spec;
+    } else if (s.solid_choice == rm::SolidChoice::Solid) {
+      if (item_entry)
+        throw std::invalid_argument("--solid-model 3d: item '" + item_id + "' in " + catalogue_file +
+                                    " has no 3-D description (base_polygon, centre_of_mass, central_inertia, mass)");
+      if (!two_planes)
+        throw std::invalid_argument("--solid-model 3d needs --depth (the box's base is --width x --depth) or a "
+                                    "--catalogue item with a base_polygon");
+      rm::ItemSpec box;
+      box.id = "rocking_sim";
+      box.sensor = box.frame = "cli";
+      box.body = body;
+      box.depth = depth;
+      // the y plane's own radius of gyration: the box's y tilt is then the y plane's body exactly
+      box.solid = rm::box_base_body(body, depth.depth, depth.eccentricity_y, rm::Body(*body_y).radius_of_gyration());
+      s.solid_item = box;
+    }
+  }
+  if (!s.solid_item && app.count("--history-3d") > 0)
+    throw std::invalid_argument("--history-3d needs the 3-D model (a --catalogue item with a base_polygon, or "
+                                "--solid-model 3d with --depth)");
   const bool derived_history_y = s.derived_history_y = two_planes && !history_path.empty() && history_y_path.empty();
   if (derived_history_y) history_y_path = y_history_path(history_path);
   return s;

@@ -11,6 +11,8 @@
 
 #include "rocking_monitor/model/adaptive_model.hpp"
 #include "rocking_monitor/monitoring/catalogue_file.hpp"
+#include "rocking_monitor/monitoring/plane_monitor.hpp"
+#include "rocking_monitor/physics/base_body.hpp"
 #include "rocking_monitor/motion/ground_motion.hpp"
 #include "rocking_monitor/motion/record_reader.hpp"
 #include "rocking_monitor/physics/principal_planes.hpp"
@@ -43,6 +45,8 @@ struct CommandLine {
   std::uint64_t ensemble_seed = 1;
   double alarm_probability = 0.5;
   std::string fidelity_text = "adaptive";
+  std::string solid_model_text = "auto", history_3d_path;  ///< --solid-model, --history-3d
+  double bidirectional_ratio = 0.3;
 };
 
 /// Declares every flag on `app`, bound to `c`.
@@ -54,6 +58,10 @@ struct Setup {
   bool two_planes = false;                      ///< --depth (or the item's depth)
   std::optional<rm::BodyParameters> body_y;     ///< the y plane's body when two_planes
   bool derived_history_y = false;               ///< --history-y derived from --history
+  /// The item the 3-D model runs (--solid-model): a catalogue item with a base polygon, or the box of
+  /// --width/--depth with --solid-model 3d; empty: planes only.
+  std::optional<rm::ItemSpec> solid_item;
+  rm::SolidChoice solid_choice = rm::SolidChoice::Auto;
 };
 
 /// Checks the flags together and settles the solver, the body (from the flags or the catalogue item)

@@ -1,4 +1,5 @@
 #include "rocking_sim_output.hpp"
+#include "rocking_sim_solid.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -277,45 +278,58 @@ PlaneRun run_plane(const RunOptions& opt, const rm::BodyParameters& params,
 }
 
 void print_result(bool as_json, const PlaneRun& x, const PlaneRun* y, const rm::ItemVerdict& item,
-                  const rm::CatalogueItem* item_entry, const EnsembleRun* ensemble) {
+                  const rm::CatalogueItem* item_entry, const EnsembleRun* ensemble, const SolidRun* solid) {
+  // Who reached each level: a plane, or the 3-D model (then the item's verdict is the 3-D run's).
+  auto reached_at = [&](rm::Level level) {
+    return solid != nullptr ? solid->levels.at(level) : item.levels.at(level);
+  };
+  auto reached_by = [&](rm::Level level) -> std::string {
+    return solid != nullptr ? solid->by[static_cast<int>(level)] : rm::to_string(item.plane[static_cast<int>(level)]);
+  };
+  const bool overturned = !std::isnan(reached_at(rm::Level::Overturned));
 if (as_json) {
   json out = x.out;  // the top level stays the x plane's single-plane output
   json planes = {{"x", x.out}};
   planes["x"].erase("record");  // it is the top-level "record"
   if (y != nullptr) planes["y"] = y->out;  // its "record" is the y horizontal + the shared vertical
   out["planes"] = planes;
-  json verdict = {{"plane_count", y != nullptr ? 2 : 1}};
+  json verdict = {{"plane_count", y != nullptr ? 2 : 1},
+                  {"model", solid != nullptr && solid->decided ? "rocking_3d" : "planar"}};
   const std::pair<rm::Level, const char*> levels[] = {{rm::Level::BeyondTipping, "beyond_tipping"},
                                                       {rm::Level::Committed, "committed"},
                                                       {rm::Level::Overturned, "overturn"}};
   for (const auto& [level, name] : levels) {
-    const bool reached = item.levels.reached(level);
+    const bool reached = !std::isnan(reached_at(level));
     // "overturned" as the top-level flag, "overturn_time_s" as the top-level time
     verdict[level == rm::Level::Overturned ? std::string("overturned") : std::string(name)] = reached;
-    verdict[std::string(name) + "_time_s"] = nullable(item.levels.at(level));
-    verdict[std::string(name) + "_plane"] =
-        reached ? json(rm::to_string(item.plane[static_cast<int>(level)])) : json(nullptr);
+    verdict[std::string(name) + "_time_s"] = nullable(reached_at(level));
+    verdict[std::string(name) + "_plane"] = reached ? json(reached_by(level)) : json(nullptr);
   }
   out["item"] = verdict;
   if (item_entry != nullptr) out["item"]["id"] = item_entry->spec.id;
+  if (solid != nullptr) out["solid"] = solid->out;
   if (ensemble != nullptr) out["ensemble"] = ensemble->out;
   std::cout << out.dump(2) << "\n";
 } else {
-  const std::string px = y != nullptr ? "[x] " : "", py = "[y] ";
+  const bool prefixed = y != nullptr || solid != nullptr;
+  const std::string px = prefixed ? "[x] " : "", py = "[y] ", p3 = "[3d] ", indent = prefixed ? "    " : "";
   for (const std::string& line : x.lines) std::printf("%s%s\n", px.c_str(), line.c_str());
   if (y != nullptr)
     for (const std::string& line : y->lines) std::printf("%s%s\n", py.c_str(), line.c_str());
+  if (solid != nullptr)
+    for (const std::string& line : solid->lines) std::printf("%s%s\n", p3.c_str(), line.c_str());
   auto level_text = [&](rm::Level level) {
-    const double t = item.levels.at(level);
+    const double t = reached_at(level);
     if (std::isnan(t)) return std::string("never");
-    return std::to_string(t) + " s (" + rm::to_string(item.plane[static_cast<int>(level)]) + " plane)";
+    const std::string by = reached_by(level);
+    return std::to_string(t) + " s (" + (by == "3d" ? std::string("3-D model") : by + " plane") + ")";
   };
-  std::printf("%sitem        %s: beyond tipping %s, committed %s, overturned %s\n", y != nullptr ? "    " : "",
-              item.overturned() ? "OVERTURNED" : "survived",
+  std::printf("%sitem        %s: beyond tipping %s, committed %s, overturned %s\n", indent.c_str(),
+              overturned ? "OVERTURNED" : "survived",
               level_text(rm::Level::BeyondTipping).c_str(), level_text(rm::Level::Committed).c_str(),
               level_text(rm::Level::Overturned).c_str());
   if (ensemble != nullptr)
-    for (const std::string& line : ensemble->lines) std::printf("%s%s\n", y != nullptr ? "    " : "", line.c_str());
+    for (const std::string& line : ensemble->lines) std::printf("%s%s\n", indent.c_str(), line.c_str());
 }
 }
 

@@ -23,6 +23,7 @@ struct PlaneRun {
 };
 
 struct EnsembleRun;  // rocking_sim_ensemble.hpp
+struct SolidRun;     // rocking_sim_solid.hpp
 
 /// NaN (never) as JSON null.
 json nullable(double v);
@@ -36,9 +37,11 @@ PlaneRun run_plane(const RunOptions& opt, const rm::BodyParameters& params,
                    const rm::GroundMotion& motion, const std::string& history_path);
 
 /// Prints the answer: with --json one object (the top level is the x plane's single-plane output, then
-/// "planes", "item" and "ensemble"); else the planes' lines ([x]/[y] with two), the item line and the
-/// ensemble's lines. `y`, `item_entry` and `ensemble` may be null.
+/// "planes", "item", "solid" and "ensemble"); else the planes' lines ([x]/[y] with two), the 3-D
+/// model's ([3d]), the item line and the ensemble's lines. With `solid` the item's verdict is the 3-D
+/// run's (the node's alarms: by the 3-D model or, before it took over, a plane). `y`, `item_entry`,
+/// `ensemble` and `solid` may be null.
 void print_result(bool as_json, const PlaneRun& x, const PlaneRun* y, const rm::ItemVerdict& item,
-                  const rm::CatalogueItem* item_entry, const EnsembleRun* ensemble);
+                  const rm::CatalogueItem* item_entry, const EnsembleRun* ensemble, const SolidRun* solid = nullptr);
 
 }  // namespace rocking_monitor::tools::sim

@@ -7,6 +7,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -16,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "rocking_monitor/constants.hpp"
 #include "rocking_monitor/physics/item_verdict.hpp"
 #include "rocking_monitor/motion/record_reader.hpp"
 #include "rocking_monitor/monitoring/simulation.hpp"
@@ -380,6 +383,107 @@ TEST(RockingSimTwoPlanes, BadInputGivesOneClearLine) {
   expect_status_2(base + " --eccentricity-y 0.4", {"--eccentricity-y needs --depth"});
   const std::string coarse = zeros_csv("coarse.csv", 0.01, 800);
   expect_status_2(base + " --depth 0.3 --record-y " + coarse, {kPulse, coarse, "0.005", "0.01"});
+}
+
+}  // namespace
+}  // namespace rocking_monitor::core
+
+namespace rocking_monitor::core {
+namespace {
+
+// The 3-D model in rocking_sim (issue 27): a box under one horizontal along x (the y horizontal zero)
+// rocks about its x edges exactly as the x plane (the model's reduction, through the CLI: the same
+// decisions, uplift time and peak to 1e-9), the item's verdict is the 3-D run's, and its history
+// file is one row per sample with a unit quaternion and, sampled, the JSON's peak tilt.
+TEST(RockingSim3D, ABoxUnderOneHorizontalIsItsXPlane) {
+  const std::string zeros = zeros_csv("zeros_3d.csv", 0.005, 1601);
+  const fs::path d = temp_dir();
+  long overturned = 0, rocked = 0;
+  for (const std::string body : {"--width 0.15 --cg-height 0.35 --eccentricity 0.45",
+                                 "--width 0.3 --cg-height 0.6 --eccentricity 0.4",
+                                 "--width 0.5 --cg-height 0.9 --eccentricity 0.4"}) {
+    const std::string hist = (d / "box3d.csv").string();
+    const std::string args = "--record " + kPulse + " --record-y " + zeros + " " + body +
+                             " --depth 0.3 --eccentricity-y 0.35 --fidelity rocking --solid-model 3d";
+    const auto j = sim_json(args + " --history-3d " + hist);
+    ASSERT_TRUE(j.contains("solid")) << args;
+    const auto &s = j["solid"], &x = j["planes"]["x"];
+    EXPECT_TRUE(s["in_charge"].get<bool>());
+    EXPECT_EQ(s["in_charge_from_s"].get<double>(), 0.0);
+    EXPECT_EQ(s["overturned"], x["overturned"]) << body;
+    EXPECT_EQ(s["committed"], x["committed"]) << body;
+    EXPECT_EQ(s["beyond_tipping"], x["beyond_tipping"]) << body;
+    EXPECT_EQ(s["impacts"], x["impacts"]) << body;
+    EXPECT_EQ(s["edge_to_vertex"], 0) << body;
+    EXPECT_NEAR(s["max_rotation_ratio"].get<double>(), x["max_rotation_ratio"].get<double>(), 1e-9) << body;
+    ASSERT_EQ(s["uplift_time_s"].is_null(), x["uplift_time_s"].is_null()) << body;
+    if (!x["uplift_time_s"].is_null())
+      EXPECT_NEAR(s["uplift_time_s"].get<double>(), x["uplift_time_s"].get<double>(), 1e-9) << body;
+    // the item's verdict: the 3-D run's alarms, at the x plane's times
+    EXPECT_EQ(j["item"]["model"], "rocking_3d");
+    EXPECT_EQ(j["item"]["overturned"], x["overturned"]) << body;
+    if (x["overturned"].get<bool>()) {
+      EXPECT_NEAR(j["item"]["overturn_time_s"].get<double>(), x["overturn_time_s"].get<double>(), 1e-9);
+      EXPECT_EQ(j["item"]["overturn_plane"], "3d");
+    }
+    overturned += x["overturned"].get<bool>();
+    rocked += x["impacts"].get<long>() > 0 && !x["overturned"].get<bool>();
+    // the history: header, one row per sample, at rest first, |q| = 1, its peak tilt the JSON's
+    const auto rows = read_lines(hist);
+    ASSERT_EQ(rows.size(), 1u + s["samples"].get<std::size_t>());
+    EXPECT_EQ(rows[0], "time_s,ax_mps2,ay_mps2,az_mps2,model,mode,contact,tilt_rad,rotation_ratio,"
+                       "qw,qx,qy,qz,wx_radps,wy_radps,wz_radps");
+    double peak = 0.0;
+    for (std::size_t k = 1; k < rows.size(); ++k) {
+      std::vector<std::string> f;
+      std::stringstream ss(rows[k]);
+      for (std::string cell; std::getline(ss, cell, ',');) f.push_back(cell);
+      ASSERT_EQ(f.size(), 16u) << rows[k];
+      if (k == 1) EXPECT_EQ(f[5], "REST");
+      const double qw = std::stod(f[9]), qx = std::stod(f[10]), qy = std::stod(f[11]), qz = std::stod(f[12]);
+      EXPECT_NEAR(qw * qw + qx * qx + qy * qy + qz * qz, 1.0, 1e-9) << rows[k];
+      if (f[5] != "OVERTURNED") peak = std::max(peak, std::stod(f[7]));
+    }
+    // the JSON's peak is found inside samples too (at every integrator step), the history's at their ends
+    if (!s["overturned"].get<bool>()) {
+      EXPECT_LE(peak, s["max_tilt_rad"].get<double>() + 1e-12);
+      EXPECT_GT(peak, 0.99 * s["max_tilt_rad"].get<double>());
+    }
+  }
+  EXPECT_GT(overturned, 0) << "one of the boxes must overturn for the test to cover the alarm";
+  EXPECT_GT(rocked, 0) << "one must rock and survive";
+}
+
+// A catalogue item with a turned base (a square at 30 deg: oblique) runs the 3-D model under
+// --solid-model auto, from the first sample, and the planes only with planar; the errors name the flag.
+TEST(RockingSim3D, AnObliqueCatalogueItemRunsIn3DAndErrorsAreClear) {
+  const fs::path d = temp_dir();
+  const fs::path cat = d / "oblique.yaml";
+  {
+    std::ofstream out(cat);
+    const double c = std::cos(kPi / 6.0) * 0.15, s = std::sin(kPi / 6.0) * 0.15;
+    out << "items:\n  - id: turned\n    sensor: floor\n    width: 0.3\n    depth: 0.3\n    cg_height: 0.5\n"
+        << "    mass: 40\n    centre_of_mass: [0, 0, 0.5]\n"
+        << "    central_inertia: [[4.0, 0, 0], [0, 4.0, 0], [0, 0, 0.6]]\n"
+        << "    base_polygon: [[" << c << ", " << s << "], [" << -s << ", " << c << "], [" << -c << ", " << -s
+        << "], [" << s << ", " << -c << "]]\n";
+  }
+  const std::string base = "--record " + kPulse + " --catalogue " + cat.string() + " --item turned";
+  const auto j = sim_json(base);
+  ASSERT_TRUE(j.contains("solid")) << j.dump();
+  EXPECT_TRUE(j["solid"]["in_charge"].get<bool>());
+  EXPECT_EQ(j["solid"]["solid_model"], "auto");
+  EXPECT_EQ(j["item"]["model"], "rocking_3d");
+  EXPECT_EQ(j["solid"]["body"]["vertices"], 4);
+  const auto planar = sim_json(base + " --solid-model planar");
+  EXPECT_FALSE(planar.contains("solid"));
+  EXPECT_EQ(planar["item"]["model"], "planar");
+  const CliRun no_depth = run_sim("--record " + kPulse + " --width 0.3 --cg-height 0.5 --solid-model 3d");
+  EXPECT_EQ(no_depth.status, 2);
+  EXPECT_NE(no_depth.out.find("rocking_sim: error: --solid-model 3d needs --depth"), std::string::npos) << no_depth.out;
+  const CliRun no_model = run_sim("--record " + kPulse + " --width 0.3 --cg-height 0.5 --history-3d x.csv");
+  EXPECT_EQ(no_model.status, 2);
+  EXPECT_NE(no_model.out.find("rocking_sim: error: --history-3d needs the 3-D model"), std::string::npos) << no_model.out;
 }
 
 }  // namespace

@@ -1,0 +1,142 @@
+#include "rocking_sim_solid.hpp"
+
+#include <cmath>
+#include <ctime>
+#include <fstream>
+#include <stdexcept>
+
+#include "rocking_monitor/csv/csv_writer.hpp"
+#include "rocking_sim_output.hpp"
+
+namespace rocking_monitor::tools::sim {
+
+namespace {
+
+int level_of(rm::ItemMode m) { return static_cast<int>(m) - static_cast<int>(rm::ItemMode::BeyondTipping); }
+
+json body_json(const rm::BaseBody& b) {
+  json base = json::array();
+  for (int i = 0; i < b.vertex_count(); ++i) base.push_back({b.vertex(i).position.x(), b.vertex(i).position.y()});
+  const Eigen::Vector3d& c = b.centre_of_mass();
+  return {{"vertices", b.vertex_count()},
+          {"base_polygon_m", base},
+          {"centre_of_mass_m", {c.x(), c.y(), c.z()}},
+          {"min_alpha_rad", b.min_alpha()},
+          {"restitution_factor", b.restitution_factor()}};
+}
+
+}  // namespace
+
+rm::ItemMonitor::Options monitor_options(const RunOptions& opt, const rm::GroundMotion& mx,
+                                         const rm::GroundMotion* my) {
+  rm::ItemMonitor::Options o;
+  o.solver = opt.settings;
+  o.fidelity = opt.fidelity;
+  o.linearized_max_alpha = opt.linearized_max_alpha;
+  o.scene = parse_scene(opt.scene_text, mx);
+  if (my != nullptr) {  // one envelope for both planes: the larger of each
+    const rm::SceneEnvelope sy = parse_scene(opt.scene_text, *my);
+    o.scene.horizontal = std::max(o.scene.horizontal, sy.horizontal);
+    o.scene.vertical = std::max(o.scene.vertical, sy.vertical);
+  }
+  return o;
+}
+
+SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidChoice choice,
+                   double bidirectional_ratio, const rm::GroundMotion& mx, const rm::GroundMotion* my,
+                   const std::string& history_path) {
+  if (!spec.solid) throw std::invalid_argument("item '" + spec.id + "' has no 3-D description");
+  rm::ItemMonitor::Options o = monitor_options(opt, mx, my);
+  o.solid = choice;
+  o.bidirectional_ratio = bidirectional_ratio;
+  rm::ItemMonitor item(spec, o);
+  const rm::Rocking3DModel& model = *item.solid();
+  auto ay = [&](std::size_t i) { return my != nullptr ? my->horizontal[i] : 0.0; };
+  auto az = [&](std::size_t i) { return mx.vertical.empty() ? 0.0 : mx.vertical[i]; };
+
+  std::ofstream history;
+  std::optional<rm::csv::Writer> row;
+  if (!history_path.empty()) {
+    history.open(history_path);
+    if (!history) throw std::runtime_error(history_path + ": cannot open for writing");
+    history << "time_s,ax_mps2,ay_mps2,az_mps2,model,mode,contact,tilt_rad,rotation_ratio,"
+               "qw,qx,qy,qz,wx_radps,wy_radps,wz_radps\n";
+    row.emplace(history);
+  }
+  auto write_row = [&](double t, std::size_t i) {
+    if (!row) return;
+    const Eigen::Quaterniond q(model.rotation());
+    const Eigen::Vector3d w = model.angular_velocity();
+    row->number("%.6f", t).number("%.9g", mx.horizontal[i]).number("%.9g", ay(i)).number("%.9g", az(i));
+    row->text(item.solid_active() ? "3d" : "planar").text(rm::to_string(model.mode()));
+    row->value(std::to_string(model.contact())).number("%.12g", model.tilt()).number("%.9g", model.rotation_ratio());
+    row->number("%.12g", q.w()).number("%.12g", q.x()).number("%.12g", q.y()).number("%.12g", q.z());
+    row->number("%.12g", w.x()).number("%.12g", w.y()).number("%.12g", w.z());
+    row->end_row();
+  };
+
+  SolidRun run;
+  double taken_over = item.solid_active() ? 0.0 : std::nan("");
+  const std::clock_t start = std::clock();
+  item.start(0.0, mx.horizontal.front(), ay(0), az(0), mx.dt);
+  if (item.solid_active()) taken_over = 0.0;
+  write_row(0.0, 0);
+  for (std::size_t i = 1; i < mx.size(); ++i) {
+    const rm::ItemEvents& ev = item.step(mx.horizontal[i], ay(i), az(i), mx.dt);
+    const double t = static_cast<double>(i) * mx.dt;
+    if (item.solid_active() && std::isnan(taken_over)) taken_over = t - mx.dt;  // at rest, before the sample
+    for (int k = 0; k < ev.alarm_count; ++k) {
+      const rm::AlarmEvent& a = ev.alarms[static_cast<std::size_t>(k)];
+      const int l = level_of(a.level);
+      if (l < 0 || l >= rm::kLevelCount || run.levels.reached(static_cast<rm::Level>(l))) continue;
+      run.levels.time[static_cast<std::size_t>(l)] = a.time;
+      run.by[static_cast<std::size_t>(l)] = item.solid_active() ? "3d" : rm::to_string(a.plane);
+    }
+    write_row(t, i);
+  }
+  const double cpu = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
+  if (history && !history.flush()) throw std::runtime_error(history_path + ": write failed");
+  run.decided = !std::isnan(taken_over);
+
+  const rm::RockingOutcome& r = model.outcome();
+  const rm::Rocking3DOutcome& r3 = model.outcome_3d();
+  run.out = {{"model", "rocking_3d"},
+             {"solid_model", rm::to_string(choice)},
+             {"in_charge", run.decided},
+             {"in_charge_from_s", nullable(taken_over)},
+             {"overturned", r.overturned},
+             {"committed", r.committed},
+             {"beyond_tipping", r.beyond_tipping},
+             {"uplift_time_s", nullable(r.uplift_time)},
+             {"beyond_tipping_time_s", nullable(r.beyond_tipping_time)},
+             {"committed_time_s", nullable(r.committed_time)},
+             {"overturn_time_s", nullable(r.overturn_time)},
+             {"max_rotation_ratio", r.max_rotation_ratio},
+             {"max_tilt_rad", r3.max_tilt},
+             {"impacts", r.impacts},
+             {"edge_to_vertex", r3.edge_to_vertex},
+             {"vertex_impacts", r3.vertex_impacts},
+             {"flat_impacts", r3.flat_impacts},
+             {"final_mode", rm::to_string(model.mode())},
+             {"final_contact", model.contact()},
+             {"samples", mx.size()},
+             {"cpu_time_s", cpu},
+             {"body", body_json(model.body())}};
+  auto& L = run.lines;
+  L.push_back(format("body        %d-vertex base, centre of mass (%.4f, %.4f, %.4f) m, smallest edge alpha "
+                     "%.4f rad", model.body().vertex_count(), model.body().centre_of_mass().x(),
+                     model.body().centre_of_mass().y(), model.body().centre_of_mass().z(), model.body().min_alpha()));
+  L.push_back(run.decided ? format("model       rocking_3d in charge from %.4f s (--solid-model %s)", taken_over,
+                                   rm::to_string(choice))
+                          : format("model       the planar pair decided (--solid-model auto: a rectangle, the "
+                                   "shaking never bidirectional at ratio %.2f)", bidirectional_ratio));
+  L.push_back(format("result      %s, final mode %s, max tilt %.5f rad, max |theta|/alpha %.4f",
+                     r.overturned ? "OVERTURNED" : "survived", rm::to_string(model.mode()), r3.max_tilt,
+                     r.max_rotation_ratio));
+  L.push_back(format("impacts     %ld (flat %ld, on a vertex %ld), edge-to-vertex lifts %ld", r.impacts,
+                     r3.flat_impacts, r3.vertex_impacts, r3.edge_to_vertex));
+  L.push_back(format("cost        %zu samples, %.4f s CPU", mx.size(), cpu));
+  return run;
+}
+
+}  // namespace rocking_monitor::tools::sim
