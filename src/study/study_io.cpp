@@ -201,6 +201,9 @@ BodyFile load_catalogue_items(const std::string& path) {
     auto laws = c.uncertain.uncertain() ? std::make_shared<const UncertainItemSpec>(c.uncertain) : nullptr;
     try {
       if (!c.spec.two_planes()) {
+        if (c.spec.solid)
+          out.notes.push_back(where + "its 3-D description runs on both horizontals, which needs a depth: "
+                                      "only its x plane is run");
         StudyBody b{c.spec.id, plane_body(c.spec, Plane::X), laws, Plane::X, c.ensemble_size};
         out.bodies.push_back(std::move(b));
         continue;
@@ -213,6 +216,7 @@ BodyFile load_catalogue_items(const std::string& path) {
       it.depth = c.spec.depth;
       it.y = plane_body(c.spec, Plane::Y);
       if (const std::string e = validate(it.y); !e.empty()) throw StudyError("y plane: " + e);
+      it.solid = c.spec.solid;
       out.items.push_back(std::move(it));
     } catch (const StudyError& e) {
       throw StudyError(where + e.what());
@@ -271,7 +275,7 @@ std::vector<StudyBody> load_bodies_yaml(const std::string& path) {
 namespace {
 
 json item_tally_json(const ItemTally& t) {
-  return {{"cases", t.cases},
+  json out = {{"cases", t.cases},
           {"overturned", t.overturned},
           {"overturned_percent", nullable(t.cases ? 100.0 * t.overturned / t.cases : NAN)},
           {"committed", t.committed},
@@ -282,6 +286,12 @@ json item_tally_json(const ItemTally& t) {
           {"overturned_x_plane_only", t.overturned_x_only},
           {"overturned_y_plane_only", t.overturned_y_only},
           {"overturned_both_planes", t.overturned_both}};
+  if (t.solid_cases > 0)  // the 3-D model ran: its count beside the planar pair's
+    out["solid"] = {{"cases", t.solid_cases},
+                    {"overturned", t.solid_overturned},
+                    {"overturned_percent", 100.0 * t.solid_overturned / t.solid_cases},
+                    {"overturn_differs_from_planes", t.solid_differs}};
+  return out;
 }
 
 json items_json(const ItemSummary& s) {

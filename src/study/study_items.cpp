@@ -158,6 +158,30 @@ LevelTimes level_times(const RockingOutcome& o) {
   return t;
 }
 
+namespace {
+
+// The 3-D model on the same inputs as the planes: both horizontals (flipped together by the
+// polarity) and the vertical, run_case()'s samples from the same start at rest.
+void run_solid_case(const BaseBodyParameters& params, const PlaneInputs& in, int polarity, ItemCaseResult& c,
+                    const SolverSettings& settings) {
+  SolverSettings s = settings;
+  s.method = Method::Dopri5;  // the 3-D model's only integrator
+  s.model = ModelKind::Nonlinear;
+  Rocking3DModel model(BaseBody(params), s);
+  const double sign = polarity < 0 ? -1.0 : 1.0;
+  auto a = [&](std::size_t i) {
+    return Eigen::Vector3d(sign * in.x[i], sign * in.y[i], c.vertical ? in.vertical[i] : 0.0);
+  };
+  if (in.x.empty()) return;
+  model.reset(in.t0, a(0));
+  for (std::size_t i = 1; i < in.x.size() && !model.outcome().overturned; ++i) model.step(a(i), in.dt);
+  c.solid_run = true;
+  c.solid = model.outcome();
+  c.solid_3d = model.outcome_3d();
+}
+
+}  // namespace
+
 ItemCaseResult run_item_case(const StudyItem& item, const PlaneInputs& in, int polarity, bool vertical,
                              const SolverSettings& settings) {
   ItemCaseResult c;
@@ -179,6 +203,7 @@ ItemCaseResult run_item_case(const StudyItem& item, const PlaneInputs& in, int p
   }
   const LevelTimes x = level_times(c.planes[0].outcome), y = level_times(c.planes[1].outcome);
   c.verdict = combine(x, &y);
+  if (item.solid) run_solid_case(*item.solid, in, polarity, c, settings);
   return c;
 }
 
@@ -266,7 +291,10 @@ const std::vector<std::string>& item_case_csv_columns() {
       "x_overturn_time_s", "x_impacts",
       "y_overturned", "y_committed", "y_beyond_tipping", "y_max_rotation_ratio", "y_uplift_time_s",
       "y_overturn_time_s", "y_impacts",
-      "item_level", "item_overturned", "item_overturn_time_s", "deciding_plane"};
+      "item_level", "item_overturned", "item_overturn_time_s", "deciding_plane",
+      "solid_overturned", "solid_committed", "solid_beyond_tipping", "solid_max_rotation_ratio",
+      "solid_max_tilt_rad", "solid_uplift_time_s", "solid_overturn_time_s", "solid_impacts",
+      "solid_edge_to_vertex"};
   return columns;
 }
 
@@ -306,6 +334,14 @@ void write_item_cases_csv(std::ostream& out, const std::vector<ItemCaseResult>& 
     }
     row.value(level).value(flag(c.verdict.overturned())).value(num(c.verdict.levels.at(Level::Overturned)));
     row.value(plane);
+    if (c.solid_run) {  // empty fields: the item has no 3-D description
+      const RockingOutcome& o = c.solid;
+      row.value(flag(o.overturned)).value(flag(o.committed)).value(flag(o.beyond_tipping));
+      row.value(num(o.max_rotation_ratio)).value(num(c.solid_3d.max_tilt)).value(num(o.uplift_time));
+      row.value(num(o.overturn_time)).value(std::to_string(o.impacts)).value(std::to_string(c.solid_3d.edge_to_vertex));
+    } else {
+      for (int k = 0; k < 9; ++k) row.value("");
+    }
     row.end_row();
   }
 }
@@ -321,6 +357,11 @@ void ItemTally::add(const ItemCaseResult& c) {
   overturned_x_only += x && !y;
   overturned_y_only += y && !x;
   overturned_both += x && y;
+  if (c.solid_run) {
+    ++solid_cases;
+    solid_overturned += c.solid.overturned;
+    solid_differs += c.solid.overturned != c.verdict.overturned();
+  }
 }
 
 ItemSummary summarize_items(const std::vector<ItemCaseResult>& results, const std::vector<StudyItem>& items,

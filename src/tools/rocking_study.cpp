@@ -186,6 +186,11 @@ int main(int argc, char** argv) {
                  "Two-plane items: azimuths of the item's x axis, degrees clockwise from north (repeatable "
                  "or a comma list; y is 90 deg counter-clockwise of x)")
       ->default_val("0,90");
+  std::string solid_model = "auto";
+  app.add_option("--solid-model", solid_model,
+                 "Two-plane items: auto (default: items with a base_polygon also run the 3-D model, "
+                 "columns solid_* of item_cases.csv) | 3d (every item, boxes as B x D) | planar (the planes only)")
+      ->check(CLI::IsMember({"auto", "3d", "planar"}))->default_val(solid_model);
   app.add_option("--heights", grid.heights, "Grid: number of centre-of-mass heights, log-spaced 0.25-4 m")
       ->default_val(grid.heights)->check(CLI::Range(1, 1000));
   app.add_option("--widths", grid.widths, "Grid: base widths per height, geometric in [max(0.08,0.16h), min(3.5,1.2h)]")
@@ -256,6 +261,13 @@ int main(int argc, char** argv) {
       st::BodyFile file = st::load_body_file(bodies_file);
       bodies = std::move(file.bodies);
       items = std::move(file.items);
+      for (const std::string& n : file.notes) std::cerr << "rocking_study: note: " << n << "\n";
+      for (st::StudyItem& it : items) {
+        if (solid_model == "planar") it.solid.reset();
+        // a box: its planes' bodies exactly (the y plane's own radius of gyration)
+        else if (solid_model == "3d" && !it.solid)
+          it.solid = rocking_monitor::core::box_base_body(it.x, it.depth.depth, it.depth.eccentricity_y, it.y.radius_of_gyration);
+      }
       // Item cases are numbered apart from the body cases and have no merge step yet.
       if (!items.empty() && shard_n != 1)
         throw st::StudyError(bodies_file + ": two-plane items (bodies with a depth) cannot be run with --shard yet");

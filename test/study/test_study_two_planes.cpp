@@ -507,6 +507,55 @@ TEST(TwoPlaneItemsRealRecords, RinaldiPlanesAtItsComponentsAzimuthsAreItsSingleP
   EXPECT_GT(rocked, 0);
 }
 
+// The 3-D model beside the planes (issue 27): a box under one horizontal along its x axis (the y
+// horizontal zero) and the vertical rocks about its x edges exactly as the x plane (the model's
+// reduction, tested on the model itself in test_rocking_3d.cpp; here the study's inputs, polarity and
+// vertical reach it as they reach the planes): every decision, time and peak to 1e-9. Under both
+// horizontals at 45 deg the box is no longer a plane problem, and the columns say which model ran.
+TEST(TwoPlaneItems, ABoxUnderOneHorizontalRocksIn3DAsItsXPlane) {
+  const Component up = pulse("UP", 2.0, 2.0, 0.0, true);
+  for (double amplitude : {3.0, 6.0}) {
+    const std::vector<StudyRecord> records = station({pulse("000", amplitude, 1.0), pulse("090", 0.0, 1.0)}, &up);
+    const StationPairs pairs = pair_stations(records);
+    StudyItem item = make_item("box", 0.3, 0.25, 0.6, 0.4, 0.3);
+    item.solid = box_base_body(item.x, item.depth.depth, item.depth.eccentricity_y, item.y.radius_of_gyration);
+    const StudyItem planar_only = make_item("planar", 0.3, 0.25, 0.6, 0.4, 0.3);
+    const std::vector<ItemCaseResult> r = run_item_study({item, planar_only}, records, pairs, options({0.0, 45.0}));
+    long overturned = 0;
+    for (int p : {1, -1}) {
+      const ItemCaseResult& c = find(r, 0, 0.0, p);
+      const std::string what = describe(c) + " amplitude " + std::to_string(amplitude);
+      ASSERT_TRUE(c.solid_run) << what;
+      const RockingOutcome &s = c.solid, &x = c.planes[0].outcome;
+      EXPECT_GT(x.impacts + x.overturned, 0) << what << ": the x plane must rock for this to test anything";
+      EXPECT_EQ(s.overturned, x.overturned) << what;
+      EXPECT_EQ(s.committed, x.committed) << what;
+      EXPECT_EQ(s.beyond_tipping, x.beyond_tipping) << what;
+      EXPECT_EQ(s.impacts, x.impacts) << what;
+      EXPECT_NEAR(s.max_rotation_ratio, x.max_rotation_ratio, 1e-9) << what;
+      EXPECT_NEAR(s.uplift_time, x.uplift_time, 1e-9) << what;
+      if (x.overturned) EXPECT_NEAR(s.overturn_time, x.overturn_time, 1e-9) << what;
+      EXPECT_EQ(c.solid_3d.edge_to_vertex, 0) << what << ": no corner wobble under one component along a side";
+      overturned += x.overturned;
+      EXPECT_FALSE(find(r, 1, 0.0, p).solid_run) << "an item without a 3-D description runs the planes only";
+      // at 45 deg both horizontals shake it: the 3-D model is run (what it says is the model's own test)
+      EXPECT_TRUE(find(r, 0, 45.0, p).solid_run);
+    }
+    if (amplitude > 5.0) EXPECT_GT(overturned, 0) << "the strong pulse must overturn it in some polarity";
+    const ItemSummary sum = summarize_items(r, {item, planar_only}, pairs, {0.0, 45.0});
+    EXPECT_EQ(sum.by_item[0].solid_cases, 4);
+    EXPECT_EQ(sum.by_item[1].solid_cases, 0);
+    std::ostringstream os;
+    write_item_cases_csv(os, r, {item, planar_only}, records, pairs);
+    std::istringstream lines(os.str());
+    std::string header, first;
+    std::getline(lines, header);
+    std::getline(lines, first);
+    EXPECT_NE(header.find("solid_overturned"), std::string::npos);
+    EXPECT_EQ(std::count(header.begin(), header.end(), ','), std::count(first.begin(), first.end(), ','));
+  }
+}
+
 // --one-polarity and --no-vertical apply to the items too.
 TEST(TwoPlaneItems, OnePolarityAndNoVerticalOptions) {
   const Component up = pulse("UP", 1.5, 2.0, 0.0, true);

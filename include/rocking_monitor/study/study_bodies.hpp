@@ -4,11 +4,13 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "rocking_monitor/monitoring/uncertain_item.hpp"
 #include "rocking_monitor/physics/body.hpp"
+#include "rocking_monitor/physics/base_body.hpp"
 #include "rocking_monitor/physics/principal_planes.hpp"
 #include "rocking_monitor/study/study_error.hpp"
 
@@ -33,6 +35,10 @@ struct StudyItem {
   BodyParameters x;        ///< width, eccentricity (nu1), ...; radius_of_gyration set explicitly
   DepthParameters depth;   ///< depth, eccentricity_y, radius_of_gyration_y as given
   BodyParameters y;        ///< the y plane's planar body (radius_of_gyration set explicitly)
+  /// The 3-D description (a catalogue item's base polygon, or the box B x D of the planes with
+  /// --solid-model 3d): the item also runs the 3-D model (model/rocking_3d_model.hpp) on both
+  /// horizontals at once. Empty: the planes only.
+  std::optional<BaseBodyParameters> solid;
 };
 
 /// The planar body of one plane of a catalogue item, radius of gyration made explicit (a box

@@ -39,6 +39,7 @@ namespace rocking_monitor::core::study {
 struct BodyFile {
   std::vector<StudyBody> bodies;  ///< single-plane bodies, file order
   std::vector<StudyItem> items;   ///< two-plane items, file order
+  std::vector<std::string> notes; ///< what of the file is not run as given (e.g. 3-D without a depth)
 };
 BodyFile load_body_file(const std::string& path);
 /// The single-plane bodies of a file without two-plane items (throws StudyError if it has some).

@@ -14,6 +14,10 @@
 // Item case numbering: for each item, for each station pair in load order, for each azimuth in the
 // given order, polarity +1 then -1 (both horizontals flipped together; the vertical never is).
 // case = item * inputs_per_item + input.
+//
+// An item with a 3-D description (StudyItem::solid) also runs the 3-D model on the same inputs
+// (both horizontals and the vertical at once, polarity flipping both horizontals): its outcome
+// goes beside the planes' (columns solid_*), the planes' verdict is unchanged.
 
 #include <array>
 #include <cstddef>
@@ -23,6 +27,7 @@
 #include <vector>
 
 #include "rocking_monitor/integrate/solver_settings.hpp"
+#include "rocking_monitor/model/rocking_3d_model.hpp"
 #include "rocking_monitor/physics/item_verdict.hpp"
 #include "rocking_monitor/physics/principal_planes.hpp"
 #include "rocking_monitor/study/study_bodies.hpp"
@@ -82,6 +87,9 @@ struct ItemCaseResult {
   std::array<CaseResult, kPlaneCount> planes;  ///< [x, y], each as run_case() returns it
   std::array<double, kPlaneCount> pga{};       ///< max |input| of each plane, m/s^2
   ItemVerdict verdict;                         ///< combine(x, y)
+  bool solid_run = false;                      ///< the item has a 3-D description: solid is set
+  RockingOutcome solid;                        ///< the 3-D model's outcome (levels, impacts)
+  Rocking3DOutcome solid_3d;                   ///< its 3-D counts (max tilt, corner wobble)
 };
 
 /// Runs one item case: both planes with run_case() on `inputs` (psv not computed: the screening
@@ -117,6 +125,9 @@ struct ItemTally {
   long cases = 0, overturned = 0, committed = 0, beyond_tipping = 0;
   long overturned_decided_by_y = 0;      ///< the y plane overturned first (a tie names x)
   long overturned_x_only = 0, overturned_y_only = 0, overturned_both = 0;
+  /// Cases the 3-D model ran; of them overturned by it; its overturn decision differing from the
+  /// planar pair's (overturned by one model, not the other).
+  long solid_cases = 0, solid_overturned = 0, solid_differs = 0;
   void add(const ItemCaseResult& c);
 };
 struct ItemSummary {
