@@ -430,6 +430,10 @@ int main(int argc, char** argv) {
                   "(%ld decided by the y plane; x only %ld, y only %ld, both %ld)\n",
                   t.cases, t.overturned, t.overturned_decided_by_y, t.overturned_x_only, t.overturned_y_only,
                   t.overturned_both);
+      if (t.solid_cases > 0)
+        std::printf("The 3-D model on both horizontals at once (items with a base polygon): %ld of %ld item cases "
+                    "overturned; its overturn decision differs from the planar pair's in %ld\n",
+                    t.solid_overturned, t.solid_cases, t.solid_differs);
     }
     std::fprintf(stderr, "rocking_study: %zu cases%s in %.1f s (%.0f cases/s); wrote %s/{cases.csv,bodies.csv,"
                  "records.csv,summary.json%s}\n",
