@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 
@@ -44,8 +45,40 @@ Eigen::Vector3d gravity_and_inertia(const Eigen::Vector3d& a) {
 }  // namespace
 
 Rocking3DModel::Rocking3DModel(const BaseBody& body, const SolverSettings& settings)
+    : Rocking3DModel(body, settings, true) {}
+
+Rocking3DModel::Rocking3DModel(const BaseBody& body, const SolverSettings& settings, bool with_probe)
     : body_(body), settings_(checked(settings)) {
+  if (with_probe) probe_.reset(new Rocking3DModel(body, settings, false));
   reset(0.0);
+}
+
+bool Rocking3DModel::falls_if_shaking_stops(double t_now) {
+  Rocking3DModel& p = *probe_;
+  // the state of the motion (plain values: no allocation), the input gone from now on
+  p.mode_ = mode_;
+  p.contact_ = contact_;
+  p.theta_ = theta_;
+  p.omega_ = omega_;
+  p.y_ = y_;
+  p.pivot_world_ = pivot_world_;
+  p.yaw_ = yaw_;
+  p.shift_ = shift_;
+  std::copy(std::begin(armed_), std::end(armed_), std::begin(p.armed_));
+  p.dopri5_ = dopri5_;
+  p.vector_ = vector_;
+  p.outcome_ = outcome_;
+  p.outcome3_ = outcome3_;
+  p.t_ = t_now;
+  p.a_prev_.setZero();
+  p.dopri5_.invalidate();  // the derivative cached for the shaken motion no longer holds
+  p.vector_.invalidate();
+  for (double s = 0.0; s < kProbeHorizon; s += kProbeStep) {
+    p.step(Eigen::Vector3d::Zero(), kProbeStep);
+    if (p.mode_ == Mode3D::Overturned) return true;
+    if (p.mode_ == Mode3D::Rest) return false;
+  }
+  return false;
 }
 
 void Rocking3DModel::reset(double t, const Eigen::Vector3d& a) {
@@ -62,6 +95,7 @@ void Rocking3DModel::reset(double t, const Eigen::Vector3d& a) {
   report_ = StepReport{};
   outcome_ = RockingOutcome{};
   outcome3_ = Rocking3DOutcome{};
+  last_probe_t_ = -1e300;
   dopri5_.reset(0.05 / body_.max_p());
   vector_.reset(0.05 / body_.max_p());
 }
@@ -116,6 +150,7 @@ double Rocking3DModel::tilt() const {
 
 double Rocking3DModel::rotation_ratio() const {
   if (mode_ == Mode3D::Edge) return theta_ / body_.edge(contact_).pivot.alpha;
+  if (mode_ == Mode3D::Overturned) return outcome_.max_rotation_ratio;  // as it went over (> 1)
   if (mode_ != Mode3D::Vertex) return 0.0;
   const BaseVertex& v = body_.vertex(contact_);
   const Eigen::Matrix3d r = vertex_rotation(y_);
@@ -755,6 +790,14 @@ const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
   if (mode_ == Mode3D::Edge && !outcome_.committed) {
     const OverturnMargin m = overturn_margin(body_.edge(contact_).pivot, 1, ModelKind::Nonlinear, theta_, omega_);
     if (m.committed) {
+      outcome_.committed = true;
+      outcome_.committed_time = t_ + dt;
+      report_.committed_entered = true;
+    }
+  } else if (mode_ == Mode3D::Vertex && !outcome_.committed && probe_ && t_ + dt - last_probe_t_ >= kProbeInterval &&
+             margin().committed) {
+    last_probe_t_ = t_ + dt;
+    if (falls_if_shaking_stops(t_ + dt)) {
       outcome_.committed = true;
       outcome_.committed_time = t_ + dt;
       report_.committed_entered = true;

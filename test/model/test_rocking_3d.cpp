@@ -277,6 +277,45 @@ TEST(Rocking3D, ObliquePulsesNeverHitTheEventBound) {
   EXPECT_GT(vertex, 5);
 }
 
+// COMMITTED on a corner means what it means about an edge: it would overturn if the shaking stopped
+// now. Checked against an independent free run: a fresh model put in the state of the moment the
+// flag was raised (set_vertex_state) and left under gravity alone for 10 s with 1 ms steps
+// overturns. The flag comes before the overturn (the alarm's lead time) and never for a body that
+// stands at the end of the same shaking.
+TEST(Rocking3D, CommittedOnACornerMeansItFallsWhenTheShakingStops) {
+  BodyParameters x = box_x(0.3, 0.45, 0.5);
+  const BaseBody body(box_base_body(x, 0.3, 0.5, std::nan("")));
+  long committed_on_corner = 0, with_lead = 0;
+  for (double deg : {20.0, 30.0, 40.0, 45.0, 50.0, 60.0, 70.0}) {
+    for (double amp : {0.5, 0.6, 0.7, 0.9}) {
+      Rocking3DModel m(body, SolverSettings{});
+      const Eigen::Vector3d dir(std::cos(deg * kPi / 180.0), std::sin(deg * kPi / 180.0), 0.0);
+      bool checked = false;
+      for (double t = 0.0; t < 3.0; t += 0.001) {
+        const double s = t < 0.5 ? std::sin(2.0 * kPi * 2.0 * t) : 0.0;
+        const bool before = m.outcome().committed;
+        m.step(amp * kGravity * s * dir, 0.001);
+        if (before || !m.outcome().committed || m.mode() != Mode3D::Vertex) continue;
+        ++committed_on_corner;
+        checked = true;
+        EXPECT_TRUE(m.committed_now()) << "the energy must suffice to pass over the corner";
+        Rocking3DModel free(body, SolverSettings{});
+        free.reset(m.time());
+        free.set_vertex_state(m.contact(), Eigen::Quaterniond(m.rotation()), m.angular_velocity());
+        for (int k = 0; k < 10000 && free.mode() != Mode3D::Overturned && free.mode() != Mode3D::Rest; ++k)
+          free.step(Eigen::Vector3d::Zero(), 0.001);
+        EXPECT_EQ(free.mode(), Mode3D::Overturned) << deg << " deg, " << amp << " g, committed at " << m.time();
+      }
+      if (checked) {
+        EXPECT_TRUE(m.outcome().overturned) << deg << " deg, " << amp << " g: committed but standing";
+        with_lead += m.outcome().overturn_time > m.outcome().committed_time + 0.05;
+      }
+    }
+  }
+  EXPECT_GT(committed_on_corner, 3) << "the cases must commit while on a corner for this to test it";
+  EXPECT_EQ(with_lead, committed_on_corner) << "committed at least 50 ms before the overturn";
+}
+
 TEST(Rocking3D, InvalidBasesAreRefusedWithTheField) {
   BaseBodyParameters p = box_base_body(box_x(0.4, 0.6, 0.5), 0.3, 0.5, std::nan(""));
   auto message = [](const BaseBodyParameters& q) {

@@ -15,6 +15,7 @@
 // (yaw and shift on the floor) that changes only when it turns while pivoting on a vertex.
 
 #include <cstdint>
+#include <memory>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -51,6 +52,8 @@ class Rocking3DModel {
  public:
   /// Throws std::invalid_argument for invalid settings (the body was validated by BaseBody).
   Rocking3DModel(const BaseBody& body, const SolverSettings& settings);
+  Rocking3DModel(const Rocking3DModel&) = delete;
+  Rocking3DModel& operator=(const Rocking3DModel&) = delete;
 
   /// REST at time t with the current ground acceleration (m/s^2); clears the outcome.
   void reset(double t, const Eigen::Vector3d& a = Eigen::Vector3d::Zero());
@@ -78,7 +81,8 @@ class Rocking3DModel {
   /// Tilt of the base from the floor, rad.
   double tilt() const;
   /// EDGE: theta / alpha of the edge; VERTEX: how far the centre of mass has turned towards the
-  /// vertical through the vertex, as a fraction of the way (1 above it, > 1 beyond); 0 at rest.
+  /// vertical through the vertex, as a fraction of the way (1 above it, > 1 beyond); 0 at rest;
+  /// OVERTURNED: the largest reached on the way over.
   double rotation_ratio() const;
   /// Energy distance to overturning if the shaking stopped now, in units of the energy that lifts
   /// the body from rest to its tipping point (+1 at rest, < 0 committed). EDGE: the planar margin
@@ -96,6 +100,7 @@ class Rocking3DModel {
 
  private:
   using Vec7 = Eigen::Matrix<double, 7, 1>;
+  Rocking3DModel(const BaseBody& body, const SolverSettings& settings, bool with_probe);
   enum class Event { None, Impact, Overturn, Lift, Degenerate };
 
   Eigen::Matrix3d yaw_matrix() const;
@@ -144,6 +149,14 @@ class Rocking3DModel {
   StepReport report_;
   RockingOutcome outcome_;
   Rocking3DOutcome outcome3_;
+  // VERTEX: COMMITTED (it would overturn if the shaking stopped now) has no closed form on a corner
+  // as it has about an edge: once the energy could carry the centre of mass over the corner, the free
+  // motion is stepped ahead on this copy of the model (made with it, so no allocation per sample),
+  // every kProbeInterval s at most, for up to kProbeHorizon s.
+  bool falls_if_shaking_stops(double t_now);
+  std::unique_ptr<Rocking3DModel> probe_;
+  double last_probe_t_ = -1e300;
+  static constexpr double kProbeHorizon = 3.0, kProbeStep = 0.02, kProbeInterval = 0.02;  // s
 };
 
 }  // namespace rocking_monitor::core
