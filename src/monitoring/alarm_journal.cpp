@@ -102,7 +102,8 @@ JournalRecord from_json_line(const std::string& line) {
   if (r.level == 0) throw std::runtime_error("unknown level '" + level + "'");
   if (r.kind == JournalKind::Alarm) {
     r.plane = text(j, "plane", true);
-    if (r.plane != "x" && r.plane != "y") throw std::runtime_error("field 'plane' must be \"x\" or \"y\"");
+    if (r.plane != "x" && r.plane != "y" && r.plane != "3d")
+      throw std::runtime_error("field 'plane' must be \"x\", \"y\" or \"3d\"");
     r.rotation_ratio = number(j, "rotation_ratio", false);
   } else {
     r.probability = number(j, "probability", true);

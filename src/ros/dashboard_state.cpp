@@ -53,6 +53,10 @@ json state_json(const RockingState& s) {
             {"model_valid", s.model_valid}, {"model", s.model}, {"slip", s.slip},
             {"stamp", s.input_stamp.toSec()}, {"x", plane_json(s.x)}};
   if (s.plane_count >= 2) j["y"] = plane_json(s.y);
+  if (s.model == "rocking_3d") {  // the 3-D model decides: the side view turns about its contact
+    j["tilt"] = s.tilt;
+    j["contact"] = s.contact;
+  }
   if (s.ensemble_size > 0) {  // an item with uncertain parameters: P(level) over its members
     j["ensemble_size"] = s.ensemble_size;
     j["p_overturned"] = s.p_overturned.probability;
@@ -180,6 +184,13 @@ json Dashboard::item_json_locked(std::size_t index, const RockingState* state) c
     if (spec.depth.given()) {
       j["depth"] = spec.depth.depth;
       j["eccentricity_y"] = spec.depth.eccentricity_y;
+    }
+    if (spec.solid) {  // the 3-D description: the side view draws the base polygon and its contact
+      json base = json::array();
+      for (const auto& v : spec.solid->base) base.push_back({v.x(), v.y()});
+      j["base_polygon"] = std::move(base);
+      const auto& c = spec.solid->centre_of_mass;
+      j["centre_of_mass"] = {c.x(), c.y(), c.z()};
     }
     const ItemPose& p = g.entry.pose;
     if (p.given) j["pose"] = {{"frame", p.parent_frame}, {"x", p.x}, {"y", p.y}, {"yaw", p.yaw}};

@@ -63,7 +63,9 @@ void RockingMonitor::publish_events(Item& it, const core::ItemEvents& ev, const 
     const core::AlarmEvent& a = ev.alarms[i];
     OverturnAlarm m = alarm_for<OverturnAlarm>(spec, stamp);
     m.level = static_cast<std::uint8_t>(a.level);
-    m.plane = core::to_string(a.plane);
+    // the 3-D model decides the item: it reached the level on its base polygon, not in a plane
+    const bool solid = it.monitor->solid_active();
+    m.plane = solid ? "3d" : core::to_string(a.plane);
     const double epoch = sensors_[it.sensor].epoch.toSec();
     m.event_time = epoch + a.time;
     m.time_since_first_sample = a.time;
@@ -73,7 +75,9 @@ void RockingMonitor::publish_events(Item& it, const core::ItemEvents& ev, const 
     if (!journal_alarm(it, m, epoch)) continue;  // journaled (fsync'd before publication); never twice
     if (pending_logs_.size() < kAlarmLinesPerSample) {
       const std::string when = core::event_time_text(epoch + a.time, epoch);
-      const char* across = a.plane == core::Plane::X ? "across its width" : "across its depth";
+      const char* across = solid                      ? "on its base polygon (3-D model)"
+                           : a.plane == core::Plane::X ? "across its width"
+                                                       : "across its depth";
       char text[512];
       if (a.level == ItemMode::Overturned) {
         std::snprintf(text, sizeof text, "rocking_monitor: OVERTURNED: %s (%s), %s (plane %s), %s [event %s #%lu]",

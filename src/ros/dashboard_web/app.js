@@ -448,6 +448,7 @@ function renderDetail() {
     row('energy margin', fmt(s.energy_margin, 3));
     if (s.x) row('impacts x / y', s.x.impacts + (s.y ? ' / ' + s.y.impacts : ''));
     if (s.model) row('model', esc(s.model) + (s.model_valid ? '' : ' (pure rocking not valid)'));
+    if (s.model === 'rocking_3d') row('tilt, contact', fmt(s.tilt, 4) + ' rad, ' + esc(s.contact || 'flat on its base'));
   }
   row('criteria exceeded', esc((it.criteria || []).join(', ') || 'none'));
   $('sel-details').tBodies[0].innerHTML = rows.join('');
@@ -461,6 +462,7 @@ function drawSide() {
   ctx.font = '12px system-ui, sans-serif';
   if (!it) { ctx.fillStyle = '#888'; ctx.fillText('side view of the selected item', 10, 20); return; }
   const st = it.state, plane = st ? st.plane : 'x';
+  if (it.base_polygon && st && st.model === 'rocking_3d') { drawSide3d(ctx, W, H, it, st); return; }
   const ps = { theta: st ? st.theta : 0 };  // item level = the governing plane's
   const f = footprint(it);
   const B = plane === 'y' ? f.d : f.w, nu = plane === 'y' ? f.nuy : f.nu;
@@ -492,6 +494,81 @@ function drawSide() {
   ctx.fillStyle = '#222';
   ctx.fillText('side view, plane ' + plane + (plane === 'y' ? ' (across the depth)' : ' (across the width)'), 10, 16);
   ctx.fillText('\u03b8 = ' + fmt(ps.theta, 3) + ' rad (' + fmt((ps.theta || 0) * 180 / Math.PI, 1) + '\u00b0)', 10, 32);
+}
+
+// The 3-D model's item (docs/rocking_3d.md): seen along the axis it turns about (the contact edge, or
+// for a corner the line through it across the direction to the base's centre), tilted by the state's
+// tilt; an inset plan of the base polygon marks the contact and the centre of mass.
+function drawSide3d(ctx, W, H, it, st) {
+  const base = it.base_polygon, n = base.length, com = it.centre_of_mass;
+  const m = /^(edge|vertex) (\d+)$/.exec(st.contact || '');
+  const k = m ? (parseInt(m[2], 10) - 1) % n : -1;
+  const cx = base.reduce((a, v) => a + v[0], 0) / n, cy = base.reduce((a, v) => a + v[1], 0) / n;
+  // pivot point p and inward unit direction u (from the axis towards the base)
+  let p = [cx, cy], u = [1, 0], axisLabel = 'at rest';
+  if (m && m[1] === 'edge') {
+    const a = base[k], b = base[(k + 1) % n], ex = b[0] - a[0], ey = b[1] - a[1], L = Math.hypot(ex, ey) || 1;
+    u = [-ey / L, ex / L];  // counter-clockwise polygon: the inward normal is on the left
+    p = a;
+    axisLabel = 'about edge ' + (k + 1);
+  } else if (m) {
+    p = base[k];
+    const dx = cx - p[0], dy = cy - p[1], L = Math.hypot(dx, dy) || 1;
+    u = [dx / L, dy / L];
+    axisLabel = 'on corner ' + (k + 1) + ' (corner wobble)';
+  } else {
+    if (st.mode === 'OVERTURNED') axisLabel = 'overturned, on its side';
+    let lo = Infinity;  // at rest: seen along y, the pivot at the base's -x extreme
+    for (const v of base) if (v[0] < lo) { lo = v[0]; p = v; }
+  }
+  const along = (v) => (v[0] - p[0]) * u[0] + (v[1] - p[1]) * u[1];
+  let depth = 0;
+  for (const v of base) depth = Math.max(depth, along(v));
+  const h = com[2] > 0 ? com[2] : 0.5, h2 = 2 * h, cu = along(com);
+  const reach = Math.max(depth + h2, h2 * 1.1);
+  const s = Math.min((W - 40) / (2 * reach), (H - 50) / reach);
+  const gx = W / 2, gy = H - 28;
+  ctx.strokeStyle = '#555'; ctx.lineWidth = 2;
+  ctx.beginPath(); ctx.moveTo(10, gy); ctx.lineTo(W - 10, gy); ctx.stroke();
+  // the profile: from the pivot (u = 0) to the far side of the base (u = depth), 2h high; tilt lifts
+  // the far side (towards -u, drawn leftwards as the planar view's theta > 0)
+  const th = Math.max(0, Math.min(Math.PI / 2, st.tilt || 0));
+  const rot = ([uu, z]) => [-(uu * Math.cos(th) - z * Math.sin(th)), uu * Math.sin(th) + z * Math.cos(th)];
+  const toC = ([x, z]) => [gx + s * (x + depth / 2), gy - s * z];
+  ctx.beginPath();
+  [[0, 0], [depth, 0], [depth, h2], [0, h2]].map(rot).map(toC).forEach(([x, y], i) => (i ? ctx.lineTo(x, y) : ctx.moveTo(x, y)));
+  ctx.closePath();
+  ctx.fillStyle = COLOURS[modeOf(it)];
+  ctx.globalAlpha = 0.85; ctx.fill(); ctx.globalAlpha = 1;
+  ctx.strokeStyle = '#222'; ctx.lineWidth = 1.5; ctx.stroke();
+  const [mx, my] = toC(rot([cu, h]));
+  ctx.fillStyle = '#000'; ctx.beginPath(); ctx.arc(mx, my, 3, 0, 2 * Math.PI); ctx.fill();
+  const [qx, qy] = toC([0, 0]);
+  ctx.strokeStyle = '#000'; ctx.beginPath(); ctx.arc(qx, qy, 4, 0, 2 * Math.PI); ctx.stroke();
+  // inset plan (top right): the base polygon, the contact in red, the centre of mass
+  let x0 = Infinity, x1 = -Infinity, y0 = Infinity, y1 = -Infinity;
+  for (const v of base.concat([[com[0], com[1]]])) {
+    x0 = Math.min(x0, v[0]); x1 = Math.max(x1, v[0]); y0 = Math.min(y0, v[1]); y1 = Math.max(y1, v[1]);
+  }
+  const box = 70, sc = box / Math.max(x1 - x0, y1 - y0, 1e-6), ox = W - box - 12, oy = 10;
+  const P = (v) => [ox + sc * (v[0] - x0), oy + box - sc * (v[1] - y0)];  // +y up, as seen from above
+  ctx.strokeStyle = '#444'; ctx.lineWidth = 1; ctx.beginPath();
+  base.map(P).forEach(([x, y], i) => (i ? ctx.lineTo(x, y) : ctx.moveTo(x, y)));
+  ctx.closePath(); ctx.stroke();
+  ctx.strokeStyle = '#c00'; ctx.fillStyle = '#c00'; ctx.lineWidth = 3;
+  if (m && m[1] === 'edge') {
+    const [ax, ay] = P(base[k]), [bx, by] = P(base[(k + 1) % n]);
+    ctx.beginPath(); ctx.moveTo(ax, ay); ctx.lineTo(bx, by); ctx.stroke();
+  } else if (m) {
+    const [ax, ay] = P(base[k]);
+    ctx.beginPath(); ctx.arc(ax, ay, 4, 0, 2 * Math.PI); ctx.fill();
+  }
+  const [pcx, pcy] = P([com[0], com[1]]);
+  ctx.fillStyle = '#000'; ctx.beginPath(); ctx.arc(pcx, pcy, 2.5, 0, 2 * Math.PI); ctx.fill();
+  ctx.fillStyle = '#222';
+  ctx.fillText('3-D model, ' + axisLabel, 10, 16);
+  ctx.fillText('tilt = ' + fmt(st.tilt, 3) + ' rad (' + fmt((st.tilt || 0) * 180 / Math.PI, 1) + '\u00b0), ' +
+               '\u03b8/\u03b1 ' + fmt(st.rotation_ratio, 3), 10, 32);
 }
 
 function drawChart() {
