@@ -114,6 +114,8 @@ if(CPP_HTTPLIB_FOUND)
       # The test is Python: ctest does not source devel/setup.bash, so it is told where the generated
       # message modules are.
       add_rostest(test/ros/dashboard_browser.test DEPENDENCIES dashboard monitor)
+      # the same page with an item the 3-D model decides (its detail, tilt and "3d" alarms)
+      add_rostest(test/ros/dashboard_browser_3d.test DEPENDENCIES dashboard monitor)
     else()
       message(STATUS "chromium not found: the dashboard's browser test (test/ros/dashboard_browser.test) is not run")
     endif()

@@ -93,6 +93,20 @@ class DashboardBrowser(unittest.TestCase):
                              'the alarm log\'s "predicted by" column is cut at 1280 px: %s' % layout)
         print('DOM rows: %s; alarm log at 1280 px: %s' % (rows, layout))
 
+        # An item the 3-D model decides (~solid: its id; the catalogue gives it a base polygon): selected,
+        # its detail says so, with the tilt it ended at and the alarms' plane "3d".
+        solid = rospy.get_param('~solid', '')
+        if solid:
+            state = [s for s in last['states'].items if s.id == solid][0]
+            self.assertEqual(state.model, 'rocking_3d')
+            detail = chromium(['--window-size=1280,1000', '--dump-dom', url + '?poll=1&select=' + solid]).decode('utf-8', 'replace')
+            self.assertIn('<td>model</td><td>rocking_3d</td>', detail)
+            tilt = re.search(r'<td>tilt, contact</td><td>([0-9.]+) rad, ([^<]+)</td>', detail)
+            self.assertIsNotNone(tilt, 'no tilt row in the detail of %s' % solid)
+            self.assertAlmostEqual(float(tilt.group(1)), state.tilt, delta=1e-4)
+            self.assertRegex(detail, r'<tr data-item="%s" data-level="[^"]+">(?:(?!</tr>).)*<td>3d</td>' % re.escape(solid))
+            print('3-D item %s: tilt %s rad, %s' % (solid, tilt.group(1), tilt.group(2)))
+
         shot = rospy.get_param('~screenshot', '') or os.path.join(
             os.environ.get('ROS_HOME', os.path.expanduser('~/.ros')), 'dashboard_browser.png')
         os.makedirs(os.path.dirname(os.path.abspath(shot)), exist_ok=True)

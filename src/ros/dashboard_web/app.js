@@ -448,7 +448,10 @@ function renderDetail() {
     row('energy margin', fmt(s.energy_margin, 3));
     if (s.x) row('impacts x / y', s.x.impacts + (s.y ? ' / ' + s.y.impacts : ''));
     if (s.model) row('model', esc(s.model) + (s.model_valid ? '' : ' (pure rocking not valid)'));
-    if (s.model === 'rocking_3d') row('tilt, contact', fmt(s.tilt, 4) + ' rad, ' + esc(s.contact || 'flat on its base'));
+    if (s.model === 'rocking_3d') {
+      row('tilt, contact', fmt(s.tilt, 4) + ' rad, ' +
+          esc(s.contact || (s.mode === 'OVERTURNED' ? 'on its side' : 'flat on its base')));
+    }
   }
   row('criteria exceeded', esc((it.criteria || []).join(', ') || 'none'));
   $('sel-details').tBodies[0].innerHTML = rows.join('');
