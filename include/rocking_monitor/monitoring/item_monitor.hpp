@@ -39,6 +39,29 @@ class ItemMonitor {
   const ItemEvents& step(double ax, double ay, double az, double dt);
   const ItemEvents& events() const { return events_; }
 
+  /// Everything one sample carries to the next (state snapshots, issue 29): both planes, the 3-D
+  /// model, the levels alarmed. Restored into a monitor of the same spec and options it continues
+  /// bit for bit as the saved one would.
+  struct Saved {
+    bool started = false;
+    std::array<PlaneMonitor::Saved, kPlaneCount> planes;  ///< y: when two_planes()
+    bool two_planes = false;
+    std::array<bool, 3> alarmed{};  ///< BEYOND_TIPPING, COMMITTED, OVERTURNED
+    std::array<std::array<double, 2>, kPlaneCount> last_input{};  ///< m/s^2
+    bool has_solid = false;
+    Rocking3DModel::Saved solid;
+    bool solid_active = false;
+    double peak_x = 0.0, peak_y = 0.0;  ///< m/s^2
+    double t = 0.0;                     ///< s
+    Eigen::Vector3d last_a = Eigen::Vector3d::Zero();  ///< m/s^2
+  };
+  /// Reuses out's storage (no allocation once it has been filled before).
+  void save(Saved& out) const;
+  /// Continues from a saved state; levels marked alarmed (mark_alarmed) stay alarmed. Allocates, as
+  /// start() does. std::invalid_argument (naming the item and plane) when in was saved by a monitor
+  /// of another shape (planes, 3-D model, adaptive model): the monitor is then to be remade.
+  void restore(const Saved& in);
+
   const ItemSpec& spec() const { return spec_; }
   bool two_planes() const { return planes_[1] != nullptr; }
   int plane_count() const { return two_planes() ? 2 : 1; }
