@@ -31,6 +31,7 @@
 #include "rocking_monitor/monitoring/item_ensemble.hpp"
 #include "rocking_monitor/monitoring/item_monitor.hpp"
 #include "rocking_monitor/monitoring/monitor_batch.hpp"
+#include "rocking_monitor/monitoring/state_snapshot.hpp"
 #include "rocking_monitor/motion/sample_timing.hpp"
 #include "rocking_monitor/motion/stamp_plausibility.hpp"
 #include "rocking_monitor/ros/catalogue.hpp"
@@ -267,6 +268,38 @@ class RockingMonitor {
   void journal_reset(const std::string& why);
   void journal_stale_period(Sensor& s);  // on the state timer: a stale period opened or closed
   void journal_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& stat);
+
+  // State snapshots (issue 29, ros/monitor_snapshot.cpp, docs/journal.md): every item's model state
+  // written beside the journal every ~snapshot_period of input time (encoded here between samples,
+  // written by the writer's thread); a node restarted within ~max_bridge of its last sample continues
+  // each sensor's items from it, the missed samples a gap (frozen, not bridged, as issue 19).
+  std::string snapshot_path_;         // ~snapshot; "" = off
+  double snapshot_period_ = 0.1;      // ~snapshot_period, s of input time between snapshots (at least)
+  double snapshot_max_load_ = 0.05;   // ~snapshot_max_load: encoding takes at most this share of input time
+  double snapshot_interval_ = 0.1;    // the interval in use: max(period, last encode / max load), s
+  std::uint32_t fingerprint_ = 0;     // of the catalogue and model options (a foreign snapshot is refused)
+  std::unique_ptr<core::SnapshotFileWriter> snapshot_writer_;
+  core::SnapshotEncoder snapshot_encoder_;
+  ::ros::Time last_snapshot_stamp_;   // input stamp of the last snapshot taken
+  Cost snapshot_cost_;                // wall time of encoding one (between samples), s
+  std::uint64_t snapshot_failures_seen_ = 0;
+  std::unique_ptr<core::StateSnapshot> resume_;  // read at start; each sensor's part used at its first sample
+  std::vector<bool> resume_pending_;  // per sensor: its part not used yet
+  std::string snapshot_start_;        // what happened at start: resumed, refused (why), none
+  struct Resumed {
+    std::string sensor;
+    double gap_s = 0.0;               // last sample before the restart to the first after it, s
+    long missing = 0;                 // samples missing at the nominal rate
+    std::size_t items = 0;
+  };
+  std::vector<Resumed> resumed_;
+  bool load_snapshot_parameters();
+  /// sensors, items: the catalogue's parameters (with the model options, the configuration a
+  /// snapshot must have been written by).
+  void open_snapshot(const XmlRpc::XmlRpcValue& sensors, const XmlRpc::XmlRpcValue& items);
+  void resume_sensor(std::size_t sensor, const ::ros::Time& stamp);
+  void take_snapshot(const ::ros::Time& stamp);
+  void snapshot_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& stat);
 };
 
 }  // namespace rocking_monitor::live
