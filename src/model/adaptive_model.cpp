@@ -118,7 +118,8 @@ double AdaptiveModel::impact_friction_demand(int new_side) const {
 
 void AdaptiveModel::save(Saved& out) const {
   rock_.save(out.rock);
-  lin_.save(out.lin);
+  out.has_lin = lin_eligible_;  // else never stepped
+  if (lin_eligible_) lin_.save(out.lin);
   contact_.save(out.contact);
   out.lin_active = lin_active_;
   out.active = active_;
@@ -138,8 +139,11 @@ void AdaptiveModel::restore(const Saved& in) {
   if (in.switches.size() > static_cast<std::size_t>(settings_.max_switch_records))
     throw std::invalid_argument("AdaptiveModel::restore: " + std::to_string(in.switches.size()) +
                                 " switch records, this model keeps " + std::to_string(settings_.max_switch_records));
+  if (in.has_lin != lin_eligible_)
+    throw std::invalid_argument(std::string("AdaptiveModel::restore: the linearized tier's state ") +
+                                (in.has_lin ? "given for a model not eligible for it" : "missing"));
   rock_.restore(in.rock);
-  lin_.restore(in.lin);
+  if (lin_eligible_) lin_.restore(in.lin);
   contact_.restore(in.contact);
   lin_active_ = in.lin_active;
   active_ = in.active;

@@ -53,9 +53,9 @@ void PlaneMonitor::save(Saved& out) const {
   out.started = started_;
   if (!started_) return;
   out.dt_nominal = intensity_->config().dt;
-  model_.save(out.model);
   out.has_adaptive = adaptive_ != nullptr;
   if (adaptive_) adaptive_->save(out.adaptive);
+  else model_.save(out.model);  // with the adaptive model it is never stepped
   intensity_->save(out.intensity);
   out.slid_at_uplift = slid_at_uplift_;
   out.last_switch_criterion = last_switch_criterion_;
@@ -72,8 +72,8 @@ void PlaneMonitor::restore(const Saved& in) {
   if (!in.started) return;
   make_intensity(in.dt_nominal);
   intensity_->restore(in.intensity);
-  model_.restore(in.model);
   if (adaptive_) adaptive_->restore(in.adaptive);
+  else model_.restore(in.model);
   slid_at_uplift_ = in.slid_at_uplift;
   last_switch_criterion_ = in.last_switch_criterion;
   exceeded_ = in.exceeded;

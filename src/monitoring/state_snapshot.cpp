@@ -4,6 +4,7 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
@@ -29,9 +30,11 @@ std::uint32_t crc(const std::uint8_t* data, std::size_t size) {
 // Every Saved struct is visited field by field by visit(); Writer appends each field, Reader reads it
 // back and checks it. One function per struct serves both, so the layout cannot differ between them.
 
+// Writes at out[pos], growing out only when it is full: after the first snapshot the buffer has its
+// size already, and each field is a bounds check and a memcpy (no per-field vector insert).
 class Writer {
  public:
-  explicit Writer(std::vector<std::uint8_t>& out) : out_(out) {}
+  Writer(std::vector<std::uint8_t>& out, std::size_t& pos) : out_(out), pos_(pos) {}
   void operator()(const char*, double& x) { put(x); }
   void operator()(const char*, bool& x) { put(static_cast<std::uint8_t>(x ? 1 : 0)); }
   void operator()(const char*, int& x) { put(static_cast<std::int32_t>(x)); }
@@ -40,7 +43,9 @@ class Writer {
   void operator()(const char*, std::uint8_t& x) { put(x); }
   void operator()(const char*, std::string& x) {
     put(static_cast<std::uint32_t>(x.size()));
-    out_.insert(out_.end(), x.begin(), x.end());
+    room(x.size());
+    std::memcpy(out_.data() + pos_, x.data(), x.size());
+    pos_ += x.size();
   }
   template <class E>
   void enumeration(const char*, E& e, int) { put(static_cast<std::uint8_t>(e)); }
@@ -50,13 +55,17 @@ class Writer {
   bool failed() const { return false; }
 
  private:
+  void room(std::size_t n) {
+    if (pos_ + n > out_.size()) out_.resize(std::max(2 * out_.size(), pos_ + n + 4096));
+  }
   template <class T>
   void put(T x) {
-    std::uint8_t bytes[sizeof(T)];
-    std::memcpy(bytes, &x, sizeof(T));
-    out_.insert(out_.end(), bytes, bytes + sizeof(T));
+    room(sizeof(T));
+    std::memcpy(out_.data() + pos_, &x, sizeof(T));
+    pos_ += sizeof(T);
   }
   std::vector<std::uint8_t>& out_;
+  std::size_t& pos_;
 };
 
 class Reader {
@@ -256,7 +265,8 @@ constexpr int kActiveModels = static_cast<int>(ActiveModel::Contact) + 1;
 template <class V>
 void visit(V& v, AdaptiveModel::Saved& s) {
   v.group("rocking", [&] { visit(v, s.rock); });
-  v.group("linearized", [&] { visit(v, s.lin); });
+  v("has_linearized", s.has_lin);
+  if (s.has_lin) v.group("linearized", [&] { visit(v, s.lin); });
   v.group("contact", [&] { visit(v, s.contact); });
   v("lin_active", s.lin_active);
   v.enumeration("active", s.active, kActiveModels);
@@ -358,9 +368,9 @@ void visit(V& v, PlaneMonitor::Saved& s) {
   v("started", s.started);
   if (!s.started) return;
   v("dt_nominal", s.dt_nominal);
-  v.group("rocking", [&] { visit(v, s.model); });
   v("has_adaptive", s.has_adaptive);
   if (s.has_adaptive) v.group("adaptive", [&] { visit(v, s.adaptive); });
+  else v.group("rocking", [&] { visit(v, s.model); });
   v.group("intensity", [&] { visit(v, s.intensity); });
   v("slid_at_uplift", s.slid_at_uplift);
   v.enumeration("last_switch_criterion", s.last_switch_criterion, kCriterionIdCount);
@@ -477,9 +487,10 @@ std::uint32_t configuration_fingerprint(const std::string& text) {
 void SnapshotEncoder::begin(std::vector<std::uint8_t>& out, std::uint32_t fingerprint, double written,
                             std::size_t sensors, std::size_t items) {
   out_ = &out;
-  out.clear();
-  out.resize(kSnapshotHeaderBytes, 0);
-  Writer w(out);
+  out.resize(std::max(out.capacity(), 2 * kSnapshotHeaderBytes));  // within the capacity: no allocation
+  std::fill(out.begin(), out.begin() + kSnapshotHeaderBytes, 0);
+  pos_ = kSnapshotHeaderBytes;
+  Writer w(out, pos_);
   unsigned long fp = fingerprint;
   w("fingerprint", fp);
   w("written", written);
@@ -488,13 +499,13 @@ void SnapshotEncoder::begin(std::vector<std::uint8_t>& out, std::uint32_t finger
 }
 
 void SnapshotEncoder::sensor(const SnapshotSensor& s) {
-  Writer w(*out_);
+  Writer w(*out_, pos_);
   SnapshotSensor copy = s;  // visit() takes the fields by reference (the reader fills them)
   visit(w, copy);
 }
 
 void SnapshotEncoder::item(const std::string& id, const ItemMonitor& monitor, const ItemEnsemble* ensemble) {
-  Writer w(*out_);
+  Writer w(*out_, pos_);
   // The id is written straight from the caller's string (Writer only reads it).
   w("id", const_cast<std::string&>(id));
   monitor.save(monitor_);
@@ -509,6 +520,7 @@ void SnapshotEncoder::item(const std::string& id, const ItemMonitor& monitor, co
 
 void SnapshotEncoder::finish(bool checksums) {
   std::vector<std::uint8_t>& out = *out_;
+  out.resize(pos_);  // shrinking keeps the capacity for the next snapshot
   std::memcpy(out.data(), kMagic, sizeof kMagic);
   put_le<std::uint32_t>(out.data() + kVersionAt, kSnapshotVersion);
   put_le<std::uint32_t>(out.data() + kMarkAt, kByteOrderMark);

@@ -406,17 +406,18 @@ TEST_F(SnapshotFiles, AnotherFormatVersionIsRefused) {
 // A well-sealed file whose content is inconsistent (a bad enum, as a buggy writer would make) names
 // the item and field.
 TEST_F(SnapshotFiles, AnImpossibleValueNamesItsField) {
-  // The first plane's rocking mode follows: fingerprint (8) written (8) counts (4 + 4), the sensor
-  // ("floor": 4 + 5, 2 x 8, 3 x 8, 1, 3 x 8, 8), the id (4 + 4), started, two_planes, plane started,
-  // dt_nominal.
-  const std::size_t at = kSnapshotHeaderBytes + 8 + 8 + 4 + 4 + (4 + 5 + 16 + 24 + 1 + 24 + 8) + (4 + 4) + 1 + 1 + 1 + 8;
+  // The first plane's adaptive rocking mode follows: fingerprint (8) written (8) counts (4 + 4), the
+  // sensor ("floor": 4 + 5, 2 x 8, 3 x 8, 1, 3 x 8, 8), the id (4 + 4), started, two_planes, plane
+  // started, dt_nominal, has_adaptive.
+  const std::size_t at =
+      kSnapshotHeaderBytes + 8 + 8 + 4 + 4 + (4 + 5 + 16 + 24 + 1 + 24 + 8) + (4 + 4) + 1 + 1 + 1 + 8 + 1;
   std::vector<std::uint8_t> bad = bytes;
   ASSERT_LT(bad[at], 3) << "layout changed: update the offset";
   bad[at] = 9;
   seal_snapshot(bad);
   StateSnapshot snap;
   EXPECT_EQ(decode_snapshot(bad.data(), bad.size(), snap),
-            "item 'vase' (1 of 1): plane x: rocking: mode: 9 is not one of the 3 values");
+            "item 'vase' (1 of 1): plane x: adaptive: rocking: mode: 9 is not one of the 3 values");
 }
 
 TEST_F(SnapshotFiles, WrittenDurablyAndReadBackFromAFile) {

@@ -150,7 +150,9 @@ class AdaptiveModel {
   /// Everything one sample carries to the next (state snapshots, issue 29): the three models and
   /// the switching state. What the constructor derives from the body and settings is not in it.
   struct Saved {
-    RockingModel::Saved rock, lin;
+    RockingModel::Saved rock;
+    bool has_lin = false;     ///< the linearized tier's model: only for an item eligible for it
+    RockingModel::Saved lin;
     ContactModel::Saved contact;
     bool lin_active = false;
     ActiveModel active = ActiveModel::Rocking;
@@ -165,7 +167,8 @@ class AdaptiveModel {
   };
   /// Reuses out's storage (no allocation once it has held as many switch records).
   void save(Saved& out) const;
-  /// std::invalid_argument when in holds more switch records than this model keeps.
+  /// std::invalid_argument when in holds more switch records than this model keeps, or the
+  /// linearized tier's state is there for a model not eligible for it (or missing for one that is).
   void restore(const Saved& in);
 
   ActiveModel active() const { return active_; }

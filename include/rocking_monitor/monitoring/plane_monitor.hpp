@@ -64,8 +64,8 @@ class PlaneMonitor {
   struct Saved {
     bool started = false;
     double dt_nominal = 0.0;  ///< s, sizes the running spectrum
-    RockingModel::Saved model;
     bool has_adaptive = false;
+    RockingModel::Saved model;    ///< without the adaptive model (which has its own)
     AdaptiveModel::Saved adaptive;
     StreamingIntensity::Saved intensity;
     bool slid_at_uplift = false;

@@ -80,6 +80,7 @@ class SnapshotEncoder {
 
  private:
   std::vector<std::uint8_t>* out_ = nullptr;
+  std::size_t pos_ = 0;  // bytes written into *out_
   ItemMonitor::Saved monitor_;
   ItemEnsemble::Saved ensemble_;
 };
