@@ -71,6 +71,8 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/monitor_restart.test DEPENDENCIES monitor)
   add_rostest(test/ros/monitor_restart.test ARGS kill_after:=1.0 DEPENDENCIES monitor)
   add_rostest(test/ros/monitor_restart.test ARGS catch_up:=false DEPENDENCIES monitor)
+  # Issue 29 part 4: the same record twice, 60 s of quiet apart: two events, every level alarmed in both.
+  add_rostest(test/ros/monitor_aftershock.test DEPENDENCIES monitor)
 endif()
 
 # ---------------------------------------------------------------- the live dashboard (issue 14)

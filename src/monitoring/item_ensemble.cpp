@@ -42,6 +42,19 @@ void ItemEnsemble::make_batch() {
   in_z_.assign(members_.size(), 0.0);
 }
 
+void ItemEnsemble::new_event(double t) {
+  if (!batch_) return;
+  batch_->sync_all();
+  for (std::size_t i = 0; i < members_.size(); ++i) {
+    members_[i].new_event(t);
+    batch_->refresh(i);  // restarted members: the batch reads them again
+  }
+  reached_.fill(0);
+  crossed_.fill(false);
+  for (auto& r : member_reached_) r.fill(false);
+  events_ = EnsembleEvents{};
+}
+
 void ItemEnsemble::save(Saved& out) const {
   out.started = started();
   if (!out.started) return;

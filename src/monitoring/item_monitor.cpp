@@ -199,6 +199,14 @@ void ItemMonitor::mark_alarmed(ItemMode level) {
   marked_[l] = alarmed_[l] = true;
 }
 
+void ItemMonitor::new_event(double t) {
+  marked_.fill(false);
+  alarmed_.fill(false);
+  // The planes' last inputs (a batch that deferred samples keeps them there, not in t_ / last_a_).
+  if (started_ && mode() == ItemMode::Rest)
+    start(t, last_input_[0][0], last_input_[1][0], last_input_[0][1], planes_[0]->dt_nominal());
+}
+
 bool ItemMonitor::alarmed(ItemMode level) const {
   const int l = level_index(level);
   return l >= 0 && l < static_cast<int>(alarmed_.size()) && alarmed_[l];

@@ -265,6 +265,7 @@ bool RockingMonitor::init() {
     overload_pub_.publish(b);
   }
   reset_srv_ = pnh_.advertiseService("reset", &RockingMonitor::on_reset, this);
+  upright_srv_ = pnh_.advertiseService("set_upright", &RockingMonitor::on_set_upright, this);
 
   states_msg_.items.resize(items_.size());
   for (std::size_t i = 0; i < items_.size(); ++i) states_msg_.items[i].id = items_[i].entry.spec.id;
@@ -398,6 +399,24 @@ bool RockingMonitor::on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Re
   reset_all("~reset called");
   res.success = true;
   res.message = "re-armed " + std::to_string(items_.size()) + " items; they restart at rest with the next sample";
+  return true;
+}
+
+bool RockingMonitor::on_set_upright(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  sync_items();
+  std::size_t n = 0;
+  for (Sensor& s : sensors_) {
+    for (std::size_t idx : s.items) {
+      Item& it = items_[idx];
+      if (!it.monitor->started() || it.monitor->mode() != core::ItemMode::Overturned) continue;
+      make_models(it);  // at rest; started with the sensor's next sample (the step path starts it)
+      ++n;
+    }
+    s.batch.reset();
+  }
+  ROS_WARN("rocking_monitor: ~set_upright: %zu items on their side set upright again: they restart at rest", n);
+  res.success = true;
+  res.message = std::to_string(n) + " items set upright; they restart at rest with the next sample";
   return true;
 }
 

@@ -303,6 +303,7 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
   }
   s.frame = s.spec.frame_id.empty() ? header.frame_id : s.spec.frame_id;
   const Eigen::Vector3d a = s.baseline.remove(reading, dt);
+  track_quiet(s, a, header.stamp);
   if (s.topic_diag) s.topic_diag->tick(header.stamp);
   s.last_stamp = header.stamp;
   if (verdict == V::First || verdict == V::BackwardJump) {
@@ -417,6 +418,7 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
   s.lag_s = s.have_min_offset ? offset - s.min_offset_s : 0.0;
   s.max_lag_s = std::max(s.max_lag_s, s.lag_s);
   update_overload(s);
+  check_event_end(header.stamp);  // issue 29: the shaking stopped: the event ends, its levels re-armed
   // Issue 29: a state snapshot every ~snapshot_period of input time, spaced further for a catalogue
   // that takes long to encode (~snapshot_max_load); encoded now, written by the writer's thread.
   if (snapshot_writer_ && (last_snapshot_stamp_.isZero() || header.stamp < last_snapshot_stamp_ ||

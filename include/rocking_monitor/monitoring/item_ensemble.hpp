@@ -40,6 +40,9 @@ class ItemEnsemble {
 
   void start(double t, double ax, double ay, double az, double dt_nominal);
   bool started() const { return batch_ != nullptr; }
+  /// A new event at time t (ItemMonitor::new_event for every member): the counts of members at each level and
+  /// the crossings start from zero; members on their side stay there.
+  void new_event(double t);
 
   /// Everything one sample carries to the next (state snapshots, issue 29): the members and the
   /// counts of members at each level.

@@ -31,6 +31,12 @@ class ItemMonitor {
   /// the journal before a restart: that level is not alarmed again by this monitor, also across
   /// start(); only a new ItemMonitor (the node's ~reset) re-arms it. Other levels are unchanged.
   void mark_alarmed(ItemMode level);
+  /// A new event (issue 29: the last one's shaking stopped): the levels alarmed or marked are
+  /// forgotten, so that the next shaking alarms them again; an item at rest starts afresh where it is
+  /// at time t (s, the models' clock: its last sample's) with its last input (its models' latched
+  /// levels, running intensities and criteria cleared: start()). An overturned item stays on its side
+  /// (it cannot alarm until set upright: start()). Allocates, as start() does.
+  void new_event(double t);
   /// Whether `level` was alarmed (or marked) since this monitor was made or last started.
   bool alarmed(ItemMode level) const;
 

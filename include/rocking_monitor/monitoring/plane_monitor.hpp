@@ -53,6 +53,8 @@ class PlaneMonitor {
   /// running spectrum. Allocates (once); not for the per-sample path.
   void start(double t, double ax, double ay, double dt_nominal);
   bool started() const { return started_; }
+  /// The running spectrum's sample interval given to start(), s (0 before).
+  double dt_nominal() const { return intensity_ ? intensity_->config().dt : 0.0; }
 
   /// One sample: horizontal ax along the item's x and vertical ay (m/s^2), dt seconds after the
   /// previous one. No allocation.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -135,6 +136,8 @@ class RockingMonitor {
     bool has_ensembles = false;             // some item is uncertain (its members step after the batch)
     ::ros::Time stepped_stamp;              // stamp of the last sample whose items were stepped
     std::uint64_t deferred = 0;             // item-samples deferred by the batch (quiet)
+    // Issue 29: input quiet (|a| below ~event_quiet_threshold) since this stamp, s since 1970 (NaN: not quiet).
+    double quiet_from = std::numeric_limits<double>::quiet_NaN();
   };
 
   bool load_parameters();
@@ -180,6 +183,9 @@ class RockingMonitor {
   void publish_states();
   void on_startup_timer(const ::ros::WallTimerEvent&);
   bool on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response&);
+  /// ~set_upright (issue 29): the items on their side were set upright again: they restart at rest
+  /// where they are (the event and the journal unchanged; a later shaking alarms them again).
+  bool on_set_upright(std_srvs::Trigger::Request&, std_srvs::Trigger::Response&);
   void fill_state(const Item& item, RockingState& out) const;
   static void fill_plane(const core::PlaneMonitor& plane, PlaneState& out);
   void publish_markers_and_tf();
@@ -219,7 +225,7 @@ class RockingMonitor {
   std::vector<std::string> screening_names_;
 
   ::ros::Publisher states_pub_, criteria_pub_, alarms_pub_, markers_pub_, probability_alarms_pub_;
-  ::ros::ServiceServer reset_srv_;
+  ::ros::ServiceServer reset_srv_, upright_srv_;
   ::ros::Timer state_timer_;
   ::ros::WallTimer startup_timer_;
   ::ros::Time last_tf_stamp_;
@@ -268,6 +274,15 @@ class RockingMonitor {
   void journal_reset(const std::string& why);
   void journal_stale_period(Sensor& s);  // on the state timer: a stale period opened or closed
   void journal_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& stat);
+  // One meaning of an event (issue 29 part 4): it ends when the shaking has stopped, every sensor's
+  // input below ~event_quiet_threshold and every item at rest or overturned for ~event_quiet_time of
+  // input (the report's rule), or on ~reset; the next shaking is a new event whose levels alarm again.
+  double event_quiet_time_ = 5.0;        // ~event_quiet_time, s of input
+  double event_quiet_threshold_ = 0.05;  // ~event_quiet_threshold, m/s^2 (horizontal norm and vertical)
+  double last_end_check_ = 0.0;          // input stamp of the last check of the items, s since 1970
+  std::uint64_t events_ended_ = 0;
+  void track_quiet(Sensor& s, const Eigen::Vector3d& a, const ::ros::Time& stamp);
+  void check_event_end(const ::ros::Time& stamp);
 
   // State snapshots (issue 29, ros/monitor_snapshot.cpp, docs/journal.md): every item's model state
   // written beside the journal every ~snapshot_period of input time (encoded here between samples,
