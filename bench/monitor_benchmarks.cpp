@@ -13,7 +13,9 @@
 // Counters: ms_per_sample (thread CPU time per input sample, all items), ns_per_item_sample,
 // allocs_per_sample (must be 0); the batch also deferred_frac (share of item-samples deferred).
 #include <benchmark/benchmark.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -26,6 +28,7 @@
 #include "rocking_monitor/monitoring/catalogue_file.hpp"
 #include "rocking_monitor/monitoring/item_monitor.hpp"
 #include "rocking_monitor/monitoring/monitor_batch.hpp"
+#include "rocking_monitor/monitoring/state_snapshot.hpp"
 #include "rocking_monitor/motion/station.hpp"
 
 namespace rb = rocking_monitor::bench;
@@ -158,6 +161,80 @@ void BM_MonitorBatch(benchmark::State& state) {
   state.counters["deferred_frac"] = deferred / planes;
 }
 
+// State snapshots (issue 29): the batch stepped into the strong motion, then every 10th sample (0.1 s
+// at 100 Hz: the node's default ~snapshot_period) all items synced and encoded into one buffer, as
+// RockingMonitor::take_snapshot does between samples. Counters: snapshot_bytes, encode_ms (sync +
+// encode, on the sample thread), ms_per_sample (encode_ms / 10: its cost per input sample at that
+// period), allocs_per_snapshot (after the first: must be 0); seal_ms (the checksums) and write_ms
+// (write + fsync + rename to /tmp) are the writer thread's, off the sample path.
+void BM_StateSnapshot(benchmark::State& state) {
+  const Case& c = *g_case;
+  std::vector<std::unique_ptr<ItemMonitor>> items;
+  for (const CatalogueItem& it : c.items) items.push_back(std::make_unique<ItemMonitor>(it.spec, options()));
+  const std::size_t n = c.feed.e.size(), m = items.size(), every = 10;
+  const std::size_t from = n / 4, to = std::min(n, from + 400);  // Takatori's strong motion: ~10-14 s
+  std::vector<double> ax(m), ay(m), az(m);
+  auto fill = [&](std::size_t i) {
+    for (std::size_t k = 0; k < m; ++k) {
+      item_input(c, k, i, ax[k], ay[k]);
+      az[k] = c.feed.up[i];
+    }
+  };
+  SnapshotEncoder enc;
+  std::vector<std::uint8_t> buf;
+  double encode_s = 0, seal_s = 0, write_s = 0, snapshots = 0, allocs = 0, bytes = 0, moving = 0;
+  const std::string path = "/tmp/rocking_monitor_bench_" + std::to_string(::getpid()) + ".snapshot";
+  for (auto _ : state) {
+    fill(0);
+    std::vector<ItemMonitor*> ptrs;
+    for (std::size_t k = 0; k < m; ++k) {
+      items[k]->start(0.0, ax[k], ay[k], az[k], c.feed.dt);
+      ptrs.push_back(items[k].get());
+    }
+    MonitorBatch batch(ptrs);
+    bool warm = false;  // the first snapshot grows the buffers; the next ones must not allocate
+    for (std::size_t i = 1; i < to; ++i) {
+      fill(i);
+      batch.step(0, m, ax.data(), ay.data(), az.data(), c.feed.dt);
+      if (i < from || i % every != 0) continue;
+      const long a0 = rocking_monitor::testing::allocation_count();
+      const double t0 = rb::thread_cpu_seconds();
+      batch.sync_all();
+      enc.begin(buf, 1, 0.0, 1, m);
+      SnapshotSensor sensor;
+      sensor.name = "floor";
+      enc.sensor(sensor);
+      for (std::size_t k = 0; k < m; ++k) enc.item(c.items[k].spec.id, *items[k], nullptr);
+      enc.finish(false);
+      const double t1 = rb::thread_cpu_seconds();
+      if (warm) {
+        encode_s += t1 - t0;
+        allocs += static_cast<double>(rocking_monitor::testing::allocation_count() - a0);
+        snapshots += 1;
+        seal_snapshot(buf);
+        const double t2 = rb::thread_cpu_seconds();
+        seal_s += t2 - t1;
+        const auto w0 = std::chrono::steady_clock::now();
+        if (const std::string e = write_file_durably(path, buf.data(), buf.size()); !e.empty())
+          state.SkipWithError(e.c_str());
+        write_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+        bytes = static_cast<double>(buf.size());
+        for (const auto& im : items) moving += im->mode() != ItemMode::Rest;
+      }
+      warm = true;
+    }
+  }
+  std::remove(path.c_str());
+  state.counters["items"] = static_cast<double>(m);
+  state.counters["snapshot_bytes"] = bytes;
+  state.counters["encode_ms"] = 1e3 * encode_s / snapshots;
+  state.counters["ms_per_sample"] = 1e3 * encode_s / snapshots / static_cast<double>(every);
+  state.counters["allocs_per_snapshot"] = allocs / snapshots;
+  state.counters["seal_ms"] = 1e3 * seal_s / snapshots;
+  state.counters["write_ms"] = 1e3 * write_s / snapshots;
+  state.counters["items_moving_frac"] = moving / (snapshots * static_cast<double>(m));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -178,6 +255,7 @@ int main(int argc, char** argv) {
   const std::string tag = "monitor/takatori/" + std::to_string(g_case->items.size()) + "_two_plane/adaptive";
   benchmark::RegisterBenchmark((tag + "/item_monitors").c_str(), BM_ItemMonitors)->Unit(benchmark::kMillisecond)->Iterations(1);
   benchmark::RegisterBenchmark((tag + "/batch").c_str(), BM_MonitorBatch)->Unit(benchmark::kMillisecond)->Iterations(1);
+  benchmark::RegisterBenchmark((tag + "/state_snapshot").c_str(), BM_StateSnapshot)->Unit(benchmark::kMillisecond)->Iterations(1);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

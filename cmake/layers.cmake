@@ -75,9 +75,11 @@ target_link_libraries(rocking_monitor_motion PRIVATE PkgConfig::ROCKING_MSEED)
 find_package(yaml-cpp REQUIRED)
 target_link_libraries(rocking_monitor_monitoring PUBLIC nlohmann_json::nlohmann_json)
 target_link_libraries(rocking_monitor_study PUBLIC Threads::Threads PRIVATE nlohmann_json::nlohmann_json)
-# The shaking-table experiments (study/shaking_table_experiments.cpp) read gzipped CSV with zlib.
+# The shaking-table experiments (study/shaking_table_experiments.cpp) read gzipped CSV with zlib;
+# the state snapshots (monitoring/state_snapshot.cpp) are checksummed with its CRC-32.
 find_package(ZLIB REQUIRED)
 target_link_libraries(rocking_monitor_study PRIVATE ZLIB::ZLIB)
+target_link_libraries(rocking_monitor_monitoring PRIVATE ZLIB::ZLIB Threads::Threads)
 # Debian's yaml-cpp 0.7 exports the plain target name `yaml-cpp` (later versions: yaml-cpp::yaml-cpp).
 foreach(target rocking_monitor_monitoring rocking_monitor_study)
   if(TARGET yaml-cpp::yaml-cpp)

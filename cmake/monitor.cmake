@@ -2,7 +2,7 @@
 include_directories(${catkin_INCLUDE_DIRS})
 add_library(rocking_monitor_ros
   src/ros/monitor.cpp src/ros/monitor_sample_path.cpp src/ros/monitor_publication.cpp
-  src/ros/monitor_diagnostics.cpp src/ros/monitor_journal.cpp src/ros/catalogue.cpp)
+  src/ros/monitor_diagnostics.cpp src/ros/monitor_journal.cpp src/ros/monitor_snapshot.cpp src/ros/catalogue.cpp)
 target_include_directories(rocking_monitor_ros PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include ${catkin_INCLUDE_DIRS})
 find_package(TBB REQUIRED)
 target_link_libraries(rocking_monitor_ros PUBLIC rocking_monitor_core ${catkin_LIBRARIES} TBB::tbb)
@@ -66,6 +66,13 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/monitor_historical.test DEPENDENCIES test_monitor_historical)
   # Issue 19: kill -9 after an OVERTURNED alarm, a cut journal line, restart: alarms once (Python).
   add_rostest(test/ros/monitor_journal.test DEPENDENCIES monitor)
+  # Issue 29: kill -9 during the strong motion, restart: the items continue from the state snapshot;
+  # damaged, foreign and stale snapshots refused (Python; uses monitor_journal.py's helpers).
+  add_rostest(test/ros/monitor_restart.test DEPENDENCIES monitor)
+  add_rostest(test/ros/monitor_restart.test ARGS kill_after:=1.0 DEPENDENCIES monitor)
+  add_rostest(test/ros/monitor_restart.test ARGS catch_up:=false DEPENDENCIES monitor)
+  # Issue 29 part 4: the same record twice, 60 s of quiet apart: two events, every level alarmed in both.
+  add_rostest(test/ros/monitor_aftershock.test DEPENDENCIES monitor)
 endif()
 
 # ---------------------------------------------------------------- the live dashboard (issue 14)

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 #include <type_traits>
 
 #include "rocking_monitor/physics/criteria.hpp"
@@ -113,6 +114,49 @@ AdaptiveModel::AdaptiveModel(const Body& body, const AdaptiveSettings& settings)
 
 double AdaptiveModel::impact_friction_demand(int new_side) const {
   return core::impact_friction_demand(body_, new_side);
+}
+
+void AdaptiveModel::save(Saved& out) const {
+  rock_.save(out.rock);
+  out.has_lin = lin_eligible_;  // else never stepped
+  if (lin_eligible_) lin_.save(out.lin);
+  contact_.save(out.contact);
+  out.lin_active = lin_active_;
+  out.active = active_;
+  out.initial_reason = initial_reason_;
+  out.scene_guarantee = scene_guarantee_;
+  out.t = t_;
+  out.ax_prev = ax_prev_;
+  out.ay_prev = ay_prev_;
+  out.hold = hold_;
+  out.rock_slip = rock_slip_;
+  out.switches.assign(switches_.begin(), switches_.end());
+  out.report = report_;
+  out.outcome = outcome_;
+}
+
+void AdaptiveModel::restore(const Saved& in) {
+  if (in.switches.size() > static_cast<std::size_t>(settings_.max_switch_records))
+    throw std::invalid_argument("AdaptiveModel::restore: " + std::to_string(in.switches.size()) +
+                                " switch records, this model keeps " + std::to_string(settings_.max_switch_records));
+  if (in.has_lin != lin_eligible_)
+    throw std::invalid_argument(std::string("AdaptiveModel::restore: the linearized tier's state ") +
+                                (in.has_lin ? "given for a model not eligible for it" : "missing"));
+  rock_.restore(in.rock);
+  if (lin_eligible_) lin_.restore(in.lin);
+  contact_.restore(in.contact);
+  lin_active_ = in.lin_active;
+  active_ = in.active;
+  initial_reason_ = in.initial_reason;
+  scene_guarantee_ = in.scene_guarantee;
+  t_ = in.t;
+  ax_prev_ = in.ax_prev;
+  ay_prev_ = in.ay_prev;
+  hold_ = in.hold;
+  rock_slip_ = in.rock_slip;
+  switches_.assign(in.switches.begin(), in.switches.end());  // within the reserved capacity
+  report_ = in.report;
+  outcome_ = in.outcome;
 }
 
 void AdaptiveModel::reset(double t, double ax, double ay) {

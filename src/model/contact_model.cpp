@@ -42,6 +42,34 @@ ContactModel::ContactModel(const Body& body, const ContactSettings& settings)
   reset(0.0);
 }
 
+void ContactModel::save(Saved& out) const {
+  out.mode = mode_;
+  out.side = side_;
+  out.sigma = sigma_;
+  out.pivot_x = pivot_x_;
+  out.x = x_;
+  out.t = t_;
+  out.ax_prev = ax_prev_;
+  out.ay_prev = ay_prev_;
+  out.dt = dt_;
+  out.report = report_;
+  out.outcome = outcome_;
+}
+
+void ContactModel::restore(const Saved& in) {
+  mode_ = in.mode;
+  side_ = in.side;
+  sigma_ = in.sigma;
+  pivot_x_ = in.pivot_x;
+  x_ = in.x;
+  t_ = in.t;
+  ax_prev_ = in.ax_prev;
+  ay_prev_ = in.ay_prev;
+  dt_ = in.dt;
+  report_ = in.report;
+  outcome_ = in.outcome;
+}
+
 void ContactModel::reset(double t, double ax, double ay) {
   mode_ = ContactMode::Rest;
   side_ = 0;

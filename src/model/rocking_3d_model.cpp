@@ -100,6 +100,44 @@ void Rocking3DModel::reset(double t, const Eigen::Vector3d& a) {
   vector_.reset(0.05 / body_.max_p());
 }
 
+void Rocking3DModel::save(Saved& out) const {
+  out.mode = mode_;
+  out.contact = contact_;
+  out.theta = theta_;
+  out.omega = omega_;
+  out.y = y_;
+  out.pivot_world = pivot_world_;
+  out.yaw = yaw_;
+  out.shift = shift_;
+  out.t = t_;
+  out.a_prev = a_prev_;
+  std::copy(std::begin(armed_), std::end(armed_), std::begin(out.armed));
+  out.report = report_;
+  out.outcome = outcome_;
+  out.outcome_3d = outcome3_;
+  dopri5_.save(out.dopri5);
+  vector_.save(out.vector);
+}
+
+void Rocking3DModel::restore(const Saved& in) {
+  mode_ = in.mode;
+  contact_ = in.contact;
+  theta_ = in.theta;
+  omega_ = in.omega;
+  y_ = in.y;
+  pivot_world_ = in.pivot_world;
+  yaw_ = in.yaw;
+  shift_ = in.shift;
+  t_ = in.t;
+  a_prev_ = in.a_prev;
+  std::copy(std::begin(in.armed), std::end(in.armed), std::begin(armed_));
+  report_ = in.report;
+  outcome_ = in.outcome;
+  outcome3_ = in.outcome_3d;
+  dopri5_.restore(in.dopri5);
+  vector_.restore(in.vector);
+}
+
 Eigen::Matrix3d Rocking3DModel::yaw_matrix() const { return rot_z(yaw_); }
 
 Eigen::Vector3d Rocking3DModel::to_footprint(const Eigen::Vector3d& world) const {

@@ -71,6 +71,34 @@ void RockingModel::set_state(double theta, double omega) {
   }
 }
 
+void RockingModel::save(Saved& out) const {
+  out.mode = mode_;
+  out.side = side_;
+  out.theta = theta_;
+  out.omega = omega_;
+  out.t = t_;
+  out.ax_prev = ax_prev_;
+  out.ay_prev = ay_prev_;
+  out.violations = violations_;
+  out.report = report_;
+  out.outcome = outcome_;
+  dopri5_.save(out.dopri5);
+}
+
+void RockingModel::restore(const Saved& in) {
+  mode_ = in.mode;
+  side_ = in.side;
+  theta_ = in.theta;
+  omega_ = in.omega;
+  t_ = in.t;
+  ax_prev_ = in.ax_prev;
+  ay_prev_ = in.ay_prev;
+  violations_ = in.violations;
+  report_ = in.report;
+  outcome_ = in.outcome;
+  dopri5_.restore(in.dopri5);
+}
+
 double RockingModel::rotation_ratio() const {
   return side_ == 0 ? 0.0 : std::abs(theta_) / body_.pivot(side_).alpha;
 }

@@ -38,7 +38,8 @@ int level_code(const std::string& name) {
 }
 
 bool parse_kind(const std::string& s, JournalKind& k) {
-  for (JournalKind c : {JournalKind::Alarm, JournalKind::ProbabilityAlarm, JournalKind::Reset, JournalKind::Stale})
+  for (JournalKind c :
+       {JournalKind::Alarm, JournalKind::ProbabilityAlarm, JournalKind::Reset, JournalKind::Stale, JournalKind::End})
     if (s == to_string(c)) { k = c; return true; }
   return false;
 }
@@ -96,6 +97,10 @@ JournalRecord from_json_line(const std::string& line) {
     r.end_time = number(j, "end_time", false);
     return r;
   }
+  if (r.kind == JournalKind::End) {
+    r.reason = text(j, "reason", false);
+    return r;
+  }
   r.item = text(j, "item", true);
   const std::string level = text(j, "level", true);
   r.level = level_code(level);
@@ -131,6 +136,7 @@ const char* to_string(JournalKind kind) {
     case JournalKind::ProbabilityAlarm: return "probability_alarm";
     case JournalKind::Reset: return "reset";
     case JournalKind::Stale: return "stale";
+    case JournalKind::End: return "end";
   }
   return "?";
 }
@@ -158,7 +164,7 @@ std::string to_json_line(const JournalRecord& r) {
   put(j, "upper", r.upper);
   put(j, "threshold", r.threshold);
   if (r.kind == JournalKind::ProbabilityAlarm) j["ensemble_size"] = r.ensemble_size;
-  if (r.kind == JournalKind::Reset) j["reason"] = r.reason;
+  if (r.kind == JournalKind::Reset || r.kind == JournalKind::End) j["reason"] = r.reason;
   put(j, "written", r.written);
   return j.dump();
 }
@@ -200,16 +206,17 @@ JournalReading read_journal(const std::string& path) {
   return out;
 }
 
-OpenEvent last_event(const JournalReading& reading, bool* closed_by_reset) {
+OpenEvent last_event(const JournalReading& reading, bool* closed) {
   OpenEvent ev;
-  if (closed_by_reset) *closed_by_reset = false;
-  // The last event is the one of the last non-reset record; a later reset closes it.
+  if (closed) *closed = false;
+  // The last event is the one of the last non-reset record; a later reset, or its own end, closes it.
   std::size_t last = reading.records.size();
   for (std::size_t i = reading.records.size(); i-- > 0;) {
     if (reading.records[i].kind != JournalKind::Reset) { last = i; break; }
-    if (closed_by_reset) *closed_by_reset = true;
+    if (closed) *closed = true;
   }
   if (last == reading.records.size()) return ev;
+  if (closed && reading.records[last].kind == JournalKind::End) *closed = true;
   ev.id = reading.records[last].event;
   for (const JournalRecord& r : reading.records) {
     if (r.event != ev.id) continue;
@@ -337,6 +344,18 @@ std::string AlarmJournal::append_stale(const std::string& sensor, double from, d
   std::string e = append(r, run_start, now);
   if (written != nullptr && e.empty()) *written = r;
   return e;
+}
+
+std::string AlarmJournal::append_end(const std::string& reason, double time, double now) {
+  if (!event_.open() || !within(now, event_.last_written, window_)) return {};  // none open: nothing to end
+  JournalRecord r;
+  r.kind = JournalKind::End;
+  r.time = time;
+  r.reason = reason;
+  if (std::string e = append(r, event_.start, now); !e.empty()) return e;
+  event_ = OpenEvent{};
+  held_.clear();
+  return {};
 }
 
 std::string AlarmJournal::append_reset(const std::string& reason, double now) {

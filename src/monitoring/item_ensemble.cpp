@@ -33,14 +33,65 @@ ItemEnsemble::ItemEnsemble(const std::vector<ItemSpec>& members, const ItemMonit
   times_.reserve(members.size());
 }
 
-void ItemEnsemble::start(double t, double ax, double ay, double az, double dt_nominal) {
-  for (ItemMonitor& m : members_) m.start(t, ax, ay, az, dt_nominal);
+void ItemEnsemble::make_batch() {
   std::vector<ItemMonitor*> ptrs;
   for (ItemMonitor& m : members_) ptrs.push_back(&m);
   batch_ = std::make_unique<MonitorBatch>(std::move(ptrs));
   in_x_.assign(members_.size(), 0.0);
   in_y_.assign(members_.size(), 0.0);
   in_z_.assign(members_.size(), 0.0);
+}
+
+void ItemEnsemble::new_event(double t) {
+  if (!batch_) return;
+  batch_->sync_all();
+  for (std::size_t i = 0; i < members_.size(); ++i) {
+    members_[i].new_event(t);
+    batch_->refresh(i);  // restarted members: the batch reads them again
+  }
+  reached_.fill(0);
+  crossed_.fill(false);
+  for (auto& r : member_reached_) r.fill(false);
+  events_ = EnsembleEvents{};
+}
+
+void ItemEnsemble::save(Saved& out) const {
+  out.started = started();
+  if (!out.started) return;
+  batch_->sync_all();
+  out.members.resize(members_.size());
+  for (std::size_t i = 0; i < members_.size(); ++i) members_[i].save(out.members[i]);
+  out.reached = reached_;
+  out.crossed = crossed_;
+  out.member_reached.assign(member_reached_.begin(), member_reached_.end());
+}
+
+void ItemEnsemble::restore(const Saved& in) {
+  if (!in.started) {
+    batch_.reset();
+    return;
+  }
+  if (in.members.size() != members_.size() || in.member_reached.size() != members_.size())
+    throw std::invalid_argument("ensemble: " + std::to_string(in.members.size()) + " members saved, this one has " +
+                                std::to_string(members_.size()));
+  batch_.reset();  // it holds the members' old state
+  for (std::size_t i = 0; i < members_.size(); ++i) {
+    try {
+      members_[i].restore(in.members[i]);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("ensemble member " + std::to_string(i) + ": " + e.what());
+    }
+  }
+  make_batch();
+  reached_ = in.reached;
+  crossed_ = in.crossed;
+  std::copy(in.member_reached.begin(), in.member_reached.end(), member_reached_.begin());
+  events_ = EnsembleEvents{};
+}
+
+void ItemEnsemble::start(double t, double ax, double ay, double az, double dt_nominal) {
+  for (ItemMonitor& m : members_) m.start(t, ax, ay, az, dt_nominal);
+  make_batch();
   reached_.fill(0);
   crossed_.fill(false);
   for (auto& r : member_reached_) r.fill(false);

@@ -1,6 +1,7 @@
 #include "rocking_monitor/monitoring/item_monitor.hpp"
 
 #include <stdexcept>
+#include <string>
 
 namespace rocking_monitor::core {
 namespace {
@@ -73,6 +74,47 @@ void ItemMonitor::start(double t, double ax, double ay, double az, double dt_nom
     solid_->reset(t, last_a_);
     solid_active_ = solid_always_;
   }
+}
+
+void ItemMonitor::save(Saved& out) const {
+  out.started = started_;
+  if (!started_) return;
+  out.two_planes = two_planes();
+  for (int p = 0; p < plane_count(); ++p) planes_[p]->save(out.planes[p]);
+  out.alarmed = alarmed_;
+  out.last_input = last_input_;
+  out.has_solid = solid_ != nullptr;
+  if (solid_) solid_->save(out.solid);
+  out.solid_active = solid_active_;
+  out.peak_x = peak_x_;
+  out.peak_y = peak_y_;
+  out.t = t_;
+  out.last_a = last_a_;
+}
+
+void ItemMonitor::restore(const Saved& in) {
+  if (in.started && (in.two_planes != two_planes() || in.has_solid != (solid_ != nullptr)))
+    throw std::invalid_argument("item '" + spec_.id + "': saved with " + (in.two_planes ? "two planes" : "one plane") +
+                                (in.has_solid ? " and" : " without") + " the 3-D model, this monitor has " +
+                                (two_planes() ? "two planes" : "one plane") + (solid_ ? " and" : " without") + " it");
+  for (int p = 0; p < plane_count(); ++p) {
+    try {
+      planes_[p]->restore(in.started ? in.planes[p] : PlaneMonitor::Saved{});
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("item '" + spec_.id + "' plane " + to_string(static_cast<Plane>(p)) + ": " + e.what());
+    }
+  }
+  events_ = ItemEvents{};
+  started_ = in.started;
+  if (!in.started) return;
+  for (std::size_t l = 0; l < alarmed_.size(); ++l) alarmed_[l] = in.alarmed[l] || marked_[l];
+  last_input_ = in.last_input;
+  if (solid_) solid_->restore(in.solid);
+  solid_active_ = in.solid_active;
+  peak_x_ = in.peak_x;
+  peak_y_ = in.peak_y;
+  t_ = in.t;
+  last_a_ = in.last_a;
 }
 
 const ItemEvents& ItemMonitor::step(double ax, double ay, double az, double dt) {
@@ -155,6 +197,14 @@ void ItemMonitor::mark_alarmed(ItemMode level) {
   const int l = level_index(level);
   if (l < 0 || l >= static_cast<int>(marked_.size())) throw std::invalid_argument("mark_alarmed: not an alarm level");
   marked_[l] = alarmed_[l] = true;
+}
+
+void ItemMonitor::new_event(double t) {
+  marked_.fill(false);
+  alarmed_.fill(false);
+  // The planes' last inputs (a batch that deferred samples keeps them there, not in t_ / last_a_).
+  if (started_ && mode() == ItemMode::Rest)
+    start(t, last_input_[0][0], last_input_[1][0], last_input_[0][1], planes_[0]->dt_nominal());
 }
 
 bool ItemMonitor::alarmed(ItemMode level) const {

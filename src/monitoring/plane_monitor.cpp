@@ -4,6 +4,7 @@
 #include <cmath>
 #include <utility>
 #include <stdexcept>
+#include <string>
 
 namespace rocking_monitor::core {
 namespace {
@@ -29,19 +30,53 @@ PlaneMonitor::PlaneMonitor(const BodyParameters& body, const Options& options)
   }
 }
 
-void PlaneMonitor::start(double t, double ax, double ay, double dt_nominal) {
-  model_.reset(t, ax, ay);
-  if (adaptive_) adaptive_->reset(t, ax, ay);
+void PlaneMonitor::make_intensity(double dt_nominal) {
   StreamingIntensityConfig cfg;
   cfg.dt = dt_nominal;
   cfg.periods = {housner_period(model_.body())};
   cfg.velocity_highpass_hz = std::min(options_.velocity_highpass_hz, 0.4 / dt_nominal);
   intensity_ = std::make_unique<StreamingIntensity>(cfg);
+}
+
+void PlaneMonitor::start(double t, double ax, double ay, double dt_nominal) {
+  model_.reset(t, ax, ay);
+  if (adaptive_) adaptive_->reset(t, ax, ay);
+  make_intensity(dt_nominal);
   intensity_->push(ax);
   exceeded_.fill(false);
   slid_at_uplift_ = false;
   events_ = PlaneEvents{};
   started_ = true;
+}
+
+void PlaneMonitor::save(Saved& out) const {
+  out.started = started_;
+  if (!started_) return;
+  out.dt_nominal = intensity_->config().dt;
+  out.has_adaptive = adaptive_ != nullptr;
+  if (adaptive_) adaptive_->save(out.adaptive);
+  else model_.save(out.model);  // with the adaptive model it is never stepped
+  intensity_->save(out.intensity);
+  out.slid_at_uplift = slid_at_uplift_;
+  out.last_switch_criterion = last_switch_criterion_;
+  out.exceeded = exceeded_;
+}
+
+void PlaneMonitor::restore(const Saved& in) {
+  if (in.started && in.has_adaptive != (adaptive_ != nullptr))
+    throw std::invalid_argument(std::string("PlaneMonitor::restore: saved ") +
+                                (in.has_adaptive ? "with" : "without") + " the adaptive model, this plane runs " +
+                                (adaptive_ ? "it" : "pure rocking"));
+  events_ = PlaneEvents{};
+  started_ = in.started;
+  if (!in.started) return;
+  make_intensity(in.dt_nominal);
+  intensity_->restore(in.intensity);
+  if (adaptive_) adaptive_->restore(in.adaptive);
+  else model_.restore(in.model);
+  slid_at_uplift_ = in.slid_at_uplift;
+  last_switch_criterion_ = in.last_switch_criterion;
+  exceeded_ = in.exceeded;
 }
 
 std::uint8_t PlaneMonitor::violations() const {

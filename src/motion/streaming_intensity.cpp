@@ -117,6 +117,54 @@ void StreamingIntensity::push(double accel) {
 
 namespace rocking_monitor::core {
 
+void StreamingIntensity::save(Saved& out) const {
+  auto filter = [](const Biquad& b) { return FilterState{b.x1, b.x2, b.y1, b.y2}; };
+  out.velocity_filter = filter(velocity_filter_);
+  out.oscillator_filter = filter(oscillator_filter_);
+  const std::size_t n = oscillators_.size();
+  out.osc_u.resize(n);
+  out.osc_v.resize(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    out.osc_u[j] = oscillators_[j].displacement();
+    out.osc_v[j] = oscillators_[j].velocity();
+  }
+  out.max_u.assign(max_u_.begin(), max_u_.end());
+  out.count = count_;
+  out.prev_drive = prev_drive_;
+  out.pga = pga_;
+  out.pga_time = pga_time_;
+  out.vel = vel_;
+  out.pgv = pgv_;
+  out.pgv_time = pgv_time_;
+}
+
+void StreamingIntensity::restore(const Saved& in) {
+  const std::size_t n = oscillators_.size();
+  if (in.osc_u.size() != n || in.osc_v.size() != n || in.max_u.size() != n)
+    throw std::invalid_argument("StreamingIntensity::restore: " + std::to_string(in.osc_u.size()) +
+                                " oscillator periods saved, this instance has " + std::to_string(n));
+  auto filter = [](Biquad& b, const FilterState& f) {
+    b.x1 = f.x1;
+    b.x2 = f.x2;
+    b.y1 = f.y1;
+    b.y2 = f.y2;
+  };
+  filter(velocity_filter_, in.velocity_filter);
+  filter(oscillator_filter_, in.oscillator_filter);
+  for (std::size_t j = 0; j < n; ++j) {
+    oscillators_[j].restore(in.osc_u[j], in.osc_v[j]);
+    max_u_[j] = in.max_u[j];
+    psv_[j] = oscillators_[j].coefficients().omega * max_u_[j];
+  }
+  count_ = in.count;
+  prev_drive_ = in.prev_drive;
+  pga_ = in.pga;
+  pga_time_ = in.pga_time;
+  vel_ = in.vel;
+  pgv_ = in.pgv;
+  pgv_time_ = in.pgv_time;
+}
+
 void StreamingIntensity::to_lane(Lane& l) const {
   l.velocity = velocity_filter_;
   l.osc = oscillators_[0];

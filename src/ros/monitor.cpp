@@ -78,7 +78,7 @@ bool RockingMonitor::load_parameters() {
   ok = ok && param(pnh_, "linearized_max_alpha", options_.linearized_max_alpha, "number") &&
        param(pnh_, "scene_envelope/horizontal", scene_h, "number") &&
        param(pnh_, "scene_envelope/vertical", scene_v, "number");
-  if (!ok || !load_journal_parameters()) return false;
+  if (!ok || !load_journal_parameters() || !load_snapshot_parameters()) return false;
   if (!(options_.linearized_max_alpha >= 0.0) || !(options_.linearized_max_alpha < 1.0)) {
     ROS_FATAL("rocking_monitor: ~linearized_max_alpha = %g rad must be in [0, 1) (0 = off)",
               options_.linearized_max_alpha);
@@ -249,6 +249,7 @@ bool RockingMonitor::init() {
   // Not latched (a latched topic keeps only its last message): every new subscriber is sent all the
   // alarms of the open event instead, in journal order, then the live ones (docs/journal.md).
   open_journal();
+  open_snapshot(sensors, items);  // after the journal: levels it marked alarmed stay so when restored
   alarms_pub_ = pnh_.advertise<OverturnAlarm>(
       "alarms", 1000, [this](const ::ros::SingleSubscriberPublisher& p) {
         for (const OverturnAlarm& m : event_alarms_) p.publish(m);
@@ -264,6 +265,7 @@ bool RockingMonitor::init() {
     overload_pub_.publish(b);
   }
   reset_srv_ = pnh_.advertiseService("reset", &RockingMonitor::on_reset, this);
+  upright_srv_ = pnh_.advertiseService("set_upright", &RockingMonitor::on_set_upright, this);
 
   states_msg_.items.resize(items_.size());
   for (std::size_t i = 0; i < items_.size(); ++i) states_msg_.items[i].id = items_[i].entry.spec.id;
@@ -283,6 +285,7 @@ bool RockingMonitor::init() {
   }
   diagnostics_->add("catalogue", this, &RockingMonitor::catalogue_diagnostics);
   diagnostics_->add("alarm journal", this, &RockingMonitor::journal_diagnostics);
+  diagnostics_->add("state snapshot", this, &RockingMonitor::snapshot_diagnostics);
 
   for (std::size_t i = 0; i < sensors_.size(); ++i) {
     Sensor& s = sensors_[i];
@@ -364,6 +367,7 @@ void RockingMonitor::reset_all(const std::string& why) {
   for (Item& it : items_) make_models(it);
   for (Sensor& s : sensors_) s.batch.reset();
   journal_reset(why);  // closes the event: the items alarm again from here
+  take_snapshot(last_snapshot_stamp_);  // items at rest: a restart must not bring back the state before
 }
 
 void RockingMonitor::rebuild_batch(Sensor& s) {
@@ -395,6 +399,24 @@ bool RockingMonitor::on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Re
   reset_all("~reset called");
   res.success = true;
   res.message = "re-armed " + std::to_string(items_.size()) + " items; they restart at rest with the next sample";
+  return true;
+}
+
+bool RockingMonitor::on_set_upright(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  sync_items();
+  std::size_t n = 0;
+  for (Sensor& s : sensors_) {
+    for (std::size_t idx : s.items) {
+      Item& it = items_[idx];
+      if (!it.monitor->started() || it.monitor->mode() != core::ItemMode::Overturned) continue;
+      make_models(it);  // at rest; started with the sensor's next sample (the step path starts it)
+      ++n;
+    }
+    s.batch.reset();
+  }
+  ROS_WARN("rocking_monitor: ~set_upright: %zu items on their side set upright again: they restart at rest", n);
+  res.success = true;
+  res.message = std::to_string(n) + " items set upright; they restart at rest with the next sample";
   return true;
 }
 

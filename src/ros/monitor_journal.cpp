@@ -5,6 +5,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <unordered_map>
@@ -41,6 +42,20 @@ bool RockingMonitor::load_journal_parameters() {
     if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) journal_window_ = static_cast<double>(v);
     else if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) journal_window_ = static_cast<int>(v);
     else journal_window_ = -1.0;
+  }
+  for (const auto& [name, value] : {std::pair<const char*, double*>{"event_quiet_time", &event_quiet_time_},
+                                    {"event_quiet_threshold", &event_quiet_threshold_}}) {
+    if (!pnh_.hasParam(name)) continue;
+    XmlRpc::XmlRpcValue v;
+    pnh_.getParam(name, v);
+    if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) *value = static_cast<double>(v);
+    else if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) *value = static_cast<int>(v);
+    else *value = -1.0;
+    if (!(*value > 0.0) || !std::isfinite(*value)) {
+      ROS_FATAL("rocking_monitor: ~%s must be a number > 0 (%s)", name,
+                *value == event_quiet_time_ ? "s of input" : "m/s^2");
+      return false;
+    }
   }
   if (!(journal_window_ > 0.0) || !std::isfinite(journal_window_)) {
     ROS_FATAL("rocking_monitor: ~journal_window must be a number > 0 s (how long an event stays open after its "
@@ -225,6 +240,55 @@ void RockingMonitor::journal_stale_period(Sensor& s) {
   s.stale_journaled = now_stale;
 }
 
+// Per sample: whether the sensor's input (gravity removed) is quiet, and since when.
+void RockingMonitor::track_quiet(Sensor& s, const Eigen::Vector3d& a, const ::ros::Time& stamp) {
+  const bool quiet = std::hypot(a.x(), a.y()) < event_quiet_threshold_ && std::abs(a.z()) < event_quiet_threshold_;
+  if (!quiet) s.quiet_from = std::numeric_limits<double>::quiet_NaN();
+  else if (std::isnan(s.quiet_from)) s.quiet_from = stamp.toSec();
+}
+
+// After a sample: the open event ends once every sensor has been quiet for ~event_quiet_time and no
+// item moves (checked at most every 0.5 s of input: reading every item costs at 10,000 of them). Its
+// levels are then re-armed: the next shaking (an aftershock) is a new event and alarms them again.
+void RockingMonitor::check_event_end(const ::ros::Time& stamp) {
+  if (!journal_.event().open()) return;
+  const double now = stamp.toSec();
+  for (const Sensor& s : sensors_) {
+    if (!s.timing.started()) continue;
+    if (std::isnan(s.quiet_from) || s.last_stamp.toSec() - s.quiet_from < event_quiet_time_) return;
+  }
+  if (std::abs(now - last_end_check_) < 0.5) return;
+  last_end_check_ = now;
+  sync_items();
+  for (const Item& it : items_) {
+    const core::ItemMode m = it.monitor->mode();
+    if (m != core::ItemMode::Rest && m != core::ItemMode::Overturned) return;
+  }
+  char why[160];
+  std::snprintf(why, sizeof why, "shaking stopped: every sensor below %g m/s^2 and every item at rest or overturned "
+                "for %g s", event_quiet_threshold_, event_quiet_time_);
+  const std::string id = journal_.event().id;
+  if (const std::string e = journal_.append_end(why, now, journal_clock(stamp)); !e.empty()) {
+    ++journal_errors_;
+    ROS_ERROR("rocking_monitor: alarm journal: %s: end of event %s not journaled", e.c_str(), id.c_str());
+  }
+  event_alarms_.clear();
+  event_probability_alarms_.clear();
+  std::size_t upright = 0;
+  for (Item& it : items_) {
+    upright += it.monitor->mode() == core::ItemMode::Rest;
+    const double t = sensors_[it.sensor].last_t;  // the items' clock: s since the sensor's epoch
+    it.monitor->new_event(t);
+    if (it.ensemble) it.ensemble->new_event(t);
+  }
+  for (Sensor& s : sensors_) s.batch.reset();  // the items were restarted
+  ++events_ended_;
+  ROS_WARN("rocking_monitor: event %s ended: %s; %zu items at rest are re-armed (a later shaking is a new event "
+           "and alarms them again), %zu on their side stay so until ~reset", id.c_str(), why, upright,
+           items_.size() - upright);
+  take_snapshot(stamp);
+}
+
 void RockingMonitor::journal_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st) {
   using diagnostic_msgs::DiagnosticStatus;
   if (!journal_status_.empty() && !journal_path_.empty())
@@ -242,6 +306,7 @@ void RockingMonitor::journal_diagnostics(diagnostic_updater::DiagnosticStatusWra
   st.add("alarms read back at start", journal_relatched_);
   st.add("repeats not alarmed again", journal_repeats_);
   st.add("journal errors", journal_errors_);
+  st.add("events ended (shaking stopped)", events_ended_);
 }
 
 }  // namespace rocking_monitor::live

@@ -100,6 +100,8 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
                       s.spec.name.c_str(), reading.norm(), max_abs_acceleration_);
     return;
   }
+  // Issue 29: the first sample after a restart continues the sensor's items from the state snapshot.
+  if (resume_ && resume_pending_[si] && !s.timing.started()) resume_sensor(si, header.stamp);
   // Issue 19: a stamp is checked against the node's clock and the last accepted stamp before it
   // steps anything; a lone bad stamp is dropped and counted, a new time base needs
   // ~rebase_samples consistent samples (held meanwhile, replayed when confirmed).
@@ -301,6 +303,7 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
   }
   s.frame = s.spec.frame_id.empty() ? header.frame_id : s.spec.frame_id;
   const Eigen::Vector3d a = s.baseline.remove(reading, dt);
+  track_quiet(s, a, header.stamp);
   if (s.topic_diag) s.topic_diag->tick(header.stamp);
   s.last_stamp = header.stamp;
   if (verdict == V::First || verdict == V::BackwardJump) {
@@ -415,6 +418,12 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
   s.lag_s = s.have_min_offset ? offset - s.min_offset_s : 0.0;
   s.max_lag_s = std::max(s.max_lag_s, s.lag_s);
   update_overload(s);
+  check_event_end(header.stamp);  // issue 29: the shaking stopped: the event ends, its levels re-armed
+  // Issue 29: a state snapshot every ~snapshot_period of input time, spaced further for a catalogue
+  // that takes long to encode (~snapshot_max_load); encoded now, written by the writer's thread.
+  if (snapshot_writer_ && (last_snapshot_stamp_.isZero() || header.stamp < last_snapshot_stamp_ ||
+                           (header.stamp - last_snapshot_stamp_).toSec() >= snapshot_interval_))
+    take_snapshot(header.stamp);
   if (state_rate_ == 0.0) {
     // A state per sample unless overloaded for long: then 1 Hz of the node's clock.
     if (!shedding_states() || last_shed_states_.isZero() || (s.last_input_clock - last_shed_states_).toSec() >= 1.0 ||

@@ -152,6 +152,41 @@ TEST(AlarmJournal, EventStaysOpenWithinTheWindowAndClosesAfterItOrOnReset) {
   EXPECT_EQ(d.event.substr(d.event.size() - 2), "/3");
 }
 
+// Issue 29: an event ends when the shaking has stopped: its end record is its last, numbered on; a later
+// shaking (an aftershock) is a new event in which the same levels alarm again, also after a restart.
+TEST(AlarmJournal, AnEndClosesTheEventAndTheNextShakingIsANewOne) {
+  const std::string p = fresh("end.jsonl");
+  {
+    AlarmJournal j;
+    ASSERT_EQ(j.open(p, 3600.0, kNow), "");
+    EXPECT_EQ(j.append_end("nothing open", kRun, kNow), "");  // nothing to end: nothing written
+    JournalRecord a = alarm("vase", 4, kRun + 3.0);
+    ASSERT_EQ(j.append(a, kRun, kNow), "");
+    ASSERT_TRUE(j.holds(JournalKind::Alarm, "vase", 4));
+    ASSERT_EQ(j.append_end("shaking stopped", kRun + 25.0, kNow + 20.0), "");
+    EXPECT_FALSE(j.event().open());
+    EXPECT_FALSE(j.holds(JournalKind::Alarm, "vase", 4));  // the aftershock may alarm it again
+  }
+  JournalReading r = read_journal(p);
+  ASSERT_EQ(r.records.size(), 2u);
+  EXPECT_EQ(r.records[1].kind, JournalKind::End);
+  EXPECT_EQ(r.records[1].event, "1994-01-17T12:30:55.000Z/1");
+  EXPECT_EQ(r.records[1].sequence, 2u);
+  EXPECT_EQ(r.records[1].time, kRun + 25.0);
+  EXPECT_EQ(r.records[1].reason, "shaking stopped");
+  EXPECT_FALSE(open_event(r, kNow + 30.0, 3600.0).open());  // a restart within the window: nothing open
+  bool closed = false;
+  EXPECT_EQ(last_event(r, &closed).records.size(), 2u);  // the report still finds the ended event
+  EXPECT_TRUE(closed);
+  AlarmJournal j;
+  ASSERT_EQ(j.open(p, 3600.0, kNow + 60.0), "");
+  EXPECT_FALSE(j.event().open());
+  JournalRecord b = alarm("vase", 4, kRun + 63.0);
+  ASSERT_EQ(j.append(b, kRun + 60.0, kNow + 60.0), "");
+  EXPECT_EQ(b.event, "1994-01-17T12:31:55.000Z/2");
+  EXPECT_EQ(b.sequence, 1u);
+}
+
 TEST(AlarmJournal, LineCutByAPowerCutIsDroppedWithAWarningNamingFileAndLine) {
   const std::string p = fresh("cut.jsonl");
   {

@@ -40,6 +40,20 @@ class Dopri5Stepper {
   double fsal_k1(int i) const { return k1_[i]; }
   /// Sets the controller state after the same steps were taken elsewhere (BatchRocking's commit):
   /// next step size h and a valid FSAL derivative. No allocation.
+  /// What a step carries to the next (state snapshots, issue 29): the step size and the FSAL
+  /// derivative. The dense output belongs to the step just taken and is not kept.
+  struct Saved {
+    double h = 1e-3;
+    bool fsal_valid = false;
+    double k1_theta = 0.0, k1_omega = 0.0;
+  };
+  void save(Saved& out) const { out = {h_, fsal_valid_, k1_[0], k1_[1]}; }
+  void restore(const Saved& in) {
+    h_ = in.h;
+    fsal_valid_ = in.fsal_valid;
+    k1_[0] = in.k1_theta;
+    k1_[1] = in.k1_omega;
+  }
   void restore(double h, double k1_theta, double k1_omega) {
     h_ = h;
     k1_[0] = k1_theta;

@@ -84,6 +84,23 @@ class Dopri5Vector {
   }
 
   /// The dense output inside the last step.
+  /// What a step carries to the next (state snapshots, issue 29): the step size and the FSAL derivative.
+  struct Saved {
+    double h = 1e-3;
+    bool fsal_valid = false;
+    State k1 = State::Zero();
+  };
+  void save(Saved& out) const {
+    out.h = h_;
+    out.fsal_valid = fsal_valid_;
+    out.k1 = k_[0];
+  }
+  void restore(const Saved& in) {
+    h_ = in.h;
+    fsal_valid_ = in.fsal_valid;
+    k_[0] = in.k1;
+  }
+
   State eval(double t) const {
     const double h = t1_ - t0_;
     const double s = h > 0.0 ? (t - t0_) / h : 1.0;

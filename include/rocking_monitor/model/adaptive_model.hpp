@@ -147,6 +147,30 @@ class AdaptiveModel {
   /// dt finite > 0 and finite inputs, else std::invalid_argument (state unchanged).
   const AdaptiveReport& step(double ax, double ay, double dt);
 
+  /// Everything one sample carries to the next (state snapshots, issue 29): the three models and
+  /// the switching state. What the constructor derives from the body and settings is not in it.
+  struct Saved {
+    RockingModel::Saved rock;
+    bool has_lin = false;     ///< the linearized tier's model: only for an item eligible for it
+    RockingModel::Saved lin;
+    ContactModel::Saved contact;
+    bool lin_active = false;
+    ActiveModel active = ActiveModel::Rocking;
+    SwitchReason initial_reason = SwitchReason::None;
+    bool scene_guarantee = false;
+    double t = 0.0, ax_prev = 0.0, ay_prev = 0.0;  ///< s, m/s^2
+    double hold = 0.0;       ///< s
+    double rock_slip = 0.0;  ///< m
+    std::vector<SwitchRecord> switches;  ///< at most settings().max_switch_records
+    AdaptiveReport report;
+    AdaptiveOutcome outcome;
+  };
+  /// Reuses out's storage (no allocation once it has held as many switch records).
+  void save(Saved& out) const;
+  /// std::invalid_argument when in holds more switch records than this model keeps, or the
+  /// linearized tier's state is there for a model not eligible for it (or missing for one that is).
+  void restore(const Saved& in);
+
   ActiveModel active() const { return active_; }
   /// The rocking model runs on the linearized tier now (see AdaptiveSettings::linearized_max_alpha).
   bool linearized() const { return active_ == ActiveModel::Rocking && lin_active_; }

@@ -97,6 +97,19 @@ class ContactModel {
   void set_state(double t, double ax, double ay, int side, double theta, double omega,
                  double slip, const ContactOutcome& outcome);
 
+  /// Everything one sample carries to the next (state snapshots, issue 29); see RockingModel::Saved.
+  struct Saved {
+    ContactMode mode = ContactMode::Rest;
+    int side = 0, sigma = 0;
+    double pivot_x = 0.0;  ///< m
+    State x{};             ///< (x, x', theta, omega, y, y'), m, m/s, rad, rad/s
+    double t = 0.0, ax_prev = 0.0, ay_prev = 0.0, dt = 0.0;  ///< s, m/s^2, s
+    ContactReport report;
+    ContactOutcome outcome;
+  };
+  void save(Saved& out) const;
+  void restore(const Saved& in);
+
   ContactMode mode() const { return mode_; }
   int side() const { return side_; }
   double theta() const { return x_[2]; }

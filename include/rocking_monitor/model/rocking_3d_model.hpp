@@ -68,6 +68,27 @@ class Rocking3DModel {
   /// angular velocity `omega` (world, rad/s) (tests).
   void set_vertex_state(int vertex, const Eigen::Quaterniond& rotation, const Eigen::Vector3d& omega);
 
+  /// Everything one sample carries to the next (state snapshots, issue 29); see RockingModel::Saved.
+  struct Saved {
+    Mode3D mode = Mode3D::Rest;
+    int contact = -1;
+    double theta = 0.0, omega = 0.0;                          ///< EDGE: rad, rad/s
+    Eigen::Matrix<double, 7, 1> y = Eigen::Matrix<double, 7, 1>::Zero();  ///< VERTEX: q (w, x, y, z), omega (rad/s)
+    Eigen::Vector3d pivot_world = Eigen::Vector3d::Zero();    ///< m
+    double yaw = 0.0;                                         ///< rad
+    Eigen::Vector2d shift = Eigen::Vector2d::Zero();          ///< m
+    double t = 0.0;                                           ///< s
+    Eigen::Vector3d a_prev = Eigen::Vector3d::Zero();         ///< m/s^2
+    bool armed[kMaxBaseVertices] = {};
+    StepReport report;
+    RockingOutcome outcome;
+    Rocking3DOutcome outcome_3d;
+    Dopri5Stepper::Saved dopri5;
+    Dopri5Vector<7>::Saved vector;
+  };
+  void save(Saved& out) const;
+  void restore(const Saved& in);
+
   Mode3D mode() const { return mode_; }
   /// The active edge (EDGE) or vertex (VERTEX); -1 otherwise.
   int contact() const { return mode_ == Mode3D::Edge || mode_ == Mode3D::Vertex ? contact_ : -1; }

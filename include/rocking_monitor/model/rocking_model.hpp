@@ -79,6 +79,22 @@ class RockingModel {
   /// pivot; theta == 0 with omega != 0 rocks about the pivot omega moves away from.
   void set_state(double theta, double omega);
 
+  /// Everything one sample carries to the next (state snapshots, issue 29): restore(save()) into a
+  /// model of the same body and settings continues bit for bit as the original would.
+  struct Saved {
+    Mode mode = Mode::Rest;
+    int side = 0;
+    double theta = 0.0, omega = 0.0;  ///< rad, rad/s
+    double t = 0.0;                   ///< s
+    double ax_prev = 0.0, ay_prev = 0.0;  ///< m/s^2
+    std::uint8_t violations = 0;
+    StepReport report;
+    RockingOutcome outcome;
+    Dopri5Stepper::Saved dopri5;
+  };
+  void save(Saved& out) const;
+  void restore(const Saved& in);
+
   Mode mode() const { return mode_; }
   int side() const { return side_; }          ///< active pivot, 0 at rest
   double theta() const { return theta_; }     ///< rad, counter-clockwise positive

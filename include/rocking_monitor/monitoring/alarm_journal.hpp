@@ -20,7 +20,9 @@
 
 namespace rocking_monitor::core {
 
-enum class JournalKind { Alarm, ProbabilityAlarm, Reset, Stale };
+/// End (issue 29): the shaking stopped (every sensor quiet, every item at rest or overturned, for the
+/// node's ~event_quiet_time of input); the event's last record: it closes the event as a reset does.
+enum class JournalKind { Alarm, ProbabilityAlarm, Reset, Stale, End };
 const char* to_string(JournalKind kind);
 
 /// One line of the journal. Times in s since 1970 (the clock of the input stamps) unless said.
@@ -43,7 +45,7 @@ struct JournalRecord {
   double probability = kNaN, lower = kNaN, upper = kNaN;  ///< probability alarm: share and 95 % Wilson interval
   double threshold = kNaN;      ///< probability alarm: ~alarm_probability
   int ensemble_size = 0;        ///< probability alarm: members
-  std::string reason;           ///< reset: why
+  std::string reason;           ///< reset, end: why
 };
 
 /// The JSON line of a record (no newline). Allocates: only when a record is written.
@@ -60,8 +62,9 @@ struct JournalReading {
 };
 JournalReading read_journal(const std::string& path);
 
-/// The event still open at `now` (node clock, s since 1970): the last event of the reading, unless a
-/// reset followed it or `now` is more than `window` s from when its last record was written (either
+/// The event still open at `now` (node clock, s since 1970): the last event of the reading, unless it
+/// ended (its last record an end), a reset followed it or `now` is more than `window` s from when its
+/// last record was written (either
 /// way: a clock far behind, as sim time replaying an old record, is another event too). Empty id: none.
 struct OpenEvent {
   std::string id;
@@ -73,8 +76,8 @@ struct OpenEvent {
 };
 OpenEvent open_event(const JournalReading& reading, double now, double window);
 /// The last event of the reading whatever its age (the report reads a journal after the fact), and
-/// whether a reset closed it.
-OpenEvent last_event(const JournalReading& reading, bool* closed_by_reset = nullptr);
+/// whether it is closed (by a reset after it, or by its own end record).
+OpenEvent last_event(const JournalReading& reading, bool* closed = nullptr);
 
 /// The node's writer. open() reads the file, cuts a last line left in the middle back to the last
 /// whole line (the warning says so), and keeps the file open for appending. Appending allocates and
@@ -113,6 +116,9 @@ class AlarmJournal {
                            JournalRecord* written = nullptr);
   /// A reset (the ~reset service): closes the open event; the next record opens a new one.
   std::string append_reset(const std::string& reason, double now);
+  /// The end of the open event's shaking (`time`: the input stamp that completed the quiet time, s since
+  /// 1970): its last record, numbered on; the next record opens a new event. Nothing open: nothing done.
+  std::string append_end(const std::string& reason, double time, double now);
 
  private:
   std::string write_line(const JournalRecord& r, bool sync = true);

@@ -39,6 +39,25 @@ class ItemEnsemble {
   ItemEnsemble(const std::vector<ItemSpec>& members, const ItemMonitor::Options& options, double threshold = 0.5);
 
   void start(double t, double ax, double ay, double az, double dt_nominal);
+  bool started() const { return batch_ != nullptr; }
+  /// A new event at time t (ItemMonitor::new_event for every member): the counts of members at each level and
+  /// the crossings start from zero; members on their side stay there.
+  void new_event(double t);
+
+  /// Everything one sample carries to the next (state snapshots, issue 29): the members and the
+  /// counts of members at each level.
+  struct Saved {
+    bool started = false;
+    std::vector<ItemMonitor::Saved> members;
+    std::array<long, kLevelCount> reached{};
+    std::array<bool, kLevelCount> crossed{};
+    std::vector<std::array<bool, kLevelCount>> member_reached;
+  };
+  /// Brings the members up to date first. Reuses out's storage.
+  void save(Saved& out) const;
+  /// std::invalid_argument (naming the member) when in does not fit this ensemble: it is then to be
+  /// remade. Allocates, as start() does.
+  void restore(const Saved& in);
   /// Steps every member with the same sample. No allocation.
   const EnsembleEvents& step(double ax, double ay, double az, double dt);
   const EnsembleEvents& events() const { return events_; }
@@ -66,6 +85,7 @@ class ItemEnsemble {
   // The members share every sample: stepped together, quiet member-samples deferred (made at start()).
   mutable std::unique_ptr<MonitorBatch> batch_;
   std::vector<double> in_x_, in_y_, in_z_;  // the sample, once per member (sized once)
+  void make_batch();
   EnsembleEvents events_;
 };
 

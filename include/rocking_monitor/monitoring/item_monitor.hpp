@@ -31,6 +31,12 @@ class ItemMonitor {
   /// the journal before a restart: that level is not alarmed again by this monitor, also across
   /// start(); only a new ItemMonitor (the node's ~reset) re-arms it. Other levels are unchanged.
   void mark_alarmed(ItemMode level);
+  /// A new event (issue 29: the last one's shaking stopped): the levels alarmed or marked are
+  /// forgotten, so that the next shaking alarms them again; an item at rest starts afresh where it is
+  /// at time t (s, the models' clock: its last sample's) with its last input (its models' latched
+  /// levels, running intensities and criteria cleared: start()). An overturned item stays on its side
+  /// (it cannot alarm until set upright: start()). Allocates, as start() does.
+  void new_event(double t);
   /// Whether `level` was alarmed (or marked) since this monitor was made or last started.
   bool alarmed(ItemMode level) const;
 
@@ -38,6 +44,29 @@ class ItemMonitor {
   /// previous one. No allocation.
   const ItemEvents& step(double ax, double ay, double az, double dt);
   const ItemEvents& events() const { return events_; }
+
+  /// Everything one sample carries to the next (state snapshots, issue 29): both planes, the 3-D
+  /// model, the levels alarmed. Restored into a monitor of the same spec and options it continues
+  /// bit for bit as the saved one would.
+  struct Saved {
+    bool started = false;
+    std::array<PlaneMonitor::Saved, kPlaneCount> planes;  ///< y: when two_planes()
+    bool two_planes = false;
+    std::array<bool, 3> alarmed{};  ///< BEYOND_TIPPING, COMMITTED, OVERTURNED
+    std::array<std::array<double, 2>, kPlaneCount> last_input{};  ///< m/s^2
+    bool has_solid = false;
+    Rocking3DModel::Saved solid;
+    bool solid_active = false;
+    double peak_x = 0.0, peak_y = 0.0;  ///< m/s^2
+    double t = 0.0;                     ///< s
+    Eigen::Vector3d last_a = Eigen::Vector3d::Zero();  ///< m/s^2
+  };
+  /// Reuses out's storage (no allocation once it has been filled before).
+  void save(Saved& out) const;
+  /// Continues from a saved state; levels marked alarmed (mark_alarmed) stay alarmed. Allocates, as
+  /// start() does. std::invalid_argument (naming the item and plane) when in was saved by a monitor
+  /// of another shape (planes, 3-D model, adaptive model): the monitor is then to be remade.
+  void restore(const Saved& in);
 
   const ItemSpec& spec() const { return spec_; }
   bool two_planes() const { return planes_[1] != nullptr; }

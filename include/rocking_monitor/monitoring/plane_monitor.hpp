@@ -53,10 +53,32 @@ class PlaneMonitor {
   /// running spectrum. Allocates (once); not for the per-sample path.
   void start(double t, double ax, double ay, double dt_nominal);
   bool started() const { return started_; }
+  /// The running spectrum's sample interval given to start(), s (0 before).
+  double dt_nominal() const { return intensity_ ? intensity_->config().dt : 0.0; }
 
   /// One sample: horizontal ax along the item's x and vertical ay (m/s^2), dt seconds after the
   /// previous one. No allocation.
   const PlaneEvents& step(double ax, double ay, double dt);
+
+  /// Everything one sample carries to the next (state snapshots, issue 29): restored into a plane
+  /// monitor of the same body and options it continues bit for bit. The last sample's events are
+  /// not in it (a restored monitor has none until it steps).
+  struct Saved {
+    bool started = false;
+    double dt_nominal = 0.0;  ///< s, sizes the running spectrum
+    bool has_adaptive = false;
+    RockingModel::Saved model;    ///< without the adaptive model (which has its own)
+    AdaptiveModel::Saved adaptive;
+    StreamingIntensity::Saved intensity;
+    bool slid_at_uplift = false;
+    CriterionId last_switch_criterion = CriterionId::SlideFromRest;
+    std::array<bool, kCriterionIdCount> exceeded{};
+  };
+  /// Reuses out's storage.
+  void save(Saved& out) const;
+  /// std::invalid_argument when in was saved by a plane monitor of other options (adaptive or not).
+  /// Allocates (the running spectrum), as start() does.
+  void restore(const Saved& in);
 
   /// Events of the last step().
   const PlaneEvents& events() const { return events_; }
@@ -86,6 +108,7 @@ class PlaneMonitor {
 
  private:
   friend class MonitorBatch;  // defers quiet samples of many planes (monitoring/monitor_batch.hpp)
+  void make_intensity(double dt_nominal);
   void evaluate_criteria(double ax, double ay);
   void report_switch(SwitchReason reason, bool to_contact);
   void record_change(CriterionId id, bool exceeded, double value, double threshold,

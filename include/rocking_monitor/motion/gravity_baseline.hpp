@@ -47,6 +47,12 @@ class GravityBaseline {
     return a;
   }
 
+  /// Continues from a saved baseline (state snapshots, issue 29).
+  void restore(bool initialized, const Eigen::Vector3d& baseline) {
+    initialized_ = initialized;
+    baseline_ = baseline;
+  }
+
   const Eigen::Vector3d& baseline() const { return baseline_; }
   bool initialized() const { return initialized_; }
   const Config& config() const { return config_; }

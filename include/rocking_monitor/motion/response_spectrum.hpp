@@ -61,6 +61,11 @@ class NigamJenningsOscillator {
     v_ = v;
   }
   void reset() { u_ = v_ = 0.0; }
+  /// Puts the oscillator in a saved state (u m, v m/s; state snapshots).
+  void restore(double u, double v) {
+    u_ = u;
+    v_ = v;
+  }
 
   double displacement() const { return u_; }  ///< relative displacement u, m
   double velocity() const { return v_; }      ///< relative velocity u', m/s

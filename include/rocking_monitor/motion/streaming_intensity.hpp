@@ -90,6 +90,24 @@ class StreamingIntensity {
 
   const StreamingIntensityConfig& config() const { return config_; }
 
+  /// Everything push() carries from one sample to the next (state snapshots, issue 29): restored into
+  /// an instance of the same config it continues bit for bit. Per period: the oscillator's u (m) and
+  /// v (m/s) and its running max |u| (m).
+  struct FilterState {
+    double x1 = 0.0, x2 = 0.0, y1 = 0.0, y2 = 0.0;
+  };
+  struct Saved {
+    FilterState velocity_filter, oscillator_filter;
+    std::vector<double> osc_u, osc_v, max_u;
+    std::size_t count = 0;
+    double prev_drive = 0.0;
+    double pga = 0.0, pga_time = 0.0, vel = 0.0, pgv = 0.0, pgv_time = 0.0;
+  };
+  /// Reuses out's storage (no allocation once it has held as many periods).
+  void save(Saved& out) const;
+  /// std::invalid_argument when in has another number of periods than this instance.
+  void restore(const Saved& in);
+
   /// The whole state of a one-period intensity without the oscillator pre-filter (the live
   /// monitor's: its item's Housner period) as one flat record. MonitorBatch keeps these records of
   /// many items in one compact array, advances quiet samples there and writes them back.

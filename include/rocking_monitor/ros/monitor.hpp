@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -31,6 +32,7 @@
 #include "rocking_monitor/monitoring/item_ensemble.hpp"
 #include "rocking_monitor/monitoring/item_monitor.hpp"
 #include "rocking_monitor/monitoring/monitor_batch.hpp"
+#include "rocking_monitor/monitoring/state_snapshot.hpp"
 #include "rocking_monitor/motion/sample_timing.hpp"
 #include "rocking_monitor/motion/stamp_plausibility.hpp"
 #include "rocking_monitor/ros/catalogue.hpp"
@@ -134,6 +136,8 @@ class RockingMonitor {
     bool has_ensembles = false;             // some item is uncertain (its members step after the batch)
     ::ros::Time stepped_stamp;              // stamp of the last sample whose items were stepped
     std::uint64_t deferred = 0;             // item-samples deferred by the batch (quiet)
+    // Issue 29: input quiet (|a| below ~event_quiet_threshold) since this stamp, s since 1970 (NaN: not quiet).
+    double quiet_from = std::numeric_limits<double>::quiet_NaN();
   };
 
   bool load_parameters();
@@ -179,6 +183,9 @@ class RockingMonitor {
   void publish_states();
   void on_startup_timer(const ::ros::WallTimerEvent&);
   bool on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response&);
+  /// ~set_upright (issue 29): the items on their side were set upright again: they restart at rest
+  /// where they are (the event and the journal unchanged; a later shaking alarms them again).
+  bool on_set_upright(std_srvs::Trigger::Request&, std_srvs::Trigger::Response&);
   void fill_state(const Item& item, RockingState& out) const;
   static void fill_plane(const core::PlaneMonitor& plane, PlaneState& out);
   void publish_markers_and_tf();
@@ -218,7 +225,7 @@ class RockingMonitor {
   std::vector<std::string> screening_names_;
 
   ::ros::Publisher states_pub_, criteria_pub_, alarms_pub_, markers_pub_, probability_alarms_pub_;
-  ::ros::ServiceServer reset_srv_;
+  ::ros::ServiceServer reset_srv_, upright_srv_;
   ::ros::Timer state_timer_;
   ::ros::WallTimer startup_timer_;
   ::ros::Time last_tf_stamp_;
@@ -267,6 +274,47 @@ class RockingMonitor {
   void journal_reset(const std::string& why);
   void journal_stale_period(Sensor& s);  // on the state timer: a stale period opened or closed
   void journal_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& stat);
+  // One meaning of an event (issue 29 part 4): it ends when the shaking has stopped, every sensor's
+  // input below ~event_quiet_threshold and every item at rest or overturned for ~event_quiet_time of
+  // input (the report's rule), or on ~reset; the next shaking is a new event whose levels alarm again.
+  double event_quiet_time_ = 5.0;        // ~event_quiet_time, s of input
+  double event_quiet_threshold_ = 0.05;  // ~event_quiet_threshold, m/s^2 (horizontal norm and vertical)
+  double last_end_check_ = 0.0;          // input stamp of the last check of the items, s since 1970
+  std::uint64_t events_ended_ = 0;
+  void track_quiet(Sensor& s, const Eigen::Vector3d& a, const ::ros::Time& stamp);
+  void check_event_end(const ::ros::Time& stamp);
+
+  // State snapshots (issue 29, ros/monitor_snapshot.cpp, docs/journal.md): every item's model state
+  // written beside the journal every ~snapshot_period of input time (encoded here between samples,
+  // written by the writer's thread); a node restarted within ~max_bridge of its last sample continues
+  // each sensor's items from it, the missed samples a gap (frozen, not bridged, as issue 19).
+  std::string snapshot_path_;         // ~snapshot; "" = off
+  double snapshot_period_ = 0.1;      // ~snapshot_period, s of input time between snapshots (at least)
+  double snapshot_max_load_ = 0.05;   // ~snapshot_max_load: encoding takes at most this share of input time
+  double snapshot_interval_ = 0.1;    // the interval in use: max(period, last encode / max load), s
+  std::uint32_t fingerprint_ = 0;     // of the catalogue and model options (a foreign snapshot is refused)
+  std::unique_ptr<core::SnapshotFileWriter> snapshot_writer_;
+  core::SnapshotEncoder snapshot_encoder_;
+  ::ros::Time last_snapshot_stamp_;   // input stamp of the last snapshot taken
+  Cost snapshot_cost_;                // wall time of encoding one (between samples), s
+  std::uint64_t snapshot_failures_seen_ = 0;
+  std::unique_ptr<core::StateSnapshot> resume_;  // read at start; each sensor's part used at its first sample
+  std::vector<bool> resume_pending_;  // per sensor: its part not used yet
+  std::string snapshot_start_;        // what happened at start: resumed, refused (why), none
+  struct Resumed {
+    std::string sensor;
+    double gap_s = 0.0;               // last sample before the restart to the first after it, s
+    long missing = 0;                 // samples missing at the nominal rate
+    std::size_t items = 0;
+  };
+  std::vector<Resumed> resumed_;
+  bool load_snapshot_parameters();
+  /// sensors, items: the catalogue's parameters (with the model options, the configuration a
+  /// snapshot must have been written by).
+  void open_snapshot(const XmlRpc::XmlRpcValue& sensors, const XmlRpc::XmlRpcValue& items);
+  void resume_sensor(std::size_t sensor, const ::ros::Time& stamp);
+  void take_snapshot(const ::ros::Time& stamp);
+  void snapshot_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& stat);
 };
 
 }  // namespace rocking_monitor::live
