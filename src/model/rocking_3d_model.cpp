@@ -117,6 +117,7 @@ void Rocking3DModel::save(Saved& out) const {
   out.outcome_3d = outcome3_;
   dopri5_.save(out.dopri5);
   vector_.save(out.vector);
+  out.last_probe_t = last_probe_t_;
 }
 
 void Rocking3DModel::restore(const Saved& in) {
@@ -136,6 +137,7 @@ void Rocking3DModel::restore(const Saved& in) {
   outcome3_ = in.outcome_3d;
   dopri5_.restore(in.dopri5);
   vector_.restore(in.vector);
+  last_probe_t_ = in.last_probe_t;
 }
 
 Eigen::Matrix3d Rocking3DModel::yaw_matrix() const { return rot_z(yaw_); }

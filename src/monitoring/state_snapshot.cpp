@@ -399,6 +399,7 @@ void visit(V& v, Rocking3DModel::Saved& s) {
     v("max_tilt", s.outcome_3d.max_tilt);
     v("max_impact_energy_ratio", s.outcome_3d.max_impact_energy_ratio);
   });
+  v("last_probe_t", s.last_probe_t);
   v.group("dopri5", [&] { visit(v, s.dopri5); });
   v.group("dopri5_vector", [&] {
     v("h", s.vector.h);

@@ -85,6 +85,7 @@ class Rocking3DModel {
     Rocking3DOutcome outcome_3d;
     Dopri5Stepper::Saved dopri5;
     Dopri5Vector<7>::Saved vector;
+    double last_probe_t = -1e300;  ///< s: when COMMITTED on a corner was last looked ahead for
   };
   void save(Saved& out) const;
   void restore(const Saved& in);
