@@ -46,13 +46,26 @@ void summarize_plane(const PlaneMonitor& pm, PlaneSummary& out) {
 
 }  // namespace
 
+// Taken after every full step of an item (MonitorBatch::refresh): each plane's mode and margin are
+// evaluated once (each may take a cosine), and the item's mode and worst plane follow from them by
+// ItemMonitor::mode / worst_plane's rules instead of evaluating the planes again.
 void summarize(const ItemMonitor& item, ItemSummary& out) {
   ItemSummary now;
   now.planes = static_cast<std::uint8_t>(item.plane_count());
   for (int p = 0; p < now.planes; ++p) summarize_plane(item.plane(static_cast<Plane>(p)), now.plane[p]);
-  now.mode = item.mode();
-  now.worst = item.worst_plane();
   now.solid_active = item.solid() != nullptr && item.solid_active();
+  if (now.solid_active) {
+    now.mode = item.mode();
+    now.worst = item.worst_plane();
+  } else if (now.planes == 1) {
+    now.mode = now.plane[0].mode;
+    now.worst = Plane::X;
+  } else {
+    const PlaneSummary &x = now.plane[0], &y = now.plane[1];
+    now.mode = y.mode > x.mode ? y.mode : x.mode;
+    now.worst = y.mode != x.mode ? (y.mode > x.mode ? Plane::Y : Plane::X)
+                                 : (y.rotation_ratio > x.rotation_ratio ? Plane::Y : Plane::X);
+  }
   now.revision = out.revision;
   if (!now.same_state(out)) {
     ++now.revision;

@@ -163,6 +163,11 @@ BatchRun compare(const Catalogue& cat, const Component& rec, double scale, doubl
       ItemSummary oracle;
       summarize(*alone[k], oracle);
       const ItemSummary& s = batch.summary(k);
+      // The summary's own derivation of the item's levels, against the monitor's.
+      EXPECT_EQ(oracle.mode, alone[k]->mode()) << "item " << k << " sample " << i;
+      EXPECT_EQ(oracle.worst, alone[k]->worst_plane()) << "item " << k << " sample " << i;
+      for (int p = 0; p < alone[k]->plane_count(); ++p)
+        EXPECT_EQ(oracle.plane[p].mode, alone[k]->plane(static_cast<Plane>(p)).mode()) << "item " << k;
       EXPECT_TRUE(s.same_state(oracle)) << "item " << k << " sample " << i << " mode " << static_cast<int>(s.mode)
                                         << " vs " << static_cast<int>(oracle.mode) << " theta " << s.plane[0].theta
                                         << " vs " << oracle.plane[0].theta;
