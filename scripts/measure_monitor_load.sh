@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # Measures the live monitor's processing time per input sample for catalogues of N items:
-#   [THREADS=k] [FIDELITY=adaptive|rocking|contact] [PLANES=2|1] [UNCERTAIN=0|1] [SOLID=0|1] [RATE=r] [START_DELAY=s] bash scripts/measure_monitor_load.sh BAG [N ...]
+#   [THREADS=k] [FIDELITY=adaptive|rocking|contact] [PLANES=2|1] [UNCERTAIN=0|1] [SOLID=0|1] [RATE=r] [START_DELAY=s] [SUBSCRIBE=0|1] bash scripts/measure_monitor_load.sh BAG [N ...]
 #   (default N: 1 100 10000)
 # Replays BAG (sensor_msgs/Imu on /ground/imu) at real time through a monitor fed by a synthetic
 # catalogue of N items (two rocking planes each; PLANES=1: no depth; UNCERTAIN=1: ensembles of
 # ~ensemble_size members per item) and prints the mean and max processing time per sample from /diagnostics;
 # RATE=2 plays the bag at twice real time. Then one line of overload figures (issue 19): lag, queue wait,
 # ~overload, samples stepped and lost in transport, publications shed.
+# SUBSCRIBE=1: a subscriber (topic_tools relay, C++, no deserialization) on ~states, ~state_changes,
+# ~markers and /tf, so that the monitor fills and serializes them (it skips a topic nobody reads).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export PATH=/usr/bin:$PATH
@@ -25,6 +27,13 @@ for n in "${counts[@]}"; do
   roslaunch rocking_monitor replay.launch bag:="$bag" catalogue:="$cat" required:=true start_delay:="${START_DELAY:-3}" rate:="${RATE:-1}" threads:="${THREADS:-1}" fidelity:="${FIDELITY:-adaptive}" solid_model:="$([ "${SOLID:-0}" = 1 ] && echo 3d || echo auto)" \
     > "$log" 2>&1 &
   pid=$!
+  relays=()
+  if [ "${SUBSCRIBE:-0}" = 1 ]; then
+    for t in /rocking_monitor/states /rocking_monitor/state_changes /rocking_monitor/markers /tf; do
+      rosrun topic_tools relay "$t" "/load_sink$t" __name:="load_sink_$(basename "$t")" >/dev/null 2>&1 &
+      relays+=($!)
+    done
+  fi
   diag=""
   # Sample /diagnostics until the bag is over (the launch ends with it).
   while kill -0 $pid 2>/dev/null; do
@@ -42,7 +51,9 @@ for n in "${counts[@]}"; do
   echo "         overload: $(field overload) (episodes $(field 'overload episodes')), lag max $(field 'lag, max (s)') s," \
        "queue wait max $(field 'backlog, queue wait max (s)') s, received $(field received), lost in transport" \
        "$(field 'lost in transport'), shed: $(field 'markers and tf publications shed (overload)') markers+tf," \
-       "$(field 'states publications shed (overload)') states"
+       "$(field 'states publications shed (overload)') states; published: $(field 'states publications') states," \
+       "$(field 'markers and tf publications') markers+tf"
   grep -m1 "overload:" "$log" || true
+  for r in "${relays[@]}"; do kill "$r" 2>/dev/null || true; done
   rm -f "$cat" "$log"
 done

@@ -66,6 +66,7 @@ bool RockingMonitor::load_parameters() {
             param(pnh_, "max_abs_acceleration", max_abs_acceleration_, "number") &&
             param(pnh_, "state_rate", state_rate_, "number") &&
             param(pnh_, "state_queue_size", state_queue_size_, "integer") &&
+            param(pnh_, "state_items_per_s", state_items_per_s_, "number") &&
             param(pnh_, "publish_markers", publish_markers_, "bool") &&
             param(pnh_, "publish_tf", publish_tf_, "bool") && param(pnh_, "threads", threads_, "integer") &&
             param(pnh_, "marker_rate", marker_rate_, "number") &&
@@ -154,6 +155,8 @@ bool RockingMonitor::load_parameters() {
          positive(options_.velocity_highpass_hz, "velocity_highpass_hz", "Hz") &&
          positive(marker_rate_, "marker_rate", "Hz") &&
          (state_rate_ >= 0.0 || positive(state_rate_, "state_rate", "Hz (0 = every input sample)")) &&
+         (state_items_per_s_ == 0.0 ||
+          positive(state_items_per_s_, "state_items_per_s", "item-states per second in full ~states (0 = no limit)")) &&
          (state_queue_size_ >= 1 || positive(state_queue_size_, "state_queue_size", "messages"));
 }
 
@@ -220,6 +223,7 @@ bool RockingMonitor::init() {
     make_models(it);
     for (std::size_t i = 0; i < sensors_.size(); ++i)
       if (sensors_[i].spec.name == entry.spec.sensor) it.sensor = i;
+    it.slot = sensors_[it.sensor].items.size();
     sensors_[it.sensor].items.push_back(items_.size());
     if (entry.pose.given) {
       geometry_msgs::TransformStamped t;
@@ -245,6 +249,8 @@ bool RockingMonitor::init() {
   tf_pub_ = nh_.advertise<tf2_msgs::TFMessage>("/tf", 100);  // as tf2_ros::TransformBroadcaster
 
   states_pub_ = pnh_.advertise<RockingStateArray>("states", static_cast<std::uint32_t>(state_queue_size_));
+  // The items whose state changed since its previous message (docs/monitor.md: large catalogues).
+  state_changes_pub_ = pnh_.advertise<RockingStateArray>("state_changes", static_cast<std::uint32_t>(state_queue_size_));
   criteria_pub_ = pnh_.advertise<CriterionExceedance>("criteria", 100);
   // Not latched (a latched topic keeps only its last message): every new subscriber is sent all the
   // alarms of the open event instead, in journal order, then the live ones (docs/journal.md).
@@ -304,6 +310,10 @@ bool RockingMonitor::init() {
           {}, hints);
     }
   }
+  // Full ~states of a large catalogue at a lower rate: items x rate <= ~state_items_per_s.
+  if (state_rate_ > 0.0 && state_items_per_s_ > 0.0)
+    full_state_every_ = std::max(1, static_cast<int>(std::ceil(static_cast<double>(items_.size()) * state_rate_ /
+                                                               state_items_per_s_ - 1e-9)));
   if (state_rate_ > 0.0) state_timer_ = nh_.createTimer(::ros::Duration(1.0 / state_rate_), &RockingMonitor::on_state_timer, this);
   else state_timer_ = nh_.createTimer(::ros::Duration(0.5), &RockingMonitor::on_state_timer, this);
   // Wall time: under sim time nothing ticks until a /clock arrives, which is what we warn about.
@@ -381,6 +391,9 @@ void RockingMonitor::rebuild_batch(Sensor& s) {
   s.in_ready.assign(s.items.size(), 0);
   s.rotations.assign(s.items.size(), Eigen::Matrix3d::Identity());
   s.all_ready = false;
+  // The new batch's summaries start their own revisions: every publication refills these items.
+  for (std::size_t idx : s.items)
+    items_[idx].states_revision = items_[idx].changes_revision = items_[idx].markers_revision = Item::kUnsent;
   s.has_ensembles = false;
   for (std::size_t idx : s.items) s.has_ensembles = s.has_ensembles || items_[idx].ensemble != nullptr;
 }

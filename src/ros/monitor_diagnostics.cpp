@@ -73,16 +73,22 @@ void RockingMonitor::sensor_diagnostics(std::size_t i, diagnostic_updater::Diagn
 }
 
 void RockingMonitor::catalogue_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st) {
-  sync_items();
+  // From the batches' summaries (no sync); the adaptive models' counters below are read as they
+  // stand: deferred samples are inside the scene and change no choice of model.
   std::array<int, 5> counts{};
-  int without_tf = 0, invalid = 0;
+  int without_tf = 0, invalid = 0, on_contact = 0;
   std::uint64_t skipped = 0;
-  for (const Item& it : items_) {
+  for (Item& it : items_) {
     skipped += it.samples_without_transform;
-    ++counts[static_cast<int>(it.monitor->mode())];
+    const core::ItemSummary& sm = summary(it);
+    ++counts[static_cast<int>(sm.mode)];
     if (!it.has_rotation) ++without_tf;
-    for (int p = 0; p < it.monitor->plane_count(); ++p)
-      if (it.monitor->plane(static_cast<core::Plane>(p)).violations() != 0) { ++invalid; break; }
+    bool valid = true;
+    for (int p = 0; p < sm.planes; ++p) {
+      valid = valid && sm.plane[p].violations == 0;
+      on_contact += sm.plane[p].model == core::ActiveModelName::Contact;
+    }
+    invalid += !valid;
   }
   if (without_tf > 0) st.summary(diagnostic_msgs::DiagnosticStatus::WARN, std::to_string(without_tf) + " items without transform");
   else if (counts[4] > 0) st.summary(diagnostic_msgs::DiagnosticStatus::WARN, std::to_string(counts[4]) + " items overturned");
@@ -119,10 +125,6 @@ void RockingMonitor::catalogue_diagnostics(diagnostic_updater::DiagnosticStatusW
   st.add("states publications shed (overload)", shed_states_);
   st.add("method", core::to_string(options_.solver.method));
   st.add("fidelity", core::to_string(options_.fidelity));
-  int on_contact = 0;
-  for (const Item& it : items_)
-    for (int p = 0; p < it.monitor->plane_count(); ++p)
-      on_contact += std::string(it.monitor->plane(static_cast<core::Plane>(p)).active_model()) == "contact";
   st.add("item planes on the contact model now", on_contact);
   if (options_.fidelity == core::Fidelity::Adaptive) {
     int ruled_out = 0;

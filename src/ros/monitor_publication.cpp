@@ -166,29 +166,36 @@ void RockingMonitor::publish_crossings(Item& it, const core::EnsembleEvents& ev,
   }
 }
 
-void RockingMonitor::fill_plane(const core::PlaneMonitor& pm, PlaneState& out) {
-  out.mode = static_cast<std::uint8_t>(pm.mode());
-  out.pivot = static_cast<std::int8_t>(pm.side());
-  out.theta = pm.theta();
-  out.theta_dot = pm.omega();
-  out.rotation_ratio = pm.rotation_ratio();
-  out.energy_margin = pm.margin().margin;
-  out.impacts = static_cast<std::uint32_t>(pm.impacts());
-  out.violations = pm.violations();
-  out.contact_mode = static_cast<std::uint8_t>(pm.contact_mode());
-  out.slip = pm.slip();
-  out.model = pm.active_model();
+void RockingMonitor::fill_plane(const core::PlaneSummary& p, PlaneState& out) {
+  out.mode = static_cast<std::uint8_t>(p.mode);
+  out.pivot = p.side;
+  out.theta = p.theta;
+  out.theta_dot = p.omega;
+  out.rotation_ratio = p.rotation_ratio;
+  out.energy_margin = p.energy_margin;
+  out.impacts = p.impacts;
+  out.violations = p.violations;
+  out.contact_mode = static_cast<std::uint8_t>(p.contact_mode);
+  out.slip = p.slip;
+  out.model = core::to_string(p.model);
 }
 
-void RockingMonitor::fill_state(const Item& it, RockingState& out) const {
-  const core::ItemMonitor& im = *it.monitor;
-  fill_plane(im.plane(core::Plane::X), out.x);
-  if (im.two_planes()) fill_plane(im.plane(core::Plane::Y), out.y);
-  const core::Plane worst = im.worst_plane();
-  const PlaneState& w = worst == core::Plane::X ? out.x : out.y;
-  out.mode = static_cast<std::uint8_t>(im.mode());
-  out.plane_count = static_cast<std::uint8_t>(im.plane_count());
-  out.plane = core::to_string(worst);
+const core::ItemSummary& RockingMonitor::summary(Item& it) {
+  const Sensor& s = sensors_[it.sensor];
+  if (s.batch) return s.batch->summary(it.slot);
+  core::summarize(*it.monitor, it.summary);  // no batch (before the first step after a start): nothing deferred
+  return it.summary;
+}
+
+// The item's state from its summary; a 3-D item's pose from its model (never deferred by the batch,
+// so it needs no sync). Not the ensemble, input stamp and staleness (filled at every publication).
+void RockingMonitor::fill_state(const Item& it, const core::ItemSummary& sm, RockingState& out) const {
+  fill_plane(sm.plane[0], out.x);
+  if (sm.planes > 1) fill_plane(sm.plane[1], out.y);
+  const PlaneState& w = sm.worst == core::Plane::X ? out.x : out.y;
+  out.mode = static_cast<std::uint8_t>(sm.mode);
+  out.plane_count = sm.planes;
+  out.plane = core::to_string(sm.worst);
   out.pivot = w.pivot;
   out.theta = w.theta;
   out.theta_dot = w.theta_dot;
@@ -200,7 +207,9 @@ void RockingMonitor::fill_state(const Item& it, RockingState& out) const {
   out.contact_mode = w.contact_mode;
   out.slip = w.slip;
   out.model = w.model;
-  if (const core::Rocking3DModel* solid = im.solid(); solid && im.solid_active()) {
+  out.tilt = 0.0;
+  out.contact.clear();
+  if (const core::Rocking3DModel* solid = it.monitor->solid(); solid && sm.solid_active) {
     out.model = "rocking_3d";
     out.pivot = 0;
     out.tilt = solid->tilt();
@@ -210,39 +219,81 @@ void RockingMonitor::fill_state(const Item& it, RockingState& out) const {
     out.impacts = static_cast<std::uint32_t>(solid->outcome().impacts);
     out.energy_margin = solid->margin().margin;
     const int k = solid->contact();
-    out.contact.clear();
     if (solid->mode() == core::Mode3D::Edge) out.contact.append("edge ").append(std::to_string(k + 1));
     if (solid->mode() == core::Mode3D::Vertex) out.contact.append("vertex ").append(std::to_string(k + 1));
   }
-  out.input_stamp = input_stamp(it);
-  out.stale = sensors_[it.sensor].stale_now;
-  if (it.ensemble) {
-    const core::ItemEnsemble& e = *it.ensemble;
-    out.ensemble_size = static_cast<std::uint16_t>(e.size());
-    auto fill = [&](core::Level l, LevelProbability& p) {
-      const core::WilsonInterval w = e.interval(l);
-      p.probability = e.probability(l);
-      p.lower = w.lower;
-      p.upper = w.upper;
-    };
-    fill(core::Level::BeyondTipping, out.p_beyond_tipping);
-    fill(core::Level::Committed, out.p_committed);
-    fill(core::Level::Overturned, out.p_overturned);
-  }
 }
 
+void RockingMonitor::fill_ensemble(const Item& it, RockingState& out) const {
+  const core::ItemEnsemble& e = *it.ensemble;
+  out.ensemble_size = static_cast<std::uint16_t>(e.size());
+  auto fill = [&](core::Level l, LevelProbability& p) {
+    const core::WilsonInterval w = e.interval(l);
+    p.probability = e.probability(l);
+    p.lower = w.lower;
+    p.upper = w.upper;
+  };
+  fill(core::Level::BeyondTipping, out.p_beyond_tipping);
+  fill(core::Level::Committed, out.p_committed);
+  fill(core::Level::Overturned, out.p_overturned);
+}
+
+// Issue 28: no sync and no walk over the items' model objects. Each item's state comes from the
+// summary its batch keeps, and the kept message is refilled only for items whose summary changed
+// since it was last sent (an 3-D or uncertain item: every time); input stamp and staleness for all.
+// A full message of a large catalogue goes out every full_state_every_ ticks (~state_items_per_s);
+// ~state_changes carries the changed items at every tick.
 void RockingMonitor::publish_states() {
   const auto wall_start = std::chrono::steady_clock::now();
-  sync_items();
   for (Sensor& s : sensors_) s.stale_now = stale(s);
   ::ros::Time newest;
-  for (std::size_t i = 0; i < items_.size(); ++i) {
-    fill_state(items_[i], states_msg_.items[i]);
-    if (states_msg_.items[i].input_stamp > newest) newest = states_msg_.items[i].input_stamp;
+  for (const Item& it : items_) newest = std::max(newest, input_stamp(it));
+  const bool full = state_ticks_++ % static_cast<std::uint64_t>(full_state_every_) == 0;
+  if (full && states_pub_.getNumSubscribers() > 0) {
+    for (std::size_t i = 0; i < items_.size(); ++i) {
+      Item& it = items_[i];
+      RockingState& out = states_msg_.items[i];
+      const core::ItemSummary& sm = summary(it);
+      if (it.states_revision != sm.revision || sm.solid_active) {
+        fill_state(it, sm, out);
+        it.states_revision = sm.revision;
+      }
+      if (it.ensemble) fill_ensemble(it, out);
+      out.input_stamp = input_stamp(it);
+      out.stale = sensors_[it.sensor].stale_now;
+    }
+    states_msg_.header.stamp = newest;
+    states_pub_.publish(states_msg_);
   }
-  states_msg_.header.stamp = newest;
-  states_pub_.publish(states_msg_);
+  if (state_changes_pub_.getNumSubscribers() > 0) publish_state_changes(newest);
   states_cost_.add(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
+}
+
+// The items whose state (or staleness) changed since the previous ~state_changes message; an item's
+// first message after a (re)start of its sensor's items is always sent. Subscribers take one full
+// ~states first, then apply these by id.
+void RockingMonitor::publish_state_changes(const ::ros::Time& newest) {
+  std::vector<RockingState>& out = changes_msg_.items;
+  std::size_t n = 0;
+  for (Item& it : items_) {
+    const core::ItemSummary& sm = summary(it);
+    const Sensor& s = sensors_[it.sensor];
+    if (it.changes_revision == sm.revision && !sm.solid_active && !it.ensemble && s.stale_now == s.stale_in_changes)
+      continue;
+    if (n == out.size()) out.emplace_back();  // grows to the largest burst, then reused
+    RockingState& st = out[n++];
+    st.id = it.entry.spec.id;
+    fill_state(it, sm, st);
+    if (it.ensemble) fill_ensemble(it, st);
+    else st.ensemble_size = 0;
+    st.input_stamp = input_stamp(it);
+    st.stale = s.stale_now;
+    it.changes_revision = sm.revision;
+  }
+  for (Sensor& s : sensors_) s.stale_in_changes = s.stale_now;
+  out.resize(n);  // keeps the capacity; elements cut off are made again when a larger burst needs them
+  changes_msg_.header.stamp = newest;
+  state_changes_pub_.publish(changes_msg_);
 }
 
 void RockingMonitor::on_state_timer(const ::ros::TimerEvent&) {
@@ -275,20 +326,36 @@ void RockingMonitor::on_state_timer(const ::ros::TimerEvent&) {
   diagnostics_->update();
 }
 
+// Issue 28: from the items' summaries, without a sync. Kept messages: an item's marker, label and
+// transform are recomputed only when its summary changed since they were last sent (or its 3-D
+// model decides its pose); every item's stamps are renewed. Nothing is filled for a topic nobody
+// subscribes to (its items stay due and are filled when somebody does).
 void RockingMonitor::publish_markers_and_tf() {
-  if (!publish_markers_ && !publish_tf_) return;
-  sync_items();
   const auto wall_start = std::chrono::steady_clock::now();
+  const bool markers_due = publish_markers_ && markers_pub_.getNumSubscribers() > 0;
+  const bool tf_due = publish_tf_ && tf_pub_.getNumSubscribers() > 0;
+  if (!markers_due && !tf_due) return;
   // Kept messages, refilled in place: a field's strings keep their capacity (no allocation per item).
   std::vector<visualization_msgs::Marker>& markers = markers_msg_.markers;
   std::vector<geometry_msgs::TransformStamped>& transforms = tf_msg_.transforms;
-  if (publish_markers_) markers.resize(2 * items_.size());
-  if (publish_tf_) transforms.resize(items_.size());
+  // Both are sized for every item whenever they are filled: an item's revision covers both.
+  if (markers.size() != 2 * items_.size() || transforms.size() != items_.size()) {
+    markers.resize(2 * items_.size());
+    transforms.resize(items_.size());
+    for (Item& it : items_) it.markers_revision = Item::kUnsent;
+  }
   const ::ros::Time now = ::ros::Time::now();
   for (std::size_t i = 0; i < items_.size(); ++i) {
-    const Item& it = items_[i];
-    const core::PlaneMonitor& px = it.monitor->plane(core::Plane::X);
-    const core::Body& b = px.body();
+    Item& it = items_[i];
+    const core::ItemSummary& sm = summary(it);
+    visualization_msgs::Marker& mk = markers[2 * i];
+    visualization_msgs::Marker& label = markers[2 * i + 1];
+    geometry_msgs::TransformStamped& t = transforms[i];
+    mk.header.stamp = label.header.stamp = t.header.stamp = now;
+    if (it.markers_revision == sm.revision && !sm.solid_active) continue;
+    it.markers_revision = sm.revision;
+    const core::PlaneSummary& px = sm.plane[0];
+    const core::Body& b = it.monitor->plane(core::Plane::X).body();  // geometry: constant
     // Item frame: origin on the floor below the centre of mass, x across the width, y across the
     // depth, z up. x plane: corner 1 at x = -nu1 B, corner 2 at x = +nu2 B, theta > 0 about -y. y plane:
     // corner 1 at y = -nu1_y D, corner 2 at y = +nu2_y D, theta > 0 about +x. The body drawn is tilted
@@ -299,22 +366,20 @@ void RockingMonitor::publish_markers_and_tf() {
       t.translation() = pivot - r * pivot;
       return t;
     };
-    const int sx = px.side();
-    Eigen::Isometry3d pose = about_pivot(Eigen::Vector3d(sx >= 0 ? -b.nu1() * b.width() : b.nu2() * b.width(), 0.0, 0.0),
-                                         Eigen::AngleAxisd(-px.theta(), Eigen::Vector3d::UnitY()).toRotationMatrix());
+    Eigen::Isometry3d pose = about_pivot(Eigen::Vector3d(px.side >= 0 ? -b.nu1() * b.width() : b.nu2() * b.width(), 0.0, 0.0),
+                                         Eigen::AngleAxisd(-px.theta, Eigen::Vector3d::UnitY()).toRotationMatrix());
     double depth = 0.5 * b.width(), centre_y = 0.0;  // no depth given: drawn half as deep as wide
-    bool valid = px.violations() == 0;
-    if (it.monitor->two_planes()) {
-      const core::PlaneMonitor& py = it.monitor->plane(core::Plane::Y);
-      const core::Body& d = py.body();
-      const int sy = py.side();
-      pose = pose * about_pivot(Eigen::Vector3d(0.0, sy >= 0 ? -d.nu1() * d.width() : d.nu2() * d.width(), 0.0),
-                                Eigen::AngleAxisd(py.theta(), Eigen::Vector3d::UnitX()).toRotationMatrix());
+    bool valid = px.violations == 0;
+    if (sm.planes > 1) {
+      const core::PlaneSummary& py = sm.plane[1];
+      const core::Body& d = it.monitor->plane(core::Plane::Y).body();
+      pose = pose * about_pivot(Eigen::Vector3d(0.0, py.side >= 0 ? -d.nu1() * d.width() : d.nu2() * d.width(), 0.0),
+                                Eigen::AngleAxisd(py.theta, Eigen::Vector3d::UnitX()).toRotationMatrix());
       depth = d.width();
-      valid = valid && py.violations() == 0;
+      valid = valid && py.violations == 0;
       centre_y = (d.nu2() - d.nu1()) * d.width() / 2.0;
     }
-    if (const core::Rocking3DModel* solid = it.monitor->solid(); solid && it.monitor->solid_active()) {
+    if (const core::Rocking3DModel* solid = it.monitor->solid(); solid && sm.solid_active) {
       // The 3-D model's own pose (full orientation, the pivot it turns about), moved from the
       // catalogue's floor frame to the item frame (origin on the floor below the centre of mass).
       const Eigen::Vector3d& c = solid->body().centre_of_mass();
@@ -324,62 +389,51 @@ void RockingMonitor::publish_markers_and_tf() {
     }
     const Eigen::Matrix3d r = pose.linear();
     const Eigen::Vector3d shift = pose.translation();
-    if (publish_tf_) {
-      geometry_msgs::TransformStamped& t = transforms[i];
-      t.header.stamp = now;
-      t.header.frame_id = it.entry.spec.frame;
-      t.child_frame_id.assign(it.entry.spec.frame).append(marker_frame_suffix_);
-      t.transform.translation.x = shift.x();
-      t.transform.translation.y = shift.y();
-      t.transform.translation.z = shift.z();
-      t.transform.rotation = tf2::toMsg(Eigen::Quaterniond(r));
-    }
-    if (publish_markers_) {
-      visualization_msgs::Marker& mk = markers[2 * i];
-      mk.header.stamp = now;
-      mk.header.frame_id = it.entry.spec.frame;
-      mk.ns = "items";
-      mk.id = static_cast<int>(i);
-      mk.type = visualization_msgs::Marker::CUBE;
-      mk.action = visualization_msgs::Marker::ADD;
-      const Eigen::Vector3d centre((b.nu2() - b.nu1()) * b.width() / 2.0, centre_y, b.cg_height());
-      const Eigen::Vector3d c = pose * centre;
-      mk.pose.position.x = c.x();
-      mk.pose.position.y = c.y();
-      mk.pose.position.z = c.z();
-      mk.pose.orientation = tf2::toMsg(Eigen::Quaterniond(r));
-      mk.scale.x = b.width();
-      mk.scale.y = depth;
-      mk.scale.z = 2.0 * b.cg_height();
-      mk.color = color(it.monitor->mode(), valid);
-      // The label: the box's fields but these (what a copy of the box, then changed, would be).
-      visualization_msgs::Marker& label = markers[2 * i + 1];
-      label.header = mk.header;
-      label.ns = "labels";
-      label.id = mk.id;
-      label.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
-      label.action = mk.action;
-      label.pose.position.x = mk.pose.position.x;
-      label.pose.position.y = mk.pose.position.y;
-      label.pose.position.z = 2.0 * b.cg_height() + 0.15;
-      label.pose.orientation.w = 1.0;
-      label.pose.orientation.x = label.pose.orientation.y = label.pose.orientation.z = 0.0;
-      label.scale.x = mk.scale.x;
-      label.scale.y = mk.scale.y;
-      label.scale.z = 0.1;
-      const ItemMode mode = it.monitor->mode();
-      label.text.assign(it.entry.spec.id).append(" ").append(core::to_string(mode));
-      if (it.monitor->two_planes() && mode != ItemMode::Rest)
-        label.text.append(" (").append(core::to_string(it.monitor->worst_plane())).append(")");
-      label.color.r = label.color.g = label.color.b = label.color.a = 1.0f;
-    }
+    t.header.frame_id = it.entry.spec.frame;
+    t.child_frame_id.assign(it.entry.spec.frame).append(marker_frame_suffix_);
+    t.transform.translation.x = shift.x();
+    t.transform.translation.y = shift.y();
+    t.transform.translation.z = shift.z();
+    t.transform.rotation = tf2::toMsg(Eigen::Quaterniond(r));
+    mk.header.frame_id = it.entry.spec.frame;
+    mk.ns = "items";
+    mk.id = static_cast<int>(i);
+    mk.type = visualization_msgs::Marker::CUBE;
+    mk.action = visualization_msgs::Marker::ADD;
+    const Eigen::Vector3d centre((b.nu2() - b.nu1()) * b.width() / 2.0, centre_y, b.cg_height());
+    const Eigen::Vector3d c = pose * centre;
+    mk.pose.position.x = c.x();
+    mk.pose.position.y = c.y();
+    mk.pose.position.z = c.z();
+    mk.pose.orientation = tf2::toMsg(Eigen::Quaterniond(r));
+    mk.scale.x = b.width();
+    mk.scale.y = depth;
+    mk.scale.z = 2.0 * b.cg_height();
+    mk.color = color(sm.mode, valid);
+    // The label: the box's fields but these (what a copy of the box, then changed, would be).
+    label.header = mk.header;
+    label.ns = "labels";
+    label.id = mk.id;
+    label.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
+    label.action = mk.action;
+    label.pose.position.x = mk.pose.position.x;
+    label.pose.position.y = mk.pose.position.y;
+    label.pose.position.z = 2.0 * b.cg_height() + 0.15;
+    label.pose.orientation.w = 1.0;
+    label.pose.orientation.x = label.pose.orientation.y = label.pose.orientation.z = 0.0;
+    label.scale.x = mk.scale.x;
+    label.scale.y = mk.scale.y;
+    label.scale.z = 0.1;
+    label.text.assign(it.entry.spec.id).append(" ").append(core::to_string(sm.mode));
+    if (sm.planes > 1 && sm.mode != ItemMode::Rest) label.text.append(" (").append(core::to_string(sm.worst)).append(")");
+    label.color.r = label.color.g = label.color.b = label.color.a = 1.0f;
   }
   // tf2 rejects a second transform with the same stamp (sim time may not have advanced).
-  if (publish_tf_ && !transforms.empty() && now > last_tf_stamp_) {
+  if (tf_due && !transforms.empty() && now > last_tf_stamp_) {
     tf_pub_.publish(tf_msg_);
     last_tf_stamp_ = now;
   }
-  if (publish_markers_) markers_pub_.publish(markers_msg_);
+  if (markers_due) markers_pub_.publish(markers_msg_);
   markers_cost_.add(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
 }
 

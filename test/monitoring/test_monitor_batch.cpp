@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "rocking_monitor/monitoring/item_monitor.hpp"
+#include "rocking_monitor/monitoring/item_summary.hpp"
 #include "rocking_monitor/monitoring/monitor_batch.hpp"
 #include "rocking_monitor/motion/record_reader.hpp"
 
@@ -103,7 +104,7 @@ void expect_same_state(const ItemMonitor& a, const ItemMonitor& b, std::size_t k
 }
 
 struct BatchRun {
-  std::size_t deferred = 0, samples = 0, overturned = 0, rocked = 0;
+  std::size_t deferred = 0, samples = 0, overturned = 0, rocked = 0, revisions = 0;
 };
 
 // Steps a batch and an independent copy of each item (ItemMonitor::step) through one record scaled by
@@ -133,6 +134,8 @@ BatchRun compare(const Catalogue& cat, const Component& rec, double scale, doubl
     ptrs.push_back(batched[k].get());
   }
   MonitorBatch batch(ptrs);
+  std::vector<ItemSummary> last(n);  // the summaries as a publisher last saw them
+  for (std::size_t k = 0; k < n; ++k) last[k] = batch.summary(k);
   std::vector<double> ax(n), ay(n), az(n);
   std::vector<std::uint8_t> active(n, 1);
   std::mt19937_64 rng(seed);
@@ -153,6 +156,25 @@ BatchRun compare(const Catalogue& cat, const Component& rec, double scale, doubl
       if (!active[k]) continue;
       ++run.samples;
       expect_same_events(batch.events(k), alone[k]->step(x, y, z, rec.dt), k, i);
+    }
+    // The summary (what ~states and markers read without a sync) equals the item stepped alone, read
+    // in full, every sample; its revision moves exactly when a field changed (changed-items topics).
+    for (std::size_t k = 0; k < n; ++k) {
+      ItemSummary oracle;
+      summarize(*alone[k], oracle);
+      const ItemSummary& s = batch.summary(k);
+      // The summary's own derivation of the item's levels, against the monitor's.
+      EXPECT_EQ(oracle.mode, alone[k]->mode()) << "item " << k << " sample " << i;
+      EXPECT_EQ(oracle.worst, alone[k]->worst_plane()) << "item " << k << " sample " << i;
+      for (int p = 0; p < alone[k]->plane_count(); ++p)
+        EXPECT_EQ(oracle.plane[p].mode, alone[k]->plane(static_cast<Plane>(p)).mode()) << "item " << k;
+      EXPECT_TRUE(s.same_state(oracle)) << "item " << k << " sample " << i << " mode " << static_cast<int>(s.mode)
+                                        << " vs " << static_cast<int>(oracle.mode) << " theta " << s.plane[0].theta
+                                        << " vs " << oracle.plane[0].theta;
+      EXPECT_EQ(s.revision != last[k].revision, !s.same_state(last[k])) << "item " << k << " sample " << i;
+      run.revisions += s.revision != last[k].revision;
+      last[k] = s;
+      if (::testing::Test::HasFailure()) return run;
     }
     if (i % 97 == 0 || i + 1 == m) {  // read the items as the node's state publication does
       for (std::size_t k = 0; k < n; ++k) {
@@ -191,6 +213,20 @@ TEST(MonitorBatch, EveryItemEqualsItselfSteppedAloneOnRealRecords) {
   EXPECT_LT(deferred, samples);
   EXPECT_GT(overturned, 5u);
   EXPECT_GT(rocked, overturned);
+}
+
+// The summaries change only for items that move: at rest or overturned an item's summary stays put
+// (what makes a changed-items publication small), while rocking items change every sample.
+TEST(MonitorBatch, SummariesChangeOnlyWhenItemsMove) {
+  const Catalogue cat = random_catalogue(40, 17);
+  const Component rinaldi = record("northridge_1994/Rinaldi228.AT2");
+  const BatchRun quiet = compare(cat, rinaldi, 0.02, 1.0, 64, 3);
+  ASSERT_FALSE(HasFailure());
+  const BatchRun strong = compare(cat, rinaldi, 1.0, 1.0, 64, 3);
+  ASSERT_FALSE(HasFailure());
+  EXPECT_LT(quiet.revisions, quiet.samples / 20);
+  EXPECT_GT(strong.revisions, 5 * quiet.revisions + 10);
+  EXPECT_LT(strong.revisions, strong.samples);
 }
 
 TEST(MonitorBatch, SubsetsAndRangesDoNotMatter) {

@@ -231,6 +231,7 @@ TEST(TwoPlaneItems, PlanesAtTheComponentsAzimuthsAreTheSinglePlaneCases) {
   const std::vector<StudyBody> bodies{{"x", item.x}, {"y", item.y}};
   StudyOptions single;
   single.threads = 2;
+  single.trig = BatchTrig::Exact;  // compared to the bit with the item study: the exact path
   const std::vector<CaseResult> cases = run_study(bodies, records, single);
   auto single_case = [&](std::size_t body, std::size_t record, int polarity) -> const CaseResult& {
     for (const auto& c : cases)
@@ -489,6 +490,7 @@ TEST(TwoPlaneItemsRealRecords, RinaldiPlanesAtItsComponentsAzimuthsAreItsSingleP
   const std::vector<StudyBody> bodies{{"x", item.x}, {"y", item.y}};
   StudyOptions single;
   single.threads = 2;
+  single.trig = BatchTrig::Exact;  // compared to the bit with the item study: the exact path
   const std::vector<CaseResult> cases = run_study(bodies, recs.records, single);
   auto single_case = [&](std::size_t body, std::size_t record, int polarity) -> const CaseResult& {
     for (const auto& c : cases)

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "rocking_monitor/monitoring/item_monitor.hpp"
+#include "rocking_monitor/monitoring/item_summary.hpp"
 #include "rocking_monitor/motion/streaming_intensity.hpp"
 
 namespace rocking_monitor::core {
@@ -60,6 +61,10 @@ class MonitorBatch {
   /// Deferred samples still pending for item k.
   long pending(std::size_t k) const { return lanes_[k].deferred; }
 
+  /// What item k's monitor would report now, without sync (issue 28): taken at each refresh (after
+  /// every step the item took itself); deferred samples change none of its fields.
+  const ItemSummary& summary(std::size_t k) const { return summaries_[k]; }
+
  private:
   struct PlaneLane {
     double cs[2] = {0.0, 0.0}, sn[2] = {0.0, 0.0};  // uplift test, corner s = +1 (0) and -1 (1)
@@ -86,6 +91,7 @@ class MonitorBatch {
   static const ItemEvents kNoEvents;
   std::vector<ItemMonitor*> items_;
   std::vector<Lane> lanes_;
+  std::vector<ItemSummary> summaries_;
 };
 
 }  // namespace rocking_monitor::core

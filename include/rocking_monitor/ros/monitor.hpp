@@ -31,6 +31,7 @@
 #include "rocking_monitor/monitoring/alarm_journal.hpp"
 #include "rocking_monitor/monitoring/item_ensemble.hpp"
 #include "rocking_monitor/monitoring/item_monitor.hpp"
+#include "rocking_monitor/monitoring/item_summary.hpp"
 #include "rocking_monitor/monitoring/monitor_batch.hpp"
 #include "rocking_monitor/monitoring/state_snapshot.hpp"
 #include "rocking_monitor/motion/sample_timing.hpp"
@@ -77,6 +78,12 @@ class RockingMonitor {
     ::ros::Time stamp;           // input stamp of the last step while not ready (else the sensor's stepped_stamp)
     std::uint64_t samples_without_transform = 0;
     bool ready = false;          // stepped in the current sample
+    std::size_t slot = 0;        // its place in its sensor's items (and batch)
+    // The summary revision each publication last sent (kUnsent: fill in full next time); the
+    // publications refill only items whose summary changed (issue 28).
+    static constexpr std::uint32_t kUnsent = 0xffffffffu;
+    std::uint32_t states_revision = kUnsent, changes_revision = kUnsent, markers_revision = kUnsent;
+    core::ItemSummary summary;   // read from the monitor while its sensor has no batch (before the first step)
   };
   struct Sensor {
     SensorSpec spec;
@@ -96,6 +103,7 @@ class RockingMonitor {
     ::ros::Time last_input_clock;     // node clock when the last sample was stepped (stale check)
     bool stale_journaled = false;     // a stale period of this sensor is open in the journal
     bool stale_now = false;           // stale(), evaluated once per states publication
+    bool stale_in_changes = false;    // stale_now as ~state_changes last sent it
     double stale_from = 0.0;          // its start: stamp of the last sample before it, s since 1970
     double lag_s = 0.0, max_lag_s = 0.0;  // (node clock - stamp) of the last sample stepped minus its minimum, s
     double min_offset_s = 0.0;        // minimum of node clock - stamp so far (clock offset + transport), s
@@ -186,8 +194,11 @@ class RockingMonitor {
   /// ~set_upright (issue 29): the items on their side were set upright again: they restart at rest
   /// where they are (the event and the journal unchanged; a later shaking alarms them again).
   bool on_set_upright(std_srvs::Trigger::Request&, std_srvs::Trigger::Response&);
-  void fill_state(const Item& item, RockingState& out) const;
-  static void fill_plane(const core::PlaneMonitor& plane, PlaneState& out);
+  const core::ItemSummary& summary(Item& item);  // the batch's, without a sync (else read from the monitor)
+  void fill_state(const Item& item, const core::ItemSummary& summary, RockingState& out) const;
+  void fill_ensemble(const Item& item, RockingState& out) const;
+  static void fill_plane(const core::PlaneSummary& plane, PlaneState& out);
+  void publish_state_changes(const ::ros::Time& newest);
   void publish_markers_and_tf();
   void sensor_diagnostics(std::size_t sensor, diagnostic_updater::DiagnosticStatusWrapper& stat);
   void catalogue_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& stat);
@@ -208,6 +219,13 @@ class RockingMonitor {
   ::ros::Publisher overload_pub_;
   double max_abs_acceleration_ = 50.0;
   double state_rate_ = 20.0;
+  // Full ~states carry every item: at most this many item-states per second (their rate is thinned
+  // for large catalogues; ~state_changes keeps state_rate). 0: no limit.
+  double state_items_per_s_ = 50000.0;
+  int full_state_every_ = 1;           // state timer ticks per full ~states message
+  std::uint64_t state_ticks_ = 0;
+  ::ros::Publisher state_changes_pub_;
+  RockingStateArray changes_msg_;      // reused: its items' strings keep their capacity
   int state_queue_size_ = 10;  // ~states messages kept per subscriber while it lags
   bool publish_markers_ = true, publish_tf_ = true;
   int threads_ = 1;
