@@ -23,13 +23,12 @@ import tempfile
 import time
 import unittest
 
-import rosbag
 import rospy
 import rostest
 from rocking_monitor.msg import RockingStateArray
 from sensor_msgs.msg import Imu
 
-from monitor_journal import Monitor, key, wait_for
+from monitor_journal import Monitor, key, record_samples, wait_for
 
 LEVELS = {2: 'BEYOND_TIPPING', 3: 'COMMITTED', 4: 'OVERTURNED'}
 
@@ -44,12 +43,7 @@ class Restart(unittest.TestCase):
         catch_up = rospy.get_param('~catch_up')
         back = 0.5  # s sent again after the restart (catch_up)
         scratch = tempfile.mkdtemp(prefix='rocking_restart_')
-        bag_path = os.path.join(scratch, 'rinaldi.bag')
-        out = subprocess.run([os.path.join(rospy.get_param('~tools'), 'record_to_bag'), '--file', path, '-o', bag_path],
-                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-        self.assertEqual(out.returncode, 0, out.stdout)
-        with rosbag.Bag(bag_path) as bag:
-            samples = [m for _, m, _ in bag.read_messages(topics=['/ground/imu'])]
+        samples = record_samples(self, path, scratch)
         t0 = samples[0].header.stamp
         offsets = [m.header.stamp - t0 for m in samples]
         journal = os.path.join(scratch, 'journal.jsonl')
