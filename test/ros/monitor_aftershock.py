@@ -39,6 +39,7 @@ class Aftershock(unittest.TestCase):
         rospy.set_param('/aftershock_mon/journal', journal)
         imu = rospy.Publisher('/ground/imu', Imu, queue_size=4000)
         mon = Monitor('aftershock_mon', os.path.join(scratch, 'monitor.log'))
+        self.addCleanup(mon.close)  # also when an assertion fails
         wait_for('the monitor', lambda: imu.get_num_connections() > 0 and mon.sub_s.get_num_connections() > 0)
         time.sleep(0.5)
         quiet = copy.deepcopy(samples[0])

@@ -52,7 +52,9 @@ class Restart(unittest.TestCase):
         imu = rospy.Publisher('/ground/imu', Imu, queue_size=4000)
 
         control = Monitor('restart_ctl', os.path.join(scratch, 'control.log'))
+        self.addCleanup(control.close)  # also when an assertion fails
         first = Monitor('restart_mon', os.path.join(scratch, 'monitor1.log'))
+        self.addCleanup(first.close)  # also when an assertion fails
         moving = []  # stamp at which the control's first item left rest
         control.sub_s.unregister()
         control.acked = 0.0
@@ -93,6 +95,7 @@ class Restart(unittest.TestCase):
                 live = [control]
                 first.proc.wait(timeout=10)
                 second = Monitor('restart_mon', os.path.join(scratch, 'monitor2.log'))
+                self.addCleanup(second.close)  # also when an assertion fails
                 state['second'] = second
                 if catch_up:
                     # As a bridge's history would: the restarted monitor is sent the last `back` s again (more
@@ -163,6 +166,7 @@ class Restart(unittest.TestCase):
         with open(snapshot, 'wb') as f:
             f.write(damaged)
         third = Monitor('restart_mon', os.path.join(scratch, 'monitor3.log'))
+        self.addCleanup(third.close)  # also when an assertion fails
         wait_for('the refusal of a damaged snapshot', lambda: 'state snapshot refused' in third.text(), timeout=15.0)
         self.assertIn('%s: payload checksum mismatch: the file is damaged' % snapshot, third.text())
         third.close()
@@ -174,11 +178,13 @@ class Restart(unittest.TestCase):
         subprocess.run(['rosparam', 'load', os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                                          'monitor_journal.yaml'), '/restart_other'], check=True)
         other = Monitor('restart_other', os.path.join(scratch, 'monitor4.log'))
+        self.addCleanup(other.close)  # also when an assertion fails
         wait_for('the refusal of a foreign snapshot', lambda: 'state snapshot refused' in other.text(), timeout=15.0)
         self.assertIn("%s: foreign: sensor 1 is 'ground_floor', this catalogue's is 'floor'" % snapshot, other.text())
         other.close()
         # Stale: the right snapshot, but the stream resumes long after its last sample (> ~max_bridge).
         fifth = Monitor('restart_mon', os.path.join(scratch, 'monitor5.log'))
+        self.addCleanup(fifth.close)  # also when an assertion fails
         wait_for('the fifth monitor', lambda: imu.get_num_connections() >= 1 and fifth.sub_s.get_num_connections() > 0)
         time.sleep(0.5)
         for n in range(5):
