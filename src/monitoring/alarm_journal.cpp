@@ -235,6 +235,14 @@ OpenEvent open_event(const JournalReading& reading, double now, double window) {
   return ev;
 }
 
+OpenEvent shown_event(const JournalReading& reading, double now, double window) {
+  bool closed = false;
+  OpenEvent ev = last_event(reading, &closed);
+  const bool ended = ev.open() && ev.records.back().kind == JournalKind::End;
+  if (!ev.open() || (closed && !ended) || !within(now, ev.last_written, window)) return OpenEvent{};
+  return ev;
+}
+
 AlarmJournal::~AlarmJournal() {
   if (fd_ >= 0) ::close(fd_);
 }

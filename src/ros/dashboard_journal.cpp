@@ -31,7 +31,8 @@ void Dashboard::read_journal() {
   for (const std::string& e : reading.errors) ROS_ERROR("dashboard: alarm journal: %s", e.c_str());
   ::ros::Time now = ::ros::Time::now();
   const double now_s = now.isZero() ? ::ros::WallTime::now().toSec() : now.toSec();
-  const core::OpenEvent ev = core::open_event(reading, now_s, window);
+  // The open event, or the last one ended by its shaking stopping (issue 29), within the window.
+  const core::OpenEvent ev = core::shown_event(reading, now_s, window);
   if (!ev.open()) {
     ROS_INFO("dashboard: alarm journal %s: %s", path.c_str(), reading.exists ? "no event open" : "not there (yet)");
     return;

@@ -74,7 +74,11 @@ bool RockingMonitor::load_parameters() {
             param(pnh_, "solid_model", solid, "string") &&
             param(pnh_, "bidirectional_ratio", options_.bidirectional_ratio, "number") &&
             param(pnh_, "ensemble_size", ensemble_size_, "integer") && param(pnh_, "ensemble_seed", ensemble_seed_, "integer") &&
-            param(pnh_, "alarm_probability", alarm_probability_, "number");
+            param(pnh_, "alarm_probability", alarm_probability_, "number") &&
+            param(pnh_, "snapshot_period", snapshot_period_, "number") &&
+            param(pnh_, "snapshot_max_load", snapshot_max_load_, "number") &&
+            param(pnh_, "event_quiet_time", event_quiet_time_, "number") &&
+            param(pnh_, "event_quiet_threshold", event_quiet_threshold_, "number");
   double scene_h = 0.0, scene_v = 0.0;
   ok = ok && param(pnh_, "linearized_max_alpha", options_.linearized_max_alpha, "number") &&
        param(pnh_, "scene_envelope/horizontal", scene_h, "number") &&

@@ -43,19 +43,12 @@ bool RockingMonitor::load_journal_parameters() {
     else if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) journal_window_ = static_cast<int>(v);
     else journal_window_ = -1.0;
   }
-  for (const auto& [name, value] : {std::pair<const char*, double*>{"event_quiet_time", &event_quiet_time_},
-                                    {"event_quiet_threshold", &event_quiet_threshold_}}) {
-    if (!pnh_.hasParam(name)) continue;
-    XmlRpc::XmlRpcValue v;
-    pnh_.getParam(name, v);
-    if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) *value = static_cast<double>(v);
-    else if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) *value = static_cast<int>(v);
-    else *value = -1.0;
-    if (!(*value > 0.0) || !std::isfinite(*value)) {
-      ROS_FATAL("rocking_monitor: ~%s must be a number > 0 (%s)", name,
-                *value == event_quiet_time_ ? "s of input" : "m/s^2");
-      return false;
-    }
+  // ~event_quiet_time and ~event_quiet_threshold are read with the other numbers (load_parameters).
+  if (!(event_quiet_time_ > 0.0) || !std::isfinite(event_quiet_time_) || !(event_quiet_threshold_ > 0.0) ||
+      !std::isfinite(event_quiet_threshold_)) {
+    ROS_FATAL("rocking_monitor: ~event_quiet_time = %g s of input and ~event_quiet_threshold = %g m/s^2 must be > 0",
+              event_quiet_time_, event_quiet_threshold_);
+    return false;
   }
   if (!(journal_window_ > 0.0) || !std::isfinite(journal_window_)) {
     ROS_FATAL("rocking_monitor: ~journal_window must be a number > 0 s (how long an event stays open after its "
@@ -86,7 +79,11 @@ void RockingMonitor::open_journal() {
   for (const std::string& w : journal_.reading().warnings) ROS_WARN("rocking_monitor: alarm journal: %s", w.c_str());
   for (const std::string& e : journal_.reading().errors) ROS_ERROR("rocking_monitor: alarm journal: %s", e.c_str());
   journal_errors_ += journal_.reading().errors.size();
-  const core::OpenEvent& ev = journal_.event();
+  // The open event's alarms are marked (not alarmed again) and re-sent; those of an event that ended
+  // (its shaking stopped, issue 29) within the window are only re-sent: a new shaking alarms them again.
+  const bool open = journal_.event().open();
+  const core::OpenEvent shown = open ? core::OpenEvent{} : core::shown_event(journal_.reading(), now, journal_window_);
+  const core::OpenEvent& ev = open ? journal_.event() : shown;
   if (!ev.open()) {
     if (!journal_path_.empty() && journal_status_.empty())
       ROS_INFO("rocking_monitor: alarm journal %s: %zu records, no event open (window %g s)", journal_path_.c_str(),
@@ -119,7 +116,7 @@ void RockingMonitor::open_journal() {
       m.event_id = r.event;
       m.sequence = r.sequence;
       event_alarms_.push_back(m);
-      item->monitor->mark_alarmed(static_cast<core::ItemMode>(r.level));
+      if (open) item->monitor->mark_alarmed(static_cast<core::ItemMode>(r.level));
     } else {
       ProbabilityAlarm m = alarm_for<ProbabilityAlarm>(entry->spec, stamp);
       m.level = static_cast<std::uint8_t>(r.level);
@@ -136,11 +133,12 @@ void RockingMonitor::open_journal() {
     }
     ++journal_relatched_;
   }
-  ROS_WARN("rocking_monitor: alarm journal %s: event %s still open (last record %.0f s ago, window %g s): %zu alarms "
-           "and %zu probability alarms read back and sent again to every subscriber; these levels are not alarmed "
-           "again until ~reset%s",
-           journal_path_.c_str(), ev.id.c_str(), now - ev.last_written, journal_window_, event_alarms_.size(),
-           event_probability_alarms_.size(),
+  ROS_WARN("rocking_monitor: alarm journal %s: event %s %s (last record %.0f s ago, window %g s): %zu alarms "
+           "and %zu probability alarms read back and sent again to every subscriber; %s%s",
+           journal_path_.c_str(), ev.id.c_str(), open ? "still open" : "ended (its shaking stopped)",
+           now - ev.last_written, journal_window_, event_alarms_.size(), event_probability_alarms_.size(),
+           open ? "these levels are not alarmed again until the event ends or ~reset"
+                : "a new shaking is a new event and alarms them again",
            foreign > 0 ? (" (" + std::to_string(foreign) + " records of items not in this catalogue ignored)").c_str()
                        : "");
 }
@@ -272,8 +270,7 @@ void RockingMonitor::check_event_end(const ::ros::Time& stamp) {
     ++journal_errors_;
     ROS_ERROR("rocking_monitor: alarm journal: %s: end of event %s not journaled", e.c_str(), id.c_str());
   }
-  event_alarms_.clear();
-  event_probability_alarms_.clear();
+  // event_alarms_ stay: a late subscriber is still sent the ended event's alarms until a new one opens.
   std::size_t upright = 0;
   for (Item& it : items_) {
     upright += it.monitor->mode() == core::ItemMode::Rest;

@@ -31,23 +31,11 @@ bool RockingMonitor::load_snapshot_parameters() {
     return false;
   }
   pnh_.setParam("snapshot", snapshot_path_);
-  if (pnh_.hasParam("snapshot_period")) {
-    XmlRpc::XmlRpcValue v;
-    pnh_.getParam("snapshot_period", v);
-    if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) snapshot_period_ = static_cast<double>(v);
-    else if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) snapshot_period_ = static_cast<int>(v);
-    else snapshot_period_ = -1.0;
-  }
+  // ~snapshot_period and ~snapshot_max_load are read with the other numbers (load_parameters).
   if (!(snapshot_period_ >= 0.0) || !std::isfinite(snapshot_period_)) {
-    ROS_FATAL("rocking_monitor: ~snapshot_period must be a number >= 0 s of input time (0 = after every sample)");
+    ROS_FATAL("rocking_monitor: ~snapshot_period = %g must be >= 0 s of input time (0 = after every sample)",
+              snapshot_period_);
     return false;
-  }
-  if (pnh_.hasParam("snapshot_max_load")) {
-    XmlRpc::XmlRpcValue v;
-    pnh_.getParam("snapshot_max_load", v);
-    if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) snapshot_max_load_ = static_cast<double>(v);
-    else if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) snapshot_max_load_ = static_cast<int>(v);
-    else snapshot_max_load_ = -1.0;
   }
   if (!(snapshot_max_load_ > 0.0 && snapshot_max_load_ <= 1.0)) {
     ROS_FATAL("rocking_monitor: ~snapshot_max_load must be a share in (0, 1] (of input time spent encoding snapshots)");

@@ -178,6 +178,8 @@ TEST(AlarmJournal, AnEndClosesTheEventAndTheNextShakingIsANewOne) {
   bool closed = false;
   EXPECT_EQ(last_event(r, &closed).records.size(), 2u);  // the report still finds the ended event
   EXPECT_TRUE(closed);
+  EXPECT_EQ(shown_event(r, kNow + 30.0, 3600.0).records.size(), 2u);  // a late dashboard still shows it
+  EXPECT_FALSE(shown_event(r, kNow + 3700.0, 3600.0).open());         // not past the window
   AlarmJournal j;
   ASSERT_EQ(j.open(p, 3600.0, kNow + 60.0), "");
   EXPECT_FALSE(j.event().open());

@@ -271,5 +271,51 @@ TEST(ItemMonitor, ContactModelWithoutAFrictionLimitNeverSlips) {
   }
 }
 
+// Issue 29: after an event ends, an item at rest is re-armed (new_event): the same pulse again alarms
+// the same levels at the same time after its start; without new_event the levels stay latched.
+TEST(ItemMonitor, NewEventReArmsAnItemAtRest) {
+  // The example catalogue's medicine cabinet under Rinaldi 228 (Northridge 1994): COMMITTED, it survives.
+  ItemSpec spec;
+  spec.id = "medicine_cabinet";
+  spec.sensor = "floor";
+  spec.frame = "medicine_cabinet";
+  spec.body.width = 0.9;
+  spec.body.cg_height = 0.9;
+  spec.body.nu1 = 0.4;
+  spec.body.mu_s = 0.6;
+  spec.depth.depth = 0.4;
+  const Component rec =
+      read_record(std::string(ROCKING_RECORDS_DIR) + "/northridge_1994/Rinaldi228.AT2").front();
+  const double dt = rec.dt;
+  std::vector<double> pulse = rec.accel;
+  pulse.resize(pulse.size() + static_cast<std::size_t>(8.0 / dt), 0.0);  // 8 s to come to rest
+  auto play = [&](ItemMonitor& im, double& t) {
+    std::vector<std::pair<ItemMode, double>> alarms;
+    const double start = t;
+    for (double a : pulse) {
+      const ItemEvents& ev = im.step(a, 0.0, 0.0, dt);
+      t += dt;
+      for (int k = 0; k < ev.alarm_count; ++k) alarms.emplace_back(ev.alarms[k].level, ev.alarms[k].time - start);
+    }
+    return alarms;
+  };
+  ItemMonitor rearmed(spec, ItemMonitor::Options{}), latched(spec, ItemMonitor::Options{});
+  double t1 = 0.0, t2 = 0.0;
+  rearmed.start(0.0, 0.0, 0.0, 0.0, dt);
+  latched.start(0.0, 0.0, 0.0, 0.0, dt);
+  const auto first = play(rearmed, t1);
+  play(latched, t2);
+  ASSERT_FALSE(first.empty());
+  ASSERT_EQ(rearmed.mode(), ItemMode::Rest);
+  rearmed.new_event(t1);
+  const auto second = play(rearmed, t1);
+  ASSERT_EQ(second.size(), first.size());
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    EXPECT_EQ(second[i].first, first[i].first);
+    EXPECT_NEAR(second[i].second, first[i].second, 1e-9);  // the same motion from rest
+  }
+  EXPECT_TRUE(play(latched, t2).empty());  // the control: latched levels do not alarm again
+}
+
 }  // namespace
 }  // namespace rocking_monitor::core

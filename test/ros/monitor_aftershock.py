@@ -13,18 +13,16 @@ clock). Between the two, the items on their side are set upright (~set_upright).
 import copy
 import json
 import os
-import subprocess
 import tempfile
 import time
 import unittest
 
-import rosbag
 import rospy
 import rostest
 from sensor_msgs.msg import Imu
 from std_srvs.srv import Trigger
 
-from monitor_journal import Monitor, key, wait_for
+from monitor_journal import Monitor, key, record_samples, wait_for
 
 
 class Aftershock(unittest.TestCase):
@@ -34,18 +32,14 @@ class Aftershock(unittest.TestCase):
             print('NOTICE: record not found (%s): aftershock test skipped' % path)
             self.skipTest('record not found')
         scratch = tempfile.mkdtemp(prefix='rocking_aftershock_')
-        bag_path = os.path.join(scratch, 'rinaldi.bag')
-        out = subprocess.run([os.path.join(rospy.get_param('~tools'), 'record_to_bag'), '--file', path, '-o', bag_path],
-                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-        self.assertEqual(out.returncode, 0, out.stdout)
-        with rosbag.Bag(bag_path) as bag:
-            samples = [m for _, m, _ in bag.read_messages(topics=['/ground/imu'])]
+        samples = record_samples(self, path, scratch)
         offsets = [m.header.stamp - samples[0].header.stamp for m in samples]
         dt = offsets[1]
         journal = os.path.join(scratch, 'journal.jsonl')
         rospy.set_param('/aftershock_mon/journal', journal)
         imu = rospy.Publisher('/ground/imu', Imu, queue_size=4000)
         mon = Monitor('aftershock_mon', os.path.join(scratch, 'monitor.log'))
+        self.addCleanup(mon.close)  # also when an assertion fails
         wait_for('the monitor', lambda: imu.get_num_connections() > 0 and mon.sub_s.get_num_connections() > 0)
         time.sleep(0.5)
         quiet = copy.deepcopy(samples[0])

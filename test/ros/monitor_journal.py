@@ -89,6 +89,18 @@ def key(m):
     return (m.item_id, m.level)
 
 
+def record_samples(test, record, scratch, extra=()):
+    """The Imu samples of a record (record_to_bag into scratch; more component files in extra)."""
+    bag_path = os.path.join(scratch, 'record.bag')
+    args = [os.path.join(rospy.get_param('~tools'), 'record_to_bag'), '--file', record]
+    for f in extra:
+        args += ['--file', f]
+    out = subprocess.run(args + ['-o', bag_path], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    test.assertEqual(out.returncode, 0, out.stdout)
+    with rosbag.Bag(bag_path) as bag:
+        return [m for _, m, _ in bag.read_messages(topics=['/ground/imu'])]
+
+
 class Journal(unittest.TestCase):
     def test_kill_restart_alarms_once(self):
         records = rospy.get_param('~records')

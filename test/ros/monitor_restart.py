@@ -23,13 +23,12 @@ import tempfile
 import time
 import unittest
 
-import rosbag
 import rospy
 import rostest
 from rocking_monitor.msg import RockingStateArray
 from sensor_msgs.msg import Imu
 
-from monitor_journal import Monitor, key, wait_for
+from monitor_journal import Monitor, key, record_samples, wait_for
 
 LEVELS = {2: 'BEYOND_TIPPING', 3: 'COMMITTED', 4: 'OVERTURNED'}
 
@@ -44,12 +43,7 @@ class Restart(unittest.TestCase):
         catch_up = rospy.get_param('~catch_up')
         back = 0.5  # s sent again after the restart (catch_up)
         scratch = tempfile.mkdtemp(prefix='rocking_restart_')
-        bag_path = os.path.join(scratch, 'rinaldi.bag')
-        out = subprocess.run([os.path.join(rospy.get_param('~tools'), 'record_to_bag'), '--file', path, '-o', bag_path],
-                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-        self.assertEqual(out.returncode, 0, out.stdout)
-        with rosbag.Bag(bag_path) as bag:
-            samples = [m for _, m, _ in bag.read_messages(topics=['/ground/imu'])]
+        samples = record_samples(self, path, scratch)
         t0 = samples[0].header.stamp
         offsets = [m.header.stamp - t0 for m in samples]
         journal = os.path.join(scratch, 'journal.jsonl')
@@ -58,7 +52,9 @@ class Restart(unittest.TestCase):
         imu = rospy.Publisher('/ground/imu', Imu, queue_size=4000)
 
         control = Monitor('restart_ctl', os.path.join(scratch, 'control.log'))
+        self.addCleanup(control.close)  # also when an assertion fails
         first = Monitor('restart_mon', os.path.join(scratch, 'monitor1.log'))
+        self.addCleanup(first.close)  # also when an assertion fails
         moving = []  # stamp at which the control's first item left rest
         control.sub_s.unregister()
         control.acked = 0.0
@@ -99,6 +95,7 @@ class Restart(unittest.TestCase):
                 live = [control]
                 first.proc.wait(timeout=10)
                 second = Monitor('restart_mon', os.path.join(scratch, 'monitor2.log'))
+                self.addCleanup(second.close)  # also when an assertion fails
                 state['second'] = second
                 if catch_up:
                     # As a bridge's history would: the restarted monitor is sent the last `back` s again (more
@@ -169,6 +166,7 @@ class Restart(unittest.TestCase):
         with open(snapshot, 'wb') as f:
             f.write(damaged)
         third = Monitor('restart_mon', os.path.join(scratch, 'monitor3.log'))
+        self.addCleanup(third.close)  # also when an assertion fails
         wait_for('the refusal of a damaged snapshot', lambda: 'state snapshot refused' in third.text(), timeout=15.0)
         self.assertIn('%s: payload checksum mismatch: the file is damaged' % snapshot, third.text())
         third.close()
@@ -180,11 +178,13 @@ class Restart(unittest.TestCase):
         subprocess.run(['rosparam', 'load', os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                                          'monitor_journal.yaml'), '/restart_other'], check=True)
         other = Monitor('restart_other', os.path.join(scratch, 'monitor4.log'))
+        self.addCleanup(other.close)  # also when an assertion fails
         wait_for('the refusal of a foreign snapshot', lambda: 'state snapshot refused' in other.text(), timeout=15.0)
         self.assertIn("%s: foreign: sensor 1 is 'ground_floor', this catalogue's is 'floor'" % snapshot, other.text())
         other.close()
         # Stale: the right snapshot, but the stream resumes long after its last sample (> ~max_bridge).
         fifth = Monitor('restart_mon', os.path.join(scratch, 'monitor5.log'))
+        self.addCleanup(fifth.close)  # also when an assertion fails
         wait_for('the fifth monitor', lambda: imu.get_num_connections() >= 1 and fifth.sub_s.get_num_connections() > 0)
         time.sleep(0.5)
         for n in range(5):

@@ -173,21 +173,29 @@ class Report(unittest.TestCase):
         journal = os.path.join(os.environ.get('ROS_HOME') or os.path.expanduser('~/.ros'), 'rocking_monitor',
                                'journal.jsonl')
         live_rows = journal_rows(page)
+        # The pulse's shaking stops within the bag: the monitor ends the event (issue 29), its last row.
+        self.assertEqual(live_rows[-1]['data-kind'], 'end')
+        with open(page, encoding='utf-8') as f:
+            self.assertIn('closed: the shaking stopped', f.read())
+        live_rows = [r for r in live_rows if r['data-kind'] == 'alarm']
         self.assertEqual([(r['data-item'], r['data-level'], int(r['data-sequence']), r['data-in-bag']) for r in live_rows],
                          [(a.item_id, LEVELS[a.level], a.sequence, 'yes') for a in sorted(got['alarms'], key=lambda a: a.sequence)])
         # Offline with a journal holding one alarm the bag lacks (must_survive OVERTURNED 1.5 s after the
         # first sample) and a last line cut by a power cut: the alarm is in the items table, the cut named.
         with open(journal) as f:
             lines = f.read().splitlines()
-        last = json.loads(lines[-1])
+        records = [json.loads(l) for l in lines]
+        last = [r for r in records if r['kind'] == 'alarm'][-1]
         first_alarm = got['alarms'][0]
         t_first = first_alarm.event_time - first_alarm.time_since_first_sample
-        extra = dict(last, item=must_survive, level='OVERTURNED', plane='x', sequence=last['sequence'] + 1,
-                     time=t_first + 1.5, since_event_start=1.5)
+        extra = dict(last, item=must_survive, level='OVERTURNED', plane='x',
+                     sequence=max(r.get('sequence', 0) for r in records) + 1, time=t_first + 1.5, since_event_start=1.5)
+        # Into the event, before its end record (issue 29) when it has one.
+        body = lines[:-1] + [json.dumps(extra), lines[-1]] if records[-1]['kind'] == 'end' else lines + [json.dumps(extra)]
         with tempfile.TemporaryDirectory() as tmp:
             j = os.path.join(tmp, 'journal.jsonl')
             with open(j, 'w') as f:
-                f.write('\n'.join(lines + [json.dumps(extra)]) + '\n' + lines[0][:20])
+                f.write('\n'.join(body) + '\n' + lines[0][:20])
             out = os.path.join(tmp, 'with_journal.html')
             tool = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'scripts', 'rocking_report')
             run = subprocess.run(['/usr/bin/python3', tool, bag, '-o', out, '--journal', j],
@@ -197,7 +205,7 @@ class Report(unittest.TestCase):
             merged = summary(parse(out))
             self.assertAlmostEqual(merged[must_survive]['OVERTURNED'][0], 1.5, delta=1e-6)
             self.assertEqual(merged[must_survive]['OVERTURNED'][1], 'x')
-            rows_j = journal_rows(out)
+            rows_j = [r for r in journal_rows(out) if r['data-kind'] == 'alarm']
             self.assertEqual(len(rows_j), len(got['alarms']) + 1)
             self.assertEqual((rows_j[-1]['data-item'], rows_j[-1]['data-in-bag']), (must_survive, 'no'))
 

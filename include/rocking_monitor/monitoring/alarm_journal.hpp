@@ -75,6 +75,9 @@ struct OpenEvent {
   bool open() const { return !id.empty(); }
 };
 OpenEvent open_event(const JournalReading& reading, double now, double window);
+/// What a late subscriber or dashboard is shown at `now`: the last event while `now` is within `window`
+/// of its last record, open or ended by its shaking stopping (not after a reset). Empty id: none.
+OpenEvent shown_event(const JournalReading& reading, double now, double window);
 /// The last event of the reading whatever its age (the report reads a journal after the fact), and
 /// whether it is closed (by a reset after it, or by its own end record).
 OpenEvent last_event(const JournalReading& reading, bool* closed = nullptr);
