@@ -66,6 +66,8 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/monitor_historical.test DEPENDENCIES test_monitor_historical)
   # Issue 19: kill -9 after an OVERTURNED alarm, a cut journal line, restart: alarms once (Python).
   add_rostest(test/ros/monitor_journal.test DEPENDENCIES monitor)
+  # Issue 28: ~state_changes applied to one ~states give the last ~states (Python).
+  add_rostest(test/ros/monitor_state_changes.test DEPENDENCIES monitor)
 endif()
 
 # ---------------------------------------------------------------- the live dashboard (issue 14)
