@@ -267,16 +267,29 @@ TEST(BatchRocking, EccentricBodiesAndVerticalAcceleration) {
   }
 }
 
-TEST(BatchRocking, BatchSizesAndMixedModesGiveTheSamePerLaneResults) {
-  // Mixed: slender lanes overturn, squat lanes stay at rest, released lanes rock from t = 0.
-  const double w = 5.0, tp = 2.0 * kPi / w;
-  const Input in = sine_pulse(0.5 * kGravity, w, 0.005, tp + 4.0);
+// Ten lanes under one pulse: slender lanes overturn, squat lanes stay at rest, released lanes
+// (theta0 != 0) rock from t = 0.
+struct MixedLanes {
+  Input in;
   std::vector<BodyParameters> all;
-  std::vector<double> theta0;
+  std::vector<double> theta0;  // rad
+};
+
+MixedLanes mixed_lanes() {
+  const double w = 5.0, tp = 2.0 * kPi / w;
+  MixedLanes m{sine_pulse(0.5 * kGravity, w, 0.005, tp + 4.0), {}, {}};
   for (int k = 0; k < 10; ++k) {
-    all.push_back(rectangle_with(2.0 + 0.2 * k, deg(k % 3 == 0 ? 40.0 : 8.0 + k)));
-    theta0.push_back(k % 4 == 1 ? deg(3.0) : 0.0);
+    m.all.push_back(rectangle_with(2.0 + 0.2 * k, deg(k % 3 == 0 ? 40.0 : 8.0 + k)));
+    m.theta0.push_back(k % 4 == 1 ? deg(3.0) : 0.0);
   }
+  return m;
+}
+
+TEST(BatchRocking, BatchSizesAndMixedModesGiveTheSamePerLaneResults) {
+  const MixedLanes m = mixed_lanes();
+  const Input& in = m.in;
+  const std::vector<BodyParameters>& all = m.all;
+  const std::vector<double>& theta0 = m.theta0;
   for (std::size_t n : {1u, 7u, 8u, 9u, 10u}) {
     SCOPED_TRACE(n);
     std::vector<BodyParameters> b(all.begin(), all.begin() + n);
@@ -307,14 +320,10 @@ TEST(BatchRocking, BatchSizesAndMixedModesGiveTheSamePerLaneResults) {
 // body gives the same bits alone (a batch of one) and in a 10-lane batch where other lanes rest,
 // rock and overturn (vector positions, compaction and the scalar tail differ).
 TEST(BatchRocking, FastTrigLanesOfEveryModeStayIndependent) {
-  const double w = 5.0, tp = 2.0 * kPi / w;
-  const Input in = sine_pulse(0.5 * kGravity, w, 0.005, tp + 4.0);
-  std::vector<BodyParameters> all;
-  std::vector<double> theta0;
-  for (int k = 0; k < 10; ++k) {
-    all.push_back(rectangle_with(2.0 + 0.2 * k, deg(k % 3 == 0 ? 40.0 : 8.0 + k)));
-    theta0.push_back(k % 4 == 1 ? deg(3.0) : 0.0);
-  }
+  const MixedLanes m = mixed_lanes();
+  const Input& in = m.in;
+  const std::vector<BodyParameters>& all = m.all;
+  const std::vector<double>& theta0 = m.theta0;
   auto run = [&](const std::vector<std::size_t>& lanes) {
     std::vector<BodyParameters> b;
     for (std::size_t k : lanes) b.push_back(all[k]);
