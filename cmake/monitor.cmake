@@ -73,6 +73,8 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/monitor_restart.test ARGS catch_up:=false DEPENDENCIES monitor)
   # Issue 29 part 4: the same record twice, 60 s of quiet apart: two events, every level alarmed in both.
   add_rostest(test/ros/monitor_aftershock.test DEPENDENCIES monitor)
+  # Issue 28: ~state_changes applied to one ~states give the last ~states (Python).
+  add_rostest(test/ros/monitor_state_changes.test DEPENDENCIES monitor)
 endif()
 
 # ---------------------------------------------------------------- the live dashboard (issue 14)

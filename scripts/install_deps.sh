@@ -13,6 +13,7 @@ packages=(
   ros-std-msgs ros-std-srvs libstd-srvs-dev ros-geometry-msgs ros-sensor-msgs
   ros-visualization-msgs ros-diagnostic-msgs libdiagnostic-updater-dev libnodeletlib-dev libnodeletlib-tools
   libtf2-dev libtf2-ros-dev libtf2-msgs-dev libtf2-eigen-dev tf2-tools python3-sensor-msgs python3-std-srvs
+  topic-tools
   libcpp-httplib-dev chromium
   zlib1g-dev
   libbullet-dev

@@ -10,7 +10,7 @@ namespace rocking_monitor::core {
 
 const ItemEvents MonitorBatch::kNoEvents{};
 
-MonitorBatch::MonitorBatch(std::vector<ItemMonitor*> items) : items_(std::move(items)), lanes_(items_.size()), summaries_(items_.size()) {
+MonitorBatch::MonitorBatch(std::vector<ItemMonitor*> items) : items_(std::move(items)), lanes_(items_.size()), summaries_(items_.size()), summary_due_(items_.size(), 1) {
   for (std::size_t k = 0; k < items_.size(); ++k) {
     if (items_[k] == nullptr) throw std::invalid_argument("MonitorBatch: item " + std::to_string(k) + " is null");
     refresh(k);
@@ -20,7 +20,7 @@ MonitorBatch::MonitorBatch(std::vector<ItemMonitor*> items) : items_(std::move(i
 void MonitorBatch::refresh(std::size_t k) {
   const ItemMonitor& item = *items_[k];
   Lane& lane = lanes_[k];
-  summarize(item, summaries_[k]);
+  summary_due_[k] = 1;
   lane.deferred = 0;
   lane.planes = item.plane_count();
   // Items with a 3-D model are stepped one by one (its lanes in the batch: issue 28).

@@ -181,7 +181,7 @@ void RockingMonitor::fill_plane(const core::PlaneSummary& p, PlaneState& out) {
 }
 
 const core::ItemSummary& RockingMonitor::summary(Item& it) {
-  const Sensor& s = sensors_[it.sensor];
+  Sensor& s = sensors_[it.sensor];
   if (s.batch) return s.batch->summary(it.slot);
   core::summarize(*it.monitor, it.summary);  // no batch (before the first step after a start): nothing deferred
   return it.summary;

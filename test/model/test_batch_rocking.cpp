@@ -11,6 +11,7 @@
 #include <fstream>
 #include <new>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rocking_monitor/model/batch_rocking.hpp"
@@ -266,16 +267,29 @@ TEST(BatchRocking, EccentricBodiesAndVerticalAcceleration) {
   }
 }
 
-TEST(BatchRocking, BatchSizesAndMixedModesGiveTheSamePerLaneResults) {
-  // Mixed: slender lanes overturn, squat lanes stay at rest, released lanes rock from t = 0.
-  const double w = 5.0, tp = 2.0 * kPi / w;
-  const Input in = sine_pulse(0.5 * kGravity, w, 0.005, tp + 4.0);
+// Ten lanes under one pulse: slender lanes overturn, squat lanes stay at rest, released lanes
+// (theta0 != 0) rock from t = 0.
+struct MixedLanes {
+  Input in;
   std::vector<BodyParameters> all;
-  std::vector<double> theta0;
+  std::vector<double> theta0;  // rad
+};
+
+MixedLanes mixed_lanes() {
+  const double w = 5.0, tp = 2.0 * kPi / w;
+  MixedLanes m{sine_pulse(0.5 * kGravity, w, 0.005, tp + 4.0), {}, {}};
   for (int k = 0; k < 10; ++k) {
-    all.push_back(rectangle_with(2.0 + 0.2 * k, deg(k % 3 == 0 ? 40.0 : 8.0 + k)));
-    theta0.push_back(k % 4 == 1 ? deg(3.0) : 0.0);
+    m.all.push_back(rectangle_with(2.0 + 0.2 * k, deg(k % 3 == 0 ? 40.0 : 8.0 + k)));
+    m.theta0.push_back(k % 4 == 1 ? deg(3.0) : 0.0);
   }
+  return m;
+}
+
+TEST(BatchRocking, BatchSizesAndMixedModesGiveTheSamePerLaneResults) {
+  const MixedLanes m = mixed_lanes();
+  const Input& in = m.in;
+  const std::vector<BodyParameters>& all = m.all;
+  const std::vector<double>& theta0 = m.theta0;
   for (std::size_t n : {1u, 7u, 8u, 9u, 10u}) {
     SCOPED_TRACE(n);
     std::vector<BodyParameters> b(all.begin(), all.begin() + n);
@@ -300,6 +314,48 @@ TEST(BatchRocking, BatchSizesAndMixedModesGiveTheSamePerLaneResults) {
     }
   }
   EXPECT_TRUE(seen_rest && seen_rocking && seen_over);
+}
+
+// With the default (fast) trig too, a lane's result does not depend on the other lanes: the same
+// body gives the same bits alone (a batch of one) and in a 10-lane batch where other lanes rest,
+// rock and overturn (vector positions, compaction and the scalar tail differ).
+TEST(BatchRocking, FastTrigLanesOfEveryModeStayIndependent) {
+  const MixedLanes m = mixed_lanes();
+  const Input& in = m.in;
+  const std::vector<BodyParameters>& all = m.all;
+  const std::vector<double>& theta0 = m.theta0;
+  auto run = [&](const std::vector<std::size_t>& lanes) {
+    std::vector<BodyParameters> b;
+    for (std::size_t k : lanes) b.push_back(all[k]);
+    BatchRocking batch(b, SolverSettings{}, BatchTrig::Fast);
+    batch.reset(0.0, in.ax[0]);
+    for (std::size_t j = 0; j < lanes.size(); ++j)
+      if (theta0[lanes[j]] != 0.0) batch.model(j).set_state(theta0[lanes[j]], 0.0);
+    std::vector<std::vector<double>> theta(lanes.size());
+    for (std::size_t i = 1; i < in.ax.size(); ++i) {
+      batch.step_all(in.ax[i], 0.0, in.dt);
+      for (std::size_t j = 0; j < lanes.size(); ++j) theta[j].push_back(batch.model(j).theta());
+    }
+    std::vector<Mode> modes;
+    for (std::size_t j = 0; j < lanes.size(); ++j) modes.push_back(batch.model(j).mode());
+    return std::make_pair(theta, modes);
+  };
+  const auto together = run({0, 1, 2, 3, 4, 5, 6, 7, 8, 9});
+  int rest = 0, over = 0, rocked = 0;
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    SCOPED_TRACE(k);
+    const auto alone = run({k});
+    ASSERT_EQ(alone.first[0].size(), together.first[k].size());
+    for (std::size_t i = 0; i < alone.first[0].size(); ++i)
+      ASSERT_TRUE(alone.first[0][i] == together.first[k][i]) << "sample " << i + 1;
+    EXPECT_EQ(alone.second[0], together.second[k]);
+    rest += together.second[k] == Mode::Rest;
+    over += together.second[k] == Mode::Overturned;
+    for (double t : together.first[k]) rocked += t != 0.0;
+  }
+  EXPECT_GT(rest, 0);  // the batch held every mode
+  EXPECT_GT(over, 0);
+  EXPECT_GT(rocked, 0);
 }
 
 TEST(BatchRocking, DeferredRestLanesCatchUpExactly) {

@@ -53,6 +53,7 @@ ROSDEP_KEY = {
     'libtf2-msgs-dev': 'tf2_msgs',
     'libtf2-eigen-dev': 'tf2_eigen',
     'tf2-tools': 'tf2_tools',
+    'topic-tools': 'topic_tools',
 }
 
 # Installed but never declared, and why: no ROS package declares these.

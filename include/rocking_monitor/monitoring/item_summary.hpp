@@ -4,9 +4,9 @@
 //
 // Why: reading these fields from the ItemMonitor walks ~10 KB of model objects per item (cache
 // misses at 10,000 items) and needs the item's deferred samples applied first. MonitorBatch keeps
-// one summary per item, taken right after the item was stepped (its objects are then in cache); a
-// deferred (quiet) sample changes none of these fields (at rest or overturned: no rotation, no
-// impact, no slip), so the summary stays exact without touching the item.
+// one summary per item, taken when read if the item was stepped in full since; a deferred (quiet)
+// sample changes none of these fields (at rest or overturned: no rotation, no impact, no slip), so
+// neither a sync nor a walk over the quiet items is needed.
 
 #include <cstdint>
 

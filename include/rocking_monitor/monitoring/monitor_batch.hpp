@@ -61,9 +61,17 @@ class MonitorBatch {
   /// Deferred samples still pending for item k.
   long pending(std::size_t k) const { return lanes_[k].deferred; }
 
-  /// What item k's monitor would report now, without sync (issue 28): taken at each refresh (after
-  /// every step the item took itself); deferred samples change none of its fields.
-  const ItemSummary& summary(std::size_t k) const { return summaries_[k]; }
+  /// What item k's monitor would report now, without sync (issue 28). Taken when read, if the item
+  /// was stepped in full (or refreshed) since the last read: deferred samples change none of its
+  /// fields, so pending ones need no sync, and the per-sample path pays nothing for it. Not while
+  /// step() runs.
+  const ItemSummary& summary(std::size_t k) {
+    if (summary_due_[k]) {
+      summarize(*items_[k], summaries_[k]);
+      summary_due_[k] = 0;
+    }
+    return summaries_[k];
+  }
 
  private:
   struct PlaneLane {
@@ -92,6 +100,7 @@ class MonitorBatch {
   std::vector<ItemMonitor*> items_;
   std::vector<Lane> lanes_;
   std::vector<ItemSummary> summaries_;
+  std::vector<std::uint8_t> summary_due_;  // the item was stepped or refreshed since its summary was taken
 };
 
 }  // namespace rocking_monitor::core
