@@ -15,7 +15,7 @@ if [ ! -f "$records/MANIFEST.csv" ]; then
 fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-args=(--records "$records" --heights 3 --widths 2 --eccentricities 0.5,0.3 --only kobe_1995 --only northridge_1994)
+args=(--records "$records" --heights 3 --widths 2 --eccentricities 0.5,0.3 --only kobe_1995 --only northridge_1994 --exact-trig)
 check() {  # check DIR WHAT
   /usr/bin/python3 -c "import json,sys;d=json.load(open(sys.argv[1]));d.pop('run');print(json.dumps(d,sort_keys=True))" \
       "$1/summary.json" | tr -d '\n' > "$1/summary.results"
