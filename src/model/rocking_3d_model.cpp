@@ -55,20 +55,10 @@ Rocking3DModel::Rocking3DModel(const BaseBody& body, const SolverSettings& setti
 
 bool Rocking3DModel::falls_if_shaking_stops(double t_now) {
   Rocking3DModel& p = *probe_;
-  // the state of the motion (plain values: no allocation), the input gone from now on
-  p.mode_ = mode_;
-  p.contact_ = contact_;
-  p.theta_ = theta_;
-  p.omega_ = omega_;
-  p.y_ = y_;
-  p.pivot_world_ = pivot_world_;
-  p.yaw_ = yaw_;
-  p.shift_ = shift_;
-  std::copy(std::begin(armed_), std::end(armed_), std::begin(p.armed_));
-  p.dopri5_ = dopri5_;
-  p.vector_ = vector_;
-  p.outcome_ = outcome_;
-  p.outcome3_ = outcome3_;
+  // the state of the motion (save/restore: plain values, no allocation), the input gone from now on
+  Saved state;
+  save(state);
+  p.restore(state);
   p.t_ = t_now;
   p.a_prev_.setZero();
   p.dopri5_.invalidate();  // the derivative cached for the shaken motion no longer holds
