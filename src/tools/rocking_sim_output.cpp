@@ -157,16 +157,8 @@ PlaneRun run_plane(const RunOptions& opt, const rm::BodyParameters& params,
     for (const auto& sw : f.switches)
       reasons.push_back({{"time_s", sw.time}, {"onset_time_s", sw.onset_time},
                          {"to", rm::to_string(sw.to)}, {"reason", rm::to_string(sw.reason)}});
-    run.out = {{"overturned", o.overturned},
-               {"committed", o.committed},
-               {"beyond_tipping", o.beyond_tipping},
-               {"max_rotation_ratio", o.max_rotation_ratio},
-               {"impacts", o.impacts},
-               {"uplift_time_s", nullable(o.uplift_time)},
-               {"beyond_tipping_time_s", nullable(o.beyond_tipping_time)},
-               {"committed_time_s", nullable(o.committed_time)},
-               {"overturn_time_s", nullable(o.overturn_time)},
-               {"final_mode", f.final_mode},
+    run.out = outcome_json(o);
+    run.out.update({{"final_mode", f.final_mode},
                {"slip_episodes", o.slip_episodes},
                {"flight_episodes", o.flight_episodes},
                {"first_slip_time_s", nullable(o.first_slip_time)},
@@ -196,7 +188,7 @@ PlaneRun run_plane(const RunOptions& opt, const rm::BodyParameters& params,
                {"samples", o.samples},
                {"cpu_time_s", f.cpu_time_s},
                {"body", body_json(rigid)},
-               {"record", record_json(motion, opt.scale, pga)}};
+               {"record", record_json(motion, opt.scale, pga)}});
     auto& L = run.lines;
     L.push_back(record_line);
     L.push_back(format("fidelity    %s (start: %s)", rm::to_string(opt.fidelity), rm::to_string(f.initial)));
@@ -228,16 +220,8 @@ PlaneRun run_plane(const RunOptions& opt, const rm::BodyParameters& params,
   json violations = json::array();
   for (const auto& v : r.violations)
     violations.push_back({{"criterion", rm::to_string(v.criterion)}, {"time_s", v.time}});
-  run.out = {{"overturned", o.overturned},
-             {"committed", o.committed},
-             {"beyond_tipping", o.beyond_tipping},
-             {"max_rotation_ratio", o.max_rotation_ratio},
-             {"max_rotation_pivot", o.max_rotation_side},
-             {"impacts", o.impacts},
-             {"uplift_time_s", nullable(o.uplift_time)},
-             {"beyond_tipping_time_s", nullable(o.beyond_tipping_time)},
-             {"committed_time_s", nullable(o.committed_time)},
-             {"overturn_time_s", nullable(o.overturn_time)},
+  run.out = outcome_json(o);
+  run.out.update({{"max_rotation_pivot", o.max_rotation_side},
              {"final_mode", rm::to_string(r.final_mode)},
              {"violations", violations},
              {"rest_captures", o.rest_captures},
@@ -255,7 +239,7 @@ PlaneRun run_plane(const RunOptions& opt, const rm::BodyParameters& params,
              {"samples", o.samples},
              {"cpu_time_s", r.cpu_time_s},
              {"body", body_json(rigid)},
-             {"record", record_json(motion, opt.scale, pga)}};
+             {"record", record_json(motion, opt.scale, pga)}});
   auto& L = run.lines;
   L.push_back(record_line);
   L.push_back(format("body        B %.3f m, h %.3f m, nu1 %.3f, alpha1 %.4f rad, alpha2 %.4f rad",

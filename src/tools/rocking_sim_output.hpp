@@ -28,6 +28,22 @@ struct SolidRun;     // rocking_sim_solid.hpp
 /// NaN (never) as JSON null.
 json nullable(double v);
 
+/// The levels every model's JSON block reports alike: overturned, committed, beyond_tipping, their
+/// times and the uplift time (null: never), max_rotation_ratio and impacts (RockingOutcome,
+/// AdaptiveOutcome).
+template <class Outcome>
+json outcome_json(const Outcome& o) {
+  return {{"overturned", o.overturned},
+          {"committed", o.committed},
+          {"beyond_tipping", o.beyond_tipping},
+          {"max_rotation_ratio", o.max_rotation_ratio},
+          {"impacts", o.impacts},
+          {"uplift_time_s", nullable(o.uplift_time)},
+          {"beyond_tipping_time_s", nullable(o.beyond_tipping_time)},
+          {"committed_time_s", nullable(o.committed_time)},
+          {"overturn_time_s", nullable(o.overturn_time)}};
+}
+
 /// printf into a std::string (lines up to 1023 characters).
 std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
 

@@ -100,20 +100,12 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
 
   const rm::RockingOutcome& r = model.outcome();
   const rm::Rocking3DOutcome& r3 = model.outcome_3d();
-  run.out = {{"model", "rocking_3d"},
+  run.out = outcome_json(r);
+  run.out.update({{"model", "rocking_3d"},
              {"solid_model", rm::to_string(choice)},
              {"in_charge", run.decided},
              {"in_charge_from_s", nullable(taken_over)},
-             {"overturned", r.overturned},
-             {"committed", r.committed},
-             {"beyond_tipping", r.beyond_tipping},
-             {"uplift_time_s", nullable(r.uplift_time)},
-             {"beyond_tipping_time_s", nullable(r.beyond_tipping_time)},
-             {"committed_time_s", nullable(r.committed_time)},
-             {"overturn_time_s", nullable(r.overturn_time)},
-             {"max_rotation_ratio", r.max_rotation_ratio},
              {"max_tilt_rad", r3.max_tilt},
-             {"impacts", r.impacts},
              {"edge_to_vertex", r3.edge_to_vertex},
              {"vertex_impacts", r3.vertex_impacts},
              {"flat_impacts", r3.flat_impacts},
@@ -121,7 +113,7 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
              {"final_contact", model.contact()},
              {"samples", mx.size()},
              {"cpu_time_s", cpu},
-             {"body", body_json(model.body())}};
+             {"body", body_json(model.body())}});
   auto& L = run.lines;
   L.push_back(format("body        %d-vertex base, centre of mass (%.4f, %.4f, %.4f) m, smallest edge alpha "
                      "%.4f rad", model.body().vertex_count(), model.body().centre_of_mass().x(),
