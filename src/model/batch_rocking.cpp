@@ -12,7 +12,7 @@
 namespace rocking_monitor::core {
 
 namespace {
-constexpr std::size_t kPad = 16;  // the kernels run whole vectors; >= the widest lane count
+constexpr std::size_t kPad = batch_detail::kBlock;  // the kernels run whole blocks of vectors
 std::size_t padded(std::size_t n) { return (n + kPad - 1) / kPad * kPad; }
 }  // namespace
 
@@ -45,16 +45,21 @@ BatchRocking::BatchRocking(const std::vector<BodyParameters>& bodies,
   first_violation_.assign(n, std::numeric_limits<double>::quiet_NaN());
   for (std::size_t k = 0; k < n; ++k) lanes_.mu_inf[k] = std::isinf(models_[k].body().mu_s());
   lanes_.rest.assign(np, 0);
+  lanes_.over.assign(np, 0);
   lanes_.maybe_lift.assign(np, 0);
-  lanes_.idx.assign(np, 0);
-  for (auto* v : {&lanes_.side, &lanes_.alpha, &lanes_.p2, &lanes_.atol_th, &lanes_.atol_om,
-                  &lanes_.overturn, &lanes_.beyond, &lanes_.ax0, &lanes_.axs, &lanes_.ay0,
-                  &lanes_.ays, &lanes_.theta, &lanes_.omega, &lanes_.h, &lanes_.k1a, &lanes_.k1b,
-                  &lanes_.fsal, &lanes_.max_ratio, &lanes_.steps, &lanes_.radius, &lanes_.inertia,
-                  &lanes_.cos_al, &lanes_.slide_checked, &lanes_.committed})
+  for (auto* v : {&lanes_.vr, &lanes_.side, &lanes_.alpha, &lanes_.p2, &lanes_.atol_th, &lanes_.atol_om,
+                  &lanes_.overturn, &lanes_.beyond, &lanes_.theta, &lanes_.omega, &lanes_.h, &lanes_.k1a,
+                  &lanes_.k1b, &lanes_.fsal, &lanes_.radius, &lanes_.inertia, &lanes_.cos_al,
+                  &lanes_.slide_checked, &lanes_.committed, &lanes_.theta_out, &lanes_.omega_out,
+                  &lanes_.h_out, &lanes_.k1a_out, &lanes_.k1b_out, &lanes_.max_ratio, &lanes_.steps,
+                  &lanes_.pending_max, &lanes_.last_dt})
     v->assign(np, 0.0);
   lanes_.clean.assign(np, 0);
   lanes_.end_clear.assign(np, 0);
+  lanes_.rocking_deferred.assign(np, 0);
+  lanes_.pending_steps.assign(np, 0);
+  lanes_.last_steps.assign(np, 0);
+  lanes_.idx.assign(np, 0);
   bcast_ax_.assign(n, 0.0);
   bcast_ay_.assign(n, 0.0);
 }
@@ -72,6 +77,9 @@ void BatchRocking::reset(double t, double ax, double ay) {
   std::fill(seen_.begin(), seen_.end(), 0);
   std::fill(first_violation_.begin(), first_violation_.end(), std::numeric_limits<double>::quiet_NaN());
   std::fill(lanes_.deferred.begin(), lanes_.deferred.end(), 0);
+  std::fill(lanes_.rocking_deferred.begin(), lanes_.rocking_deferred.end(), 0);
+  std::fill(lanes_.pending_steps.begin(), lanes_.pending_steps.end(), 0);
+  std::fill(lanes_.pending_max.begin(), lanes_.pending_max.end(), 0.0);
   for (RockingModel& m : models_) m.reset(t, ax, ay);
   mirrors_stale_ = true;
 }
@@ -82,12 +90,49 @@ void BatchRocking::flush(std::size_t k) const {
   lanes_.deferred[k] = 0;
 }
 
+void BatchRocking::flush_rocking(std::size_t k) const {
+  Lanes& l = lanes_;
+  models_[k].apply_rocking_samples(l.t[k], l.ax_prev[k], l.ay_prev[k], l.last_dt[k], l.rocking_deferred[k],
+                                   l.theta[k], l.omega[k], l.h[k], l.k1a[k], l.k1b[k], l.pending_steps[k],
+                                   l.last_steps[k], l.pending_max[k]);
+  l.rocking_deferred[k] = 0;
+  l.pending_steps[k] = 0;
+  l.pending_max[k] = 0.0;
+}
+
 void BatchRocking::refresh_mirror(std::size_t k) {
   const RockingModel& m = models_[k];
-  lanes_.rest[k] = m.mode() == Mode::Rest;
-  lanes_.ax_prev[k] = m.last_ax();
-  lanes_.ay_prev[k] = m.last_ay();
-  lanes_.t[k] = m.time();
+  Lanes& l = lanes_;
+  l.rest[k] = m.mode() == Mode::Rest;
+  l.over[k] = m.mode() == Mode::Overturned && m.outcome().committed;
+  l.ax_prev[k] = m.last_ax();
+  l.ay_prev[k] = m.last_ay();
+  l.t[k] = m.time();
+  l.vr[k] = vector_rocking_ && m.mode() == Mode::Rocking ? 1.0 : 0.0;
+  if (l.vr[k] == 0.0) return;
+  // The model just stepped (or was set up): its pivot, flags and integrator state, read once here
+  // instead of every sample.
+  const int s = m.side();
+  const Pivot& pv = m.body().pivot(s);
+  const Dopri5Stepper& st = m.dopri5();
+  l.side[k] = s;
+  l.alpha[k] = pv.alpha;
+  l.p2[k] = pv.p2;
+  l.atol_th[k] = settings_.tol * pv.alpha;
+  l.atol_om[k] = settings_.tol * pv.p * pv.alpha;
+  l.overturn[k] = m.body().overturn_angle();
+  l.beyond[k] = m.outcome().beyond_tipping ? 1.0 : 0.0;
+  l.theta[k] = m.theta();
+  l.omega[k] = m.omega();
+  l.h[k] = st.step_size();
+  l.k1a[k] = st.fsal_k1(0);
+  l.k1b[k] = st.fsal_k1(1);
+  l.fsal[k] = st.fsal_valid() ? 1.0 : 0.0;
+  l.radius[k] = pv.radius;
+  l.inertia[k] = pv.inertia;
+  l.cos_al[k] = pv.cos_alpha;
+  l.slide_checked[k] = std::isinf(m.body().mu_s()) ? 0.0 : 1.0;
+  l.committed[k] = m.outcome().committed ? 1.0 : 0.0;
 }
 
 void BatchRocking::step_all(double ax, double ay, double dt) {
@@ -117,9 +162,26 @@ void BatchRocking::step(const double* ax, const double* ay, double dt) {
   std::copy(ay, ay + n, l.ay_now.begin());
   batch_detail::uplift_test(l, padded(n), settings_.model == ModelKind::Linearized);
 
-  // 2. Sort the lanes: rest (fast), rocking (vector dopri5), everything else (scalar).
-  std::size_t m_count = 0;
+  // 2. ROCKING lanes: the vector dopri5 on their state in place.
+  std::size_t m = 0;
+  for (std::size_t k = 0; k < n; ++k)
+    if (l.vr[k] != 0.0) l.idx[m++] = static_cast<std::uint32_t>(k);
+  if (m > 0) {
+    const std::size_t mp = padded(m);
+    for (std::size_t i = m; i < mp; ++i) l.idx[i] = l.idx[m - 1];  // same lane again: same results
+    batch_detail::rocking_sample(l, mp, dt, settings_.tol, trig_ == BatchTrig::Exact);
+  }
+
+  // 3. Per lane: rest (fast), rocking (the kernel's result kept or committed), everything else (scalar).
   for (std::size_t k = 0; k < n; ++k) {
+    if (l.over[k]) {  // RockingModel::apply_rest_samples: what step() does on its side
+      l.t[k] += dt;
+      l.ax_prev[k] = ax[k];
+      l.ay_prev[k] = ay[k];
+      ++l.deferred[k];
+      ++stats_.rest_fast;
+      continue;
+    }
     if (l.rest[k] && !l.maybe_lift[k]) {
       // free_flight() and slides_from_rest() at the sample end, as RockingModel::update_criteria
       // evaluates them (ay + g < 0; mu_s given), with room for its rounding of the input line.
@@ -133,79 +195,46 @@ void BatchRocking::step(const double* ax, const double* ay, double dt) {
         continue;
       }
     }
+    if (l.vr[k] != 0.0 && l.clean[k] && l.end_clear[k]) {
+      // Nothing can change at the sample end: the sample stays in the lane (the same additions as
+      // commit_rocking_sample, applied by flush_rocking).
+      l.theta[k] = l.theta_out[k];
+      l.omega[k] = l.omega_out[k];
+      l.h[k] = l.h_out[k];
+      l.k1a[k] = l.k1a_out[k];
+      l.k1b[k] = l.k1b_out[k];
+      l.fsal[k] = 1.0;
+      const int steps = static_cast<int>(l.steps[k]);
+      l.pending_steps[k] += steps;
+      l.last_steps[k] = steps;
+      l.pending_max[k] = std::max(l.pending_max[k], l.max_ratio[k]);
+      l.t[k] += dt;
+      l.ax_prev[k] = ax[k];
+      l.ay_prev[k] = ay[k];
+      l.last_dt[k] = dt;
+      ++l.rocking_deferred[k];
+      ++stats_.rocking_fast;
+      continue;
+    }
     sync(k);
     RockingModel& m = models_[k];
-    // An OVERTURNED body's step() only advances time and re-evaluates the (empty) criteria.
-    if ((l.rest[k] && !l.maybe_lift[k]) || m.mode() == Mode::Overturned) {
+    if (l.vr[k] != 0.0) {
+      if (l.clean[k]) {
+        m.commit_rocking_sample(ax[k], ay[k], dt, l.theta_out[k], l.omega_out[k], l.h_out[k], l.k1a_out[k],
+                                l.k1b_out[k], static_cast<int>(l.steps[k]), l.max_ratio[k], l.end_clear[k] != 0);
+        ++stats_.rocking_fast;
+      } else {
+        m.step(ax[k], ay[k], dt);  // the model was not touched: this is the roll-back
+        ++stats_.scalar;
+        ++stats_.rocking_fallback;
+      }
+    } else if ((l.rest[k] && !l.maybe_lift[k]) || m.mode() == Mode::Overturned) {
+      // An OVERTURNED body's step() only advances time and re-evaluates the (empty) criteria.
       m.advance_at_rest(ax[k], ay[k], dt);
-      note_violations(k);
-      refresh_mirror(k);
       ++stats_.rest_fast;
-      continue;
-    }
-    if (!vector_rocking_ || m.mode() != Mode::Rocking) {
-      m.step(ax[k], ay[k], dt);
-      note_violations(k);
-      refresh_mirror(k);
-      ++stats_.scalar;
-      continue;
-    }
-    const std::size_t i = m_count++;
-    const int s = m.side();
-    const Pivot& pv = m.body().pivot(s);
-    const Dopri5Stepper& st = m.dopri5();
-    l.idx[i] = static_cast<std::uint32_t>(k);
-    l.side[i] = s;
-    l.alpha[i] = pv.alpha;
-    l.p2[i] = pv.p2;
-    l.atol_th[i] = settings_.tol * pv.alpha;
-    l.atol_om[i] = settings_.tol * pv.p * pv.alpha;
-    l.overturn[i] = m.body().overturn_angle();
-    l.beyond[i] = m.outcome().beyond_tipping ? 1.0 : 0.0;
-    l.ax0[i] = m.last_ax();
-    l.axs[i] = (ax[k] - m.last_ax()) / dt;  // GroundInput::first_order_hold
-    l.ay0[i] = m.last_ay();
-    l.ays[i] = (ay[k] - m.last_ay()) / dt;
-    l.theta[i] = m.theta();
-    l.omega[i] = m.omega();
-    l.h[i] = st.step_size();
-    l.k1a[i] = st.fsal_k1(0);
-    l.k1b[i] = st.fsal_k1(1);
-    l.fsal[i] = st.fsal_valid() ? 1.0 : 0.0;
-    l.max_ratio[i] = 0.0;
-    l.steps[i] = 0.0;
-    l.radius[i] = pv.radius;
-    l.inertia[i] = pv.inertia;
-    l.cos_al[i] = pv.cos_alpha;
-    l.slide_checked[i] = std::isinf(m.body().mu_s()) ? 0.0 : 1.0;
-    l.committed[i] = m.outcome().committed ? 1.0 : 0.0;
-  }
-  if (m_count == 0) return;
-  // Pad to whole vectors with copies of the last lane (results ignored).
-  const std::size_t mp = padded(m_count);
-  for (std::size_t i = m_count; i < mp; ++i) {
-    const std::size_t j = m_count - 1;
-    for (auto* v : {&l.side, &l.alpha, &l.p2, &l.atol_th, &l.atol_om, &l.overturn, &l.beyond,
-                    &l.ax0, &l.axs, &l.ay0, &l.ays, &l.theta, &l.omega, &l.h, &l.k1a, &l.k1b,
-                    &l.fsal, &l.max_ratio, &l.steps, &l.radius, &l.inertia, &l.cos_al,
-                    &l.slide_checked, &l.committed})
-      (*v)[i] = (*v)[j];
-  }
-
-  // 3. Vector dopri5 over the sample; commit clean lanes, re-step the others from the sample start.
-  batch_detail::rocking_sample(l, mp, dt, settings_.tol, trig_ == BatchTrig::Exact);
-  for (std::size_t i = 0; i < m_count; ++i) {
-    const std::size_t k = l.idx[i];
-    RockingModel& m = models_[k];
-    if (l.clean[i]) {
-      m.commit_rocking_sample(ax[k], ay[k], dt, l.theta[i], l.omega[i], l.h[i], l.k1a[i],
-                              l.k1b[i], static_cast<int>(l.steps[i]), l.max_ratio[i],
-                              l.end_clear[i] != 0);
-      ++stats_.rocking_fast;
     } else {
-      m.step(ax[k], ay[k], dt);  // the model was not touched: this is the roll-back
+      m.step(ax[k], ay[k], dt);
       ++stats_.scalar;
-      ++stats_.rocking_fallback;
     }
     note_violations(k);
     refresh_mirror(k);

@@ -72,188 +72,382 @@ HWY_INLINE void SinCos(hn::ScalableTag<double> d, hn::Vec<hn::ScalableTag<double
   }
 }
 
-template <bool kExact>
+// U Highway vectors handled as one (the dopri5 stages are a chain of dependent sin/cos: one
+// vector at a time leaves the core waiting on latency; U independent ones fill it). Every
+// operation is the Highway operation on each part: lane results are those of U = 1, bit for bit.
+// GCC would otherwise call the stage lambda out of line, passing U vectors through memory.
+#define HWY_INLINE_LAMBDA __attribute__((always_inline))
+namespace w {
+using D = hn::ScalableTag<double>;
+using HV = hn::Vec<D>;
+using HM = hn::Mask<D>;
+template <std::size_t U>
+struct Wide {
+  HV v[U];
+};
+template <std::size_t U>
+struct WMask {
+  HM m[U];
+};
+template <std::size_t U>
+struct Tag {
+  D d;
+  std::size_t lanes() const { return U * hn::Lanes(d); }
+};
+#define RM_W_UNARY(Name)                                          \
+  template <std::size_t U>                                        \
+  HWY_INLINE Wide<U> Name(Wide<U> a) {                            \
+    Wide<U> r;                                                    \
+    for (std::size_t u = 0; u < U; ++u) r.v[u] = hn::Name(a.v[u]); \
+    return r;                                                     \
+  }
+#define RM_W_BINARY(Name)                                                    \
+  template <std::size_t U>                                                   \
+  HWY_INLINE Wide<U> Name(Wide<U> a, Wide<U> b) {                            \
+    Wide<U> r;                                                               \
+    for (std::size_t u = 0; u < U; ++u) r.v[u] = hn::Name(a.v[u], b.v[u]);   \
+    return r;                                                                \
+  }
+#define RM_W_COMPARE(Name)                                                   \
+  template <std::size_t U>                                                   \
+  HWY_INLINE WMask<U> Name(Wide<U> a, Wide<U> b) {                           \
+    WMask<U> r;                                                              \
+    for (std::size_t u = 0; u < U; ++u) r.m[u] = hn::Name(a.v[u], b.v[u]);   \
+    return r;                                                                \
+  }
+#define RM_W_MASK2(Name)                                                     \
+  template <std::size_t U>                                                   \
+  HWY_INLINE WMask<U> Name(WMask<U> a, WMask<U> b) {                         \
+    WMask<U> r;                                                              \
+    for (std::size_t u = 0; u < U; ++u) r.m[u] = hn::Name(a.m[u], b.m[u]);   \
+    return r;                                                                \
+  }
+RM_W_UNARY(Abs)
+RM_W_UNARY(Neg)
+RM_W_UNARY(Sqrt)
+RM_W_BINARY(Add)
+RM_W_BINARY(Sub)
+RM_W_BINARY(Mul)
+RM_W_BINARY(Div)
+RM_W_BINARY(Min)
+RM_W_BINARY(Max)
+RM_W_COMPARE(Eq)
+RM_W_COMPARE(Ne)
+RM_W_COMPARE(Lt)
+RM_W_COMPARE(Le)
+RM_W_COMPARE(Gt)
+RM_W_COMPARE(Ge)
+RM_W_MASK2(And)
+RM_W_MASK2(Or)
+RM_W_MASK2(AndNot)
+#undef RM_W_UNARY
+#undef RM_W_BINARY
+#undef RM_W_COMPARE
+#undef RM_W_MASK2
+template <std::size_t U>
+HWY_INLINE WMask<U> Not(WMask<U> a) {
+  WMask<U> r;
+  for (std::size_t u = 0; u < U; ++u) r.m[u] = hn::Not(a.m[u]);
+  return r;
+}
+template <std::size_t U>
+HWY_INLINE WMask<U> IsFinite(Wide<U> a) {
+  WMask<U> r;
+  for (std::size_t u = 0; u < U; ++u) r.m[u] = hn::IsFinite(a.v[u]);
+  return r;
+}
+template <std::size_t U>
+HWY_INLINE Wide<U> IfThenElse(WMask<U> m, Wide<U> a, Wide<U> b) {
+  Wide<U> r;
+  for (std::size_t u = 0; u < U; ++u) r.v[u] = hn::IfThenElse(m.m[u], a.v[u], b.v[u]);
+  return r;
+}
+template <std::size_t U>
+HWY_INLINE Wide<U> IfThenElseZero(WMask<U> m, Wide<U> a) {
+  Wide<U> r;
+  for (std::size_t u = 0; u < U; ++u) r.v[u] = hn::IfThenElseZero(m.m[u], a.v[u]);
+  return r;
+}
+template <std::size_t U>
+HWY_INLINE bool AllFalse(Tag<U> t, WMask<U> m) {
+  bool all = true;
+  for (std::size_t u = 0; u < U; ++u) all = all && hn::AllFalse(t.d, m.m[u]);
+  return all;
+}
+template <std::size_t U>
+HWY_INLINE Wide<U> Set(Tag<U> t, double x) {
+  Wide<U> r;
+  for (std::size_t u = 0; u < U; ++u) r.v[u] = hn::Set(t.d, x);
+  return r;
+}
+template <std::size_t U>
+HWY_INLINE Wide<U> Zero(Tag<U> t) {
+  Wide<U> r;
+  for (std::size_t u = 0; u < U; ++u) r.v[u] = hn::Zero(t.d);
+  return r;
+}
+template <std::size_t U>
+HWY_INLINE Wide<U> LoadU(Tag<U> t, const double* p) {
+  Wide<U> r;
+  for (std::size_t u = 0; u < U; ++u) r.v[u] = hn::LoadU(t.d, p + u * hn::Lanes(t.d));
+  return r;
+}
+template <std::size_t U>
+HWY_INLINE Wide<U> Load(Tag<U> t, const double* p) {
+  Wide<U> r;
+  for (std::size_t u = 0; u < U; ++u) r.v[u] = hn::Load(t.d, p + u * hn::Lanes(t.d));
+  return r;
+}
+template <std::size_t U>
+HWY_INLINE void StoreU(Wide<U> a, Tag<U> t, double* p) {
+  for (std::size_t u = 0; u < U; ++u) hn::StoreU(a.v[u], t.d, p + u * hn::Lanes(t.d));
+}
+template <std::size_t U>
+HWY_INLINE void Store(Wide<U> a, Tag<U> t, double* p) {
+  for (std::size_t u = 0; u < U; ++u) hn::Store(a.v[u], t.d, p + u * hn::Lanes(t.d));
+}
+template <std::size_t U>
+HWY_INLINE Wide<U> Sin(Tag<U> t, Wide<U> a) {
+  Wide<U> r;
+  for (std::size_t u = 0; u < U; ++u) r.v[u] = hn::Sin(t.d, a.v[u]);
+  return r;
+}
+template <std::size_t U>
+HWY_INLINE Wide<U> Cos(Tag<U> t, Wide<U> a) {
+  Wide<U> r;
+  for (std::size_t u = 0; u < U; ++u) r.v[u] = hn::Cos(t.d, a.v[u]);
+  return r;
+}
+template <std::size_t U>
+HWY_INLINE Wide<U> Exp(Tag<U> t, Wide<U> a) {
+  Wide<U> r;
+  for (std::size_t u = 0; u < U; ++u) r.v[u] = hn::Exp(t.d, a.v[u]);
+  return r;
+}
+template <std::size_t U>
+HWY_INLINE Wide<U> Log(Tag<U> t, Wide<U> a) {
+  Wide<U> r;
+  for (std::size_t u = 0; u < U; ++u) r.v[u] = hn::Log(t.d, a.v[u]);
+  return r;
+}
+template <bool kExact, std::size_t U>
+HWY_INLINE void SinCos(Tag<U> t, Wide<U> phi, Wide<U>& s, Wide<U>& c) {
+  for (std::size_t u = 0; u < U; ++u) batch_detail::HWY_NAMESPACE::SinCos<kExact>(t.d, phi.v[u], s.v[u], c.v[u]);
+}
+}  // namespace w
+
+template <bool kExact, std::size_t U>
 void RockingSampleT(BatchRocking::Lanes& l, std::size_t m, double dt, double tol) {
-  using D = hn::ScalableTag<double>;
-  using V = hn::Vec<D>;
-  const D d;
-  const std::size_t L = hn::Lanes(d);
-  const V g = hn::Set(d, kGravity), one = hn::Set(d, 1.0), zero = hn::Zero(d);
-  const V dtv = hn::Set(d, dt), tolv = hn::Set(d, tol);
+  using V = w::Wide<U>;
+  const w::Tag<U> d;
+  const std::size_t L = d.lanes();
+  const V g = w::Set(d, kGravity), one = w::Set(d, 1.0), zero = w::Zero(d);
+  const V dtv = w::Set(d, dt), tolv = w::Set(d, tol);
+  const V inv_g = w::Set(d, 1.0 / kGravity);
   const double h_min_s = 1e-12 * std::max(1.0, std::abs(dt));
-  const V h_min = hn::Set(d, h_min_s);
+  const V h_min = w::Set(d, h_min_s);
   alignas(64) double errb[16], fac[16];
 
   for (std::size_t i = 0; i < m; i += L) {
-    const V side = hn::LoadU(d, l.side.data() + i), alpha = hn::LoadU(d, l.alpha.data() + i);
-    const V p2 = hn::LoadU(d, l.p2.data() + i);
-    const V atth = hn::LoadU(d, l.atol_th.data() + i), atom = hn::LoadU(d, l.atol_om.data() + i);
-    const V ovt = hn::LoadU(d, l.overturn.data() + i);
-    const auto not_beyond = hn::Eq(hn::LoadU(d, l.beyond.data() + i), zero);
-    const V ax0 = hn::LoadU(d, l.ax0.data() + i), axs = hn::LoadU(d, l.axs.data() + i);
-    const V ay0 = hn::LoadU(d, l.ay0.data() + i), ays = hn::LoadU(d, l.ays.data() + i);
-    const V negside_p2 = hn::Mul(hn::Neg(side), p2);  // -side * pivot->p2
-    // RockingOde::angular_acceleration, same operations.
-    auto accel = [&](V tau, V theta) -> V {
-      const V phi = hn::Sub(alpha, hn::Mul(side, theta));
-      const V vertical = hn::Add(one, hn::Div(hn::Add(ay0, hn::Mul(ays, tau)), g));
-      const V horizontal = hn::Div(hn::Add(ax0, hn::Mul(axs, tau)), g);
+    // The lanes' state stays in place (index = lane); this group's lanes are gathered from it.
+    const std::uint32_t* ix = l.idx.data() + i;
+    auto gather = [&](const std::vector<double>& a) HWY_INLINE_LAMBDA {
+      alignas(64) double b[16];
+      for (std::size_t k = 0; k < L; ++k) b[k] = a[ix[k]];
+      return w::Load(d, b);
+    };
+    auto scatter = [&](V v, std::vector<double>& a) HWY_INLINE_LAMBDA {
+      alignas(64) double b[16];
+      w::Store(v, d, b);
+      for (std::size_t k = 0; k < L; ++k) a[ix[k]] = b[k];
+    };
+    const auto lane_on = w::Ne(gather(l.vr), zero);
+    const V side = gather(l.side), alpha = gather(l.alpha);
+    const V p2 = gather(l.p2);
+    const V atth = gather(l.atol_th), atom = gather(l.atol_om);
+    const V ovt = gather(l.overturn);
+    const auto not_beyond = w::Eq(gather(l.beyond), zero);
+    // GroundInput::first_order_hold: the sample's input line from the last input.
+    const V ax0 = gather(l.ax_prev), ay0 = gather(l.ay_prev);
+    const V axs = w::Div(w::Sub(gather(l.ax_now), ax0), dtv);
+    const V ays = w::Div(w::Sub(gather(l.ay_now), ay0), dtv);
+    // Fast path: the input line in units of g once per sample, not two divisions per stage.
+    const V hx0 = w::Mul(ax0, inv_g), hxs = w::Mul(axs, inv_g);
+    const V vy0 = w::Add(one, w::Mul(ay0, inv_g)), vys = w::Mul(ays, inv_g);
+    const V inv_alpha = w::Div(one, alpha);
+    const V negside_p2 = w::Mul(w::Neg(side), p2);  // -side * pivot->p2
+    // RockingOde::angular_acceleration, same operations (exact path).
+    auto accel = [&](V tau, V theta) HWY_INLINE_LAMBDA -> V {
+      const V phi = w::Sub(alpha, w::Mul(side, theta));
+      V vertical, horizontal;
+      if constexpr (kExact) {
+        vertical = w::Add(one, w::Div(w::Add(ay0, w::Mul(ays, tau)), g));
+        horizontal = w::Div(w::Add(ax0, w::Mul(axs, tau)), g);
+      } else {
+        vertical = w::Add(vy0, w::Mul(vys, tau));
+        horizontal = w::Add(hx0, w::Mul(hxs, tau));
+      }
       V sn, cs;
-      SinCos<kExact>(d, phi, sn, cs);
-      return hn::Mul(negside_p2,
-                     hn::Sub(hn::Mul(vertical, sn), hn::Mul(hn::Mul(side, horizontal), cs)));
+      w::SinCos<kExact>(d, phi, sn, cs);
+      return w::Mul(negside_p2,
+                     w::Sub(w::Mul(vertical, sn), w::Mul(w::Mul(side, horizontal), cs)));
     };
 
-    V th = hn::LoadU(d, l.theta.data() + i), om = hn::LoadU(d, l.omega.data() + i);
-    V hc = hn::LoadU(d, l.h.data() + i);
-    V k1a = hn::LoadU(d, l.k1a.data() + i), k1b = hn::LoadU(d, l.k1b.data() + i);
+    V th = gather(l.theta), om = gather(l.omega);
+    V hc = gather(l.h);
+    V k1a = gather(l.k1a), k1b = gather(l.k1b);
     {
-      const auto fsal = hn::Ne(hn::LoadU(d, l.fsal.data() + i), zero);
+      const auto fsal = w::Ne(gather(l.fsal), zero);
       const V f = accel(zero, th);
-      k1a = hn::IfThenElse(fsal, k1a, om);
-      k1b = hn::IfThenElse(fsal, k1b, f);
+      k1a = w::IfThenElse(fsal, k1a, om);
+      k1b = w::IfThenElse(fsal, k1b, f);
     }
     V t = zero, maxr = zero, steps = zero, attempts = zero, h_try = zero;
-    auto active = hn::Lt(t, dtv);
+    auto active = lane_on;
     auto clean = active;
-    auto retry = hn::Lt(one, zero);  // all false
-    for (int iter = 0; !hn::AllFalse(d, active); ++iter) {
+    auto retry = w::Lt(one, zero);  // all false
+    for (int iter = 0; !w::AllFalse(d, active); ++iter) {
       if (iter > 100000) {  // cannot happen with the scalar controller's bounds; stay safe
-        clean = hn::AndNot(active, clean);
+        clean = w::AndNot(active, clean);
         break;
       }
-      const V remaining = hn::Sub(dtv, t);
-      V hn_ = hn::Min(hc, remaining);
-      hn_ = hn::IfThenElse(hn::Lt(hn::Sub(remaining, hn_), hn::Mul(hn::Set(d, 0.01), hn_)),
+      const V remaining = w::Sub(dtv, t);
+      V hn_ = w::Min(hc, remaining);
+      hn_ = w::IfThenElse(w::Lt(w::Sub(remaining, hn_), w::Mul(w::Set(d, 0.01), hn_)),
                            remaining, hn_);
-      const V h = hn::IfThenElse(retry, h_try, hn_);
-      attempts = hn::IfThenElse(retry, hn::Add(attempts, one), one);
+      const V h = w::IfThenElse(retry, h_try, hn_);
+      attempts = w::IfThenElse(retry, w::Add(attempts, one), one);
       // Stages (dopri5_stepper.cpp, stages()).
-      V y0 = hn::Add(th, hn::Mul(hn::Mul(h, hn::Set(d, a21)), k1a));
-      V y1 = hn::Add(om, hn::Mul(hn::Mul(h, hn::Set(d, a21)), k1b));
-      const V k2a = y1, k2b = accel(hn::Add(t, hn::Mul(hn::Set(d, c2), h)), y0);
-      auto lin2 = [&](double c1, V x1, double cc2, V x2) {
-        return hn::Add(hn::Mul(hn::Set(d, c1), x1), hn::Mul(hn::Set(d, cc2), x2));
+      V y0 = w::Add(th, w::Mul(w::Mul(h, w::Set(d, a21)), k1a));
+      V y1 = w::Add(om, w::Mul(w::Mul(h, w::Set(d, a21)), k1b));
+      const V k2a = y1, k2b = accel(w::Add(t, w::Mul(w::Set(d, c2), h)), y0);
+      auto lin2 = [&](double c1, V x1, double cc2, V x2) HWY_INLINE_LAMBDA {
+        return w::Add(w::Mul(w::Set(d, c1), x1), w::Mul(w::Set(d, cc2), x2));
       };
-      auto acc = [&](V sum, double c, V x) { return hn::Add(sum, hn::Mul(hn::Set(d, c), x)); };
-      y0 = hn::Add(th, hn::Mul(h, lin2(a31, k1a, a32, k2a)));
-      y1 = hn::Add(om, hn::Mul(h, lin2(a31, k1b, a32, k2b)));
-      const V k3a = y1, k3b = accel(hn::Add(t, hn::Mul(hn::Set(d, c3), h)), y0);
-      y0 = hn::Add(th, hn::Mul(h, acc(lin2(a41, k1a, a42, k2a), a43, k3a)));
-      y1 = hn::Add(om, hn::Mul(h, acc(lin2(a41, k1b, a42, k2b), a43, k3b)));
-      const V k4a = y1, k4b = accel(hn::Add(t, hn::Mul(hn::Set(d, c4), h)), y0);
-      y0 = hn::Add(th, hn::Mul(h, acc(acc(lin2(a51, k1a, a52, k2a), a53, k3a), a54, k4a)));
-      y1 = hn::Add(om, hn::Mul(h, acc(acc(lin2(a51, k1b, a52, k2b), a53, k3b), a54, k4b)));
-      const V k5a = y1, k5b = accel(hn::Add(t, hn::Mul(hn::Set(d, c5), h)), y0);
-      y0 = hn::Add(th, hn::Mul(h, acc(acc(acc(lin2(a61, k1a, a62, k2a), a63, k3a), a64, k4a), a65, k5a)));
-      y1 = hn::Add(om, hn::Mul(h, acc(acc(acc(lin2(a61, k1b, a62, k2b), a63, k3b), a64, k4b), a65, k5b)));
-      const V t_h = hn::Add(t, h);
+      auto acc = [&](V sum, double c, V x) HWY_INLINE_LAMBDA { return w::Add(sum, w::Mul(w::Set(d, c), x)); };
+      y0 = w::Add(th, w::Mul(h, lin2(a31, k1a, a32, k2a)));
+      y1 = w::Add(om, w::Mul(h, lin2(a31, k1b, a32, k2b)));
+      const V k3a = y1, k3b = accel(w::Add(t, w::Mul(w::Set(d, c3), h)), y0);
+      y0 = w::Add(th, w::Mul(h, acc(lin2(a41, k1a, a42, k2a), a43, k3a)));
+      y1 = w::Add(om, w::Mul(h, acc(lin2(a41, k1b, a42, k2b), a43, k3b)));
+      const V k4a = y1, k4b = accel(w::Add(t, w::Mul(w::Set(d, c4), h)), y0);
+      y0 = w::Add(th, w::Mul(h, acc(acc(lin2(a51, k1a, a52, k2a), a53, k3a), a54, k4a)));
+      y1 = w::Add(om, w::Mul(h, acc(acc(lin2(a51, k1b, a52, k2b), a53, k3b), a54, k4b)));
+      const V k5a = y1, k5b = accel(w::Add(t, w::Mul(w::Set(d, c5), h)), y0);
+      y0 = w::Add(th, w::Mul(h, acc(acc(acc(lin2(a61, k1a, a62, k2a), a63, k3a), a64, k4a), a65, k5a)));
+      y1 = w::Add(om, w::Mul(h, acc(acc(acc(lin2(a61, k1b, a62, k2b), a63, k3b), a64, k4b), a65, k5b)));
+      const V t_h = w::Add(t, h);
       const V k6a = y1, k6b = accel(t_h, y0);
-      const V y5a = hn::Add(th, hn::Mul(h, acc(acc(acc(lin2(a71, k1a, a73, k3a), a74, k4a), a75, k5a), a76, k6a)));
-      const V y5b = hn::Add(om, hn::Mul(h, acc(acc(acc(lin2(a71, k1b, a73, k3b), a74, k4b), a75, k5b), a76, k6b)));
+      const V y5a = w::Add(th, w::Mul(h, acc(acc(acc(lin2(a71, k1a, a73, k3a), a74, k4a), a75, k5a), a76, k6a)));
+      const V y5b = w::Add(om, w::Mul(h, acc(acc(acc(lin2(a71, k1b, a73, k3b), a74, k4b), a75, k5b), a76, k6b)));
       const V k7a = y5b, k7b = accel(t_h, y5a);
       // Error estimate (Dopri5Stepper::step).
-      const V ea = hn::Mul(h, acc(acc(acc(acc(lin2(e1, k1a, e3, k3a), e4, k4a), e5, k5a), e6, k6a), e7, k7a));
-      const V eb = hn::Mul(h, acc(acc(acc(acc(lin2(e1, k1b, e3, k3b), e4, k4b), e5, k5b), e6, k6b), e7, k7b));
-      const V sca = hn::Add(atth, hn::Mul(tolv, hn::Max(hn::Abs(th), hn::Abs(y5a))));
-      const V scb = hn::Add(atom, hn::Mul(tolv, hn::Max(hn::Abs(om), hn::Abs(y5b))));
-      const V qa = hn::Div(ea, sca), qb = hn::Div(eb, scb);
-      const V err = hn::Sqrt(hn::Mul(hn::Set(d, 0.5), hn::Add(hn::Add(zero, hn::Mul(qa, qa)), hn::Mul(qb, qb))));
+      const V ea = w::Mul(h, acc(acc(acc(acc(lin2(e1, k1a, e3, k3a), e4, k4a), e5, k5a), e6, k6a), e7, k7a));
+      const V eb = w::Mul(h, acc(acc(acc(acc(lin2(e1, k1b, e3, k3b), e4, k4b), e5, k5b), e6, k6b), e7, k7b));
+      const V sca = w::Add(atth, w::Mul(tolv, w::Max(w::Abs(th), w::Abs(y5a))));
+      const V scb = w::Add(atom, w::Mul(tolv, w::Max(w::Abs(om), w::Abs(y5b))));
+      const V qa = w::Div(ea, sca), qb = w::Div(eb, scb);
+      const V err = w::Sqrt(w::Mul(w::Set(d, 0.5), w::Add(w::Add(zero, w::Mul(qa, qa)), w::Mul(qb, qb))));
       // The controller's factor with the scalar std::pow, lane by lane (exact step sizes).
       V factor;
       if constexpr (kExact) {
-        hn::Store(err, d, errb);
+        w::Store(err, d, errb);
         for (std::size_t k = 0; k < L; ++k) {
           const double e = errb[k];
           fac[k] = e == 0.0 ? 5.0 : std::min(5.0, std::max(0.2, 0.9 * std::pow(e, -0.2)));
         }
-        factor = hn::Load(d, fac);
+        factor = w::Load(d, fac);
       } else {  // err^-0.2 = exp(-0.2 log err): not the bits of std::pow
-        const V pw = hn::Exp(d, hn::Mul(hn::Set(d, -0.2), hn::Log(d, err)));
-        factor = hn::Min(hn::Set(d, 5.0), hn::Max(hn::Set(d, 0.2), hn::Mul(hn::Set(d, 0.9), pw)));
-        factor = hn::IfThenElse(hn::Eq(err, zero), hn::Set(d, 5.0), factor);
+        const V pw = w::Exp(d, w::Mul(w::Set(d, -0.2), w::Log(d, err)));
+        factor = w::Min(w::Set(d, 5.0), w::Max(w::Set(d, 0.2), w::Mul(w::Set(d, 0.9), pw)));
+        factor = w::IfThenElse(w::Eq(err, zero), w::Set(d, 5.0), factor);
       }
-      const auto accept = hn::And(
-          active, hn::Or(hn::Or(hn::Le(err, one), hn::Le(h, h_min)), hn::Ge(attempts, hn::Set(d, 50.0))));
+      const auto accept = w::And(
+          active, w::Or(w::Or(w::Le(err, one), w::Le(h, h_min)), w::Ge(attempts, w::Set(d, 50.0))));
       // Events the scalar scan_step would act on: impact / degenerate (s*theta not > 0 at either
       // end), a turning point (omega changes sign), overturn, the first passage beyond alpha,
       // non-finite values. Such a lane goes back to the scalar model.
-      const V g0 = hn::Mul(side, th), g1 = hn::Mul(side, y5a);
-      const V w0 = hn::Mul(side, om), w1 = hn::Mul(side, y5b);
-      auto bad = hn::Not(hn::And(hn::Gt(g0, zero), hn::Gt(g1, zero)));
-      bad = hn::Or(bad, hn::And(hn::Gt(w0, zero), hn::Lt(w1, zero)));
-      bad = hn::Or(bad, hn::And(hn::Lt(w0, zero), hn::Gt(w1, zero)));
-      bad = hn::Or(bad, hn::Ge(g1, ovt));
-      bad = hn::Or(bad, hn::And(not_beyond, hn::And(hn::Le(g0, alpha), hn::Gt(g1, alpha))));
-      bad = hn::Or(bad, hn::Not(hn::And(hn::IsFinite(y5a), hn::IsFinite(y5b))));
-      const auto dropped = hn::And(accept, bad);
-      const auto good = hn::AndNot(bad, accept);
-      clean = hn::AndNot(dropped, clean);
+      const V g0 = w::Mul(side, th), g1 = w::Mul(side, y5a);
+      const V w0 = w::Mul(side, om), w1 = w::Mul(side, y5b);
+      auto bad = w::Not(w::And(w::Gt(g0, zero), w::Gt(g1, zero)));
+      bad = w::Or(bad, w::And(w::Gt(w0, zero), w::Lt(w1, zero)));
+      bad = w::Or(bad, w::And(w::Lt(w0, zero), w::Gt(w1, zero)));
+      bad = w::Or(bad, w::Ge(g1, ovt));
+      bad = w::Or(bad, w::And(not_beyond, w::And(w::Le(g0, alpha), w::Gt(g1, alpha))));
+      bad = w::Or(bad, w::Not(w::And(w::IsFinite(y5a), w::IsFinite(y5b))));
+      const auto dropped = w::And(accept, bad);
+      const auto good = w::AndNot(bad, accept);
+      clean = w::AndNot(dropped, clean);
       // Accepted clean steps.
-      const V h_next = hn::Mul(h, factor);
-      const auto at_end = hn::Eq(h, remaining);
-      const V hc_new = hn::IfThenElse(hn::And(at_end, hn::Lt(h, hc)), hn::Max(hc, h_next), h_next);
-      hc = hn::IfThenElse(good, hc_new, hc);
-      th = hn::IfThenElse(good, y5a, th);
-      om = hn::IfThenElse(good, y5b, om);
-      k1a = hn::IfThenElse(good, k7a, k1a);
-      k1b = hn::IfThenElse(good, k7b, k1b);
-      t = hn::IfThenElse(good, hn::IfThenElse(at_end, dtv, t_h), t);
-      steps = hn::IfThenElse(good, hn::Add(steps, attempts), steps);
-      maxr = hn::IfThenElse(good, hn::Max(maxr, hn::Div(hn::Abs(th), alpha)), maxr);
+      const V h_next = w::Mul(h, factor);
+      const auto at_end = w::Eq(h, remaining);
+      const V hc_new = w::IfThenElse(w::And(at_end, w::Lt(h, hc)), w::Max(hc, h_next), h_next);
+      hc = w::IfThenElse(good, hc_new, hc);
+      th = w::IfThenElse(good, y5a, th);
+      om = w::IfThenElse(good, y5b, om);
+      k1a = w::IfThenElse(good, k7a, k1a);
+      k1b = w::IfThenElse(good, k7b, k1b);
+      t = w::IfThenElse(good, w::IfThenElse(at_end, dtv, t_h), t);
+      steps = w::IfThenElse(good, w::Add(steps, attempts), steps);
+      const V ratio = kExact ? w::Div(w::Abs(th), alpha) : w::Mul(w::Abs(th), inv_alpha);
+      maxr = w::IfThenElse(good, w::Max(maxr, ratio), maxr);
       // Rejected steps retry with h * factor (not below h_min).
-      const auto rejected = hn::AndNot(accept, active);
-      h_try = hn::IfThenElse(rejected, hn::Max(hn::Mul(h, factor), h_min), h_try);
+      const auto rejected = w::AndNot(accept, active);
+      h_try = w::IfThenElse(rejected, w::Max(w::Mul(h, factor), h_min), h_try);
       retry = rejected;
-      active = hn::And(hn::AndNot(dropped, active), hn::Lt(t, dtv));
+      active = w::And(w::AndNot(dropped, active), w::Lt(t, dtv));
     }
     // Sample-end screen (Highway Sin/Cos; a filter only, with margins far above its error).
     {
-      const V ax1 = hn::Add(ax0, hn::Mul(axs, dtv)), ay1 = hn::Add(ay0, hn::Mul(ays, dtv));
-      const V phi = hn::Sub(alpha, hn::Mul(side, th));
-      const V sn = hn::Sin(d, phi), cs = hn::Cos(d, phi);
-      const V thdd = hn::Mul(negside_p2, hn::Sub(hn::Mul(hn::Add(one, hn::Div(ay1, g)), sn),
-                                                 hn::Mul(hn::Mul(side, hn::Div(ax1, g)), cs)));
-      const V R = hn::LoadU(d, l.radius.data() + i);
-      const V w2 = hn::Mul(om, om);
-      const V ry = hn::Add(hn::Add(g, ay1), hn::Add(hn::Neg(hn::Mul(hn::Mul(R, cs), w2)),
-                                                   hn::Mul(hn::Mul(side, hn::Mul(R, sn)), thdd)));
-      const V ry_scale = hn::Add(hn::Add(g, hn::Abs(ay1)), hn::Mul(R, hn::Add(w2, hn::Abs(thdd))));
-      const auto no_flight = hn::Gt(ry, hn::Mul(hn::Set(d, 1e-9), ry_scale));
-      const auto no_slide = hn::Eq(hn::LoadU(d, l.slide_checked.data() + i), zero);
+      const V ax1 = w::Add(ax0, w::Mul(axs, dtv)), ay1 = w::Add(ay0, w::Mul(ays, dtv));
+      const V phi = w::Sub(alpha, w::Mul(side, th));
+      const V sn = w::Sin(d, phi), cs = w::Cos(d, phi);
+      const V thdd = w::Mul(negside_p2, w::Sub(w::Mul(w::Add(one, w::Div(ay1, g)), sn),
+                                                 w::Mul(w::Mul(side, w::Div(ax1, g)), cs)));
+      const V R = gather(l.radius);
+      const V w2 = w::Mul(om, om);
+      const V ry = w::Add(w::Add(g, ay1), w::Add(w::Neg(w::Mul(w::Mul(R, cs), w2)),
+                                                   w::Mul(w::Mul(side, w::Mul(R, sn)), thdd)));
+      const V ry_scale = w::Add(w::Add(g, w::Abs(ay1)), w::Mul(R, w::Add(w2, w::Abs(thdd))));
+      const auto no_flight = w::Gt(ry, w::Mul(w::Set(d, 1e-9), ry_scale));
+      const auto no_slide = w::Eq(gather(l.slide_checked), zero);
       // overturn_margin: deficit = (gR (1 - cos phi) - I w^2 / 2) / (gR (1 - cos alpha)).
-      const V barrier = hn::Mul(g, R);
-      const V num = hn::Sub(hn::Mul(barrier, hn::Sub(one, cs)),
-                            hn::Mul(hn::Mul(hn::Set(d, 0.5), hn::LoadU(d, l.inertia.data() + i)), w2));
-      const V den = hn::Mul(barrier, hn::Sub(one, hn::LoadU(d, l.cos_al.data() + i)));
-      const V deficit = hn::Div(num, den);
-      const auto inward = hn::Le(hn::Mul(side, om), zero);
-      const auto not_committed = hn::And(hn::Gt(phi, hn::Set(d, 1e-6)),
-                                         hn::Or(inward, hn::Gt(deficit, hn::Set(d, 1e-6))));
-      const auto latched = hn::Ne(hn::LoadU(d, l.committed.data() + i), zero);
-      const auto clear = hn::And(hn::And(no_flight, no_slide), hn::Or(latched, not_committed));
+      const V barrier = w::Mul(g, R);
+      const V num = w::Sub(w::Mul(barrier, w::Sub(one, cs)),
+                            w::Mul(w::Mul(w::Set(d, 0.5), gather(l.inertia)), w2));
+      const V den = w::Mul(barrier, w::Sub(one, gather(l.cos_al)));
+      const V deficit = w::Div(num, den);
+      const auto inward = w::Le(w::Mul(side, om), zero);
+      const auto not_committed = w::And(w::Gt(phi, w::Set(d, 1e-6)),
+                                         w::Or(inward, w::Gt(deficit, w::Set(d, 1e-6))));
+      const auto latched = w::Ne(gather(l.committed), zero);
+      const auto clear = w::And(w::And(no_flight, no_slide), w::Or(latched, not_committed));
       alignas(64) double eb[16];
-      hn::Store(hn::IfThenElseZero(clear, one), d, eb);
-      for (std::size_t k = 0; k < L; ++k) l.end_clear[i + k] = eb[k] != 0.0 ? 1 : 0;
+      w::Store(w::IfThenElseZero(clear, one), d, eb);
+      for (std::size_t k = 0; k < L; ++k) l.end_clear[ix[k]] = eb[k] != 0.0 ? 1 : 0;
     }
-    hn::StoreU(th, d, l.theta.data() + i);
-    hn::StoreU(om, d, l.omega.data() + i);
-    hn::StoreU(hc, d, l.h.data() + i);
-    hn::StoreU(k1a, d, l.k1a.data() + i);
-    hn::StoreU(k1b, d, l.k1b.data() + i);
-    hn::StoreU(steps, d, l.steps.data() + i);
-    hn::StoreU(maxr, d, l.max_ratio.data() + i);
+    scatter(th, l.theta_out);
+    scatter(om, l.omega_out);
+    scatter(hc, l.h_out);
+    scatter(k1a, l.k1a_out);
+    scatter(k1b, l.k1b_out);
+    scatter(steps, l.steps);
+    scatter(maxr, l.max_ratio);
     alignas(64) double cb[16];
-    hn::Store(hn::IfThenElseZero(clean, one), d, cb);
-    for (std::size_t k = 0; k < L; ++k) l.clean[i + k] = cb[k] != 0.0 ? 1 : 0;
+    w::Store(w::IfThenElseZero(clean, one), d, cb);
+    for (std::size_t k = 0; k < L; ++k) l.clean[ix[k]] = cb[k] != 0.0 ? 1 : 0;
   }
 }
 
+// Vectors per iteration: 2 (a block of 16 lanes holds 2 x 8 (AVX-512), 2 x 4 (AVX2), ...).
+constexpr std::size_t kUnroll = 2;
+static_assert(kBlock % (kUnroll * (HWY_MAX_BYTES / sizeof(double))) == 0, "a block of whole wide vectors");
+
 void RockingSampleExact(BatchRocking::Lanes& l, std::size_t m, double dt, double tol) {
-  RockingSampleT<true>(l, m, dt, tol);
+  RockingSampleT<true, kUnroll>(l, m, dt, tol);
 }
 void RockingSampleFast(BatchRocking::Lanes& l, std::size_t m, double dt, double tol) {
-  RockingSampleT<false>(l, m, dt, tol);
+  RockingSampleT<false, kUnroll>(l, m, dt, tol);
 }
 const char* TargetName() { return hwy::TargetName(HWY_TARGET); }
 

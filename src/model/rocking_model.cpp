@@ -410,4 +410,26 @@ const StepReport& RockingModel::commit_rocking_sample(double ax, double ay, doub
   return report_;
 }
 
+void RockingModel::apply_rocking_samples(double t, double ax, double ay, double dt, long n, double theta,
+                                         double omega, double h_next, double k1_theta, double k1_omega,
+                                         long integrator_steps, int last_integrator_steps,
+                                         double max_ratio) {
+  report_ = StepReport{};
+  report_.integrator_steps = last_integrator_steps;
+  sample_dt_ = dt;
+  theta_ = theta;
+  omega_ = omega;
+  dopri5_.restore(h_next, k1_theta, k1_omega);
+  if (max_ratio > outcome_.max_rotation_ratio) {
+    outcome_.max_rotation_ratio = max_ratio;
+    outcome_.max_rotation_side = side_;
+  }
+  violations_ = 0;  // finish_sample with end_clear
+  t_ = t;
+  ax_prev_ = ax;
+  ay_prev_ = ay;
+  outcome_.samples += n;
+  outcome_.integrator_steps += integrator_steps;
+}
+
 }  // namespace rocking_monitor::core

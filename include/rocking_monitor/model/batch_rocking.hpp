@@ -36,22 +36,26 @@ struct BatchStats {
 ///    that surely stay at rest only advance (RockingModel::advance_at_rest); the others are
 ///    stepped by RockingModel::step.
 ///  - ROCKING lanes (dopri5 only): vectorized dopri5 steps over the sample with the scalar
-///    controller (same step-size sequence, rejections, FSAL, arithmetic order). A lane in which a
-///    step meets anything (theta reaching 0 = impact, a turning point of theta, |theta| crossing
-///    alpha for the first time, the overturn angle, a non-finite value) is dropped and stepped from
-///    its state at the sample start by RockingModel::step; clean lanes are written back with
-///    RockingModel::commit_rocking_sample, which finishes the sample exactly as step() does
-///    (criteria, committed test, counters). The kernel also screens the sample end (Highway
-///    Sin/Cos, wide margins): when the ground reaction is surely > 0 (no free flight), sliding is
-///    not checked (mu_s not given) and the body is surely not committed (or already latched), the
-///    commit skips those scalar evaluations, whose result would be "nothing" (no violation).
-///  - everything else (OVERTURNED lanes, rk4 / analytic settings, the linearized model) is
-///    stepped by RockingModel::step.
+///    controller (same step-size sequence, rejections, FSAL, arithmetic order), on the lane's
+///    state kept in place in per-lane arrays (gathered by the kernel). A lane in which a step
+///    meets anything (theta reaching 0 = impact, a turning point of
+///    theta, |theta| crossing alpha for the first time, the overturn angle, a non-finite value)
+///    is dropped and stepped from its state at the sample start by RockingModel::step. The kernel
+///    also screens the sample end (Highway Sin/Cos, wide margins): when the ground reaction is
+///    surely > 0 (no free flight), sliding is not checked (mu_s not given) and the body is surely
+///    not committed (or already latched), nothing at the sample end can change the model's
+///    criteria or committed flag. Such clean samples stay in the lanes (deferred rocking: the
+///    model is not touched; RockingModel::apply_rocking_samples brings it up to date when it is
+///    read or must step itself); other clean samples are written back with
+///    RockingModel::commit_rocking_sample, which finishes the sample exactly as step() does.
+///  - everything else (rk4 / analytic settings, the linearized model) is stepped by
+///    RockingModel::step.
 ///  - deferred rest: a lane at REST that stays there and whose sample end violates nothing
 ///    (mu_s not given, a_yg + g > 0 with a margin) is not touched at all: the batch adds dt to
 ///    its own copy of the lane's time (the same additions as RockingModel::step) and counts the
 ///    sample; the model is brought up to date (RockingModel::apply_rest_samples) before it is
 ///    stepped again and whenever model(k) / report(k) is called.
+///    Lanes OVERTURNED with committed latched are deferred the same way (step() only counts time).
 /// With BatchTrig::Exact every lane equals a RockingModel stepped alone, bit for bit; with Fast (the
 /// default) its decisions and event times meet the accuracy policy.
 /// step() does no allocation (the work arrays are sized at construction).
@@ -100,26 +104,39 @@ class BatchRocking {
     // Uplift test (per lane): inputs and a result flag (1 = may lift: scalar).
     std::vector<double> ax_prev, ay_prev, ax_now, ay_now;
     std::vector<std::uint8_t> rest, maybe_lift;
+    // OVERTURNED with committed latched: its samples only count time (deferred like rest).
+    std::vector<std::uint8_t> over;
     // Mirrors of the models (valid when mirrors_stale_ is false) and the deferred rest samples.
     std::vector<double> t;
     std::vector<long> deferred;
     std::vector<std::uint8_t> mu_inf;
-    // Compacted rocking lanes of this sample.
-    std::vector<std::uint32_t> idx;
+    // ROCKING lanes, kept in place (index = lane): vr = 1.0 when the lane's model is ROCKING under
+    // dopri5 and the arrays below mirror it (constants of its pivot, state at the sample start).
+    // Clean samples stay here (rocking_deferred) until the model is read or must step itself.
+    std::vector<double> vr;
     std::vector<double> side, alpha, p2, atol_th, atol_om, overturn, beyond;
-    std::vector<double> ax0, axs, ay0, ays;
-    std::vector<double> theta, omega, h, k1a, k1b, fsal, max_ratio, steps;
+    std::vector<double> theta, omega, h, k1a, k1b, fsal;
     // Sample-end screen (criteria, committed test): per lane pivot R, I_O/m, cos(alpha), whether
     // sliding is checked (finite mu_s) and whether committed is already latched.
     std::vector<double> radius, inertia, cos_al, slide_checked, committed;
+    // Kernel results of this sample (the state above is left as it was at the sample start).
+    std::vector<double> theta_out, omega_out, h_out, k1a_out, k1b_out, max_ratio, steps;
     std::vector<std::uint8_t> clean, end_clear;
+    // Clean samples not yet applied to the model: count, step counts, largest |theta|/alpha.
+    std::vector<long> rocking_deferred, pending_steps;
+    std::vector<int> last_steps;
+    std::vector<double> pending_max, last_dt;
+    // The vr lanes of this sample (the kernel's work list), padded with copies of the last.
+    std::vector<std::uint32_t> idx;
   };
 
  private:
   void sync(std::size_t k) const {
     if (lanes_.deferred[k] != 0) flush(k);
+    if (lanes_.rocking_deferred[k] != 0) flush_rocking(k);
   }
   void flush(std::size_t k) const;
+  void flush_rocking(std::size_t k) const;
   void refresh_mirror(std::size_t k);
   void note_violations(std::size_t k);  // after lane k's model stepped this sample
 
@@ -138,7 +155,10 @@ class BatchRocking {
 namespace batch_detail {
 /// Vector uplift test over all lanes (l.maybe_lift for lanes with l.rest set), n lanes.
 void uplift_test(BatchRocking::Lanes& l, std::size_t n, bool linearized);
-/// Vector dopri5 over the sample [0, dt] for the m compacted rocking lanes; sets l.clean.
+/// The rocking kernel's work list is padded to a multiple of this (of every SIMD width x unroll).
+constexpr std::size_t kBlock = 16;
+/// Vector dopri5 over the sample [0, dt] for the m lanes l.idx[0..m) (m a multiple of kBlock):
+/// reads their state in place, writes their *_out arrays, l.clean and l.end_clear.
 void rocking_sample(BatchRocking::Lanes& l, std::size_t m, double dt, double tol, bool exact_trig);
 const char* target_name();
 /// sin and cos of n values (n a multiple of 16) the way the dopri5 kernel evaluates them

@@ -142,6 +142,15 @@ class RockingModel {
                                           double k1_omega, int integrator_steps,
                                           double max_ratio, bool end_clear = false);
 
+  /// n such samples (each one end_clear) that BatchRocking kept in its lanes, applied at once: the
+  /// state after the last (theta, omega, controller), the time (the caller's sum t_ + dt + dt...,
+  /// the same additions as step()), the last inputs, the step counts (total and the last sample's)
+  /// and the largest |theta|/alpha over them. Leaves the model exactly as n calls of
+  /// commit_rocking_sample(..., end_clear = true) would. No allocation.
+  void apply_rocking_samples(double t, double ax, double ay, double dt, long n, double theta,
+                             double omega, double h_next, double k1_theta, double k1_omega,
+                             long integrator_steps, int last_integrator_steps, double max_ratio);
+
  private:
   void finish_sample(const GroundInput& in, double ax, double ay, double dt, bool end_clear = false);
   enum class Event { None, Impact, Overturn, Degenerate };
