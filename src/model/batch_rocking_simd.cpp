@@ -277,7 +277,9 @@ void RockingSampleT(BatchRocking::Lanes& l, std::size_t m, double dt, double tol
     const V inv_alpha = w::Div(one, alpha);
     const V negside_p2 = w::Mul(w::Neg(side), p2);  // -side * pivot->p2
     // RockingOde::angular_acceleration, same operations (exact path).
-    auto accel = [&](V tau, V theta) HWY_INLINE_LAMBDA -> V {
+    // sn, cs: sin and cos of the angle to the vertical (phi), for the sample-end screen.
+    V sn_end = zero, cs_end = zero;
+    auto accel_sc = [&](V tau, V theta, V& sn, V& cs) HWY_INLINE_LAMBDA -> V {
       const V phi = w::Sub(alpha, w::Mul(side, theta));
       V vertical, horizontal;
       if constexpr (kExact) {
@@ -287,10 +289,13 @@ void RockingSampleT(BatchRocking::Lanes& l, std::size_t m, double dt, double tol
         vertical = w::Add(vy0, w::Mul(vys, tau));
         horizontal = w::Add(hx0, w::Mul(hxs, tau));
       }
-      V sn, cs;
       w::SinCos<kExact>(d, phi, sn, cs);
       return w::Mul(negside_p2,
                      w::Sub(w::Mul(vertical, sn), w::Mul(w::Mul(side, horizontal), cs)));
+    };
+    auto accel = [&](V tau, V theta) HWY_INLINE_LAMBDA -> V {
+      V sn, cs;
+      return accel_sc(tau, theta, sn, cs);
     };
 
     V th = gather(l.theta), om = gather(l.omega);
@@ -298,9 +303,11 @@ void RockingSampleT(BatchRocking::Lanes& l, std::size_t m, double dt, double tol
     V k1a = gather(l.k1a), k1b = gather(l.k1b);
     {
       const auto fsal = w::Ne(gather(l.fsal), zero);
-      const V f = accel(zero, th);
-      k1a = w::IfThenElse(fsal, k1a, om);
-      k1b = w::IfThenElse(fsal, k1b, f);
+      if (!w::AllFalse(d, w::Not(fsal))) {  // a first step: no derivative kept from the last one
+        const V f = accel(zero, th);
+        k1a = w::IfThenElse(fsal, k1a, om);
+        k1b = w::IfThenElse(fsal, k1b, f);
+      }
     }
     V t = zero, maxr = zero, steps = zero, attempts = zero, h_try = zero;
     auto active = lane_on;
@@ -340,7 +347,8 @@ void RockingSampleT(BatchRocking::Lanes& l, std::size_t m, double dt, double tol
       const V k6a = y1, k6b = accel(t_h, y0);
       const V y5a = w::Add(th, w::Mul(h, acc(acc(acc(lin2(a71, k1a, a73, k3a), a74, k4a), a75, k5a), a76, k6a)));
       const V y5b = w::Add(om, w::Mul(h, acc(acc(acc(lin2(a71, k1b, a73, k3b), a74, k4b), a75, k5b), a76, k6b)));
-      const V k7a = y5b, k7b = accel(t_h, y5a);
+      V sn7, cs7;
+      const V k7a = y5b, k7b = accel_sc(t_h, y5a, sn7, cs7);
       // Error estimate (Dopri5Stepper::step).
       const V ea = w::Mul(h, acc(acc(acc(acc(lin2(e1, k1a, e3, k3a), e4, k4a), e5, k5a), e6, k6a), e7, k7a));
       const V eb = w::Mul(h, acc(acc(acc(acc(lin2(e1, k1b, e3, k3b), e4, k4b), e5, k5b), e6, k6b), e7, k7b));
@@ -391,17 +399,20 @@ void RockingSampleT(BatchRocking::Lanes& l, std::size_t m, double dt, double tol
       steps = w::IfThenElse(good, w::Add(steps, attempts), steps);
       const V ratio = kExact ? w::Div(w::Abs(th), alpha) : w::Mul(w::Abs(th), inv_alpha);
       maxr = w::IfThenElse(good, w::Max(maxr, ratio), maxr);
+      sn_end = w::IfThenElse(good, sn7, sn_end);  // the last accepted step ends at the sample end
+      cs_end = w::IfThenElse(good, cs7, cs_end);
       // Rejected steps retry with h * factor (not below h_min).
       const auto rejected = w::AndNot(accept, active);
       h_try = w::IfThenElse(rejected, w::Max(w::Mul(h, factor), h_min), h_try);
       retry = rejected;
       active = w::And(w::AndNot(dropped, active), w::Lt(t, dtv));
     }
-    // Sample-end screen (Highway Sin/Cos; a filter only, with margins far above its error).
+    // Sample-end screen (a filter only, with margins far above the error of its sin/cos: those of
+    // the last stage, at the sample end's theta, exact or Highway's).
     {
       const V ax1 = w::Add(ax0, w::Mul(axs, dtv)), ay1 = w::Add(ay0, w::Mul(ays, dtv));
       const V phi = w::Sub(alpha, w::Mul(side, th));
-      const V sn = w::Sin(d, phi), cs = w::Cos(d, phi);
+      const V sn = sn_end, cs = cs_end;
       const V thdd = w::Mul(negside_p2, w::Sub(w::Mul(w::Add(one, w::Div(ay1, g)), sn),
                                                  w::Mul(w::Mul(side, w::Div(ax1, g)), cs)));
       const V R = gather(l.radius);
