@@ -35,6 +35,13 @@ inline double thread_cpu_seconds() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
+/// CPU time of the whole process (all threads), s: what several threads cost together.
+inline double process_cpu_seconds() {
+  timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
 /// The live feed rate the capacity figures refer to.
 inline constexpr double kFeedRate = 200.0;  // Hz
 inline constexpr double kFeedDt = 1.0 / kFeedRate;

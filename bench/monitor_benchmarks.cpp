@@ -21,7 +21,12 @@
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "allocation_counter.hpp"
 #include "bench_common.hpp"
@@ -161,6 +166,55 @@ void BM_MonitorBatch(benchmark::State& state) {
   state.counters["deferred_frac"] = deferred / planes;
 }
 
+// All the cores (issue 28 part 5): the batch stepped as the node does with ~threads (TBB arena,
+// parallel_for over ranges of 32 items, each range rotating its items' inputs and stepping them).
+// Counters: wall_ms_per_sample (wall clock: what bounds the lag), cpu_ms_per_sample (all threads,
+// CLOCK_PROCESS_CPUTIME_ID), threads; results do not depend on the thread count (test_monitor_batch).
+void BM_MonitorBatchThreads(benchmark::State& state, int threads) {
+  const Case& c = *g_case;
+  std::vector<std::unique_ptr<ItemMonitor>> items;
+  for (const CatalogueItem& it : c.items) items.push_back(std::make_unique<ItemMonitor>(it.spec, options()));
+  const std::size_t n = c.feed.e.size(), m = items.size();
+  std::vector<double> ax(m), ay(m), az(m);
+  double wall = 0, cpu = 0, samples = 0;
+  tbb::task_arena arena(threads);
+  for (auto _ : state) {
+    std::vector<ItemMonitor*> ptrs;
+    for (std::size_t k = 0; k < m; ++k) {
+      item_input(c, k, 0, ax[k], ay[k]);
+      items[k]->start(0.0, ax[k], ay[k], c.feed.up[0], c.feed.dt);
+      ptrs.push_back(items[k].get());
+    }
+    MonitorBatch batch(ptrs);
+    const double c0 = rb::process_cpu_seconds();
+    const auto t0 = std::chrono::steady_clock::now();
+    for (std::size_t i = 1; i < n; ++i) {
+      auto range = [&](std::size_t b, std::size_t e) {
+        for (std::size_t k = b; k < e; ++k) {
+          item_input(c, k, i, ax[k], ay[k]);
+          az[k] = c.feed.up[i];
+        }
+        batch.step(b, e, ax.data(), ay.data(), az.data(), c.feed.dt);
+      };
+      if (threads == 1) {
+        range(0, m);
+      } else {
+        arena.execute([&] {
+          tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m, 32),
+                            [&](const tbb::blocked_range<std::size_t>& r) { range(r.begin(), r.end()); });
+        });
+      }
+    }
+    wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    cpu += rb::process_cpu_seconds() - c0;
+    samples += static_cast<double>(n - 1);
+  }
+  state.counters["wall_ms_per_sample"] = 1e3 * wall / samples;
+  state.counters["cpu_ms_per_sample"] = 1e3 * cpu / samples;
+  state.counters["threads"] = threads;
+  state.counters["items"] = static_cast<double>(m);
+}
+
 // State snapshots (issue 29): the batch stepped into the strong motion, then every 10th sample (0.1 s
 // at 100 Hz: the node's default ~snapshot_period) all items synced and encoded into one buffer, as
 // RockingMonitor::take_snapshot does between samples. Counters: snapshot_bytes, encode_ms (sync +
@@ -255,6 +309,15 @@ int main(int argc, char** argv) {
   const std::string tag = "monitor/takatori/" + std::to_string(g_case->items.size()) + "_two_plane/adaptive";
   benchmark::RegisterBenchmark((tag + "/item_monitors").c_str(), BM_ItemMonitors)->Unit(benchmark::kMillisecond)->Iterations(1);
   benchmark::RegisterBenchmark((tag + "/batch").c_str(), BM_MonitorBatch)->Unit(benchmark::kMillisecond)->Iterations(1);
+  const int cores = static_cast<int>(std::thread::hardware_concurrency());
+  std::vector<int> counts{1, 2};
+  if (cores > 2) counts.push_back(cores);  // 1, 2 and all cores
+  for (int threads : counts) {
+    benchmark::RegisterBenchmark((tag + "/batch_threads:" + std::to_string(threads)).c_str(), BM_MonitorBatchThreads, threads)
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1)
+        ->UseRealTime();
+  }
   benchmark::RegisterBenchmark((tag + "/state_snapshot").c_str(), BM_StateSnapshot)->Unit(benchmark::kMillisecond)->Iterations(1);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

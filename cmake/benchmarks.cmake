@@ -35,7 +35,8 @@ if(benchmark_FOUND)
 
   add_executable(monitor_benchmarks bench/monitor_benchmarks.cpp)
   target_include_directories(monitor_benchmarks PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/bench ${CMAKE_CURRENT_SOURCE_DIR}/test/support)
-  target_link_libraries(monitor_benchmarks PRIVATE rocking_monitor_core benchmark::benchmark)
+  find_package(TBB REQUIRED)
+  target_link_libraries(monitor_benchmarks PRIVATE rocking_monitor_core benchmark::benchmark TBB::tbb)
   target_compile_definitions(monitor_benchmarks PRIVATE ROCKING_RECORDS_DIR="${ROCKING_RECORDS_DIR}"
                              ROCKING_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
   target_compile_options(monitor_benchmarks PRIVATE -Wall -Wextra)
