@@ -108,8 +108,10 @@ void BatchRocking::refresh_mirror(std::size_t k) {
   l.ax_prev[k] = m.last_ax();
   l.ay_prev[k] = m.last_ay();
   l.t[k] = m.time();
-  l.vr[k] = vector_rocking_ && m.mode() == Mode::Rocking ? 1.0 : 0.0;
-  if (l.vr[k] == 0.0) return;
+  const double vr = vector_rocking_ && m.mode() == Mode::Rocking ? 1.0 : 0.0;
+  vr_count_ += static_cast<long>(vr) - static_cast<long>(l.vr[k]);
+  l.vr[k] = vr;
+  if (vr == 0.0) return;
   // The model just stepped (or was set up): its pivot, flags and integrator state, read once here
   // instead of every sample.
   const int s = m.side();
@@ -164,8 +166,9 @@ void BatchRocking::step(const double* ax, const double* ay, double dt) {
 
   // 2. ROCKING lanes: the vector dopri5 on their state in place.
   std::size_t m = 0;
-  for (std::size_t k = 0; k < n; ++k)
-    if (l.vr[k] != 0.0) l.idx[m++] = static_cast<std::uint32_t>(k);
+  if (vr_count_ > 0)  // no walk over the lanes when none rocks
+    for (std::size_t k = 0; k < n; ++k)
+      if (l.vr[k] != 0.0) l.idx[m++] = static_cast<std::uint32_t>(k);
   if (m > 0) {
     const std::size_t mp = padded(m);
     for (std::size_t i = m; i < mp; ++i) l.idx[i] = l.idx[m - 1];  // same lane again: same results
@@ -174,14 +177,6 @@ void BatchRocking::step(const double* ax, const double* ay, double dt) {
 
   // 3. Per lane: rest (fast), rocking (the kernel's result kept or committed), everything else (scalar).
   for (std::size_t k = 0; k < n; ++k) {
-    if (l.over[k]) {  // RockingModel::apply_rest_samples: what step() does on its side
-      l.t[k] += dt;
-      l.ax_prev[k] = ax[k];
-      l.ay_prev[k] = ay[k];
-      ++l.deferred[k];
-      ++stats_.rest_fast;
-      continue;
-    }
     if (l.rest[k] && !l.maybe_lift[k]) {
       // free_flight() and slides_from_rest() at the sample end, as RockingModel::update_criteria
       // evaluates them (ay + g < 0; mu_s given), with room for its rounding of the input line.
@@ -194,6 +189,14 @@ void BatchRocking::step(const double* ax, const double* ay, double dt) {
         ++stats_.rest_fast;
         continue;
       }
+    }
+    if (l.over[k]) {  // RockingModel::apply_rest_samples: what step() does on its side
+      l.t[k] += dt;
+      l.ax_prev[k] = ax[k];
+      l.ay_prev[k] = ay[k];
+      ++l.deferred[k];
+      ++stats_.rest_fast;
+      continue;
     }
     if (l.vr[k] != 0.0 && l.clean[k] && l.end_clear[k]) {
       // Nothing can change at the sample end: the sample stays in the lane (the same additions as

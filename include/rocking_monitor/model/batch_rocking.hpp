@@ -145,6 +145,7 @@ class BatchRocking {
   SolverSettings settings_;
   BatchTrig trig_;
   bool vector_rocking_ = false;  // dopri5 + nonlinear model
+  long vr_count_ = 0;            // lanes with lanes_.vr set
   mutable Lanes lanes_;
   BatchStats stats_;
   std::vector<double> bcast_ax_, bcast_ay_;
