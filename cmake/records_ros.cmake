@@ -4,7 +4,9 @@
 find_package(yaml-cpp REQUIRED)
 
 # Sources of ground motion + message filling, shared by the tool and the node.
-add_library(rocking_records_ros STATIC src/ros/ground_motion_source.cpp src/ros/ground_motion_player.cpp)
+add_library(rocking_records_ros STATIC src/ros/ground_motion_source.cpp src/ros/ground_motion_player.cpp
+            src/ros/sample_history_server.cpp)
+add_dependencies(rocking_records_ros ${PROJECT_NAME}_generate_messages_cpp)  # SampleHistory.srv
 target_include_directories(rocking_records_ros PUBLIC
   $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> ${catkin_INCLUDE_DIRS})
 target_link_libraries(rocking_records_ros PUBLIC rocking_monitor_core ${catkin_LIBRARIES} yaml-cpp)
