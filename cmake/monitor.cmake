@@ -2,7 +2,8 @@
 include_directories(${catkin_INCLUDE_DIRS})
 add_library(rocking_monitor_ros
   src/ros/monitor.cpp src/ros/monitor_sample_path.cpp src/ros/monitor_publication.cpp
-  src/ros/monitor_diagnostics.cpp src/ros/monitor_journal.cpp src/ros/monitor_snapshot.cpp src/ros/catalogue.cpp)
+  src/ros/monitor_diagnostics.cpp src/ros/monitor_journal.cpp src/ros/monitor_snapshot.cpp src/ros/monitor_catch_up.cpp
+  src/ros/catalogue.cpp)
 target_include_directories(rocking_monitor_ros PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include ${catkin_INCLUDE_DIRS})
 find_package(TBB REQUIRED)
 target_link_libraries(rocking_monitor_ros PUBLIC rocking_monitor_core ${catkin_LIBRARIES} TBB::tbb)

@@ -159,7 +159,7 @@ void RockingMonitor::resume_sensor(std::size_t si, const ::ros::Time& stamp) {
                "%.3f s %s this one, 0 samples missing (samples up to it are dropped as already stepped)",
                s.spec.name.c_str(), s.items.size(), snapshot_path_.c_str(), std::abs(gap),
                gap > 0.0 ? "before" : "after");
-    if (gap > 0.0) {
+    if (gap > 0.0 && r.missing > 0) {
       // The gap in the journal, as a stale period that opened at the snapshot's last sample.
       if (const std::string e = journal_.append_stale(s.spec.name, before.toSec(), stamp.toSec(), s.epoch.toSec(),
                                                       journal_clock(stamp));
