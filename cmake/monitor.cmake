@@ -72,6 +72,9 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/monitor_restart.test DEPENDENCIES monitor)
   add_rostest(test/ros/monitor_restart.test ARGS kill_after:=1.0 DEPENDENCIES monitor)
   add_rostest(test/ros/monitor_restart.test ARGS catch_up:=false DEPENDENCIES monitor)
+  # Issue 29 part 2: killed twice mid strong motion, caught up from ground_motion_player's ~history:
+  # the unbroken control's alarms exactly.
+  add_rostest(test/ros/monitor_catch_up.test DEPENDENCIES monitor ground_motion_player)
   # Issue 29 part 4: the same record twice, 60 s of quiet apart: two events, every level alarmed in both.
   add_rostest(test/ros/monitor_aftershock.test DEPENDENCIES monitor)
   # Issue 28: ~state_changes applied to one ~states give the last ~states (Python).

@@ -67,7 +67,7 @@ bool RockingMonitor::catch_up(std::size_t si) {
 
   // The items continue at the first missed sample (nothing missing), then every missed one is stepped
   // through the sample path as if it had arrived; the live samples wait in the subscriber queue.
-  resume_sensor(si, r.stamps[0]);
+  resume_sensor(si, r.stamps[0], true);
   catching_up_ = true;
   std_msgs::Header h;
   h.frame_id = r.frame_id;

@@ -335,7 +335,9 @@ class RockingMonitor {
   /// sensors, items: the catalogue's parameters (with the model options, the configuration a
   /// snapshot must have been written by).
   void open_snapshot(const XmlRpc::XmlRpcValue& sensors, const XmlRpc::XmlRpcValue& items);
-  void resume_sensor(std::size_t sensor, const ::ros::Time& stamp);
+  /// next_in_history: `stamp` is the sample right after the snapshot's last (from a bridge's history):
+  /// nothing is missing whatever the stamps' spacing.
+  void resume_sensor(std::size_t sensor, const ::ros::Time& stamp, bool next_in_history = false);
   void take_snapshot(const ::ros::Time& stamp);
   void snapshot_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& stat);
 
