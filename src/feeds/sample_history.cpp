@@ -33,16 +33,16 @@ bool SampleHistory::push(std::int64_t stamp_ns, double x, double y, double z) {
     }
     if (stamp_ns < newest) {  // a new time base: what is kept no longer leads up to this sample
       ++restarts_;
-      discarded_ = true;
+      discard(newest);
       head_ = 0;
       size_ = 0;
     }
   }
   if (size_ == ring_.size()) {
+    discard(at(0).stamp_ns);
     head_ = (head_ + 1) % ring_.size();
     --size_;
     ++overwritten_;
-    discarded_ = true;
   }
   ring_[(head_ + size_) % ring_.size()] = HistorySample{stamp_ns, x, y, z};
   ++size_;
@@ -62,11 +62,8 @@ SampleHistory::Range SampleHistory::since(std::int64_t after_ns, std::vector<His
   out.resize(size_ - lo);
   for (std::size_t i = lo; i < size_; ++i) out[i - lo] = at(i);
   r.count = out.size();
-  // Complete when a kept sample is at or before after_ns (nothing after it can be missing), or when
-  // the ring still holds everything it was ever given.
-  r.complete = lo > 0 || !discarded_;
-  // Asked for after a stamp the source has since gone back before: the samples it speaks of are gone.
-  if (restarts_ > 0 && size_ > 0 && at(size_ - 1).stamp_ns < after_ns) r.complete = false;
+  // Complete when every sample thrown away was stamped at or before after_ns.
+  r.complete = !discarded_ || lost_newest_ns_ <= after_ns;
   if (size_ > 0) {
     r.oldest_ns = at(0).stamp_ns;
     r.newest_ns = at(size_ - 1).stamp_ns;

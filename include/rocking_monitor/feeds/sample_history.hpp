@@ -6,6 +6,7 @@
 // refused (counted), an earlier one means the source restarted its time base, so the ring starts
 // afresh (counted) rather than serve a history that goes back in time.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -52,7 +53,12 @@ class SampleHistory {
   std::vector<HistorySample> ring_;
   std::size_t head_ = 0;  ///< index of the oldest sample
   std::size_t size_ = 0;
-  bool discarded_ = false;  ///< some sample was overwritten or thrown away (the ring no longer holds all)
+  void discard(std::int64_t stamp_ns) {
+    lost_newest_ns_ = discarded_ ? std::max(lost_newest_ns_, stamp_ns) : stamp_ns;
+    discarded_ = true;
+  }
+  bool discarded_ = false;         ///< some sample was overwritten or thrown away (the ring no longer holds all)
+  std::int64_t lost_newest_ns_ = 0;  ///< the newest stamp thrown away: requests after it are complete
   std::uint64_t pushed_ = 0, overwritten_ = 0, refused_ = 0, restarts_ = 0;
 };
 
