@@ -125,7 +125,7 @@ PlayerConfig read_player_config(const ros::NodeHandle& pnh) {
     if (v < 0.0) throw std::invalid_argument("~linger: must be >= 0 s");
     c.linger = v;
   }
-  c.history_length = read_history_length(pnh);
+  c.history_length = live::read_history_length(pnh);
   if (c.topic == c.accel_topic) throw std::invalid_argument("~accel_topic: must differ from ~topic");
   if (c.frame_id.empty()) throw std::invalid_argument("~frame_id: must not be empty");
   const int sources = (c.source.files.empty() ? 0 : 1) + (c.source.station.empty() ? 0 : 1) + (c.source.synthetic.empty() ? 0 : 1);
@@ -146,7 +146,7 @@ GroundMotionPlayer::GroundMotionPlayer(ros::NodeHandle& nh, ros::NodeHandle& pnh
   if (config_.history_length > 0.0) {
     // Samples per second of stamp time: the record's rate times ~rate_factor (either stamp source).
     const double rate = config_.rate_factor / motion_.dt;
-    history_ = std::make_unique<SampleHistoryServer>(config_.history_length);
+    history_ = std::make_unique<live::SampleHistoryServer>(config_.history_length);
     imu_history_ = history_->add_topic(imu_pub_.getTopic(), "sensor_msgs/Imu", config_.frame_id, rate);
     if (accel_pub_)
       accel_history_ = history_->add_topic(accel_pub_.getTopic(), "geometry_msgs/AccelStamped", config_.frame_id, rate);

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-namespace rocking_monitor::records {
+namespace rocking_monitor::live {
 
 double read_history_length(const ros::NodeHandle& pnh) {
   XmlRpc::XmlRpcValue v;
@@ -77,4 +77,4 @@ bool SampleHistoryServer::serve(SampleHistory::Request& req, SampleHistory::Resp
   return true;
 }
 
-}  // namespace rocking_monitor::records
+}  // namespace rocking_monitor::live

@@ -36,7 +36,7 @@ struct PlayerConfig {
   bool stamp_now = true;                 ///< ~stamp_source: "now" (ros::Time::now() at publish) | "schedule" (the due time)
   int wait_for_subscribers = 0;          ///< ~wait_for_subscribers: wait for this many Imu subscribers before starting
   double linger = 1.0;                   ///< ~linger, s: stay up after the end so the last messages and ~finished are delivered
-  double history_length = kDefaultHistoryLength;  ///< ~history_length, s of samples kept for ~history (0 = off)
+  double history_length = live::kDefaultHistoryLength;  ///< ~history_length, s of samples kept for ~history (0 = off)
 };
 
 /// Reads the private parameters; throws std::invalid_argument naming the parameter ("~azimuth: ...").
@@ -68,7 +68,7 @@ class GroundMotionPlayer {
   ros::Publisher imu_pub_;
   ros::Publisher accel_pub_;
   ros::Publisher finished_pub_;
-  std::unique_ptr<SampleHistoryServer> history_;  // null: ~history_length 0
+  std::unique_ptr<live::SampleHistoryServer> history_;  // null: ~history_length 0
   std::size_t imu_history_ = 0, accel_history_ = 0;
 };
 

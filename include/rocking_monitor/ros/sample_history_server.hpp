@@ -4,7 +4,7 @@
 // part 2): a restarted monitor asks for what it missed since its state snapshot and steps it before
 // it joins the live stream. The rings are the core's (feeds/sample_history.hpp), one per published
 // topic, allocated when the topic is added: push() takes a lock and copies, nothing else. Used by
-// ground_motion_player (and meant for udp_accel_bridge and seedlink_bridge the same way).
+// ground_motion_player, udp_accel_bridge and seedlink_bridge.
 
 #include <cstddef>
 #include <memory>
@@ -17,7 +17,7 @@
 #include "rocking_monitor/SampleHistory.h"
 #include "rocking_monitor/feeds/sample_history.hpp"
 
-namespace rocking_monitor::records {
+namespace rocking_monitor::live {
 
 /// Default ~history_length, s: a few minutes, longer than a monitor takes to be restarted (respawn).
 inline constexpr double kDefaultHistoryLength = 300.0;
@@ -60,4 +60,4 @@ class SampleHistoryServer {
   ros::ServiceServer server_;
 };
 
-}  // namespace rocking_monitor::records
+}  // namespace rocking_monitor::live
