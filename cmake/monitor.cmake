@@ -75,6 +75,9 @@ if(CATKIN_ENABLE_TESTING)
   # Issue 29 part 2: killed twice mid strong motion, caught up from ground_motion_player's ~history:
   # the unbroken control's alarms exactly.
   add_rostest(test/ros/monitor_catch_up.test DEPENDENCIES monitor ground_motion_player)
+  # ... and a history shorter than the restart: the frozen gap, said in the log and /diagnostics.
+  add_rostest(test/ros/monitor_catch_up.test ARGS history_length:=0.1 expect_catch_up:=false kill_after:=0.3
+              DEPENDENCIES monitor ground_motion_player)
   # Issue 29 part 4: the same record twice, 60 s of quiet apart: two events, every level alarmed in both.
   add_rostest(test/ros/monitor_aftershock.test DEPENDENCIES monitor)
   # Issue 28: ~state_changes applied to one ~states give the last ~states (Python).

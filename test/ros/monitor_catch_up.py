@@ -11,6 +11,9 @@ leaves rest and restarted at once on the same files; the control (/catchup_ctl) 
 - the alarms of all the monitor's runs together are exactly the control's: every (item, level) at the
   same event time on the same plane, none alarmed twice (one sent again from the journal is the same alarm).
 Measured and logged (not pass/fail): the catch-up speed and the time from each kill to rejoining live.
+With ~expect_catch_up false the player keeps less than a restart takes (~history_length 0.1 s): the
+restarted monitor must say in its log and in /diagnostics that it could not catch up, and continue across
+a frozen gap (part 1), its missing samples counted.
 """
 import os
 import re
@@ -22,6 +25,7 @@ import unittest
 import rospy
 import rostest
 from rocking_monitor.msg import RockingStateArray
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from std_msgs.msg import Bool
 
 from monitor_journal import Monitor, key, wait_for
@@ -74,6 +78,9 @@ class CatchUp(unittest.TestCase):
             nxt = Monitor('catchup_mon', os.path.join(scratch, 'monitor%d.log' % (n + 2)))
             self.addCleanup(nxt.close)
             runs.append(nxt)
+            if not rospy.get_param('~expect_catch_up'):
+                self.check_frozen_gap(nxt)
+                return
             # Rejoined live: its states reach the newest input the control has stepped.
             wait_for('the restarted monitor to rejoin the live stream',
                      lambda: nxt.acked > 0.0 and nxt.acked >= control.acked - 0.02, timeout=30.0)
@@ -121,6 +128,27 @@ class CatchUp(unittest.TestCase):
         # Some (item, level) was first alarmed by a restarted run: its own stepping after the catch-up is compared.
         first_run = {key(a) for a in runs[0].alarms}
         self.assertTrue({key(a) for r in runs[1:] for a in r.alarms} - first_run, report)
+
+    def check_frozen_gap(self, restarted):
+        """The history does not reach back to the snapshot: the frozen gap, said in the log and /diagnostics."""
+        statuses = {}
+
+        def on_diag(m):
+            for st in m.status:
+                if 'catch-up' in st.name:
+                    statuses[st.name] = st
+        sub = rospy.Subscriber('/diagnostics', DiagnosticArray, on_diag, queue_size=100)
+        self.addCleanup(sub.unregister)
+        wait_for('the fallback in the log', lambda: 'not caught up from /player/history' in restarted.text(), timeout=15.0)
+        log = restarted.text()
+        self.assertIn("not caught up from /player/history: its history does not reach back to the snapshot's last "
+                      "sample", log)
+        self.assertIn('INCOMPLETE', log)
+        self.assertRegex(log, r'continue from the state snapshot .*: its last sample is 0\.[0-9]+ s before this one, '
+                              r'[1-9][0-9]* samples missing: a gap, frozen, not bridged')
+        wait_for('the catch-up status in /diagnostics', lambda: any(
+            st.level == DiagnosticStatus.WARN and 'frozen gap' in st.message for st in statuses.values()), timeout=15.0)
+
 
 if __name__ == '__main__':
     rospy.init_node('monitor_catch_up_test')
