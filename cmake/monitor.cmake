@@ -71,10 +71,12 @@ if(CATKIN_ENABLE_TESTING)
   # damaged, foreign and stale snapshots refused (Python; uses monitor_journal.py's helpers).
   add_rostest(test/ros/monitor_restart.test DEPENDENCIES monitor)
   add_rostest(test/ros/monitor_restart.test ARGS kill_after:=1.0 DEPENDENCIES monitor)
-  add_rostest(test/ros/monitor_restart.test ARGS catch_up:=false DEPENDENCIES monitor)
+  add_rostest(test/ros/monitor_restart.test ARGS catch_up:=false catch_up_service:=/no_bridge/history DEPENDENCIES monitor)
   # Issue 29 part 2: killed twice mid strong motion, caught up from ground_motion_player's ~history:
   # the unbroken control's alarms exactly.
   add_rostest(test/ros/monitor_catch_up.test DEPENDENCIES monitor ground_motion_player)
+  # ... also when restarted 3 s later (beyond ~max_bridge: without the history the snapshot is stale).
+  add_rostest(test/ros/monitor_catch_up.test ARGS kill_after:=0.3 restart_delay:=3.0 DEPENDENCIES monitor ground_motion_player)
   # ... and a history shorter than the restart: the frozen gap, said in the log and /diagnostics.
   add_rostest(test/ros/monitor_catch_up.test ARGS history_length:=0.1 expect_catch_up:=false kill_after:=0.3
               DEPENDENCIES monitor ground_motion_player)

@@ -5,7 +5,7 @@ bridge's history and alarms exactly as if it had never stopped (issue 29 part 2)
 ground_motion_player plays the real Rinaldi 228 record in real time and keeps its history (~history). The
 example catalogue's monitor (/catchup_mon: journal and snapshot in a scratch folder, ~catch_up_service
 /player/history) is killed with SIGKILL at each of ~kill_after s of input after the control's first item
-leaves rest and restarted at once on the same files; the control (/catchup_ctl) is never killed. Checked:
+leaves rest and restarted at once (or ~restart_delay s later) on the same files; the control (/catchup_ctl) is never killed. Checked:
 - each restarted monitor continues from its snapshot with nothing missing and says it caught up from the
   player's history, then rejoins the live stream;
 - the alarms of all the monitor's runs together are exactly the control's: every (item, level) at the
@@ -75,6 +75,7 @@ class CatchUp(unittest.TestCase):
             victim.sub_a.unregister()
             victim.sub_s.unregister()
             killed_input = victim.acked
+            time.sleep(rospy.get_param('~restart_delay'))  # 0: at once (respawn)
             nxt = Monitor('catchup_mon', os.path.join(scratch, 'monitor%d.log' % (n + 2)))
             self.addCleanup(nxt.close)
             runs.append(nxt)
