@@ -25,6 +25,7 @@ SampleHistory::SampleHistory(std::size_t capacity) {
 }
 
 bool SampleHistory::push(std::int64_t stamp_ns, double x, double y, double z) {
+  bool restarted = false;
   if (size_ > 0) {
     const std::int64_t newest = at(size_ - 1).stamp_ns;
     if (stamp_ns == newest) {
@@ -33,6 +34,7 @@ bool SampleHistory::push(std::int64_t stamp_ns, double x, double y, double z) {
     }
     if (stamp_ns < newest) {  // a new time base: what is kept no longer leads up to this sample
       ++restarts_;
+      restarted = true;
       discard(newest);
       head_ = 0;
       size_ = 0;
@@ -44,6 +46,7 @@ bool SampleHistory::push(std::int64_t stamp_ns, double x, double y, double z) {
     --size_;
     ++overwritten_;
   }
+  if (pushed_ == 0 || restarted) first_ns_ = stamp_ns;  // the time base's first sample
   ring_[(head_ + size_) % ring_.size()] = HistorySample{stamp_ns, x, y, z};
   ++size_;
   ++pushed_;
@@ -62,8 +65,10 @@ SampleHistory::Range SampleHistory::since(std::int64_t after_ns, std::vector<His
   out.resize(size_ - lo);
   for (std::size_t i = lo; i < size_; ++i) out[i - lo] = at(i);
   r.count = out.size();
-  // Complete when every sample thrown away was stamped at or before after_ns.
-  r.complete = !discarded_ || lost_newest_ns_ <= after_ns;
+  // Complete when the ring reaches back to after_ns (its first sample is at or before it: a source
+  // started later never had the samples in between) and every sample thrown away since was stamped at
+  // or before after_ns.
+  r.complete = pushed_ > 0 && first_ns_ <= after_ns && (!discarded_ || lost_newest_ns_ <= after_ns);
   if (size_ > 0) {
     r.oldest_ns = at(0).stamp_ns;
     r.newest_ns = at(size_ - 1).stamp_ns;

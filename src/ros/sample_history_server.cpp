@@ -70,7 +70,7 @@ bool SampleHistoryServer::serve(SampleHistory::Request& req, SampleHistory::Resp
   }
   char text[256];
   std::snprintf(text, sizeof text, "%zu samples of %s after %.9f%s (history holds %.1f s, %zu overwritten)", r.count,
-                req.topic.c_str(), req.after.toSec(), r.complete ? "" : ": INCOMPLETE, the oldest kept is later",
+                req.topic.c_str(), req.after.toSec(), r.complete ? "" : ": INCOMPLETE, the history does not reach back that far",
                 r.count > 0 ? 1e-9 * static_cast<double>(r.newest_ns - r.oldest_ns) : 0.0, overwritten);
   res.message = text;
   ROS_INFO("sample history: served %s", text);

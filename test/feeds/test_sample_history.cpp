@@ -78,13 +78,30 @@ TEST(SampleHistory, WrapsAroundKeepingTheNewestAndSaysWhenTheRequestReachesBeyon
   EXPECT_EQ(out.back().stamp_ns, kT0 + 999 * kDt);
 }
 
-TEST(SampleHistory, BeforeAnyOverwriteEverythingIsComplete) {
+TEST(SampleHistory, CompleteOnlyBackToItsFirstSample) {
   fd::SampleHistory h(64);
   push_range(h, 10, 20);
   std::vector<fd::HistorySample> out;
-  const auto r = h.since(0, out);  // from the beginning of time: the ring holds all there was
-  EXPECT_EQ(r.count, 10u);
+  // From its first sample on: all there, nothing thrown away.
+  auto r = h.since(kT0 + 10 * kDt, out);
+  EXPECT_EQ(r.count, 9u);
   EXPECT_TRUE(r.complete);
+  // Before it: a source started later never had the samples in between (e.g. a restarted bridge).
+  r = h.since(kT0 + 9 * kDt, out);
+  EXPECT_EQ(r.count, 10u);
+  EXPECT_FALSE(r.complete);
+  EXPECT_FALSE(fd::SampleHistory(4).since(0, out).complete);  // empty: reaches back to nothing
+}
+
+TEST(SampleHistory, CapacityOneKeepsTheNewest) {
+  fd::SampleHistory h(1);
+  push_range(h, 0, 5);
+  std::vector<fd::HistorySample> out;
+  auto r = h.since(kT0 + 3 * kDt, out);
+  ASSERT_EQ(r.count, 1u);
+  EXPECT_EQ(out[0].stamp_ns, kT0 + 4 * kDt);
+  EXPECT_TRUE(r.complete);
+  EXPECT_FALSE(h.since(kT0 + 2 * kDt, out).complete);
 }
 
 TEST(SampleHistory, RepeatedStampRefusedEarlierStampRestarts) {

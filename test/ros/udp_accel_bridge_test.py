@@ -139,11 +139,15 @@ class UdpAccelBridgeTest(unittest.TestCase):
                 self.assertEqual((s, x, y, z), (m.header.stamp, m.linear_acceleration.x, m.linear_acceleration.y,
                                                 m.linear_acceleration.z), key)
 
-        # The text bridge keeps the default minutes: everything, complete, from any stamp.
+        # The text bridge keeps the default minutes: everything after its first sample, complete.
         msgs = self.got['txt']
-        res = served('txt', rospy.Time(0))
+        res = served('txt', msgs[0].header.stamp)
         self.assertTrue(res.ok and res.complete, res.message)
         self.assertEqual((res.type, res.frame_id), ('sensor_msgs/Imu', 'accelerometer'))
+        same('txt', res, msgs[1:])
+        # From before it started: all it has, but not complete (it never had what came before).
+        res = served('txt', rospy.Time(0))
+        self.assertTrue(res.ok and not res.complete, res.message)
         same('txt', res, msgs)
         res = served('txt', msgs[700].header.stamp)
         self.assertTrue(res.complete, res.message)

@@ -33,7 +33,8 @@ class SampleHistory {
 
   struct Range {
     std::size_t count = 0;      ///< samples copied
-    bool complete = false;      ///< no sample stamped after `after_ns` was overwritten or thrown away
+    bool complete = false;      ///< the ring reaches back to `after_ns` (its first sample is at or before it) and
+                                ///< no sample stamped after `after_ns` was overwritten or thrown away
     std::int64_t oldest_ns = 0; ///< stamp of the oldest sample kept (0: none kept)
     std::int64_t newest_ns = 0; ///< stamp of the newest sample kept (0: none kept)
   };
@@ -59,6 +60,7 @@ class SampleHistory {
   }
   bool discarded_ = false;         ///< some sample was overwritten or thrown away (the ring no longer holds all)
   std::int64_t lost_newest_ns_ = 0;  ///< the newest stamp thrown away: requests after it are complete
+  std::int64_t first_ns_ = 0;      ///< the first stamp of the current time base: requests before it are not complete
   std::uint64_t pushed_ = 0, overwritten_ = 0, refused_ = 0, restarts_ = 0;
 };
 
