@@ -186,6 +186,12 @@ class UdpAccelBridgeTest(unittest.TestCase):
         code, out = self.run_bridge('_rate_hz:=100.0', '_port:=15611', '_bind_address:=127.0.0.1')  # the test's bridge has it
         self.assertEqual(code, 2, out)
         self.assertIn('cannot bind 127.0.0.1:15611', out)
+        code, out = self.run_bridge('_rate_hz:=100.0', '_port:=15699', '_history_length:=-5')
+        self.assertEqual(code, 2, out)
+        self.assertIn('~history_length: -5.000000 s must be in [0, 86400] (0 = no history)', out)
+        code, out = self.run_bridge('_rate_hz:=100.0', '_port:=15699', '_history_length:=long')
+        self.assertEqual(code, 2, out)
+        self.assertIn('~history_length: must be a number of seconds (0 = no history)', out)
 
 
 if __name__ == '__main__':
