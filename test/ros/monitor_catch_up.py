@@ -61,6 +61,15 @@ class CatchUp(unittest.TestCase):
         # The player starts once both monitors listen (~wait_for_subscribers 2).
         wait_for('the control\'s first item to leave rest', lambda: bool(moving), timeout=60.0)
 
+        statuses = {}
+
+        def on_diag(m):
+            for st in m.status:
+                if 'catch-up' in st.name:
+                    statuses[st.name] = st
+        diag_sub = rospy.Subscriber('/diagnostics', DiagnosticArray, on_diag, queue_size=100)
+        self.addCleanup(diag_sub.unregister)
+
         measured = []
         for n, after in enumerate(kills):
             wait_for('the control %.2f s after the first item left rest' % after,
@@ -98,6 +107,16 @@ class CatchUp(unittest.TestCase):
                             % (n + 1, after, killed_input - moving[0], m.group(1), m.group(2), m.group(3),
                                m.group(4), rejoin))
             rospy.loginfo(measured[-1])
+        # /diagnostics of the last run: caught up, and the live samples that were also in the history dropped
+        # and counted (at least the first live one: kept in the history before it was published).
+        def caught_up_in_diagnostics():
+            for st in statuses.values():
+                values = {kv.key: kv.value for kv in st.values}
+                dropped = values.get('sensor ground_floor: live samples dropped as already stepped', '0')
+                if st.level == DiagnosticStatus.OK and st.message.startswith('caught up') and int(dropped) >= 1:
+                    return True
+            return False
+        wait_for('the catch-up in /diagnostics', caught_up_in_diagnostics, timeout=10.0)
         wait_for('the end of the record', lambda: bool(finished), timeout=60.0)
         wait_for('both monitors to step the last sample', lambda: runs[-1].acked >= control.acked > 0.0, timeout=10.0)
         time.sleep(1.0)
