@@ -75,6 +75,9 @@ if(CATKIN_ENABLE_TESTING)
   # Issue 29 part 2: killed twice mid strong motion, caught up from ground_motion_player's ~history:
   # the unbroken control's alarms exactly.
   add_rostest(test/ros/monitor_catch_up.test DEPENDENCIES monitor ground_motion_player)
+  # ... killed just before alarms (the shelving unit's COMMITTED at 0.95 s, the rack's OVERTURNED at 2.56 s):
+  # raised while catching up.
+  add_rostest(test/ros/monitor_catch_up.test ARGS kill_after:=0.93_2.5 DEPENDENCIES monitor ground_motion_player)
   # ... also when restarted 3 s later (beyond ~max_bridge: without the history the snapshot is stale).
   add_rostest(test/ros/monitor_catch_up.test ARGS kill_after:=0.3 restart_delay:=3.0 DEPENDENCIES monitor ground_motion_player)
   # ... and a history shorter than the restart: the frozen gap, said in the log and /diagnostics.

@@ -39,7 +39,7 @@ class CatchUp(unittest.TestCase):
         if not os.path.exists(path):
             print('NOTICE: record not found (%s): catch-up test skipped' % path)
             self.skipTest('record not found')
-        kills = [float(k) for k in str(rospy.get_param('~kill_after')).split()]
+        kills = [float(k) for k in str(rospy.get_param('~kill_after')).replace('_', ' ').split()]
         scratch = tempfile.mkdtemp(prefix='rocking_catch_up_')
         rospy.set_param('/catchup_mon/journal', os.path.join(scratch, 'journal.jsonl'))
         finished = []
