@@ -83,6 +83,9 @@ if(CATKIN_ENABLE_TESTING)
   # ... and a history shorter than the restart: the frozen gap, said in the log and /diagnostics.
   add_rostest(test/ros/monitor_catch_up.test ARGS history_length:=0.1 expect_catch_up:=false kill_after:=0.3
               DEPENDENCIES monitor ground_motion_player)
+  # ... and a history service that does not answer: given up after ~catch_up_timeout, the frozen gap.
+  add_rostest(test/ros/monitor_catch_up.test ARGS catch_up_service:=/slow_bridge/history catch_up_timeout:=1.0
+              expect_catch_up:=false kill_after:=0.3 DEPENDENCIES monitor ground_motion_player)
   # Issue 29 part 4: the same record twice, 60 s of quiet apart: two events, every level alarmed in both.
   add_rostest(test/ros/monitor_aftershock.test DEPENDENCIES monitor)
   # Issue 28: ~state_changes applied to one ~states give the last ~states (Python).

@@ -5,6 +5,9 @@
 
 #include <chrono>
 #include <cmath>
+#include <future>
+#include <memory>
+#include <thread>
 
 namespace rocking_monitor::live {
 
@@ -44,14 +47,22 @@ bool RockingMonitor::catch_up(std::size_t si) {
     caught_up_.push_back(c);
     return false;
   };
-  // Once per sensor and restart: the waits below happen before the first live sample is stepped.
+  // Once per sensor and restart: the waits below (each at most ~catch_up_timeout) happen before the
+  // first live sample is stepped; live samples queue meanwhile.
   if (!::ros::service::waitForService(service, ::ros::Duration(catch_up_timeout_)))
     return give_up("the service is not there (waited ~catch_up_timeout " + std::to_string(catch_up_timeout_) + " s)");
-  SampleHistory srv;
-  srv.request.topic = s.sub.getTopic();
-  srv.request.after = after;
-  if (!::ros::service::call(service, srv)) return give_up("the call failed");
-  const SampleHistory::Response& r = srv.response;
+  // The call on a thread of its own, so that a bridge that stops answering costs at most the timeout
+  // (roscpp's call has none); given up, the thread finishes on its own with its own copy.
+  auto srv = std::make_shared<SampleHistory>();
+  srv->request.topic = s.sub.getTopic();
+  srv->request.after = after;
+  auto answered = std::make_shared<std::promise<bool>>();
+  std::future<bool> done = answered->get_future();
+  std::thread([service, srv, answered] { answered->set_value(::ros::service::call(service, *srv)); }).detach();
+  if (done.wait_for(std::chrono::duration<double>(catch_up_timeout_)) != std::future_status::ready)
+    return give_up("no answer within ~catch_up_timeout " + std::to_string(catch_up_timeout_) + " s");
+  if (!done.get()) return give_up("the call failed");
+  const SampleHistory::Response& r = srv->response;
   if (!r.ok) return give_up("refused: " + r.message);
   const char* type = s.spec.type == SensorSpec::Type::Imu ? "sensor_msgs/Imu" : "geometry_msgs/AccelStamped";
   if (r.type != type) return give_up("its samples are " + r.type + ", this sensor's topic is " + type);

@@ -347,7 +347,7 @@ class RockingMonitor {
   // the live ones (those already stepped dropped and counted). Absent, failing or incomplete: the
   // frozen gap of part 1, said in the log and /diagnostics.
   std::string catch_up_service_;      // ~catch_up_service; "" = off
-  double catch_up_timeout_ = 2.0;     // ~catch_up_timeout, s to wait for the service to appear
+  double catch_up_timeout_ = 2.0;     // ~catch_up_timeout, s to wait for the service to appear, then for its answer
   bool catching_up_ = false;          // stepping history samples: no lag or overload from their age
   struct CaughtUp {
     std::string sensor;
