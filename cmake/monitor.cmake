@@ -2,7 +2,8 @@
 include_directories(${catkin_INCLUDE_DIRS})
 add_library(rocking_monitor_ros
   src/ros/monitor.cpp src/ros/monitor_sample_path.cpp src/ros/monitor_publication.cpp
-  src/ros/monitor_diagnostics.cpp src/ros/monitor_journal.cpp src/ros/monitor_snapshot.cpp src/ros/catalogue.cpp)
+  src/ros/monitor_diagnostics.cpp src/ros/monitor_journal.cpp src/ros/monitor_snapshot.cpp src/ros/monitor_catch_up.cpp
+  src/ros/catalogue.cpp)
 target_include_directories(rocking_monitor_ros PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include ${catkin_INCLUDE_DIRS})
 find_package(TBB REQUIRED)
 target_link_libraries(rocking_monitor_ros PUBLIC rocking_monitor_core ${catkin_LIBRARIES} TBB::tbb)
@@ -70,7 +71,21 @@ if(CATKIN_ENABLE_TESTING)
   # damaged, foreign and stale snapshots refused (Python; uses monitor_journal.py's helpers).
   add_rostest(test/ros/monitor_restart.test DEPENDENCIES monitor)
   add_rostest(test/ros/monitor_restart.test ARGS kill_after:=1.0 DEPENDENCIES monitor)
-  add_rostest(test/ros/monitor_restart.test ARGS catch_up:=false DEPENDENCIES monitor)
+  add_rostest(test/ros/monitor_restart.test ARGS catch_up:=false catch_up_service:=/no_bridge/history DEPENDENCIES monitor)
+  # Issue 29 part 2: killed twice mid strong motion, caught up from ground_motion_player's ~history:
+  # the unbroken control's alarms exactly.
+  add_rostest(test/ros/monitor_catch_up.test DEPENDENCIES monitor ground_motion_player)
+  # ... killed just before alarms (the shelving unit's COMMITTED at 0.95 s, the rack's OVERTURNED at 2.56 s):
+  # raised while catching up.
+  add_rostest(test/ros/monitor_catch_up.test ARGS kill_after:=0.93_2.5 DEPENDENCIES monitor ground_motion_player)
+  # ... also when restarted 3 s later (beyond ~max_bridge: without the history the snapshot is stale).
+  add_rostest(test/ros/monitor_catch_up.test ARGS kill_after:=0.3 restart_delay:=3.0 DEPENDENCIES monitor ground_motion_player)
+  # ... and a history shorter than the restart: the frozen gap, said in the log and /diagnostics.
+  add_rostest(test/ros/monitor_catch_up.test ARGS history_length:=0.1 expect_catch_up:=false kill_after:=0.3
+              DEPENDENCIES monitor ground_motion_player)
+  # ... and a history service that does not answer: given up after ~catch_up_timeout, the frozen gap.
+  add_rostest(test/ros/monitor_catch_up.test ARGS catch_up_service:=/slow_bridge/history catch_up_timeout:=1.0
+              expect_catch_up:=false kill_after:=0.3 DEPENDENCIES monitor ground_motion_player)
   # Issue 29 part 4: the same record twice, 60 s of quiet apart: two events, every level alarmed in both.
   add_rostest(test/ros/monitor_aftershock.test DEPENDENCIES monitor)
   # Issue 28: ~state_changes applied to one ~states give the last ~states (Python).

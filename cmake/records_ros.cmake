@@ -4,10 +4,19 @@
 find_package(yaml-cpp REQUIRED)
 
 # Sources of ground motion + message filling, shared by the tool and the node.
+# A bridge's recent samples served as ~history (issue 29 part 2): the player and both bridges.
+add_library(rocking_history_ros STATIC src/ros/sample_history_server.cpp)
+target_include_directories(rocking_history_ros PUBLIC
+  $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> ${catkin_INCLUDE_DIRS})
+target_link_libraries(rocking_history_ros PUBLIC rocking_monitor_feeds ${catkin_LIBRARIES})
+target_compile_options(rocking_history_ros PRIVATE -Wall -Wextra)
+set_target_properties(rocking_history_ros PROPERTIES POSITION_INDEPENDENT_CODE ON)
+add_dependencies(rocking_history_ros ${PROJECT_NAME}_generate_messages_cpp)  # SampleHistory.srv
+
 add_library(rocking_records_ros STATIC src/ros/ground_motion_source.cpp src/ros/ground_motion_player.cpp)
 target_include_directories(rocking_records_ros PUBLIC
   $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> ${catkin_INCLUDE_DIRS})
-target_link_libraries(rocking_records_ros PUBLIC rocking_monitor_core ${catkin_LIBRARIES} yaml-cpp)
+target_link_libraries(rocking_records_ros PUBLIC rocking_history_ros rocking_monitor_core ${catkin_LIBRARIES} yaml-cpp)
 target_compile_options(rocking_records_ros PRIVATE -Wall -Wextra)
 set_target_properties(rocking_records_ros PROPERTIES POSITION_INDEPENDENT_CODE ON)
 # default of record_to_bag --records-dir and the player's ~records_dir

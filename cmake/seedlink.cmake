@@ -18,7 +18,7 @@ endif()
 if(catkin_FOUND)
   add_executable(seedlink_bridge src/ros/seedlink_bridge_node.cpp src/ros/seedlink_bridge.cpp)
   target_include_directories(seedlink_bridge PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/include ${catkin_INCLUDE_DIRS})
-  target_link_libraries(seedlink_bridge PRIVATE rocking_monitor_core ${catkin_LIBRARIES} Threads::Threads)
+  target_link_libraries(seedlink_bridge PRIVATE rocking_history_ros rocking_monitor_core ${catkin_LIBRARIES} Threads::Threads)
   install(TARGETS seedlink_bridge record_to_mseed RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 endif()
 

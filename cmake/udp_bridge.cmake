@@ -2,7 +2,7 @@
 # udp_accel_bridge: a shaking-table controller's UDP stream -> sensor_msgs/Imu (README "Connect a shaking table")
 add_executable(udp_accel_bridge src/ros/udp_accel_bridge.cpp src/ros/udp_accel_bridge_node.cpp)
 target_include_directories(udp_accel_bridge PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/include ${catkin_INCLUDE_DIRS})
-target_link_libraries(udp_accel_bridge PRIVATE rocking_monitor_feeds rocking_monitor_constants ${catkin_LIBRARIES} Threads::Threads)
+target_link_libraries(udp_accel_bridge PRIVATE rocking_history_ros rocking_monitor_feeds rocking_monitor_constants ${catkin_LIBRARIES} Threads::Threads)
 target_compile_options(udp_accel_bridge PRIVATE -Wall -Wextra)
 install(TARGETS udp_accel_bridge RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 if(CATKIN_ENABLE_TESTING)

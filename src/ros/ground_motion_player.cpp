@@ -125,6 +125,7 @@ PlayerConfig read_player_config(const ros::NodeHandle& pnh) {
     if (v < 0.0) throw std::invalid_argument("~linger: must be >= 0 s");
     c.linger = v;
   }
+  c.history_length = live::read_history_length(pnh);
   if (c.topic == c.accel_topic) throw std::invalid_argument("~accel_topic: must differ from ~topic");
   if (c.frame_id.empty()) throw std::invalid_argument("~frame_id: must not be empty");
   const int sources = (c.source.files.empty() ? 0 : 1) + (c.source.station.empty() ? 0 : 1) + (c.source.synthetic.empty() ? 0 : 1);
@@ -142,6 +143,17 @@ GroundMotionPlayer::GroundMotionPlayer(ros::NodeHandle& nh, ros::NodeHandle& pnh
   imu_pub_ = nh.advertise<sensor_msgs::Imu>(config_.topic, queue);
   if (!config_.accel_topic.empty()) accel_pub_ = nh.advertise<geometry_msgs::AccelStamped>(config_.accel_topic, queue);
   finished_pub_ = pnh.advertise<std_msgs::Bool>("finished", 1, true);
+  if (config_.history_length > 0.0) {
+    // Samples per second of stamp time: the record's rate times ~rate_factor (either stamp source).
+    const double rate = config_.rate_factor / motion_.dt;
+    history_ = std::make_unique<live::SampleHistoryServer>(config_.history_length);
+    imu_history_ = history_->add_topic(imu_pub_.getTopic(), "sensor_msgs/Imu", config_.frame_id, rate);
+    if (accel_pub_)
+      accel_history_ = history_->add_topic(accel_pub_.getTopic(), "geometry_msgs/AccelStamped", config_.frame_id, rate);
+    history_->advertise(pnh);
+    ROS_INFO("ground_motion_player: keeping the last %.6g s (%zu samples) of each topic, served as %s",
+             config_.history_length, history_->capacity(imu_history_), pnh.resolveName("history").c_str());
+  }
   std_msgs::Bool b;
   b.data = false;
   finished_pub_.publish(b);
@@ -228,8 +240,16 @@ GroundMotionPlayer::Result GroundMotionPlayer::run() {
       r.max_lateness = std::max(r.max_lateness, lateness);
       const ros::Time stamp = config_.stamp_now ? ros::Time::now() : due_ros;
       const core::AccelerometerSample s = motion_.sample(i);
-      imu_pub_.publish(make_imu_message(s, stamp, config_.frame_id, variance_));
-      if (accel_pub_) accel_pub_.publish(make_accel_message(s, stamp, config_.frame_id));
+      const sensor_msgs::Imu imu = make_imu_message(s, stamp, config_.frame_id, variance_);
+      // Kept before it is published: a subscriber asking later finds whatever it did not receive.
+      if (history_) history_->push(imu_history_, stamp, imu.linear_acceleration.x, imu.linear_acceleration.y,
+                                   imu.linear_acceleration.z);
+      imu_pub_.publish(imu);
+      if (accel_pub_) {
+        const geometry_msgs::AccelStamped accel = make_accel_message(s, stamp, config_.frame_id);
+        if (history_) history_->push(accel_history_, stamp, accel.accel.linear.x, accel.accel.linear.y, accel.accel.linear.z);
+        accel_pub_.publish(accel);
+      }
       ++r.published;
     }
     if (r.interrupted) break;

@@ -83,7 +83,7 @@ bool RockingMonitor::load_parameters() {
   ok = ok && param(pnh_, "linearized_max_alpha", options_.linearized_max_alpha, "number") &&
        param(pnh_, "scene_envelope/horizontal", scene_h, "number") &&
        param(pnh_, "scene_envelope/vertical", scene_v, "number");
-  if (!ok || !load_journal_parameters() || !load_snapshot_parameters()) return false;
+  if (!ok || !load_journal_parameters() || !load_snapshot_parameters() || !load_catch_up_parameters()) return false;
   if (!(options_.linearized_max_alpha >= 0.0) || !(options_.linearized_max_alpha < 1.0)) {
     ROS_FATAL("rocking_monitor: ~linearized_max_alpha = %g rad must be in [0, 1) (0 = off)",
               options_.linearized_max_alpha);
@@ -296,6 +296,7 @@ bool RockingMonitor::init() {
   diagnostics_->add("catalogue", this, &RockingMonitor::catalogue_diagnostics);
   diagnostics_->add("alarm journal", this, &RockingMonitor::journal_diagnostics);
   diagnostics_->add("state snapshot", this, &RockingMonitor::snapshot_diagnostics);
+  if (!catch_up_service_.empty()) diagnostics_->add("catch-up", this, &RockingMonitor::catch_up_diagnostics);
 
   for (std::size_t i = 0; i < sensors_.size(); ++i) {
     Sensor& s = sensors_[i];

@@ -100,8 +100,17 @@ void RockingMonitor::on_sample(std::size_t si, const std_msgs::Header& header, c
                       s.spec.name.c_str(), reading.norm(), max_abs_acceleration_);
     return;
   }
-  // Issue 29: the first sample after a restart continues the sensor's items from the state snapshot.
-  if (resume_ && resume_pending_[si] && !s.timing.started()) resume_sensor(si, header.stamp);
+  // Issue 29: the first sample after a restart continues the sensor's items from the state snapshot,
+  // after the samples it missed if the bridge's history has them (part 2), else across a frozen gap.
+  if (resume_ && resume_pending_[si] && !s.timing.started() && !(!catch_up_service_.empty() && catch_up(si)))
+    resume_sensor(si, header.stamp);
+  if (!s.caught_up_to.isZero()) {
+    if (header.stamp <= s.caught_up_to) {  // stepped from the history already: received live meanwhile
+      ++s.caught_up_dropped;
+      return;
+    }
+    s.caught_up_to = ::ros::Time();  // joined the live stream
+  }
   // Issue 19: a stamp is checked against the node's clock and the last accepted stamp before it
   // steps anything; a lone bad stamp is dropped and counted, a new time base needs
   // ~rebase_samples consistent samples (held meanwhile, replayed when confirmed).
@@ -409,15 +418,15 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
   // Lag: how much later than its best so far this sample is stepped (node clock - stamp, minus its
   // minimum): a sensor clock offset from the node's (own clock, epoch records) is no lag.
   const double offset = (s.last_input_clock - header.stamp).toSec();
-  if (s.last_input_clock.isZero()) {
+  if (s.last_input_clock.isZero() || catching_up_) {
     // No clock yet (sim time before the first /clock): no lag to measure.
   } else if (!s.have_min_offset || offset < s.min_offset_s) {
     s.min_offset_s = offset;
     s.have_min_offset = true;
   }
-  s.lag_s = s.have_min_offset ? offset - s.min_offset_s : 0.0;
+  s.lag_s = s.have_min_offset && !catching_up_ ? offset - s.min_offset_s : 0.0;
   s.max_lag_s = std::max(s.max_lag_s, s.lag_s);
-  update_overload(s);
+  if (!catching_up_) update_overload(s);  // history samples are old by design: no overload from their age
   check_event_end(header.stamp);  // issue 29: the shaking stopped: the event ends, its levels re-armed
   // Issue 29: a state snapshot every ~snapshot_period of input time, spaced further for a catalogue
   // that takes long to encode (~snapshot_max_load); encoded now, written by the writer's thread.

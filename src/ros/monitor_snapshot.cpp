@@ -97,7 +97,7 @@ void RockingMonitor::open_snapshot(const XmlRpc::XmlRpcValue& sensors, const Xml
 // snapshot's last sample of it lies at most ~max_bridge before (and not ~backward_jump after) this one.
 // The samples in between are a gap, as issue 19 treats one: the items stay frozen through it, and the
 // first sample continues them as if it followed the last by one period (step_sample's AcceptGap).
-void RockingMonitor::resume_sensor(std::size_t si, const ::ros::Time& stamp) {
+void RockingMonitor::resume_sensor(std::size_t si, const ::ros::Time& stamp, bool next_in_history) {
   resume_pending_[si] = false;
   const bool last = std::none_of(resume_pending_.begin(), resume_pending_.end(), [](bool p) { return p; });
   const core::SnapshotSensor& ss = resume_->sensors[si];
@@ -146,7 +146,7 @@ void RockingMonitor::resume_sensor(std::size_t si, const ::ros::Time& stamp) {
     Resumed r;
     r.sensor = s.spec.name;
     r.gap_s = gap;
-    r.missing = period > 0.0 ? std::max(0L, std::lround(gap / period) - 1) : 0;
+    r.missing = period > 0.0 && !next_in_history ? std::max(0L, std::lround(gap / period) - 1) : 0;
     r.items = s.items.size();
     resumed_.push_back(r);
     snapshot_start_ = "resumed";
@@ -156,10 +156,12 @@ void RockingMonitor::resume_sensor(std::size_t si, const ::ros::Time& stamp) {
                s.items.size(), snapshot_path_.c_str(), gap, r.missing);
     else  // the feed sent its history again (a bridge's, or a replay): nothing is missing
       ROS_WARN("rocking_monitor: sensor '%s': its %zu items continue from the state snapshot %s: its last sample is "
-               "%.3f s %s this one, 0 samples missing (samples up to it are dropped as already stepped)",
+               "%.3f s %s this one, 0 samples missing (%s)",
                s.spec.name.c_str(), s.items.size(), snapshot_path_.c_str(), std::abs(gap),
-               gap > 0.0 ? "before" : "after");
-    if (gap > 0.0) {
+               gap > 0.0 ? "before" : "after",
+               next_in_history ? "this is the next sample, from the bridge's history"
+                               : "samples up to it are dropped as already stepped");
+    if (gap > 0.0 && r.missing > 0) {
       // The gap in the journal, as a stale period that opened at the snapshot's last sample.
       if (const std::string e = journal_.append_stale(s.spec.name, before.toSec(), stamp.toSec(), s.epoch.toSec(),
                                                       journal_clock(stamp));

@@ -3,6 +3,7 @@
 #include "rocking_monitor/ros/seedlink_bridge.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "rocking_monitor/constants.hpp"
 #include "rocking_monitor/feeds/sequence_state.hpp"
@@ -138,6 +139,22 @@ bool SeedLinkBridge::init() {
     s.msg.angular_velocity_covariance[0] = -1.0;  // no gyroscope
   }
 
+  try {
+    // The rate is the records' (known at the first): the rings are sized for the highest expected.
+    const double history_length = read_history_length(pnh_);
+    double max_rate = 250.0;
+    pnh_.param("history_max_rate", max_rate, max_rate);
+    if (history_length > 0.0) {
+      history_ = std::make_unique<SampleHistoryServer>(history_length);
+      for (Station& s : stations_)
+        s.history = history_->add_topic(s.pub.getTopic(), "sensor_msgs/Imu", s.msg.header.frame_id, max_rate);
+      history_->advertise(pnh_);
+    }
+  } catch (const std::invalid_argument& e) {
+    ROS_FATAL("seedlink_bridge: ~history_length / ~history_max_rate: %s", e.what());
+    return false;
+  }
+
   diagnostics_ = std::make_unique<diagnostic_updater::Updater>(nh_, pnh_);
   diagnostics_->setHardwareID("seedlink " + server);
   diagnostics_->add("seedlink connection", this, &SeedLinkBridge::connection_diagnostics);
@@ -202,6 +219,9 @@ void SeedLinkBridge::on_record(std::size_t stream, std::uint32_t /*sequence*/, c
     s.msg.linear_acceleration.x = m.enu[0];
     s.msg.linear_acceleration.y = m.enu[1];
     s.msg.linear_acceleration.z = m.enu[2] + gravity_;
+    // Kept before it is published: a subscriber asking later finds whatever it did not receive.
+    if (history_) history_->push(s.history, s.msg.header.stamp, s.msg.linear_acceleration.x, s.msg.linear_acceleration.y,
+                                 s.msg.linear_acceleration.z);
     s.pub.publish(s.msg);
     const double latency = static_cast<double>(static_cast<std::int64_t>(::ros::WallTime::now().toNSec()) - m.time_ns) * 1e-9;
     s.latency_last = latency;

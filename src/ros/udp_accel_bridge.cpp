@@ -12,6 +12,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 
 #include "rocking_monitor/constants.hpp"
 
@@ -81,6 +82,16 @@ bool UdpAccelBridge::init() {
   for (int k = 0; k < 3; ++k) msg_.linear_acceleration_covariance[4 * k] = accel_variance_;
 
   imu_pub_ = nh_.advertise<sensor_msgs::Imu>(topic, 1000);
+  try {
+    const double history_length = read_history_length(pnh_);
+    if (history_length > 0.0) {
+      history_ = std::make_unique<SampleHistoryServer>(history_length);
+      history_->add_topic(imu_pub_.getTopic(), "sensor_msgs/Imu", frame_id_, rate_hz_);
+      history_->advertise(pnh_);
+    }
+  } catch (const std::invalid_argument& e) {
+    return bad(e.what());
+  }
   updater_ = std::make_unique<diagnostic_updater::Updater>(nh_, pnh_);
   updater_->setHardwareID("udp:" + bind_address_ + ":" + std::to_string(port_));
   updater_->add("udp_accel_bridge", this, &UdpAccelBridge::diagnostics);
@@ -172,6 +183,9 @@ void UdpAccelBridge::publish_ready(const ros::Time& arrival) {
     msg_.linear_acceleration.x = s.accel[0];
     msg_.linear_acceleration.y = s.accel[1];
     msg_.linear_acceleration.z = s.accel[2] + (add_gravity_ ? core::kGravity : 0.0);
+    // Kept before it is published: a subscriber asking later finds whatever it did not receive.
+    if (history_) history_->push(0, msg_.header.stamp, msg_.linear_acceleration.x, msg_.linear_acceleration.y,
+                                 msg_.linear_acceleration.z);
     imu_pub_.publish(msg_);
     ++published_;
     last_arrival_minus_stamp_s_ = arrival.toSec() - stamp;

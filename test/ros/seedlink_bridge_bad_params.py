@@ -17,6 +17,10 @@ CASES = [
     ({'server': 'localhost', 'streams': ['CI_RIN:HN?'], 'gain': 1000.0}, "server 'localhost': expected host:port"),
     ({'streams': ['CI_RIN:HN?'], 'gain': 1000.0}, '~server'),
     ({'server': 'localhost:18562', 'gain': 1000.0}, '~streams'),
+    ({'server': 'localhost:18562', 'streams': ['CI_RIN:HN?'], 'gain': 1000.0, 'history_length': -1.0},
+     '~history_length: -1.000000 s must be in [0, 86400]'),
+    ({'server': 'localhost:18562', 'streams': ['CI_RIN:HN?'], 'gain': 1000.0, 'history_max_rate': 0.0},
+     'sample rate 0.000000 Hz: must be > 0'),
 ]
 
 

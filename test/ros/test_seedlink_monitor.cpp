@@ -27,6 +27,7 @@
 
 #include "rocking_monitor/OverturnAlarm.h"
 #include "rocking_monitor/RockingStateArray.h"
+#include "rocking_monitor/SampleHistory.h"
 #include "rocking_monitor/ros/catalogue.hpp"
 #include "test_helpers.hpp"
 
@@ -121,8 +122,10 @@ TEST(SeedLinkMonitor, LiveEqualsOfflineAcrossAServerRestart) {
 
   // 3. Live.
   std::vector<std::int64_t> stamps;
+  std::vector<std::array<double, 3>> accels;  // as published, m/s^2 (the bridge's ~history is checked against them)
   auto sub_imu = nh.subscribe<sensor_msgs::Imu>("/seedlink_bridge/CI_RIN/imu", 100000, [&](const sensor_msgs::Imu::ConstPtr& m) {
     stamps.push_back(static_cast<std::int64_t>(m->header.stamp.toNSec()));
+    accels.push_back({m->linear_acceleration.x, m->linear_acceleration.y, m->linear_acceleration.z});
   });
   rocking_monitor::RockingStateArray last;
   auto sub_s = nh.subscribe<rocking_monitor::RockingStateArray>(
@@ -169,6 +172,24 @@ TEST(SeedLinkMonitor, LiveEqualsOfflineAcrossAServerRestart) {
   ASSERT_EQ(stamps.size(), 1991u);
   for (std::size_t i = 0; i < stamps.size(); ++i)
     ASSERT_EQ(stamps[i], 1000000000LL * 1000000000LL + static_cast<std::int64_t>(i) * 10000000LL) << "sample " << i;
+
+  // The bridge's ~history (issue 29 part 2): exactly the samples it published after a stamp, complete
+  // (its ring reaches back that far); before its first sample, not complete.
+  rocking_monitor::SampleHistory hist;
+  hist.request.topic = "/seedlink_bridge/CI_RIN/imu";
+  hist.request.after.fromNSec(static_cast<std::uint64_t>(stamps[1000]));
+  ASSERT_TRUE(ros::service::call("/seedlink_bridge/history", hist));
+  EXPECT_TRUE(hist.response.ok && hist.response.complete) << hist.response.message;
+  ASSERT_EQ(hist.response.stamps.size(), 990u) << hist.response.message;
+  for (std::size_t i = 0; i < 990; ++i) {
+    ASSERT_EQ(static_cast<std::int64_t>(hist.response.stamps[i].toNSec()), stamps[1001 + i]) << "history sample " << i;
+    ASSERT_EQ((std::array<double, 3>{hist.response.x[i], hist.response.y[i], hist.response.z[i]}), accels[1001 + i])
+        << "history sample " << i;
+  }
+  hist.request.after.fromNSec(static_cast<std::uint64_t>(stamps[0] - 1));
+  ASSERT_TRUE(ros::service::call("/seedlink_bridge/history", hist));
+  EXPECT_FALSE(hist.response.complete) << hist.response.message;
+  EXPECT_EQ(hist.response.stamps.size(), 1991u);
 
   // /diagnostics: the outage and each fault, counted; the bridge still connected.
   const auto& conn = diag["seedlink_bridge: seedlink connection"];

@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """rostest: a real record sent to udp_accel_bridge as datagrams (binary and text), with 1 % seeded
 drops and seeded adjacent swaps. Every published sample must be the record's sample at its place,
-in order; /diagnostics must count exactly the drops, swaps and the one malformed datagram sent."""
+in order; /diagnostics must count exactly the drops, swaps and the one malformed datagram sent. Each bridge's
+~history (issue 29 part 2) must serve exactly the samples it published after a given stamp, and say when
+its ring (table_bin: 5 s) no longer reaches back that far."""
 import os
 import random
 import socket
@@ -16,6 +18,7 @@ import rospy
 import rostest
 from diagnostic_msgs.msg import DiagnosticArray
 from sensor_msgs.msg import Imu
+from rocking_monitor.srv import SampleHistory
 
 G = 9.80665
 DT = 0.01
@@ -121,6 +124,50 @@ class UdpAccelBridgeTest(unittest.TestCase):
             self.assertEqual(int(d['datagrams']), len(order) + 1, key)
             self.assertEqual(d['form'], 'binary' if key == 'bin' else 'text')
         rospy.loginfo('udp_accel_bridge: %d samples, %d dropped, %d swapped: all counted', self.n, len(dropped), swaps)
+        self.check_history()
+
+    def check_history(self):
+        """~history against the messages this test received from each bridge."""
+        def served(key, after, topic=None):
+            rospy.wait_for_service('/table_%s/history' % key, timeout=10)
+            call = rospy.ServiceProxy('/table_%s/history' % key, SampleHistory)
+            return call(topic or '/table_%s/imu' % key, after)
+
+        def same(key, res, msgs):
+            self.assertEqual(len(res.stamps), len(msgs), key)
+            for s, x, y, z, m in zip(res.stamps, res.x, res.y, res.z, msgs):
+                self.assertEqual((s, x, y, z), (m.header.stamp, m.linear_acceleration.x, m.linear_acceleration.y,
+                                                m.linear_acceleration.z), key)
+
+        # The text bridge keeps the default minutes: everything after its first sample, complete.
+        msgs = self.got['txt']
+        res = served('txt', msgs[0].header.stamp)
+        self.assertTrue(res.ok and res.complete, res.message)
+        self.assertEqual((res.type, res.frame_id), ('sensor_msgs/Imu', 'accelerometer'))
+        same('txt', res, msgs[1:])
+        # From before it started: all it has, but not complete (it never had what came before).
+        res = served('txt', rospy.Time(0))
+        self.assertTrue(res.ok and not res.complete, res.message)
+        same('txt', res, msgs)
+        res = served('txt', msgs[700].header.stamp)
+        self.assertTrue(res.complete, res.message)
+        same('txt', res, msgs[701:])
+        # Another topic: refused, naming what it keeps.
+        res = served('txt', rospy.Time(0), '/elsewhere/imu')
+        self.assertFalse(res.ok)
+        self.assertIn('/table_txt/imu', res.message)
+        # The binary bridge keeps 5 s (501 samples): within them complete, before them not.
+        msgs = self.got['bin']
+        res = served('bin', msgs[-301].header.stamp)
+        self.assertTrue(res.ok and res.complete, res.message)
+        same('bin', res, msgs[-300:])
+        res = served('bin', msgs[-502].header.stamp)  # the newest sample overwritten: nothing after it lost
+        self.assertTrue(res.complete, res.message)
+        same('bin', res, msgs[-501:])
+        res = served('bin', msgs[-503].header.stamp)  # one sample after it was overwritten
+        self.assertFalse(res.complete, res.message)
+        self.assertEqual(res.oldest, msgs[-501].header.stamp)
+        same('bin', res, msgs[-501:])
 
     # A bad parameter or a port in use: one FATAL line naming it, exit status 2.
     def run_bridge(self, *args):
@@ -139,6 +186,12 @@ class UdpAccelBridgeTest(unittest.TestCase):
         code, out = self.run_bridge('_rate_hz:=100.0', '_port:=15611', '_bind_address:=127.0.0.1')  # the test's bridge has it
         self.assertEqual(code, 2, out)
         self.assertIn('cannot bind 127.0.0.1:15611', out)
+        code, out = self.run_bridge('_rate_hz:=100.0', '_port:=15699', '_history_length:=-5')
+        self.assertEqual(code, 2, out)
+        self.assertIn('~history_length: -5.000000 s must be in [0, 86400] (0 = no history)', out)
+        code, out = self.run_bridge('_rate_hz:=100.0', '_port:=15699', '_history_length:=long')
+        self.assertEqual(code, 2, out)
+        self.assertIn('~history_length: must be a number of seconds (0 = no history)', out)
 
 
 if __name__ == '__main__':

@@ -8,14 +8,19 @@
 // however long it plays. Wall time uses std::chrono::steady_clock (immune to clock changes); under
 // /use_sim_time the schedule runs on ros::Time, i.e. follows /clock. A sample that is late is still
 // published (never dropped) and counted.
+//
+// History (issue 29 part 2): the last ~history_length s of each published topic are kept and served
+// as ~history (rocking_monitor/SampleHistory): a restarted monitor catches up on what it missed.
 
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include <ros/ros.h>
 
 #include "rocking_monitor/motion/sensor_frame.hpp"
 #include "rocking_monitor/ros/ground_motion_source.hpp"
+#include "rocking_monitor/ros/sample_history_server.hpp"
 
 namespace rocking_monitor::records {
 
@@ -31,6 +36,7 @@ struct PlayerConfig {
   bool stamp_now = true;                 ///< ~stamp_source: "now" (ros::Time::now() at publish) | "schedule" (the due time)
   int wait_for_subscribers = 0;          ///< ~wait_for_subscribers: wait for this many Imu subscribers before starting
   double linger = 1.0;                   ///< ~linger, s: stay up after the end so the last messages and ~finished are delivered
+  double history_length = live::kDefaultHistoryLength;  ///< ~history_length, s of samples kept for ~history (0 = off)
 };
 
 /// Reads the private parameters; throws std::invalid_argument naming the parameter ("~azimuth: ...").
@@ -62,6 +68,8 @@ class GroundMotionPlayer {
   ros::Publisher imu_pub_;
   ros::Publisher accel_pub_;
   ros::Publisher finished_pub_;
+  std::unique_ptr<live::SampleHistoryServer> history_;  // null: ~history_length 0
+  std::size_t imu_history_ = 0, accel_history_ = 0;
 };
 
 }  // namespace rocking_monitor::records

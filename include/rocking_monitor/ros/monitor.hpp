@@ -27,6 +27,7 @@
 #include "rocking_monitor/OverturnAlarm.h"
 #include "rocking_monitor/ProbabilityAlarm.h"
 #include "rocking_monitor/RockingStateArray.h"
+#include "rocking_monitor/SampleHistory.h"
 #include "rocking_monitor/motion/gravity_baseline.hpp"
 #include "rocking_monitor/monitoring/alarm_journal.hpp"
 #include "rocking_monitor/monitoring/item_ensemble.hpp"
@@ -146,6 +147,10 @@ class RockingMonitor {
     std::uint64_t deferred = 0;             // item-samples deferred by the batch (quiet)
     // Issue 29: input quiet (|a| below ~event_quiet_threshold) since this stamp, s since 1970 (NaN: not quiet).
     double quiet_from = std::numeric_limits<double>::quiet_NaN();
+    // Issue 29 part 2: stamp of the last sample stepped from the bridge's history (zero: not catching
+    // up); live samples up to it were stepped already: dropped and counted until a later one arrives.
+    ::ros::Time caught_up_to;
+    std::uint64_t caught_up_dropped = 0;
   };
 
   bool load_parameters();
@@ -330,9 +335,34 @@ class RockingMonitor {
   /// sensors, items: the catalogue's parameters (with the model options, the configuration a
   /// snapshot must have been written by).
   void open_snapshot(const XmlRpc::XmlRpcValue& sensors, const XmlRpc::XmlRpcValue& items);
-  void resume_sensor(std::size_t sensor, const ::ros::Time& stamp);
+  /// next_in_history: `stamp` is the sample right after the snapshot's last (from a bridge's history):
+  /// nothing is missing whatever the stamps' spacing.
+  void resume_sensor(std::size_t sensor, const ::ros::Time& stamp, bool next_in_history = false);
   void take_snapshot(const ::ros::Time& stamp);
   void snapshot_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& stat);
+
+  // Catching up (issue 29 part 2, ros/monitor_catch_up.cpp, docs/journal.md "Catching up"): a sensor
+  // resuming from the snapshot first asks ~catch_up_service (a bridge's ~history) for the samples
+  // since the snapshot's last, steps them through on_sample faster than real time, then goes on with
+  // the live ones (those already stepped dropped and counted). Absent, failing or incomplete: the
+  // frozen gap of part 1, said in the log and /diagnostics.
+  std::string catch_up_service_;      // ~catch_up_service; "" = off
+  double catch_up_timeout_ = 2.0;     // ~catch_up_timeout, s to wait for the service to appear, then for its answer
+  bool catching_up_ = false;          // stepping history samples: no lag or overload from their age
+  struct CaughtUp {
+    std::string sensor;
+    std::string outcome;              // "caught up: ..." or why the gap stays frozen
+    bool ok = false;
+    std::size_t samples = 0;          // history samples stepped
+    double input_s = 0.0;             // their span of input time, s
+    double wall_s = 0.0;              // asking and stepping them, s of wall time
+  };
+  std::vector<CaughtUp> caught_up_;
+  bool load_catch_up_parameters();
+  /// At the sensor's first live sample after a restart with a snapshot: true when the items were
+  /// resumed and the missed samples stepped from the history; false: nothing done (resume with a gap).
+  bool catch_up(std::size_t sensor);
+  void catch_up_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& stat);
 };
 
 }  // namespace rocking_monitor::live

@@ -20,6 +20,7 @@
 #include "rocking_monitor/feeds/mseed_record.hpp"
 #include "rocking_monitor/feeds/seedlink_session.hpp"
 #include "rocking_monitor/feeds/station_merger.hpp"
+#include "rocking_monitor/ros/sample_history_server.hpp"
 
 namespace rocking_monitor::live {
 
@@ -37,6 +38,7 @@ class SeedLinkBridge {
     feeds::StreamSpec spec;
     std::unique_ptr<feeds::StationMerger> merger;
     ::ros::Publisher pub;
+    std::size_t history = 0;  // its topic in history_
     sensor_msgs::Imu msg;  // reused: header, covariances and frame set once
     std::uint64_t records = 0;
     std::uint64_t malformed = 0;         // records libmseed could not decode
@@ -58,6 +60,9 @@ class SeedLinkBridge {
 
   ::ros::NodeHandle nh_, pnh_;
   std::vector<Station> stations_;
+  // ~history (issue 29 part 2): each station's last ~history_length s, sized for ~history_max_rate;
+  // null: ~history_length 0.
+  std::unique_ptr<SampleHistoryServer> history_;
   double gravity_ = 0.0;  // m/s^2 added to up: 9.80665 (~add_gravity) or 0
   std::unique_ptr<feeds::SeedLinkSession> session_;
   feeds::MseedDecoder decoder_;  // session thread only

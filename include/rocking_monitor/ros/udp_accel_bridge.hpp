@@ -4,7 +4,8 @@
 // sample (feeds/udp_datagram.hpp: text "time,ax,ay,az" or the 48-byte binary layout), published as
 // sensor_msgs/Imu (REP 145) for the monitor, in sequence order (feeds/sample_sequencer.hpp), with
 // drops, reordering, late and malformed datagrams counted in /diagnostics.
-// Parameters and the stamp rule: README "Connect a shaking table".
+// Parameters and the stamp rule: README "Connect a shaking table". The last ~history_length s
+// published are served as ~history for a restarted monitor to catch up (docs/journal.md).
 
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
@@ -21,6 +22,7 @@
 #include "rocking_monitor/feeds/sample_sequencer.hpp"
 #include "rocking_monitor/feeds/time_grid.hpp"
 #include "rocking_monitor/feeds/udp_datagram.hpp"
+#include "rocking_monitor/ros/sample_history_server.hpp"
 
 namespace rocking_monitor::live {
 
@@ -45,6 +47,7 @@ class UdpAccelBridge {
 
   ros::NodeHandle nh_, pnh_;
   ros::Publisher imu_pub_;
+  std::unique_ptr<SampleHistoryServer> history_;  // ~history (issue 29 part 2); null: ~history_length 0
   std::unique_ptr<diagnostic_updater::Updater> updater_;
   ros::Timer diag_timer_;
 
