@@ -79,7 +79,9 @@ if(CATKIN_ENABLE_TESTING)
   # raised while catching up.
   add_rostest(test/ros/monitor_catch_up.test ARGS kill_after:=0.93_2.5 DEPENDENCIES monitor ground_motion_player)
   # ... also when restarted 3 s later (beyond ~max_bridge: without the history the snapshot is stale).
-  add_rostest(test/ros/monitor_catch_up.test ARGS kill_after:=0.3 restart_delay:=3.0 DEPENDENCIES monitor ground_motion_player)
+  # (catkin names the result file from the arguments up to the first '.': restart_delay first keeps it
+  # apart from kill_after:=0.93_2.5's, which ctest -j would otherwise overwrite.)
+  add_rostest(test/ros/monitor_catch_up.test ARGS restart_delay:=3.0 kill_after:=0.3 DEPENDENCIES monitor ground_motion_player)
   # ... and a history shorter than the restart: the frozen gap, said in the log and /diagnostics.
   add_rostest(test/ros/monitor_catch_up.test ARGS history_length:=0.1 expect_catch_up:=false kill_after:=0.3
               DEPENDENCIES monitor ground_motion_player)
