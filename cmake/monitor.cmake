@@ -73,6 +73,14 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/monitor_restart.test ARGS catch_up:=false DEPENDENCIES monitor)
   # Issue 29 part 4: the same record twice, 60 s of quiet apart: two events, every level alarmed in both.
   add_rostest(test/ros/monitor_aftershock.test DEPENDENCIES monitor)
+  # Issue 29 part 3: launch/monitor_pair.launch, one of the pair killed with SIGKILL during the strong
+  # motion and respawned: the deduplicated alarms (scripts/alarm_dedup.py) are the unbroken control's.
+  add_rostest(test/ros/monitor_pair.test DEPENDENCIES monitor)
+  add_rostest(test/ros/monitor_pair.test ARGS kill:=b kill_after:=1.0 DEPENDENCIES monitor)
+  # The pair's rule for "the same alarm" (consumers show each once), on plain objects: no ROS needed.
+  add_test(NAME alarm_dedup.same_alarm_from_either_monitor_shown_once
+           COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/test_alarm_dedup.py
+                   ${CMAKE_CURRENT_SOURCE_DIR}/scripts)
   # Issue 28: ~state_changes applied to one ~states give the last ~states (Python).
   add_rostest(test/ros/monitor_state_changes.test DEPENDENCIES monitor)
 endif()
