@@ -115,21 +115,27 @@ void Dashboard::on_states(const RockingStateArray::ConstPtr& msg) {
   ++states_received_;
 }
 
-void Dashboard::on_alarm(const OverturnAlarm::ConstPtr& msg) {
-  std::string frame;
+void Dashboard::on_alarm_from(const std::string& source, const OverturnAlarm::ConstPtr& msg) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    // One alarm, however often it arrives (journal at start, re-sent by a restarted monitor, reconnect):
-    // its event and sequence number name it; without them, item, level and stamp.
-    std::string key = !msg->event_id.empty()
-                          ? msg->event_id + "#" + std::to_string(msg->sequence)
-                          : msg->item_id + "/" + std::to_string(msg->level) + "/" +
-                                std::to_string(msg->header.stamp.toNSec());
-    if (!alarm_keys_.insert(key).second) return;
-    alarms_.push_front({*msg, std::move(key)});
+    // One alarm, however often it arrives (journal at start, re-sent by a restarted monitor, reconnect,
+    // the pair's other monitor): core::AlarmDedup's rule, as rocking_report's and monitor_table.py's.
+    const core::AlarmDedup::Result r = dedup_.add({source, msg->item_id, msg->level,
+                                                   static_cast<std::int64_t>(msg->header.stamp.toNSec()),
+                                                   msg->event_id, msg->sequence});
+    if (r.outcome == core::AlarmDedup::Outcome::Repeat) return;
+    if (r.outcome == core::AlarmDedup::Outcome::Merged) {
+      // The same alarm from the other monitor: not shown again. An earlier copy (its partner lagged)
+      // replaces the one kept, so the snapshot (a page opened or reloaded) shows the first warning.
+      if (r.earlier)
+        for (Alarm& a : alarms_)
+          if (a.row == r.row) a.msg = *msg;
+      return;
+    }
+    alarms_.push_front({*msg, r.row});
     constexpr std::size_t kMaxAlarms = 10000;  // three per item of a large site, then the oldest go
     while (alarms_.size() > kMaxAlarms) {
-      alarm_keys_.erase(alarms_.back().key);
+      dedup_.forget(alarms_.back().row);
       alarms_.pop_back();
     }
   }
@@ -220,8 +226,11 @@ std::string Dashboard::snapshot_json() const {
     out["alarms"] = std::move(alarms);
     out["health"] = health_json_locked();
     out["states_received"] = states_received_;
+    // Copies not shown, counted: the pair's other monitor's (merged) and ones received again (repeats).
+    out["alarm_copies"] = {{"merged", dedup_.merged()}, {"repeats", dedup_.repeats()}};
   }
   out["monitor"] = monitor_;
+  out["pair"] = pair_;
   out["update_rate"] = update_rate_;
   out["stamp"] = latest ? latest->header.stamp.toSec() : 0.0;
   out["items"] = std::move(items);

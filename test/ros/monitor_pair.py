@@ -8,9 +8,10 @@ lock-step with every monitor that is up. ~kill_after s after the control's first
 ~kill (a or b) is killed with SIGKILL; roslaunch respawns it and it continues from its state snapshot on
 the plain topic (the samples sent meanwhile are lost to it). Checked:
 - the killed monitor was respawned (another pid) and says it continues from the state snapshot;
-- the alarms as a consumer shows them (scripts/alarm_dedup.py over both monitors' ~alarms, in arrival
-  order) are the control's: the same (item, level), input stamp (to the sample), event time and plane,
-  each shown once;
+- the alarms as a consumer shows them are the control's: the same (item, level), input stamp (to the
+  sample), event time and plane, each shown once; the consumers: scripts/alarm_dedup.py (rocking_report,
+  monitor_table.py) over both monitors' ~alarms in arrival order, and a dashboard node with ~pair
+  (core::AlarmDedup; its /api/snapshot);
 - the survivor's alarms are the control's, each (no alarm delayed);
 - measured and logged: whether the pair's (event_id, sequence) agree, and the respawned monitor's times.
 """
@@ -20,8 +21,12 @@ import subprocess
 import tempfile
 import time
 import unittest
+import urllib.request
 import xmlrpc.client
 
+import json
+
+import roslib.packages
 import rosgraph
 import rosnode
 import rospy
@@ -110,6 +115,22 @@ class Pair(unittest.TestCase):
             with open(launch_log.name) as f:
                 return f.read()
 
+        # The dashboard of the pair, as an operator runs it: ~monitor a, ~pair b.
+        dash_exe = [p for p in roslib.packages.find_node('rocking_monitor', 'dashboard') if os.access(p, os.X_OK)][0]
+        dash_log = open(os.path.join(scratch, 'dashboard.log'), 'w')
+        dash = subprocess.Popen([dash_exe, '__name:=pair_dashboard', '_port:=0', '_monitor:=' + PAIR['a'],
+                                 '_pair:=' + PAIR['b']], stdout=dash_log, stderr=subprocess.STDOUT)
+
+        def stop_dash():
+            if dash.poll() is None:
+                dash.send_signal(signal.SIGINT)
+                try:
+                    dash.wait(timeout=20)
+                except subprocess.TimeoutExpired:
+                    dash.kill()
+            dash_log.close()
+
+        self.addCleanup(stop_dash)
         received = []
         members = {k: PairMember(n, received) for k, n in PAIR.items()}
         moving = []  # stamp at which the control's first item left rest
@@ -125,14 +146,22 @@ class Pair(unittest.TestCase):
         wait_for('the control and the pair', lambda: imu.get_num_connections() >= 3 and all(
             s.get_num_connections() > 0 for s in [control.sub_s] + [m.sub_s for m in members.values()]
             + [m.sub_a for m in members.values()]), timeout=60.0)
-        time.sleep(0.5)
+        wait_for('the dashboard', lambda: rospy.has_param('/pair_dashboard/url'), timeout=30.0)
+        dash_url = rospy.get_param('/pair_dashboard/url')
+
+        def dashboard_subscribed():
+            subs = dict((t, n) for t, n in rosgraph.Master('/monitor_pair_test').getSystemState()[1])
+            return all('/pair_dashboard' in subs.get(n + '/alarms', []) for n in PAIR.values())
+
+        wait_for('the dashboard subscribed to both monitors\' alarms', dashboard_subscribed, timeout=30.0)
+        time.sleep(1.0)
         pid_before = node_pid(PAIR[which])
         self.assertIsNotNone(pid_before, launch_text()[-3000:])
 
         # The stream in real time, in lock-step with the monitors up (from the second sample on).
         killed = members[which]
         live = [control] + list(members.values())
-        state = {'killed_at': None, 'back_at': None, 'killed_wall': None, 'back_wall': None}
+        state = {'killed_at': None, 'back_at': None, 'killed_wall': None, 'back_wall': None, 'kill_stamp': None}
         base = rospy.Time.now() + rospy.Duration(0.05)
         for i, m in enumerate(samples):
             m.header.stamp = base + offsets[i]
@@ -148,9 +177,10 @@ class Pair(unittest.TestCase):
                 os.kill(pid_before, signal.SIGKILL)
                 state['killed_at'] = i
                 state['killed_wall'] = time.time()
+                state['kill_stamp'] = stamp  # states of the killed process still queued are not newer
                 killed.acked = 0.0
                 live = [mon for mon in live if mon is not killed]
-            elif state['killed_at'] is not None and state['back_at'] is None and killed.acked > 0.0:
+            elif state['killed_at'] is not None and state['back_at'] is None and killed.acked > state['kill_stamp']:
                 state['back_at'] = i  # the respawned monitor steps again: in lock-step from now on
                 state['back_wall'] = time.time()
                 live.append(killed)
@@ -203,6 +233,19 @@ class Pair(unittest.TestCase):
                                               ids_differ) + '\n'.join(rows))
         rospy.loginfo(report)
         print(report)
+
+        # The dashboard's alarm log (core::AlarmDedup): the same alarms, each once.
+        with urllib.request.urlopen(dash_url.rstrip('/') + '/api/snapshot', timeout=10) as r:
+            snap = json.loads(r.read().decode())
+        names = {v: k for k, v in LEVELS.items()}
+        dash_rows = sorted((a['item'], names[a['level']], a['event_time'], a['plane']) for a in snap['alarms'])
+        ctl_rows = sorted((m.item_id, m.level, m.event_time, m.plane) for m in control.alarms)
+        dash_stamps = sorted((a['item'], names[a['level']], a['stamp']) for a in snap['alarms'])
+        rospy.loginfo('dashboard: %d alarms shown, copies not shown: %s', len(dash_rows), snap.get('alarm_copies'))
+        self.assertEqual(dash_rows, ctl_rows, report)
+        for (item, level, st), m in zip(dash_stamps, sorted(control.alarms, key=lambda m: (m.item_id, m.level))):
+            self.assertEqual((item, level), (m.item_id, m.level))
+            self.assertAlmostEqual(st, m.header.stamp.to_sec(), delta=1e-6)  # the same sample (10 ms apart)
 
         # No alarm delayed: the survivor never stopped, its alarms are the control's to the bit.
         self.assertEqual(sorted(row_key(m) for m in survivor.alarms), ctl, report)
