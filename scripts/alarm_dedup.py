@@ -11,24 +11,32 @@ The rule, on what both monitors take from the sensor alone (never their own cloc
   has the same (event_id, sequence) and is dropped (without an event id: the same item, level, stamp);
 - from another monitor, an alarm of the same item and level whose input stamp (header.stamp, the sample
   at which the level was reached) lies within WINDOW s of a shown alarm's, which that monitor has not
-  already contributed to, is the same alarm: shown once, at the earlier time (the first warning given).
+  already contributed to, is the same alarm: shown once. Of its copies the one shown is from a monitor
+  whose items saw every sample (frozen_s 0: not respawned on a plain topic, no data gap), then the earliest.
 Within one monitor an item alarms a level once per event, and a new event needs ~event_quiet_time (5 s)
 of quiet first, so a monitor's own alarms are never merged with each other. A monitor that restarted on a
-plain topic (a frozen gap) may raise an alarm later than its partner (measured up to 4.3 s,
-docs/journal.md): within the window it is still the same alarm; beyond it, it is shown twice, never lost.
+plain topic (a frozen gap) raises an alarm later or earlier than its partner (its items' motion differs
+from the gap on: measured -0.10 to +0.51 s here, up to +4.3 s in docs/journal.md): within the window it
+is still the same alarm, shown at the partner's time; beyond it, it is shown twice, never lost.
 """
 
 WINDOW = 10.0  # s of input stamps within which two monitors' alarms of the same item and level are one
 
 
 class Row:
-    """One alarm as shown: the earliest received of its copies (`alarm`) and the monitors that sent it."""
+    """One alarm as shown: the best of its copies (`alarm`: see AlarmDedup) and the monitors that sent it."""
     __slots__ = ('alarm', 'sources', 'copies')
 
     def __init__(self, source, alarm):
         self.alarm = alarm
         self.sources = {source}
         self.copies = 1
+
+
+def _rank(alarm):
+    """0: the alarm comes from every sample (frozen_s 0; a bag recorded before the field: taken as 0);
+    1: after a gap the items were frozen through, or not known (NaN: re-sent from a journal)."""
+    return 0 if getattr(alarm, 'frozen_s', 0.0) == 0.0 else 1
 
 
 def _stamp(alarm):
@@ -38,7 +46,9 @@ def _stamp(alarm):
 
 class AlarmDedup:
     """add(source, alarm) -> (row, is_new); rows() in arrival order. `alarm` has the OverturnAlarm fields
-    item_id, level, header.stamp, event_id, sequence (a message or anything with them)."""
+    item_id, level, header.stamp, event_id, sequence, frozen_s (a message or anything with them; without
+    frozen_s: taken as 0). A merged copy replaces the one shown when it is better: (frozen_s 0 first, then
+    the earlier stamp); counted in `replaced`."""
 
     def __init__(self, window=WINDOW):
         if not window >= 0.0:
@@ -49,6 +59,7 @@ class AlarmDedup:
         self._by_item_level = {}  # (item, level) -> rows
         self.repeats = 0  # received again from the same monitor: dropped, counted
         self.merged = 0   # the same alarm from another monitor: shown once, counted
+        self.replaced = 0  # of those, copies shown instead of the one first received (better: see _rank)
 
     def add(self, source, alarm):
         if alarm.event_id:
@@ -66,8 +77,9 @@ class AlarmDedup:
                 row.sources.add(source)
                 row.copies += 1
                 self.merged += 1
-                if t < _stamp(row.alarm):
-                    row.alarm = alarm  # the first warning given is what the operator got
+                if (_rank(alarm), t) < (_rank(row.alarm), _stamp(row.alarm)):
+                    row.alarm = alarm
+                    self.replaced += 1
                 return row, False
         row = Row(source, alarm)
         rows.append(row)

@@ -31,12 +31,17 @@ AlarmDedup::Result AlarmDedup::add(const AlarmIdentity& a) {
     ++merged_;
     r.outcome = Outcome::Merged;
     r.row = id;
-    r.earlier = a.stamp_ns < row.stamp_ns;  // the first warning given is what the operator got
-    if (r.earlier) row.stamp_ns = a.stamp_ns;
+    // The better copy: from every sample first (a copy after a gap is another motion), then the earlier.
+    r.replaces = std::make_pair(!a.whole, a.stamp_ns) < std::make_pair(!row.whole, row.stamp_ns);
+    if (r.replaces) {
+      row.stamp_ns = a.stamp_ns;
+      row.whole = a.whole;
+      ++replaced_;
+    }
     return r;
   }
   r.row = next_row_++;
-  rows_.emplace(r.row, Row{a.stamp_ns, {a.source}});
+  rows_.emplace(r.row, Row{a.stamp_ns, a.whole, {a.source}});
   candidates.push_back(r.row);
   return r;
 }

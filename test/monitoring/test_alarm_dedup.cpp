@@ -16,8 +16,9 @@ constexpr int kBeyond = 2, kCommitted = 3, kOverturned = 4;
 constexpr std::int64_t kS = 1000000000;
 
 AlarmIdentity alarm(const std::string& source, const std::string& item, int level, std::int64_t stamp_ns,
-                    const std::string& event = "2026-11-26T03:00:00.000Z/1", std::uint64_t sequence = 1) {
-  return {source, item, level, stamp_ns, event, sequence};
+                    const std::string& event = "2026-11-26T03:00:00.000Z/1", std::uint64_t sequence = 1,
+                    bool whole = true) {
+  return {source, item, level, stamp_ns, event, sequence, whole};
 }
 }  // namespace
 
@@ -28,7 +29,7 @@ TEST(AlarmDedup, BothMonitorsTheSameAlarmIsOneRow) {
   const auto second = d.add(alarm("/b", "vase", kOverturned, 100 * kS + kS / 4, "e/1", 3));
   EXPECT_EQ(second.outcome, Outcome::Merged);
   EXPECT_EQ(second.row, first.row);
-  EXPECT_FALSE(second.earlier);
+  EXPECT_FALSE(second.replaces);
   EXPECT_EQ(d.merged(), 1u);
   EXPECT_EQ(d.repeats(), 0u);
 }
@@ -51,13 +52,29 @@ TEST(AlarmDedup, ResentFromTheSameMonitorIsARepeat) {
   EXPECT_EQ(d.repeats(), 2u);
 }
 
-TEST(AlarmDedup, AnEarlierCopyIsShownInstead) {
+TEST(AlarmDedup, TheCopyFromEverySampleReplacesOneAfterAGap) {
+  // a respawned on a plain topic: its copy 0.103 s earlier, received first, is replaced by b's
   AlarmDedup d;
-  const auto late = d.add(alarm("/a", "shelf", kOverturned, 109 * kS + 3 * kS / 10, "e/1", 9));  // restarted a
+  const auto gap = d.add(alarm("/a", "vase", kBeyond, 102671 * kS / 1000, "e/1", 4, false));
+  const auto whole = d.add(alarm("/b", "vase", kBeyond, 102774 * kS / 1000, "e/1", 5, true));
+  EXPECT_EQ(whole.outcome, Outcome::Merged);
+  EXPECT_EQ(whole.row, gap.row);
+  EXPECT_TRUE(whole.replaces);
+  EXPECT_EQ(d.replaced(), 1u);
+  // the other order: the whole copy stays
+  AlarmDedup d2;
+  d2.add(alarm("/b", "vase", kBeyond, 102774 * kS / 1000, "e/1", 5, true));
+  EXPECT_FALSE(d2.add(alarm("/a", "vase", kBeyond, 102671 * kS / 1000, "e/1", 4, false)).replaces);
+  EXPECT_EQ(d2.replaced(), 0u);
+}
+
+TEST(AlarmDedup, OfEqualCopiesTheEarlierIsShown) {
+  AlarmDedup d;
+  const auto late = d.add(alarm("/a", "shelf", kOverturned, 109 * kS + 3 * kS / 10, "e/1", 9));
   const auto early = d.add(alarm("/b", "shelf", kOverturned, 105 * kS, "e/1", 7));
   EXPECT_EQ(early.outcome, Outcome::Merged);
   EXPECT_EQ(early.row, late.row);
-  EXPECT_TRUE(early.earlier);
+  EXPECT_TRUE(early.replaces);
   // the row is at 105 s now: a copy from c at 115.1 s is more than 10 s after it, another alarm
   EXPECT_EQ(d.add(alarm("/c", "shelf", kOverturned, 115 * kS + kS / 10, "x/1", 1)).outcome, Outcome::New);
 }

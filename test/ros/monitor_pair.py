@@ -96,7 +96,8 @@ class Pair(unittest.TestCase):
         launch_log = open(os.path.join(scratch, 'pair.log'), 'w')
         launch = subprocess.Popen(
             ['roslaunch', 'rocking_monitor', 'monitor_pair.launch', 'journal_a:=' + os.path.join(scratch, 'a.jsonl'),
-             'journal_b:=' + os.path.join(scratch, 'b.jsonl'), 'params:=' + rospy.get_param('~params')],
+             'journal_b:=' + os.path.join(scratch, 'b.jsonl'), 'params:=' + rospy.get_param('~params'),
+             'state_rate:=0.0', 'state_queue_size:=100000'],  # own arguments: a <param> beats the params file
             stdout=launch_log, stderr=subprocess.STDOUT)
 
         def stop_launch():
@@ -192,9 +193,11 @@ class Pair(unittest.TestCase):
         text = launch_text()
         self.assertIn('continue from the state snapshot', text, text[-3000:])
         k, b = state['killed_at'], state['back_at']
-        rospy.loginfo('monitor %s killed at sample %d (%.3f s into the record, %.2f s after the first item left '
-                      'rest); respawned, stepping again from sample %d (%.2f s of wall time later)', which, k,
-                      offsets[k].to_sec(), kill_after, b, state['back_wall'] - state['killed_wall'])
+        when = ('monitor %s killed at sample %d (%.3f s into the record, %.2f s after the first item left rest); '
+                'respawned, stepping again from sample %d (%.2f s of wall time later)' % (
+                    which, k, offsets[k].to_sec(), kill_after, b, state['back_wall'] - state['killed_wall']))
+        rospy.loginfo(when)
+        print(when)
 
         ctl = sorted(row_key(m) for m in control.alarms)
         self.assertGreater(len(ctl), 0)
@@ -223,14 +226,16 @@ class Pair(unittest.TestCase):
             c = ctl_by.get(kk)
             if a and bb and (a.event_id, a.sequence) != (bb.event_id, bb.sequence):
                 ids_differ += 1
-            rows.append('%-18s %-15s control %7s  a %7s %-34s  b %7s %-34s' % (
+            rows.append('%-18s %-15s control %7s  a %7s %-28s %5s  b %7s %-28s %5s' % (
                 kk[0], LEVELS[kk[1]], '%.3f' % rel(c) if c else '-', '%.3f' % rel(a) if a else '-',
-                '%s#%d' % (a.event_id, a.sequence) if a else '', '%.3f' % rel(bb) if bb else '-',
-                '%s#%d' % (bb.event_id, bb.sequence) if bb else ''))
-        report = ('alarms, s since the stream began (control; a and b with event_id#sequence); %d received, %d '
-                  'shown, %d merged across the pair, %d repeats dropped; (event_id, sequence) differ between a '
-                  'and b for %d alarms:\n' % (len(received), len(dedup.rows()), dedup.merged, dedup.repeats,
-                                              ids_differ) + '\n'.join(rows))
+                '%s#%d' % (a.event_id, a.sequence) if a else '', '%.2f' % a.frozen_s if a else '',
+                '%.3f' % rel(bb) if bb else '-', '%s#%d' % (bb.event_id, bb.sequence) if bb else '',
+                '%.2f' % bb.frozen_s if bb else ''))
+        report = ('alarms, s since the stream began (control; a and b with event_id#sequence and frozen_s); %d '
+                  'received, %d shown, %d merged across the pair (%d shown instead of the copy first received), %d '
+                  'repeats dropped; (event_id, sequence) differ between a and b for %d alarms:\n' % (
+                      len(received), len(dedup.rows()), dedup.merged, dedup.replaced, dedup.repeats, ids_differ)
+                  + '\n'.join(rows))
         rospy.loginfo(report)
         print(report)
 
@@ -241,11 +246,20 @@ class Pair(unittest.TestCase):
         dash_rows = sorted((a['item'], names[a['level']], a['event_time'], a['plane']) for a in snap['alarms'])
         ctl_rows = sorted((m.item_id, m.level, m.event_time, m.plane) for m in control.alarms)
         dash_stamps = sorted((a['item'], names[a['level']], a['stamp']) for a in snap['alarms'])
-        rospy.loginfo('dashboard: %d alarms shown, copies not shown: %s', len(dash_rows), snap.get('alarm_copies'))
+        print('dashboard: %d alarms shown, copies not shown: %s' % (len(dash_rows), snap.get('alarm_copies')))
         self.assertEqual(dash_rows, ctl_rows, report)
         for (item, level, st), m in zip(dash_stamps, sorted(control.alarms, key=lambda m: (m.item_id, m.level))):
             self.assertEqual((item, level), (m.item_id, m.level))
             self.assertAlmostEqual(st, m.header.stamp.to_sec(), delta=1e-6)  # the same sample (10 ms apart)
+
+        # The field the rule ranks by: the survivor's alarms came from every sample; the respawned one's
+        # live alarms (stamped after its gap) say how long its items were frozen, about the restart's length.
+        self.assertTrue(all(m.frozen_s == 0.0 for m in survivor.alarms), report)
+        gap_s = (offsets[b] - offsets[k]).to_sec()
+        for m in killed.alarms:
+            if m.header.stamp.to_sec() > base.to_sec() + offsets[b].to_sec():
+                self.assertGreater(m.frozen_s, 0.0, report)
+                self.assertLess(m.frozen_s, gap_s + 0.12, report)  # + the snapshot's age (<= 0.1 s) + a sample
 
         # No alarm delayed: the survivor never stopped, its alarms are the control's to the bit.
         self.assertEqual(sorted(row_key(m) for m in survivor.alarms), ctl, report)

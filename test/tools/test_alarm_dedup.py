@@ -11,9 +11,9 @@ from alarm_dedup import AlarmDedup  # noqa: E402
 BEYOND, COMMITTED, OVERTURNED = 2, 3, 4
 
 
-def alarm(item, level, stamp, event_id='2026-11-26T03:00:00.000Z/1', sequence=1):
+def alarm(item, level, stamp, event_id='2026-11-26T03:00:00.000Z/1', sequence=1, frozen_s=0.0):
     return types.SimpleNamespace(item_id=item, level=level, header=types.SimpleNamespace(stamp=stamp),
-                                 event_id=event_id, sequence=sequence)
+                                 event_id=event_id, sequence=sequence, frozen_s=frozen_s)
 
 
 class Dedup(unittest.TestCase):
@@ -41,15 +41,41 @@ class Dedup(unittest.TestCase):
         row, new = d.add('/a', alarm('vase', BEYOND, 99.0, sequence=1))
         self.assertEqual((row, new, d.repeats, len(d.rows())), (None, False, 1, 1))
 
-    def test_later_copy_keeps_the_earlier_time_and_an_earlier_copy_replaces_it(self):
+    def test_the_copy_from_every_sample_is_shown_before_one_after_a_gap(self):
+        # a respawned on a plain topic (0.31 s frozen): its copy 0.1 s earlier, first received, is replaced
         d = AlarmDedup()
-        d.add('/b', alarm('shelf', OVERTURNED, 105.0, sequence=7))
-        d.add('/a', alarm('shelf', OVERTURNED, 109.3, sequence=9))  # restarted a: 4.3 s late
-        self.assertEqual(d.alarms()[0].header.stamp, 105.0)
+        d.add('/a', alarm('vase', BEYOND, 102.671, sequence=4, frozen_s=0.31))
+        row, new = d.add('/b', alarm('vase', BEYOND, 102.774, sequence=5, frozen_s=0.0))
+        self.assertFalse(new)
+        self.assertEqual((row.alarm.header.stamp, d.replaced), (102.774, 1))
+        # the other order: the whole copy stays
         d2 = AlarmDedup()
-        d2.add('/a', alarm('shelf', OVERTURNED, 109.3, sequence=9))
+        d2.add('/b', alarm('vase', BEYOND, 102.774, sequence=5))
+        d2.add('/a', alarm('vase', BEYOND, 102.671, sequence=4, frozen_s=0.31))
+        self.assertEqual(([a.header.stamp for a in d2.alarms()], d2.replaced), ([102.774], 0))
+        # re-sent from a journal (NaN: not known) ranks after a whole copy too
+        d3 = AlarmDedup()
+        d3.add('/a', alarm('vase', BEYOND, 100.0, sequence=1, frozen_s=float('nan')))
+        d3.add('/b', alarm('vase', BEYOND, 100.5, sequence=1))
+        self.assertEqual([a.header.stamp for a in d3.alarms()], [100.5])
+
+    def test_of_equal_copies_the_earlier_is_shown(self):
+        d = AlarmDedup()
+        d.add('/a', alarm('shelf', OVERTURNED, 109.3, sequence=9, frozen_s=0.4))  # a after a gap: 4.3 s late
+        d.add('/b', alarm('shelf', OVERTURNED, 105.0, sequence=7, frozen_s=0.2))  # b after a gap of its own
+        self.assertEqual([a.header.stamp for a in d.alarms()], [105.0])
+        d2 = AlarmDedup()
         d2.add('/b', alarm('shelf', OVERTURNED, 105.0, sequence=7))
+        d2.add('/a', alarm('shelf', OVERTURNED, 109.3, sequence=9))
         self.assertEqual([a.header.stamp for a in d2.alarms()], [105.0])
+
+    def test_without_frozen_s_an_alarm_counts_as_whole(self):
+        d = AlarmDedup()  # a bag recorded before the field existed
+        old = types.SimpleNamespace(item_id='vase', level=BEYOND, header=types.SimpleNamespace(stamp=101.0),
+                                    event_id='e/1', sequence=1)
+        d.add('/a', alarm('vase', BEYOND, 100.0, frozen_s=0.5))
+        d.add('/b', old)
+        self.assertIs(d.alarms()[0], old)
 
     def test_one_monitor_never_merges_its_own_alarms(self):
         # after ~reset (a new event) the same level 2 s later from the same monitor is a new alarm

@@ -11,7 +11,9 @@
 //  - From one source, an alarm with an (event id, sequence) already seen is a repeat (re-sent from its
 //    journal after a restart, a reconnect): dropped and counted. Without an event id: item, level, stamp.
 //  - From another source, the same item and level with a stamp within `window` of a shown alarm that
-//    source has not contributed to is the same alarm: merged, shown at the earlier stamp.
+//    source has not contributed to is the same alarm: merged. The copy shown is the best: one from a
+//    monitor whose items saw every sample (OverturnAlarm.frozen_s 0) before one after a gap (a monitor
+//    respawned on a plain topic: its motion differs from the gap on, earlier or later), then the earliest.
 // A monitor alarms a level once per item and event, and an event needs ~event_quiet_time of quiet before
 // the next, so one source's alarms are never merged with each other.
 
@@ -34,6 +36,7 @@ struct AlarmIdentity {
   std::int64_t stamp_ns = 0;  ///< header.stamp: the input sample at which the level was reached
   std::string event_id;  ///< as sent; empty when the monitor has none
   std::uint64_t sequence = 0;
+  bool whole = true;     ///< frozen_s == 0: its items saw every sample (false also for NaN: not known)
 };
 
 class AlarmDedup {
@@ -44,7 +47,7 @@ class AlarmDedup {
   struct Result {
     Outcome outcome = Outcome::New;
     std::size_t row = 0;      ///< the shown alarm it is (New, Merged); rows are numbered in arrival order
-    bool earlier = false;     ///< Merged: this copy is earlier than the one shown, which it replaces
+    bool replaces = false;    ///< Merged: this copy is better than the one shown, which it replaces
   };
 
   /// Throws std::invalid_argument for a negative or NaN window.
@@ -58,10 +61,12 @@ class AlarmDedup {
 
   std::size_t repeats() const { return repeats_; }
   std::size_t merged() const { return merged_; }
+  std::size_t replaced() const { return replaced_; }
 
  private:
   struct Row {
-    std::int64_t stamp_ns;
+    std::int64_t stamp_ns;  // of the copy shown
+    bool whole;             // of the copy shown
     std::set<std::string> sources;
   };
   std::int64_t window_ns_;
@@ -69,7 +74,7 @@ class AlarmDedup {
   std::map<std::size_t, Row> rows_;
   std::map<std::pair<std::string, int>, std::vector<std::size_t>> by_item_level_;
   std::set<std::tuple<std::string, std::string, std::uint64_t, std::string, int, std::int64_t>> seen_;
-  std::size_t repeats_ = 0, merged_ = 0;
+  std::size_t repeats_ = 0, merged_ = 0, replaced_ = 0;
 };
 
 }  // namespace rocking_monitor::core

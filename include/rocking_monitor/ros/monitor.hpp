@@ -146,6 +146,9 @@ class RockingMonitor {
     std::uint64_t deferred = 0;             // item-samples deferred by the batch (quiet)
     // Issue 29: input quiet (|a| below ~event_quiet_threshold) since this stamp, s since 1970 (NaN: not quiet).
     double quiet_from = std::numeric_limits<double>::quiet_NaN();
+    // Input time its items were frozen through (data gaps not bridged, a restart's gap) since the node
+    // started or they were re-armed, s: OverturnAlarm.frozen_s (a redundant pair's consumers prefer 0).
+    double frozen_s = 0.0;
   };
 
   bool load_parameters();
