@@ -15,6 +15,10 @@ if(CATKIN_ENABLE_TESTING)
                      ${CMAKE_CURRENT_SOURCE_DIR}/config/catalogue_example.yaml
                      ${CMAKE_CURRENT_SOURCE_DIR}/bags/one_sine_pulse.csv)
   endif()
+  # --pair (a redundant pair): both monitors' alarms from a bag, each once (needs the generated messages).
+  add_test(NAME report.pair_alarms_each_once
+           COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/test_report_pair.py
+                   ${CMAKE_CURRENT_SOURCE_DIR}/scripts/rocking_report)
   # The report written by the node after the pulse replay equals the monitor's alarms and states.
   if(TARGET monitor)
     # From record files and a catalogue (no bag): record_to_bag, replay, the node's report.
