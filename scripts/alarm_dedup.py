@@ -16,8 +16,8 @@ The rule, on what both monitors take from the sensor alone (never their own cloc
 Within one monitor an item alarms a level once per event, and a new event needs ~event_quiet_time (5 s)
 of quiet first, so a monitor's own alarms are never merged with each other. A monitor that restarted on a
 plain topic (a frozen gap) raises an alarm later or earlier than its partner (its items' motion differs
-from the gap on: measured -0.10 to +0.51 s here, up to +4.3 s in docs/journal.md): within the window it
-is still the same alarm, shown at the partner's time; beyond it, it is shown twice, never lost.
+from the gap on: measured from 0.05 s earlier to 4.3 s later, docs/journal.md "Measured (pair)"): within
+the window it is still the same alarm, shown at the partner's time; beyond it, shown twice, never lost.
 """
 
 WINDOW = 10.0  # s of input stamps within which two monitors' alarms of the same item and level are one
