@@ -10,8 +10,9 @@ the plain topic (the samples sent meanwhile are lost to it). Checked:
 - the killed monitor was respawned (another pid) and says it continues from the state snapshot;
 - the alarms as a consumer shows them are the control's: the same (item, level), input stamp (to the
   sample), event time and plane, each shown once; the consumers: scripts/alarm_dedup.py (rocking_report,
-  monitor_table.py) over both monitors' ~alarms in arrival order, and a dashboard node with ~pair
-  (core::AlarmDedup; its /api/snapshot);
+  monitor_table.py) over both monitors' ~alarms in arrival order, a dashboard node with ~pair
+  (core::AlarmDedup; its /api/snapshot), and the post-event report written by rocking_report --node with
+  ~pair (its items table);
 - the survivor's alarms are the control's, each (no alarm delayed);
 - measured and logged: whether the pair's (event_id, sequence) agree, and the respawned monitor's times.
 """
@@ -36,6 +37,7 @@ from sensor_msgs.msg import Imu
 
 from alarm_dedup import AlarmDedup
 from monitor_journal import Monitor, record_samples, wait_for
+from report_check import parse, summary
 
 LEVELS = {2: 'BEYOND_TIPPING', 3: 'COMMITTED', 4: 'OVERTURNED'}
 PAIR = {'a': '/rocking_monitor_a', 'b': '/rocking_monitor_b'}
@@ -132,6 +134,24 @@ class Pair(unittest.TestCase):
             dash_log.close()
 
         self.addCleanup(stop_dash)
+        # The post-event report of the pair, written by the node when the event ends.
+        reports = os.path.join(scratch, 'reports')
+        report_exe = [p for p in roslib.packages.find_node('rocking_monitor', 'rocking_report') if os.access(p, os.X_OK)][0]
+        report_log = open(os.path.join(scratch, 'report.log'), 'w')
+        report_node = subprocess.Popen([report_exe, '--node', '__name:=pair_report', '_report_dir:=' + reports,
+                                        '_monitor:=' + PAIR['a'], '_pair:=' + PAIR['b']],
+                                       stdout=report_log, stderr=subprocess.STDOUT)
+
+        def stop_report():
+            if report_node.poll() is None:
+                report_node.send_signal(signal.SIGINT)
+                try:
+                    report_node.wait(timeout=20)
+                except subprocess.TimeoutExpired:
+                    report_node.kill()
+            report_log.close()
+
+        self.addCleanup(stop_report)
         received = []
         members = {k: PairMember(n, received) for k, n in PAIR.items()}
         moving = []  # stamp at which the control's first item left rest
@@ -152,9 +172,11 @@ class Pair(unittest.TestCase):
 
         def dashboard_subscribed():
             subs = dict((t, n) for t, n in rosgraph.Master('/monitor_pair_test').getSystemState()[1])
-            return all('/pair_dashboard' in subs.get(n + '/alarms', []) for n in PAIR.values())
+            return all(node in subs.get(n + '/alarms', []) for n in PAIR.values()
+                       for node in ('/pair_dashboard', '/pair_report'))
 
-        wait_for('the dashboard subscribed to both monitors\' alarms', dashboard_subscribed, timeout=30.0)
+        wait_for('the dashboard and the report subscribed to both monitors\' alarms', dashboard_subscribed,
+                 timeout=30.0)
         time.sleep(1.0)
         pid_before = node_pid(PAIR[which])
         self.assertIsNotNone(pid_before, launch_text()[-3000:])
@@ -260,6 +282,21 @@ class Pair(unittest.TestCase):
             if m.header.stamp.to_sec() > base.to_sec() + offsets[b].to_sec():
                 self.assertGreater(m.frozen_s, 0.0, report)
                 self.assertLess(m.frozen_s, gap_s + 0.12, report)  # + the snapshot's age (<= 0.1 s) + a sample
+
+        # The post-event report's items table (alarm_dedup.py over the event's bag): the control's alarms, at
+        # its times since the first sample (the survivor's clock and the control's start on the same sample).
+        wait_for('the post-event report', lambda: any(f.endswith('.html') for f in os.listdir(reports))
+                 if os.path.isdir(reports) else False, timeout=60.0)
+        page = sorted(os.path.join(reports, f) for f in os.listdir(reports) if f.endswith('.html'))[0]
+        with open(page, encoding='utf-8') as f:
+            self.assertIn('id="pair"', f.read())
+        table = summary(parse(page))
+        in_report = sorted((item, level, round(v[0], 6), v[1]) for item, d in table.items()
+                           for level, v in d.items() if level in names and v is not None)
+        in_control = sorted((m.item_id, LEVELS[m.level], round(m.time_since_first_sample, 6), m.plane)
+                            for m in control.alarms)
+        print('report %s: %d alarms in its items table' % (os.path.basename(page), len(in_report)))
+        self.assertEqual(in_report, in_control, report)
 
         # No alarm delayed: the survivor never stopped, its alarms are the control's to the bit.
         self.assertEqual(sorted(row_key(m) for m in survivor.alarms), ctl, report)
