@@ -90,6 +90,16 @@ if(CATKIN_ENABLE_TESTING)
               expect_catch_up:=false kill_after:=0.3 DEPENDENCIES monitor ground_motion_player)
   # Issue 29 part 4: the same record twice, 60 s of quiet apart: two events, every level alarmed in both.
   add_rostest(test/ros/monitor_aftershock.test DEPENDENCIES monitor)
+  # Issue 29 part 3: launch/monitor_pair.launch, one of the pair killed with SIGKILL during the strong
+  # motion and respawned (a 0.3 s in, b 1.0 s in, a 2.0 s in: between the alarms): the deduplicated
+  # alarms (scripts/alarm_dedup.py, the dashboard) are the unbroken control's.
+  add_rostest(test/ros/monitor_pair.test DEPENDENCIES monitor)
+  add_rostest(test/ros/monitor_pair.test ARGS kill:=b kill_after:=1.0 DEPENDENCIES monitor)
+  add_rostest(test/ros/monitor_pair.test ARGS kill:=a kill_after:=2.0 DEPENDENCIES monitor)
+  # The pair's rule for "the same alarm" (consumers show each once), on plain objects: no ROS needed.
+  add_test(NAME alarm_dedup.same_alarm_from_either_monitor_shown_once
+           COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/test_alarm_dedup.py
+                   ${CMAKE_CURRENT_SOURCE_DIR}/scripts)
   # Issue 28: ~state_changes applied to one ~states give the last ~states (Python).
   add_rostest(test/ros/monitor_state_changes.test DEPENDENCIES monitor)
 endif()

@@ -1,6 +1,8 @@
 # The post-event report (issue 14, part 2): scripts/rocking_report (Python: rosbag, numpy, matplotlib)
 # and its tests. The monitor's launch files start it as a node with report_dir:=DIR.
 catkin_install_python(PROGRAMS scripts/rocking_report DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+# The redundant pair's "one alarm" rule, imported by rocking_report and monitor_table.py from beside them.
+install(FILES scripts/alarm_dedup.py DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 if(CATKIN_ENABLE_TESTING)
   # No ROS master: bad input is one error line; the spectrum and the Housner periods from independent sources.
   add_test(NAME report.bad_input_is_one_error_line
@@ -13,6 +15,10 @@ if(CATKIN_ENABLE_TESTING)
                      ${CMAKE_CURRENT_SOURCE_DIR}/config/catalogue_example.yaml
                      ${CMAKE_CURRENT_SOURCE_DIR}/bags/one_sine_pulse.csv)
   endif()
+  # --pair (a redundant pair): both monitors' alarms from a bag, each once (needs the generated messages).
+  add_test(NAME report.pair_alarms_each_once
+           COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/test_report_pair.py
+                   ${CMAKE_CURRENT_SOURCE_DIR}/scripts/rocking_report)
   # The report written by the node after the pulse replay equals the monitor's alarms and states.
   if(TARGET monitor)
     # From record files and a catalogue (no bag): record_to_bag, replay, the node's report.

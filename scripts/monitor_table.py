@@ -4,13 +4,21 @@
 Times are seconds since the first sample of the sensor (~imu; without it, since the first state
 received; alarms carry the monitor's own count) with the UTC wall time of the stamp, as in the
 monitor's own log lines. Each item shows its worse rocking plane ("y/2": plane y of two). With ~end_after_idle > 0 the table ends by itself (exit status 0) once states have stopped
-coming for that many wall-clock seconds: the end of a replayed record (scripts/run_demo.sh)."""
+coming for that many wall-clock seconds: the end of a replayed record (scripts/run_demo.sh).
+With ~pair (the other monitor of a redundant pair, launch/monitor_pair.launch, e.g. /rocking_monitor_b) its
+alarms are listed too, each alarm once (scripts/alarm_dedup.py, docs/journal.md "A redundant pair")."""
 import datetime
+import os
+import sys
+import threading
 import time
 
 import rospy
 from rocking_monitor.msg import RockingStateArray, OverturnAlarm
 from sensor_msgs.msg import Imu
+
+sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))  # alarm_dedup.py beside this file
+from alarm_dedup import AlarmDedup  # noqa: E402
 
 MODES = {0: "REST", 1: "ROCKING", 2: "BEYOND_TIPPING", 3: "COMMITTED", 4: "OVERTURNED"}
 LEVELS = {2: "BEYOND_TIPPING", 3: "COMMITTED", 4: "OVERTURNED"}
@@ -20,15 +28,22 @@ class Table:
     def __init__(self):
         self.period = rospy.get_param("~period", 1.0)  # s between tables
         self.latest = None
-        self.alarms = []
+        self.alarms = AlarmDedup()  # each alarm once: re-sent after a restart, or from the pair's other monitor
+        self.alarms_lock = threading.Lock()  # rospy calls each subscription's callback on its own thread
         self.last_print = None
         self.t0 = None  # stamp of the first sample (else of the first state): times are relative to it
         self.t0_is_sample = False
         self.end_after_idle = rospy.get_param("~end_after_idle", 0.0)  # wall s; 0 = run until shut down
         self.last_state_wall = None
         rospy.Subscriber(rospy.get_param("~states", "/rocking_monitor/states"), RockingStateArray, self.on_states)
-        rospy.Subscriber(rospy.get_param("~alarms", "/rocking_monitor/alarms"), OverturnAlarm, self.on_alarm,
-                         queue_size=1000)
+        alarms = rospy.get_param("~alarms", "/rocking_monitor/alarms")
+        rospy.Subscriber(alarms, OverturnAlarm, lambda m: self.on_alarm(alarms, m), queue_size=1000)
+        pair = rospy.get_param("~pair", "").rstrip("/")
+        if pair:
+            pair_alarms = pair + "/alarms"
+            if pair_alarms == alarms:
+                raise SystemExit("monitor_table: ~pair %s is the monitor itself (~alarms %s)" % (pair, alarms))
+            rospy.Subscriber(pair_alarms, OverturnAlarm, lambda m: self.on_alarm(pair_alarms, m), queue_size=1000)
         imu = rospy.get_param("~imu", "/ground/imu")
         if imu:
             self.imu_sub = rospy.Subscriber(imu, Imu, self.on_imu, queue_size=10)
@@ -50,8 +65,9 @@ class Table:
             self.last_print = now
             self.print_table(msg)
 
-    def on_alarm(self, msg):
-        self.alarms.append(msg)
+    def on_alarm(self, source, msg):
+        with self.alarms_lock:
+            self.alarms.add(source, msg)
 
     def rel(self, t):
         return t - self.t0 if self.t0 is not None else t
@@ -86,13 +102,16 @@ class Table:
     def summary(self):
         if self.latest is not None:
             self.print_table(self.latest)
-        print("\nAlarm summary (%d alarms):" % len(self.alarms))
-        for a in self.alarms:
+        with self.alarms_lock:
+            alarms = self.alarms.alarms()
+        print("\nAlarm summary (%d alarms; copies not listed: %d from the pair's other monitor, %d received again):"
+              % (len(alarms), self.alarms.merged, self.alarms.repeats))
+        for a in alarms:
             print("  t = %8.3f s  %s  %-15s %-18s plane %s  predicted by: %s; not by: %s" % (
                 a.time_since_first_sample, self.utc(a.event_time), LEVELS.get(a.level, "?"), a.item_id, a.plane,
                 ", ".join(a.predicted_by) or "none",
                 ", ".join(a.not_predicted_by) or "none"), flush=True)
-        if not self.alarms:
+        if not alarms:
             print("  none: every item stayed within its tipping angle", flush=True)
 
 

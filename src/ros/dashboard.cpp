@@ -17,6 +17,7 @@ Dashboard::~Dashboard() {
   catalogue_timer_.stop();
   states_sub_.shutdown();
   alarms_sub_.shutdown();
+  pair_alarms_sub_.shutdown();
   criteria_sub_.shutdown();
   diagnostics_sub_.shutdown();
   input_sub_.shutdown();
@@ -40,6 +41,10 @@ bool Dashboard::load_parameters() {
   if (pnh_.getParam("monitor", v)) {
     if (v.getType() != XmlRpc::XmlRpcValue::TypeString) return wrong("monitor", "string");
     monitor_ = static_cast<std::string>(v);
+  }
+  if (pnh_.getParam("pair", v)) {
+    if (v.getType() != XmlRpc::XmlRpcValue::TypeString) return wrong("pair", "string: the other monitor's namespace");
+    pair_ = static_cast<std::string>(v);
   }
   if (pnh_.getParam("update_rate", v)) {
     if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) update_rate_ = static_cast<double>(v);
@@ -77,6 +82,12 @@ bool Dashboard::load_parameters() {
     return false;
   }
   while (monitor_.size() > 1 && monitor_.back() == '/') monitor_.pop_back();
+  while (pair_.size() > 1 && pair_.back() == '/') pair_.pop_back();
+  if (!pair_.empty() && (pair_[0] != '/' || pair_ == monitor_)) {
+    ROS_FATAL("dashboard: ~pair = '%s' must be the absolute namespace of the other monitor of a redundant pair "
+              "(not ~monitor '%s'), e.g. /rocking_monitor_b", pair_.c_str(), monitor_.c_str());
+    return false;
+  }
   // At most 10 Hz (issue 14): a person cannot follow faster, and 10,000 items must stay cheap.
   if (!std::isfinite(update_rate_) || update_rate_ <= 0.0 || update_rate_ > 10.0) {
     ROS_FATAL("dashboard: ~update_rate = %g Hz must be in (0, 10]", update_rate_);
@@ -149,11 +160,14 @@ bool Dashboard::init() {
   read_journal();
   if (!start_server()) return false;
   pnh_.setParam("url", url_);
-  ROS_INFO("dashboard: open %s in a browser (monitor %s)", url_.c_str(), monitor_.c_str());
+  ROS_INFO("dashboard: open %s in a browser (monitor %s%s%s)", url_.c_str(), monitor_.c_str(),
+           pair_.empty() ? "" : ", its pair ", pair_.c_str());
 
   const auto hints = ::ros::TransportHints().tcpNoDelay();
   states_sub_ = nh_.subscribe(monitor_ + "/states", 10, &Dashboard::on_states, this, hints);
   alarms_sub_ = nh_.subscribe(monitor_ + "/alarms", 1000, &Dashboard::on_alarm, this, hints);
+  // A redundant pair: the other monitor's alarms too (states, criteria and the journal are ~monitor's).
+  if (!pair_.empty()) pair_alarms_sub_ = nh_.subscribe(pair_ + "/alarms", 1000, &Dashboard::on_pair_alarm, this, hints);
   criteria_sub_ = nh_.subscribe(monitor_ + "/criteria", 1000, &Dashboard::on_criterion, this, hints);
   diagnostics_sub_ = nh_.subscribe("/diagnostics", 50, &Dashboard::on_diagnostics, this);
   if (!sensor_topic_.empty()) subscribe_input(sensor_topic_, sensor_type_ == "imu");

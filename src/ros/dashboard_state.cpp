@@ -115,26 +115,40 @@ void Dashboard::on_states(const RockingStateArray::ConstPtr& msg) {
   ++states_received_;
 }
 
-void Dashboard::on_alarm(const OverturnAlarm::ConstPtr& msg) {
-  std::string frame;
+void Dashboard::on_alarm_from(const std::string& source, const OverturnAlarm::ConstPtr& msg) {
+  json frame;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    // One alarm, however often it arrives (journal at start, re-sent by a restarted monitor, reconnect):
-    // its event and sequence number name it; without them, item, level and stamp.
-    std::string key = !msg->event_id.empty()
-                          ? msg->event_id + "#" + std::to_string(msg->sequence)
-                          : msg->item_id + "/" + std::to_string(msg->level) + "/" +
-                                std::to_string(msg->header.stamp.toNSec());
-    if (!alarm_keys_.insert(key).second) return;
-    alarms_.push_front({*msg, std::move(key)});
-    constexpr std::size_t kMaxAlarms = 10000;  // three per item of a large site, then the oldest go
-    while (alarms_.size() > kMaxAlarms) {
-      alarm_keys_.erase(alarms_.back().key);
-      alarms_.pop_back();
+    // One alarm, however often it arrives (journal at start, re-sent by a restarted monitor, reconnect,
+    // the pair's other monitor): core::AlarmDedup's rule, as rocking_report's and monitor_table.py's.
+    const core::AlarmDedup::Result r = dedup_.add({source, msg->item_id, msg->level,
+                                                   static_cast<std::int64_t>(msg->header.stamp.toNSec()),
+                                                   msg->event_id, msg->sequence, msg->frozen_s == 0.0});
+    if (r.outcome == core::AlarmDedup::Outcome::Repeat) return;
+    if (r.outcome == core::AlarmDedup::Outcome::Merged) {
+      // The same alarm from the other monitor: not shown again, unless it is the better copy (its items
+      // saw every sample, the one shown came after a gap): then it replaces it, on the pages too.
+      if (!r.replaces) return;
+      for (Alarm& a : alarms_) {
+        if (a.row != r.row) continue;
+        frame = alarm_json(*msg);
+        frame["replaces"] = a.msg.header.stamp.toSec();  // the page's key of the copy it showed
+        a.msg = *msg;
+        break;
+      }
+      if (frame.is_null()) return;  // already forgotten
+    } else {
+      alarms_.push_front({*msg, r.row});
+      frame = alarm_json(*msg);
+      constexpr std::size_t kMaxAlarms = 10000;  // three per item of a large site, then the oldest go
+      while (alarms_.size() > kMaxAlarms) {
+        dedup_.forget(alarms_.back().row);
+        alarms_.pop_back();
+      }
     }
   }
   // Immediately, not at the next tick: an alarm is what the operator waits for.
-  publish_event("alarm", alarm_json(*msg).dump());
+  publish_event("alarm", frame.dump());
 }
 
 void Dashboard::on_criterion(const CriterionExceedance::ConstPtr& msg) {
@@ -159,7 +173,8 @@ json Dashboard::alarm_json(const OverturnAlarm& a) {
           {"plane", a.plane}, {"event_time", a.event_time}, {"utc", utc(a.event_time)},
           {"t", a.time_since_first_sample}, {"rotation_ratio", a.rotation_ratio},
           {"stamp", a.header.stamp.toSec()}, {"predicted_by", a.predicted_by},
-          {"not_predicted_by", a.not_predicted_by}, {"event_id", a.event_id}, {"sequence", a.sequence}};
+          {"not_predicted_by", a.not_predicted_by}, {"event_id", a.event_id}, {"sequence", a.sequence},
+          {"frozen_s", std::isnan(a.frozen_s) ? json(nullptr) : json(a.frozen_s)}};
 }
 
 json Dashboard::health_json_locked() const {
@@ -220,8 +235,11 @@ std::string Dashboard::snapshot_json() const {
     out["alarms"] = std::move(alarms);
     out["health"] = health_json_locked();
     out["states_received"] = states_received_;
+    // Copies not shown, counted: the pair's other monitor's (merged) and ones received again (repeats).
+    out["alarm_copies"] = {{"merged", dedup_.merged()}, {"replaced", dedup_.replaced()}, {"repeats", dedup_.repeats()}};
   }
   out["monitor"] = monitor_;
+  out["pair"] = pair_;
   out["update_rate"] = update_rate_;
   out["stamp"] = latest ? latest->header.stamp.toSec() : 0.0;
   out["items"] = std::move(items);

@@ -113,6 +113,7 @@ void RockingMonitor::open_journal() {
       m.event_time = r.time;
       m.time_since_first_sample = r.since_event_start;  // from the journal: since the event's first sample
       m.rotation_ratio = r.rotation_ratio;
+      m.frozen_s = std::numeric_limits<double>::quiet_NaN();  // not journaled
       m.event_id = r.event;
       m.sequence = r.sequence;
       event_alarms_.push_back(m);
@@ -278,7 +279,10 @@ void RockingMonitor::check_event_end(const ::ros::Time& stamp) {
     it.monitor->new_event(t);
     if (it.ensemble) it.ensemble->new_event(t);
   }
-  for (Sensor& s : sensors_) s.batch.reset();  // the items were restarted
+  for (Sensor& s : sensors_) {
+    s.batch.reset();  // the items were restarted
+    s.frozen_s = 0.0;  // re-armed: the next event's alarms say what they were frozen through from here
+  }
   ++events_ended_;
   ROS_WARN("rocking_monitor: event %s ended: %s; %zu items at rest are re-armed (a later shaking is a new event "
            "and alarms them again), %zu on their side stay so until ~reset", id.c_str(), why, upright,

@@ -70,6 +70,7 @@ void RockingMonitor::publish_events(Item& it, const core::ItemEvents& ev, const 
     m.event_time = epoch + a.time;
     m.time_since_first_sample = a.time;
     m.rotation_ratio = a.rotation_ratio;
+    m.frozen_s = sensors_[it.sensor].frozen_s;
     for (core::CriterionId id : kScreening)
       (it.monitor->screening_exceeded(a.plane, id) ? m.predicted_by : m.not_predicted_by).push_back(core::to_string(id));
     if (!journal_alarm(it, m, epoch)) continue;  // journaled (fsync'd before publication); never twice

@@ -292,6 +292,7 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
       const double period = nominal_period(s);
       if (period > 0.0 && period < dt) {
         s.epoch += ::ros::Duration(dt - period);
+        s.frozen_s += dt - period;
         ROS_WARN_THROTTLE(5.0, "rocking_monitor: sensor '%s': %.3f s data gap, not bridged: its items were frozen and "
                           "continue from their state (%lu gaps)", s.spec.name.c_str(), dt,
                           static_cast<unsigned long>(s.timing.counters().gaps));
@@ -303,6 +304,7 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
   if (verdict == V::First || verdict == V::BackwardJump) {
     s.epoch = header.stamp;
     s.last_t = 0.0;
+    s.frozen_s = 0.0;  // the items start afresh
   }
   const double stamp_dt = dt;  // between the stamps, s (a gap's full length)
   const double t = (header.stamp - s.epoch).toSec();

@@ -22,6 +22,7 @@
 #include "rocking_monitor/CriterionExceedance.h"
 #include "rocking_monitor/OverturnAlarm.h"
 #include "rocking_monitor/RockingStateArray.h"
+#include "rocking_monitor/monitoring/alarm_dedup.hpp"
 #include "rocking_monitor/ros/catalogue.hpp"
 
 namespace httplib {
@@ -95,14 +96,17 @@ class Dashboard {
     float margin;  // energy margin
   };
   struct Alarm {
-    OverturnAlarm msg;
-    std::string key;  // item/level/stamp: a latched alarm seen twice (monitor reconnect) is logged once
+    OverturnAlarm msg;  // the earliest copy received (a redundant pair: either monitor's)
+    std::size_t row;    // its row in dedup_
   };
 
   bool load_parameters();
   void load_catalogue();
   void on_states(const RockingStateArray::ConstPtr& msg);
-  void on_alarm(const OverturnAlarm::ConstPtr& msg);
+  void on_alarm(const OverturnAlarm::ConstPtr& msg) { on_alarm_from(monitor_, msg); }
+  void on_pair_alarm(const OverturnAlarm::ConstPtr& msg) { on_alarm_from(pair_, msg); }
+  /// One alarm once, however many copies (journal, re-sent after a restart, the pair's other monitor).
+  void on_alarm_from(const std::string& source, const OverturnAlarm::ConstPtr& msg);
   void on_criterion(const CriterionExceedance::ConstPtr& msg);
   void on_diagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& msg);
   void on_update_timer(const ::ros::WallTimerEvent&);
@@ -141,6 +145,7 @@ class Dashboard {
   std::string bind_address_ = "127.0.0.1";
   int port_ = 8080;  // 0: any free port (tests); the bound one is in ~url
   std::string monitor_ = "/rocking_monitor";
+  std::string pair_;  // ~pair: the other monitor of a redundant pair (launch/monitor_pair.launch); "" = none
   double update_rate_ = 10.0;  // Hz, at most 10: deltas to the page
   int max_clients_ = 8;        // SSE connections at once (each holds one HTTP thread)
   std::string url_;
@@ -158,7 +163,7 @@ class Dashboard {
   RockingStateArray::ConstPtr latest_;                     // newest ~states (shared, not copied)
   bool latest_sent_ = true;
   std::deque<Alarm> alarms_;                               // newest first
-  std::set<std::string> alarm_keys_;
+  core::AlarmDedup dedup_;  // which copies are one alarm (docs/journal.md "A redundant pair")
   std::map<std::string, std::set<std::string>> criteria_;  // id -> "plane:criterion" exceeded now
   std::map<std::string, diagnostic_msgs::DiagnosticStatus> health_;  // this monitor's statuses by name
   bool catalogue_loaded_ = false;
@@ -171,7 +176,7 @@ class Dashboard {
   std::size_t input_pushed_ = 0;       // bins of input_ already sent on the event stream
   double input_pushed_t_ = 0.0;        // stamp of the last bin sent
 
-  ::ros::Subscriber states_sub_, alarms_sub_, criteria_sub_, diagnostics_sub_, input_sub_;
+  ::ros::Subscriber states_sub_, alarms_sub_, pair_alarms_sub_, criteria_sub_, diagnostics_sub_, input_sub_;
   ::ros::WallTimer update_timer_, catalogue_timer_;
 
   // ---- SSE clients, own lock so that formatting the snapshot never delays a push

@@ -151,6 +151,9 @@ class RockingMonitor {
     // up); live samples up to it were stepped already: dropped and counted until a later one arrives.
     ::ros::Time caught_up_to;
     std::uint64_t caught_up_dropped = 0;
+    // Input time its items were frozen through (data gaps not bridged, a restart's gap) since the node
+    // started or they were re-armed, s: OverturnAlarm.frozen_s (a redundant pair's consumers prefer 0).
+    double frozen_s = 0.0;
   };
 
   bool load_parameters();

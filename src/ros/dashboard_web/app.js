@@ -150,6 +150,13 @@ function loadItem(id) {
 }
 
 function addAlarm(a, render = true) {
+  // A redundant pair's better copy of an alarm shown (docs/journal.md): it takes the other's place.
+  if (a.replaces !== undefined) {
+    const old = a.item + '/' + a.level + '/' + a.replaces;
+    const i = view.alarms.findIndex((b) => b.item + '/' + b.level + '/' + b.stamp === old);
+    if (i >= 0) view.alarms.splice(i, 1);
+    view.alarmKeys.delete(old);
+  }
   const key = a.item + '/' + a.level + '/' + a.stamp;
   if (view.alarmKeys.has(key)) return;
   view.alarmKeys.add(key);
