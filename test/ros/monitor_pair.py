@@ -95,23 +95,28 @@ class Pair(unittest.TestCase):
 
         control = Monitor('pair_ctl', os.path.join(scratch, 'control.log'))
         self.addCleanup(control.close)  # also when an assertion fails
-        launch_log = open(os.path.join(scratch, 'pair.log'), 'w')
-        launch = subprocess.Popen(
+        def start(cmd, log_name, stop_timeout):
+            """A process of the test with its output in the scratch folder, stopped by SIGINT at the end."""
+            log = open(os.path.join(scratch, log_name), 'w')
+            proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT)
+
+            def stop():
+                if proc.poll() is None:
+                    proc.send_signal(signal.SIGINT)
+                    try:
+                        proc.wait(timeout=stop_timeout)
+                    except subprocess.TimeoutExpired:
+                        proc.kill()
+                log.close()
+
+            self.addCleanup(stop)
+            return proc, log
+
+        _, launch_log = start(
             ['roslaunch', 'rocking_monitor', 'monitor_pair.launch', 'journal_a:=' + os.path.join(scratch, 'a.jsonl'),
              'journal_b:=' + os.path.join(scratch, 'b.jsonl'), 'params:=' + rospy.get_param('~params'),
              'state_rate:=0.0', 'state_queue_size:=100000'],  # own arguments: a <param> beats the params file
-            stdout=launch_log, stderr=subprocess.STDOUT)
-
-        def stop_launch():
-            if launch.poll() is None:
-                launch.send_signal(signal.SIGINT)
-                try:
-                    launch.wait(timeout=30)
-                except subprocess.TimeoutExpired:
-                    launch.kill()
-            launch_log.close()
-
-        self.addCleanup(stop_launch)
+            'pair.log', 30)
 
         def launch_text():
             launch_log.flush()
@@ -120,38 +125,13 @@ class Pair(unittest.TestCase):
 
         # The dashboard of the pair, as an operator runs it: ~monitor a, ~pair b.
         dash_exe = [p for p in roslib.packages.find_node('rocking_monitor', 'dashboard') if os.access(p, os.X_OK)][0]
-        dash_log = open(os.path.join(scratch, 'dashboard.log'), 'w')
-        dash = subprocess.Popen([dash_exe, '__name:=pair_dashboard', '_port:=0', '_monitor:=' + PAIR['a'],
-                                 '_pair:=' + PAIR['b']], stdout=dash_log, stderr=subprocess.STDOUT)
-
-        def stop_dash():
-            if dash.poll() is None:
-                dash.send_signal(signal.SIGINT)
-                try:
-                    dash.wait(timeout=20)
-                except subprocess.TimeoutExpired:
-                    dash.kill()
-            dash_log.close()
-
-        self.addCleanup(stop_dash)
+        start([dash_exe, '__name:=pair_dashboard', '_port:=0', '_monitor:=' + PAIR['a'], '_pair:=' + PAIR['b']],
+              'dashboard.log', 20)
         # The post-event report of the pair, written by the node when the event ends.
         reports = os.path.join(scratch, 'reports')
         report_exe = [p for p in roslib.packages.find_node('rocking_monitor', 'rocking_report') if os.access(p, os.X_OK)][0]
-        report_log = open(os.path.join(scratch, 'report.log'), 'w')
-        report_node = subprocess.Popen([report_exe, '--node', '__name:=pair_report', '_report_dir:=' + reports,
-                                        '_monitor:=' + PAIR['a'], '_pair:=' + PAIR['b']],
-                                       stdout=report_log, stderr=subprocess.STDOUT)
-
-        def stop_report():
-            if report_node.poll() is None:
-                report_node.send_signal(signal.SIGINT)
-                try:
-                    report_node.wait(timeout=20)
-                except subprocess.TimeoutExpired:
-                    report_node.kill()
-            report_log.close()
-
-        self.addCleanup(stop_report)
+        start([report_exe, '--node', '__name:=pair_report', '_report_dir:=' + reports,
+               '_monitor:=' + PAIR['a'], '_pair:=' + PAIR['b']], 'report.log', 20)
         received = []
         members = {k: PairMember(n, received) for k, n in PAIR.items()}
         moving = []  # stamp at which the control's first item left rest
