@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <thread>
 #include <type_traits>
 
 #include <geometry_msgs/TransformStamped.h>
@@ -104,9 +105,13 @@ bool RockingMonitor::load_parameters() {
     ROS_FATAL("rocking_monitor: ~alarm_probability = %g must be in (0, 1]", alarm_probability_);
     return false;
   }
-  if (threads_ < 1) {
-    ROS_FATAL("rocking_monitor: ~threads = %d must be >= 1", threads_);
+  if (threads_ < 0) {
+    ROS_FATAL("rocking_monitor: ~threads = %d must be >= 1, or 0 for every core of this machine", threads_);
     return false;
+  }
+  if (threads_ == 0) {  // every core (issue 28): catalogues of >= 64 items step in parallel
+    threads_ = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    ROS_INFO("rocking_monitor: ~threads 0: %d worker threads (every core)", threads_);
   }
   if (threads_ > 1) arena_ = std::make_unique<tbb::task_arena>(threads_);
   if (!core::parse_method(method, options_.solver.method)) {
