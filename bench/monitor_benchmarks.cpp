@@ -128,34 +128,49 @@ void BM_ItemMonitors(benchmark::State& state) {
   finish(state, seconds, samples, static_cast<double>(items.size()), allocs);
 }
 
+// The batch benchmarks' items and their inputs: every item's sample i rotated into its frame, as the
+// node does (ax, ay, az per item, m/s^2); fill() over a range of items (a thread's share).
+struct BatchFeed {
+  const Case& c;
+  std::vector<std::unique_ptr<ItemMonitor>> items;
+  std::vector<double> ax, ay, az;
+  explicit BatchFeed(const Case& cc) : c(cc), ax(cc.items.size()), ay(cc.items.size()), az(cc.items.size()) {
+    for (const CatalogueItem& it : c.items) items.push_back(std::make_unique<ItemMonitor>(it.spec, options()));
+  }
+  std::size_t size() const { return items.size(); }
+  void fill(std::size_t i, std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      item_input(c, k, i, ax[k], ay[k]);
+      az[k] = c.feed.up[i];
+    }
+  }
+  void fill(std::size_t i) { fill(i, 0, size()); }
+  /// Every item started on sample 0: the batch's item list.
+  std::vector<ItemMonitor*> start() {
+    fill(0);
+    std::vector<ItemMonitor*> ptrs;
+    for (std::size_t k = 0; k < size(); ++k) {
+      items[k]->start(0.0, ax[k], ay[k], az[k], c.feed.dt);
+      ptrs.push_back(items[k].get());
+    }
+    return ptrs;
+  }
+};
+
 // The batch (monitoring/monitor_batch.hpp): the same items, quiet samples deferred. Counter
 // deferred_frac: share of item-samples deferred.
 void BM_MonitorBatch(benchmark::State& state) {
   const Case& c = *g_case;
-  std::vector<std::unique_ptr<ItemMonitor>> items;
-  for (const CatalogueItem& it : c.items) items.push_back(std::make_unique<ItemMonitor>(it.spec, options()));
-  const std::size_t n = c.feed.e.size(), m = items.size();
-  std::vector<double> ax(m), ay(m), az(m);
+  BatchFeed f(c);
+  const std::size_t n = c.feed.e.size(), m = f.size();
   double seconds = 0, samples = 0, allocs = 0, deferred = 0, planes = 0;
-  auto fill = [&](std::size_t i) {
-    for (std::size_t k = 0; k < m; ++k) {
-      item_input(c, k, i, ax[k], ay[k]);
-      az[k] = c.feed.up[i];
-    }
-  };
   for (auto _ : state) {
-    fill(0);
-    std::vector<ItemMonitor*> ptrs;
-    for (std::size_t k = 0; k < m; ++k) {
-      items[k]->start(0.0, ax[k], ay[k], az[k], c.feed.dt);
-      ptrs.push_back(items[k].get());
-    }
-    MonitorBatch batch(ptrs);
+    MonitorBatch batch(f.start());
     const long a0 = rocking_monitor::testing::allocation_count();
     const double t0 = rb::thread_cpu_seconds();
     for (std::size_t i = 1; i < n; ++i) {
-      fill(i);  // as the node: each item's input rotated into its frame
-      deferred += static_cast<double>(batch.step(0, m, ax.data(), ay.data(), az.data(), c.feed.dt));
+      f.fill(i);  // as the node: each item's input rotated into its frame
+      deferred += static_cast<double>(batch.step(0, m, f.ax.data(), f.ay.data(), f.az.data(), c.feed.dt));
       planes += static_cast<double>(m);
     }
     seconds += rb::thread_cpu_seconds() - t0;
@@ -172,29 +187,18 @@ void BM_MonitorBatch(benchmark::State& state) {
 // CLOCK_PROCESS_CPUTIME_ID), threads; results do not depend on the thread count (test_monitor_batch).
 void BM_MonitorBatchThreads(benchmark::State& state, int threads) {
   const Case& c = *g_case;
-  std::vector<std::unique_ptr<ItemMonitor>> items;
-  for (const CatalogueItem& it : c.items) items.push_back(std::make_unique<ItemMonitor>(it.spec, options()));
-  const std::size_t n = c.feed.e.size(), m = items.size();
-  std::vector<double> ax(m), ay(m), az(m);
+  BatchFeed f(c);
+  const std::size_t n = c.feed.e.size(), m = f.size();
   double wall = 0, cpu = 0, samples = 0;
   tbb::task_arena arena(threads);
   for (auto _ : state) {
-    std::vector<ItemMonitor*> ptrs;
-    for (std::size_t k = 0; k < m; ++k) {
-      item_input(c, k, 0, ax[k], ay[k]);
-      items[k]->start(0.0, ax[k], ay[k], c.feed.up[0], c.feed.dt);
-      ptrs.push_back(items[k].get());
-    }
-    MonitorBatch batch(ptrs);
+    MonitorBatch batch(f.start());
     const double c0 = rb::process_cpu_seconds();
     const auto t0 = std::chrono::steady_clock::now();
     for (std::size_t i = 1; i < n; ++i) {
       auto range = [&](std::size_t b, std::size_t e) {
-        for (std::size_t k = b; k < e; ++k) {
-          item_input(c, k, i, ax[k], ay[k]);
-          az[k] = c.feed.up[i];
-        }
-        batch.step(b, e, ax.data(), ay.data(), az.data(), c.feed.dt);
+        f.fill(i, b, e);
+        batch.step(b, e, f.ax.data(), f.ay.data(), f.az.data(), c.feed.dt);
       };
       if (threads == 1) {
         range(0, m);
@@ -223,33 +227,20 @@ void BM_MonitorBatchThreads(benchmark::State& state, int threads) {
 // (write + fsync + rename to /tmp) are the writer thread's, off the sample path.
 void BM_StateSnapshot(benchmark::State& state) {
   const Case& c = *g_case;
-  std::vector<std::unique_ptr<ItemMonitor>> items;
-  for (const CatalogueItem& it : c.items) items.push_back(std::make_unique<ItemMonitor>(it.spec, options()));
-  const std::size_t n = c.feed.e.size(), m = items.size(), every = 10;
+  BatchFeed f(c);
+  std::vector<std::unique_ptr<ItemMonitor>>& items = f.items;
+  const std::size_t n = c.feed.e.size(), m = f.size(), every = 10;
   const std::size_t from = n / 4, to = std::min(n, from + 400);  // Takatori's strong motion: ~10-14 s
-  std::vector<double> ax(m), ay(m), az(m);
-  auto fill = [&](std::size_t i) {
-    for (std::size_t k = 0; k < m; ++k) {
-      item_input(c, k, i, ax[k], ay[k]);
-      az[k] = c.feed.up[i];
-    }
-  };
   SnapshotEncoder enc;
   std::vector<std::uint8_t> buf;
   double encode_s = 0, seal_s = 0, write_s = 0, snapshots = 0, allocs = 0, bytes = 0, moving = 0;
   const std::string path = "/tmp/rocking_monitor_bench_" + std::to_string(::getpid()) + ".snapshot";
   for (auto _ : state) {
-    fill(0);
-    std::vector<ItemMonitor*> ptrs;
-    for (std::size_t k = 0; k < m; ++k) {
-      items[k]->start(0.0, ax[k], ay[k], az[k], c.feed.dt);
-      ptrs.push_back(items[k].get());
-    }
-    MonitorBatch batch(ptrs);
+    MonitorBatch batch(f.start());
     bool warm = false;  // the first snapshot grows the buffers; the next ones must not allocate
     for (std::size_t i = 1; i < to; ++i) {
-      fill(i);
-      batch.step(0, m, ax.data(), ay.data(), az.data(), c.feed.dt);
+      f.fill(i);
+      batch.step(0, m, f.ax.data(), f.ay.data(), f.az.data(), c.feed.dt);
       if (i < from || i % every != 0) continue;
       const long a0 = rocking_monitor::testing::allocation_count();
       const double t0 = rb::thread_cpu_seconds();
