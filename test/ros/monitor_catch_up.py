@@ -24,7 +24,6 @@ import unittest
 
 import rospy
 import rostest
-from rocking_monitor.msg import RockingStateArray
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from rocking_monitor.srv import SampleHistory
 from std_msgs.msg import Bool
@@ -50,15 +49,7 @@ class CatchUp(unittest.TestCase):
         self.addCleanup(control.close)  # also when an assertion fails
         runs = [Monitor('catchup_mon', os.path.join(scratch, 'monitor1.log'))]
         self.addCleanup(runs[0].close)
-        moving = []  # input stamp at which the control's first item left rest
-        control.sub_s.unregister()
-
-        def control_state(m):
-            control.acked = m.header.stamp.to_sec()
-            if not moving and any(i.mode > 0 for i in m.items):
-                moving.append(m.header.stamp.to_sec())
-
-        control.sub_s = rospy.Subscriber('/catchup_ctl/states', RockingStateArray, control_state, queue_size=1000)
+        moving = control.moving  # input stamp at which the control's first item left rest
         # The player starts once both monitors listen (~wait_for_subscribers 2).
         wait_for('the control\'s first item to leave rest', lambda: bool(moving), timeout=60.0)
 

@@ -50,6 +50,7 @@ class Monitor:
         self.name = name
         self.alarms = []
         self.acked = 0.0
+        self.moving = []  # input stamp at which its first item left rest (empty until then)
         self.lock = threading.Lock()
         self.on_alarm = None
         self.log_path = log_path
@@ -67,6 +68,8 @@ class Monitor:
 
     def _state(self, m):
         self.acked = m.header.stamp.to_sec()
+        if not self.moving and any(i.mode > 0 for i in m.items):
+            self.moving.append(self.acked)
 
     def text(self):
         self.log.flush()

@@ -134,16 +134,7 @@ class Pair(unittest.TestCase):
                '_monitor:=' + PAIR['a'], '_pair:=' + PAIR['b']], 'report.log', 20)
         received = []
         members = {k: PairMember(n, received) for k, n in PAIR.items()}
-        moving = []  # stamp at which the control's first item left rest
-        control.sub_s.unregister()
-        control.acked = 0.0
-
-        def control_state(m):
-            control.acked = m.header.stamp.to_sec()
-            if not moving and any(i.mode > 0 for i in m.items):
-                moving.append(m.header.stamp.to_sec())
-
-        control.sub_s = rospy.Subscriber('/pair_ctl/states', RockingStateArray, control_state, queue_size=1000)
+        moving = control.moving  # input stamp at which the control's first item left rest
         wait_for('the control and the pair', lambda: imu.get_num_connections() >= 3 and all(
             s.get_num_connections() > 0 for s in [control.sub_s] + [m.sub_s for m in members.values()]
             + [m.sub_a for m in members.values()]), timeout=60.0)

@@ -27,7 +27,6 @@ import unittest
 
 import rospy
 import rostest
-from rocking_monitor.msg import RockingStateArray
 from sensor_msgs.msg import Imu
 
 from monitor_journal import Monitor, key, record_samples, wait_for
@@ -57,16 +56,7 @@ class Restart(unittest.TestCase):
         self.addCleanup(control.close)  # also when an assertion fails
         first = Monitor('restart_mon', os.path.join(scratch, 'monitor1.log'))
         self.addCleanup(first.close)  # also when an assertion fails
-        moving = []  # stamp at which the control's first item left rest
-        control.sub_s.unregister()
-        control.acked = 0.0
-
-        def control_state(m):
-            control.acked = m.header.stamp.to_sec()
-            if not moving and any(i.mode > 0 for i in m.items):
-                moving.append(m.header.stamp.to_sec())
-
-        control.sub_s = rospy.Subscriber('/restart_ctl/states', RockingStateArray, control_state, queue_size=1000)
+        moving = control.moving  # input stamp at which the control's first item left rest
         wait_for('both monitors', lambda: imu.get_num_connections() >= 2 and first.sub_s.get_num_connections() > 0
                  and control.sub_s.get_num_connections() > 0)
         time.sleep(0.5)
