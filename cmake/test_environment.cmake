@@ -5,6 +5,10 @@
 #  - Where the records, the tools, the generated Python messages and test outputs are: the rostests
 #    read them with $(env ...) rather than as rostest ARGS, which catkin puts into the test's target
 #    and file names (beyond 255 characters in a deep checkout). ctest does not source setup.bash.
+#  - One lock per rostest file: rostest writes the test node's results to TEST-<test-name>.xml,
+#    the same file for every registration of one .test file with other ARGS, and deletes it when a
+#    run starts; two such runs at once under ctest -j delete each other's results ("did not generate
+#    test results", seen in CI on monitor_catch_up).
 if(CATKIN_ENABLE_TESTING OR BUILD_TESTING)
   add_test(NAME test_ros_home.clean COMMAND ${CMAKE_COMMAND} -E rm -rf ${CMAKE_BINARY_DIR}/test_ros_home)
   set_tests_properties(test_ros_home.clean PROPERTIES FIXTURES_SETUP test_ros_home)
@@ -23,5 +27,9 @@ if(CATKIN_ENABLE_TESTING OR BUILD_TESTING)
                  "ROCKING_RECORDS_DIR=${ROCKING_RECORDS_DIR}" "ROCKING_TOOL_DIR=${ROCKING_TOOL_DIR}"
                  "ROCKING_PYTHON_PATH=${CATKIN_DEVEL_PREFIX}/${PYTHON_INSTALL_DIR}"
                  "ROCKING_TEST_OUTPUT_DIR=${CMAKE_BINARY_DIR}/test_results")
+    # catkin names a rostest _ctest_<pkg>_rostest_test_ros_<file>.test, or with ARGS <file>__<args>
+    if(_test MATCHES "^_ctest_${PROJECT_NAME}_rostest_(test_ros_)?([A-Za-z0-9]+(_[A-Za-z0-9]+)*)(\\.test|__)")
+      set_property(TEST ${_test} PROPERTY RESOURCE_LOCK "rostest_${CMAKE_MATCH_2}")
+    endif()
   endforeach()
 endif()
