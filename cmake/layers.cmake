@@ -36,7 +36,10 @@ foreach(layer ${ROCKING_CORE_LAYER_NAMES})
   foreach(below ${ROCKING_LAYER_ALLOWS_${layer}})
     target_link_libraries(${target} PUBLIC rocking_monitor_${below})
   endforeach()
-  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic)
+  # -fno-math-errno: nothing reads errno after sin/cos/sqrt, and with it GCC may merge repeated
+  # sin/cos of one angle and inline sqrt (same IEEE results; the bit-for-bit tests hold):
+  # monitor_benchmarks batch 4.02/3.84 -> 3.80/3.62 ms per sample, alternating runs.
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -fno-math-errno)
   set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON)
   add_dependencies(${target} check_layers)
   if(ROCKING_SANITIZE)
