@@ -168,21 +168,27 @@ int ContactModel::advance(const GroundInput& in, double& tau, double tau_end) {
     ++report_.integrator_steps;
     int best = kNone;
     double t_best = tau + h;
+    double f1[kCount], f0[kCount];
+    event_values(~0u, in, tau + h, x1, f1);
+    unsigned crossed = 0;
+    for (int ev = 0; ev < kCount; ++ev)
+      if (f1[ev] > 0.0) crossed |= 1u << ev;
+    if (crossed) event_values(crossed, in, tau, x_, f0);
     for (int ev = 0; ev < kCount; ++ev) {
-      const double f1 = event_fn(ev, in, tau + h, x1);
-      if (!(f1 > 0.0)) continue;
-      const double f0 = event_fn(ev, in, tau, x_);
+      if (!((crossed >> ev) & 1u)) continue;
       double te = tau;
-      if (!(f0 > 0.0)) {
+      if (!(f0[ev] > 0.0)) {
         const State x0 = x_;
         const double t0 = tau;
         te = bracketed_root(
             [&](double t) {
               State y;
               rk4(in, t0, x0, t - t0, y);
-              return event_fn(ev, in, t, y);
+              double f[kCount];
+              event_values(1u << ev, in, t, y, f);
+              return f[ev];
             },
-            t0, t0 + h, f0, f1, t_tol);
+            t0, t0 + h, f0[ev], f1[ev], t_tol);
       }
       if (best == kNone || te < t_best) {
         best = ev;

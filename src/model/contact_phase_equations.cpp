@@ -1,6 +1,6 @@
 // ContactModel's phase equations: the corner geometry, the equations of motion of each contact
 // phase (SLIDE, ROCK, SLIDE-ROCK, FLIGHT), ROCK's friction check, and the event functions that
-// end a phase (REST's exit conditions solved exactly, the others located by event_fn).
+// end a phase (REST's exit conditions solved exactly, the others located by event_values).
 #include "rocking_monitor/model/contact_model.hpp"
 
 #include <algorithm>
@@ -79,50 +79,54 @@ bool ContactModel::rock_friction_ok(const GroundInput& in, double tau, int side,
   return std::isinf(mu_s_) || std::abs(r.rx) <= mu_s_ * std::max(r.ry, 0.0);
 }
 
-// Event functions: the event happens when the function becomes > 0.
-double ContactModel::event_fn(int ev, const GroundInput& in, double tau, const State& s) const {
+// Event functions: event ev happens when f[ev] becomes > 0. Only the events in `want` (bit ev) are
+// evaluated, the others set to -1; those evaluated together share the reaction or the rotation
+// (one sin/cos instead of one per event: this runs at every RK4 sub-step of a contact phase).
+void ContactModel::event_values(unsigned want, const GroundInput& in, double tau, const State& s,
+                                double (&f)[kCount]) const {
+  for (double& v : f) v = -1.0;
+  auto wanted = [want](int ev) { return (want >> ev) & 1u; };
   const double G = in.ay(tau) + kGravity;
   switch (mode_) {
     case ContactMode::Slide:
-      if (ev == kFlight) return -G;
-      if (ev == kSlipOrStick) return -sigma_ * s[1];  // relative velocity reached zero
-      return -1.0;
-    case ContactMode::Rock: {
-      if (ev == kImpact) return -side_ * s[2];
-      if (ev == kOverturn) return side_ * s[2] - body_.overturn_angle();
-      if (ev != kFlight && ev != kSlipOrStick) return -1.0;
-      const Pivot& pv = body_.pivot(side_);
-      const RockingOde ode{&pv, side_, ModelKind::Nonlinear, in};
-      const double acc = ode.angular_acceleration(tau, s[2]);
-      const ContactReaction r = rocking_reaction(pv, side_, s[2], s[3], acc, in.ax(tau), in.ay(tau));
-      if (ev == kFlight) return -r.ry;
-      if (std::isinf(mu_s_)) return -1.0;
-      return std::abs(r.rx) - mu_s_ * r.ry;
-    }
-    case ContactMode::SlideRock: {
-      if (ev == kImpact) return -side_ * s[2];
-      if (ev == kOverturn) return side_ * s[2] - body_.overturn_angle();
-      if (ev == kFlight) {
-        double normal;
-        slide_rock_theta_ddot(side_, sigma_, G, s, normal);
-        return -normal;
+      if (wanted(kFlight)) f[kFlight] = -G;
+      if (wanted(kSlipOrStick)) f[kSlipOrStick] = -sigma_ * s[1];  // relative velocity reached zero
+      return;
+    case ContactMode::Rock:
+    case ContactMode::SlideRock:
+      if (wanted(kImpact)) f[kImpact] = -side_ * s[2];
+      if (wanted(kOverturn)) f[kOverturn] = side_ * s[2] - body_.overturn_angle();
+      if (mode_ == ContactMode::Rock) {
+        if (!wanted(kFlight) && !(wanted(kSlipOrStick) && !std::isinf(mu_s_))) return;
+        const Pivot& pv = body_.pivot(side_);
+        const RockingOde ode{&pv, side_, ModelKind::Nonlinear, in};
+        const double acc = ode.angular_acceleration(tau, s[2]);
+        const ContactReaction r = rocking_reaction(pv, side_, s[2], s[3], acc, in.ax(tau), in.ay(tau));
+        if (wanted(kFlight)) f[kFlight] = -r.ry;
+        if (wanted(kSlipOrStick) && !std::isinf(mu_s_)) f[kSlipOrStick] = std::abs(r.rx) - mu_s_ * r.ry;
+      } else {
+        if (wanted(kFlight)) {
+          double normal;
+          slide_rock_theta_ddot(side_, sigma_, G, s, normal);
+          f[kFlight] = -normal;
+        }
+        if (wanted(kSlipOrStick)) {  // pivot slip velocity reached zero
+          double rx, ry;
+          corner(side_, s, rx, ry);
+          f[kSlipOrStick] = -sigma_ * (s[1] - s[3] * ry);
+        }
       }
-      if (ev == kSlipOrStick) {  // pivot slip velocity reached zero
-        double rx, ry;
-        corner(side_, s, rx, ry);
-        return -sigma_ * (s[1] - s[3] * ry);
-      }
-      return -1.0;
-    }
+      return;
     case ContactMode::Flight: {
-      if (ev == kOverturn) return std::abs(s[2]) - body_.overturn_angle();
-      if (ev != kLanding) return -1.0;
+      if (wanted(kOverturn)) f[kOverturn] = std::abs(s[2]) - body_.overturn_angle();
+      if (!wanted(kLanding)) return;
       double rx1, ry1, rx2, ry2;
       corner(1, s, rx1, ry1);
       corner(-1, s, rx2, ry2);
-      return -(s[4] + std::min(ry1, ry2));
+      f[kLanding] = -(s[4] + std::min(ry1, ry2));
+      return;
     }
-    default: return -1.0;
+    default: return;
   }
 }
 

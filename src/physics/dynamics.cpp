@@ -12,18 +12,6 @@ void require_valid_sample(double ax, double ay, double dt, const char* who) {
     throw std::invalid_argument(std::string(who) + ": ground acceleration must be finite");
 }
 
-ContactReaction rocking_reaction(const Pivot& pv, int side, double theta, double omega,
-                                 double theta_ddot, double ax, double ay) {
-  // CoM relative to the pivot: x = s R sin(phi), y = R cos(phi), phi = alpha - s theta.
-  const double phi = pv.alpha - side * theta;
-  const double c = std::cos(phi);
-  const double s = std::sin(phi);
-  const double w2 = omega * omega;
-  const double x_ddot = -pv.radius * (c * theta_ddot + side * s * w2);
-  const double y_ddot = -pv.radius * c * w2 + side * pv.radius * s * theta_ddot;
-  return {ax + x_ddot, kGravity + ay + y_ddot};
-}
-
 OverturnMargin overturn_margin(const Pivot& pv, int side, ModelKind model, double theta,
                                double omega) {
   const double phi = pv.alpha - side * theta;  // > 0: CoM still inside the pivot

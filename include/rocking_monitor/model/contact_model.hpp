@@ -131,7 +131,8 @@ class ContactModel {
   enum Ev : int { kNone = -1, kImpact, kOverturn, kFlight, kSlipOrStick, kLanding, kCount };
   void derivative(const GroundInput& in, double tau, const State& s, State& d) const;
   void rk4(const GroundInput& in, double tau, const State& s0, double h, State& out) const;
-  double event_fn(int ev, const GroundInput& in, double tau, const State& s) const;
+  void event_values(unsigned want, const GroundInput& in, double tau, const State& s,
+                    double (&f)[kCount]) const;
   double find_rest_exit(const GroundInput& in, double tau, double tau_end, unsigned& fired,
                         int& up_side) const;
   void leave_rest(const GroundInput& in, double tau, unsigned fired, int up_side);

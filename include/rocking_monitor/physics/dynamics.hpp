@@ -61,8 +61,19 @@ struct ContactReaction {
   double ry = 0.0;
 };
 
-ContactReaction rocking_reaction(const Pivot& pivot, int side, double theta, double omega,
-                                 double theta_ddot, double ax, double ay);
+// Inline: evaluated next to RockingOde::angular_acceleration of the same angle (every RK4 sub-step
+// of the contact model's ROCK phase), whose sin/cos the compiler then shares.
+inline ContactReaction rocking_reaction(const Pivot& pv, int side, double theta, double omega,
+                                        double theta_ddot, double ax, double ay) {
+  // CoM relative to the pivot: x = s R sin(phi), y = R cos(phi), phi = alpha - s theta.
+  const double phi = pv.alpha - side * theta;
+  const double c = std::cos(phi);
+  const double s = std::sin(phi);
+  const double w2 = omega * omega;
+  const double x_ddot = -pv.radius * (c * theta_ddot + side * s * w2);
+  const double y_ddot = -pv.radius * c * w2 + side * pv.radius * s * theta_ddot;
+  return {ax + x_ddot, kGravity + ay + y_ddot};
+}
 
 /// Distance to overturning if the excitation stopped now (the "committed" test), in units of the
 /// energy needed to lift the body from rest to its tipping point about the active pivot:
