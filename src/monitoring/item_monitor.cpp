@@ -118,6 +118,10 @@ void ItemMonitor::restore(const Saved& in) {
 }
 
 const ItemEvents& ItemMonitor::step(double ax, double ay, double az, double dt) {
+  return step_planes(ax, ay, az, dt, (1u << kPlaneCount) - 1);
+}
+
+const ItemEvents& ItemMonitor::step_planes(double ax, double ay, double az, double dt, unsigned planes) {
   events_.change_count = 0;
   events_.alarm_count = 0;
   if (solid_ && !solid_active_) {
@@ -132,9 +136,12 @@ const ItemEvents& ItemMonitor::step(double ax, double ay, double az, double dt) 
       solid_active_ = true;
     }
   }
-  const PlaneEvents* ev[kPlaneCount] = {&planes_[0]->step(ax, az, dt), nullptr};
-  last_input_[0] = {ax, az};
-  if (planes_[1]) {
+  const PlaneEvents* ev[kPlaneCount] = {nullptr, nullptr};
+  if (planes & 1u) {
+    ev[0] = &planes_[0]->step(ax, az, dt);
+    last_input_[0] = {ax, az};
+  }
+  if (planes_[1] && (planes & 2u)) {
     ev[1] = &planes_[1]->step(ay, az, dt);
     last_input_[1] = {ay, az};
   }

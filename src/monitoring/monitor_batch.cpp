@@ -17,19 +17,22 @@ MonitorBatch::MonitorBatch(std::vector<ItemMonitor*> items) : items_(std::move(i
   }
 }
 
-void MonitorBatch::refresh(std::size_t k) {
+void MonitorBatch::refresh(std::size_t k) { refresh_planes(k, (1u << kPlaneCount) - 1); }
+
+void MonitorBatch::refresh_planes(std::size_t k, unsigned planes) {
   const ItemMonitor& item = *items_[k];
   Lane& lane = lanes_[k];
   summary_due_[k] = 1;
-  lane.deferred = 0;
   lane.planes = item.plane_count();
   // Items with a 3-D model are stepped one by one (its lanes in the batch: issue 28).
-  lane.eligible = item.started() && item.solid() == nullptr;
-  for (int p = 0; p < lane.planes && lane.eligible; ++p) {
+  const bool item_ok = item.started() && item.solid() == nullptr;
+  for (int p = 0; p < lane.planes; ++p) {
+    if (!((planes >> p) & 1u)) continue;
     const PlaneMonitor& pm = *item.planes_[p];
     PlaneLane& pl = lane.plane[p];
+    pl.deferred = 0;
     const AdaptiveModel* adaptive = pm.adaptive_.get();
-    bool ok = pm.started_ && pm.intensity_ && pm.intensity_->lane_eligible();
+    bool ok = item_ok && pm.started_ && pm.intensity_ && pm.intensity_->lane_eligible();
     if (adaptive != nullptr) {
       ok = ok && adaptive->rest_deferrable();
     } else {
@@ -41,10 +44,8 @@ void MonitorBatch::refresh(std::size_t k) {
                              CriterionId::SlideWhileRocking})
         ok = ok && !pm.exceeded_[static_cast<int>(id)];
     }
-    if (!ok) {
-      lane.eligible = false;
-      break;
-    }
+    pl.eligible = ok;
+    if (!ok) continue;
     const Body& body = pm.model_.body();
     const bool linear = pm.options_.solver.model == ModelKind::Linearized;
     for (int i = 0; i < 2; ++i) {
@@ -57,30 +58,22 @@ void MonitorBatch::refresh(std::size_t k) {
     const SceneEnvelope scene = adaptive != nullptr ? adaptive->settings().scene : SceneEnvelope{};
     pl.scene_h = scene.horizontal;
     pl.scene_v = scene.vertical;
-    // The inputs the model interpolates from; both models hold the same clock (AdaptiveModel resets
-    // its rocking model at its own time on every switch down).
-    lane.t = adaptive != nullptr ? adaptive->time() : pm.model_.time();
+    // The inputs the model interpolates from (the item's last step, as the plane saw it) and its
+    // clock (AdaptiveModel resets its rocking model at its own time on every switch down).
+    pl.t = adaptive != nullptr ? adaptive->time() : pm.model_.time();
     pm.intensity_->to_lane(pl.intensity);
+    pl.ax_prev = item.last_input_[p][0];
+    pl.ay_prev = item.last_input_[p][1];
   }
-  if (lane.eligible) {
-    // The previous inputs are those of the item's last step, as each plane saw them.
-    for (int p = 0; p < lane.planes; ++p) {
-      lane.plane[p].ax_prev = item.last_input_[p][0];
-      lane.plane[p].ay_prev = item.last_input_[p][1];
-    }
-  }
+  lane.eligible = lane.plane[0].eligible || (lane.planes > 1 && lane.plane[1].eligible);
 }
 
-// Whether the sample is quiet for every plane of the lane; if so it is applied to the lane.
-bool MonitorBatch::quiet(Lane& lane, double ax, double ay, double az) const {
-  StreamingIntensity::Lane next[kPlaneCount];
-  for (int p = 0; p < lane.planes; ++p) {
-    const PlaneLane& pl = lane.plane[p];
-    const double x1 = p == 0 ? ax : ay, y1 = az, x0 = pl.ax_prev, y0 = pl.ay_prev;
-    if (x1 > pl.scene_h || -x1 > pl.scene_h || y1 > pl.scene_v || -y1 > pl.scene_v) return false;  // SceneEnvelope::contains
-    next[p] = pl.intensity;
-    if (!StreamingIntensity::push_quiet(next[p], x1)) return false;
-    if (pl.overturned) continue;
+bool MonitorBatch::quiet(PlaneLane& pl, double x1, double y1, double dt) {
+  const double x0 = pl.ax_prev, y0 = pl.ay_prev;
+  if (x1 > pl.scene_h || -x1 > pl.scene_h || y1 > pl.scene_v || -y1 > pl.scene_v) return false;  // SceneEnvelope::contains
+  StreamingIntensity::Lane next = pl.intensity;
+  if (!StreamingIntensity::push_quiet(next, x1)) return false;
+  if (!pl.overturned) {
     // Margin: the model evaluates the input interpolated at the sample ends, which may differ from
     // (x0, y0), (x1, y1) in the last bit.
     const double m = 1e-9 * (std::abs(x0) + std::abs(y0) + std::abs(x1) + std::abs(y1) + kGravity);
@@ -94,12 +87,12 @@ bool MonitorBatch::quiet(Lane& lane, double ax, double ay, double az) const {
     if (!(normal > m)) return false;                                               // free flight
     if (!std::isinf(pl.mu) && !(std::abs(x1) + m * (1.0 + pl.mu) < pl.mu * normal)) return false;  // sliding
   }
-  for (int p = 0; p < lane.planes; ++p) {
-    PlaneLane& pl = lane.plane[p];
-    pl.intensity = next[p];
-    pl.ax_prev = p == 0 ? ax : ay;
-    pl.ay_prev = az;
-  }
+  pl.intensity = next;
+  pl.ax_prev = x1;
+  pl.ay_prev = y1;
+  pl.t += dt;
+  pl.dt = dt;
+  ++pl.deferred;
   return true;
 }
 
@@ -122,6 +115,7 @@ void MonitorBatch::prefetch_item(std::size_t k) const { prefetch(items_[k], size
 void MonitorBatch::prefetch_planes(std::size_t k) const {
   const ItemMonitor& item = *items_[k];
   for (int p = 0; p < lanes_[k].planes; ++p) {
+    if (!((lanes_[k].busy >> p) & 1u)) continue;  // a deferred plane is not touched
     const PlaneMonitor* pm = item.planes_[p].get();
     prefetch(&pm->events_, sizeof(pm->events_));
     prefetch(&pm->adaptive_);
@@ -132,6 +126,7 @@ void MonitorBatch::prefetch_planes(std::size_t k) const {
 void MonitorBatch::prefetch_models(std::size_t k) const {
   const ItemMonitor& item = *items_[k];
   for (int p = 0; p < lanes_[k].planes; ++p) {
+    if (!((lanes_[k].busy >> p) & 1u)) continue;
     const PlaneMonitor& pm = *item.planes_[p];
     if (pm.intensity_) prefetch(pm.intensity_.get(), sizeof(StreamingIntensity));
     if (pm.adaptive_) pm.adaptive_->prefetch();
@@ -152,15 +147,21 @@ std::size_t MonitorBatch::step(std::size_t begin, std::size_t end, const double*
       Lane& lane = lanes_[k];
       lane.stepped = false;
       if (active != nullptr && active[k] == 0) continue;
-      // Invalid samples (non-finite, dt <= 0) go to ItemMonitor::step, which rejects them.
+      // Each plane is deferred on its own; the item is stepped for the others. Invalid samples
+      // (non-finite, dt <= 0) go to ItemMonitor::step, which rejects them.
+      unsigned planes_busy = (1u << lane.planes) - 1;
       if (lane.eligible && std::isfinite(ax[k]) && std::isfinite(ay[k]) && std::isfinite(az[k]) && dt > 0.0 &&
-          std::isfinite(dt) && quiet(lane, ax[k], ay[k], az[k])) {
-        lane.t += dt;
-        lane.dt = dt;
-        ++lane.deferred;
+          std::isfinite(dt)) {
+        for (int p = 0; p < lane.planes; ++p) {
+          PlaneLane& pl = lane.plane[p];
+          if (pl.eligible && quiet(pl, p == 0 ? ax[k] : ay[k], az[k], dt)) planes_busy &= ~(1u << p);
+        }
+      }
+      if (planes_busy == 0) {
         ++deferred;
         continue;
       }
+      lane.busy = planes_busy;
       busy[n++] = k;
     }
     for (std::size_t j = 0; j < std::min<std::size_t>(n, 6); ++j) prefetch_item(busy[j]);
@@ -171,32 +172,38 @@ std::size_t MonitorBatch::step(std::size_t begin, std::size_t end, const double*
       if (j + 4 < n) prefetch_planes(busy[j + 4]);
       if (j + 2 < n) prefetch_models(busy[j + 2]);
       const std::size_t k = busy[j];
-      sync(k);
-      items_[k]->step(ax[k], ay[k], az[k], dt);
+      const unsigned planes = lanes_[k].busy;
+      sync_planes(k, planes);
+      items_[k]->step_planes(ax[k], ay[k], az[k], dt, planes);
       lanes_[k].stepped = true;
-      refresh(k);
+      refresh_planes(k, planes);
     }
   }
   return deferred;
 }
 
-void MonitorBatch::sync(std::size_t k) {
+void MonitorBatch::sync(std::size_t k) { sync_planes(k, (1u << kPlaneCount) - 1); }
+
+void MonitorBatch::sync_planes(std::size_t k, unsigned planes) {
   Lane& lane = lanes_[k];
-  if (lane.deferred == 0) return;
   ItemMonitor& item = *items_[k];
   for (int p = 0; p < lane.planes; ++p) {
+    PlaneLane& pl = lane.plane[p];
+    if (!((planes >> p) & 1u) || pl.deferred == 0) continue;
     PlaneMonitor& pm = *item.planes_[p];
-    const PlaneLane& pl = lane.plane[p];
     pm.intensity_->from_lane(pl.intensity);
-    if (pm.adaptive_) pm.adaptive_->apply_rest_samples(lane.t, pl.ax_prev, pl.ay_prev, lane.dt, lane.deferred);
-    else pm.model_.apply_rest_samples(lane.t, pl.ax_prev, pl.ay_prev, lane.deferred);
+    if (pm.adaptive_) pm.adaptive_->apply_rest_samples(pl.t, pl.ax_prev, pl.ay_prev, pl.dt, pl.deferred);
+    else pm.model_.apply_rest_samples(pl.t, pl.ax_prev, pl.ay_prev, pl.deferred);
+    // Its last sample was deferred: no events.
     pm.events_.change_count = 0;
     pm.events_.alarm_count = 0;
     item.last_input_[p] = {pl.ax_prev, pl.ay_prev};
+    pl.deferred = 0;
   }
-  item.events_.change_count = 0;
-  item.events_.alarm_count = 0;
-  lane.deferred = 0;
+  if (!lane.stepped) {  // the item's last sample was deferred as a whole: no events
+    item.events_.change_count = 0;
+    item.events_.alarm_count = 0;
+  }
 }
 
 void MonitorBatch::sync_all() {

@@ -105,6 +105,7 @@ void expect_same_state(const ItemMonitor& a, const ItemMonitor& b, std::size_t k
 
 struct BatchRun {
   std::size_t deferred = 0, samples = 0, overturned = 0, rocked = 0, revisions = 0;
+  std::size_t plane_deferred = 0;  // item-samples stepped for one plane while the other was deferred
 };
 
 // Steps a batch and an independent copy of each item (ItemMonitor::step) through one record scaled by
@@ -155,6 +156,8 @@ BatchRun compare(const Catalogue& cat, const Component& rec, double scale, doubl
     for (std::size_t k = 0; k < n; ++k) {
       if (!active[k]) continue;
       ++run.samples;
+      const unsigned stepped = batch.stepped_planes(k);
+      run.plane_deferred += stepped != 0 && stepped != (1u << batched[k]->plane_count()) - 1;
       expect_same_events(batch.events(k), alone[k]->step(x, y, z, rec.dt), k, i);
     }
     // The summary (what ~states and markers read without a sync) equals the item stepped alone, read
@@ -199,17 +202,20 @@ Component record(const std::string& file) { return read_record(std::string(ROCKI
 TEST(MonitorBatch, EveryItemEqualsItselfSteppedAloneOnRealRecords) {
   const Catalogue cat = random_catalogue(60, 7);
   const Component rinaldi = record("northridge_1994/Rinaldi228.AT2");
-  std::size_t deferred = 0, samples = 0, overturned = 0, rocked = 0;
+  std::size_t deferred = 0, samples = 0, overturned = 0, rocked = 0, plane_deferred = 0;
   for (double scale : {0.05, 0.3, 1.0}) {
     const BatchRun r = compare(cat, rinaldi, scale, 1.0, 64, 1);
     ASSERT_FALSE(HasFailure()) << "scale " << scale;
     deferred += r.deferred;
+    plane_deferred += r.plane_deferred;
     samples += r.samples;
     overturned += r.overturned;
     rocked += r.rocked;
   }
-  // The comparison covers every path: deferred samples, rocking, overturns.
+  // The comparison covers every path: deferred samples, one plane deferred while the other rocks,
+  // rocking, overturns.
   EXPECT_GT(deferred, samples / 4);
+  EXPECT_GT(plane_deferred, samples / 50) << plane_deferred << " of " << samples;
   EXPECT_LT(deferred, samples);
   EXPECT_GT(overturned, 5u);
   EXPECT_GT(rocked, overturned);
@@ -248,6 +254,7 @@ TEST(MonitorBatch, BlocksOfTheStepLoopDoNotMatter) {
     const BatchRun r = compare(cat, rec, 0.5, 0.9, range, static_cast<unsigned>(range));
     ASSERT_FALSE(HasFailure()) << "range " << range;
     EXPECT_GT(r.deferred, 0u);
+    EXPECT_GT(r.plane_deferred, 0u);
     EXPECT_GT(r.rocked, 10u);
   }
 }

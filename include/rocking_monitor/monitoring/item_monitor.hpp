@@ -86,6 +86,9 @@ class ItemMonitor {
 
  private:
   friend class MonitorBatch;  // defers quiet samples of many items (monitoring/monitor_batch.hpp)
+  // step() for the planes in `planes` (bit p: plane p) only: MonitorBatch defers a quiet plane of an
+  // item whose other plane moves (the deferred plane has no events; the batch applies its samples).
+  const ItemEvents& step_planes(double ax, double ay, double az, double dt, unsigned planes);
   ItemSpec spec_;
   std::array<std::unique_ptr<PlaneMonitor>, kPlaneCount> planes_;
   std::array<bool, 3> alarmed_{};  // BEYOND_TIPPING, COMMITTED, OVERTURNED reached by the item

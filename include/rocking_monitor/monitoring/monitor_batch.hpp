@@ -20,10 +20,13 @@
 // sample bit for bit as if stepped alone (test/monitoring/test_monitor_batch.cpp).
 //
 // Deferred too: planes that overturned before the sample, in the rocking or the contact model
-// (their model only counts time then).
+// (their model only counts time then); and each plane on its own: of an item whose one plane
+// rocks, the other plane at rest (or on its side) is deferred while the rocking plane is stepped
+// (ItemMonitor::step_planes).
 // Not deferred (stepped by ItemMonitor::step): rocking, sliding, the contact model before an
 // overturn, the linearized tier, spectra with a pre-filter or several periods.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -52,6 +55,8 @@ class MonitorBatch {
   std::size_t step(std::size_t begin, std::size_t end, const double* ax, const double* ay, const double* az,
                    double dt, const std::uint8_t* active = nullptr);
 
+  /// Planes of item k stepped in its last sample in step() (bit p: plane p; 0: deferred as a whole).
+  unsigned stepped_planes(std::size_t k) const { return lanes_[k].stepped ? lanes_[k].busy : 0u; }
   /// Events of item k's last sample in step() (none when it was deferred).
   const ItemEvents& events(std::size_t k) const { return lanes_[k].stepped ? items_[k]->events() : kNoEvents; }
 
@@ -59,7 +64,10 @@ class MonitorBatch {
   void sync(std::size_t k);
   void sync_all();
   /// Deferred samples still pending for item k.
-  long pending(std::size_t k) const { return lanes_[k].deferred; }
+  long pending(std::size_t k) const {
+    const Lane& l = lanes_[k];
+    return l.planes > 1 ? std::max(l.plane[0].deferred, l.plane[1].deferred) : l.plane[0].deferred;
+  }
 
   /// What item k's monitor would report now, without sync (issue 28). Taken when read, if the item
   /// was stepped in full (or refreshed) since the last read: deferred samples change none of its
@@ -77,24 +85,30 @@ class MonitorBatch {
   struct PlaneLane {
     double cs[2] = {0.0, 0.0}, sn[2] = {0.0, 0.0};  // uplift test, corner s = +1 (0) and -1 (1)
     double mu = 0.0;                                 // friction; inf: not checked
+    bool eligible = false;                           // the plane may defer its next sample
     bool overturned = false;                         // the model lies on its side: no uplift or contact test
     double scene_h = 0.0, scene_v = 0.0;             // scene envelope, m/s^2 (inf: unknown)
     double ax_prev = 0.0, ay_prev = 0.0;             // last input of the plane, m/s^2
+    double t = 0.0;                                  // the plane's models' clock after the deferred samples, s
+    double dt = 0.0;                                 // the last deferred sample's interval, s
+    long deferred = 0;                               // samples not yet applied to the plane's monitor
     StreamingIntensity::Lane intensity{};
   };
   struct Lane {
-    double t = 0.0;         // the models' clock after the deferred samples, s
-    double dt = 0.0;        // the last deferred sample's interval, s
-    long deferred = 0;      // samples not yet applied to the monitor
-    bool eligible = false;  // every plane may defer its next sample
-    bool stepped = false;   // the last sample went through ItemMonitor::step
+    bool eligible = false;  // some plane may defer its next sample
+    bool stepped = false;   // the last sample went through ItemMonitor::step (some of its planes)
+    unsigned busy = 0;      // planes stepped in the last sample (bit p: plane p)
     int planes = 1;
     PlaneLane plane[kPlaneCount];
   };
-  bool quiet(Lane& lane, double ax, double ay, double az) const;
+  // Whether the sample is quiet for the plane (x1, y1: its horizontal and vertical input); if so it is
+  // applied to the plane's lane.
+  static bool quiet(PlaneLane& pl, double x1, double y1, double dt);
   void prefetch_item(std::size_t k) const;
   void prefetch_planes(std::size_t k) const;
   void prefetch_models(std::size_t k) const;
+  void sync_planes(std::size_t k, unsigned planes);   // sync() of these planes
+  void refresh_planes(std::size_t k, unsigned planes);  // refresh() of these planes
 
   static const ItemEvents kNoEvents;
   std::vector<ItemMonitor*> items_;
