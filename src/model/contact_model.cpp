@@ -146,8 +146,14 @@ double ContactModel::energy() const {
 
 void ContactModel::rk4(const GroundInput& in, double tau, const State& s0, double h,
                        State& out) const {
-  State k1, k2, k3, k4, y;
+  State k1;
   derivative(in, tau, s0, k1);
+  rk4_from(in, tau, s0, k1, h, out);
+}
+
+void ContactModel::rk4_from(const GroundInput& in, double tau, const State& s0, const State& k1, double h,
+                            State& out) const {
+  State k2, k3, k4, y;
   for (int i = 0; i < 6; ++i) y[i] = s0[i] + 0.5 * h * k1[i];
   derivative(in, tau + 0.5 * h, y, k2);
   for (int i = 0; i < 6; ++i) y[i] = s0[i] + 0.5 * h * k2[i];
@@ -160,16 +166,22 @@ void ContactModel::rk4(const GroundInput& in, double tau, const State& s0, doubl
 int ContactModel::advance(const GroundInput& in, double& tau, double tau_end) {
   const double h_nom = dt_ / settings_.substeps;
   const double t_tol = 1e-12 * dt_;
+  // The derivative at a step's end is the next step's first stage (same time, same state), and it
+  // gives the event functions the reaction they need: one evaluation serves both.
+  State k1;
+  derivative(in, tau, x_, k1);
   while (tau < tau_end) {
     double h = std::min(h_nom, tau_end - tau);
     if (tau_end - tau - h < 1e-9 * h_nom) h = tau_end - tau;
-    State x1;
-    rk4(in, tau, x_, h, x1);
+    State x1, d1;
+    rk4_from(in, tau, x_, k1, h, x1);
     ++report_.integrator_steps;
     int best = kNone;
     double t_best = tau + h;
+    Support support;
+    derivative(in, tau + h, x1, d1, &support);
     double f1[kCount], f0[kCount];
-    event_values(~0u, in, tau + h, x1, f1);
+    event_values(~0u, in, tau + h, x1, f1, &support);
     unsigned crossed = 0;
     for (int ev = 0; ev < kCount; ++ev)
       if (f1[ev] > 0.0) crossed |= 1u << ev;
@@ -198,6 +210,7 @@ int ContactModel::advance(const GroundInput& in, double& tau, double tau_end) {
     if (best == kNone) {
       x_ = x1;
       tau = (h == tau_end - tau) ? tau_end : tau + h;
+      k1 = d1;  // at tau + h: when tau became tau_end instead, the loop ends here
       const int s = x_[2] < 0.0 ? -1 : 1;
       outcome_.max_rotation_ratio =
           std::max(outcome_.max_rotation_ratio, std::abs(x_[2]) / body_.pivot(s).alpha);

@@ -36,7 +36,8 @@ double ContactModel::slide_rock_theta_ddot(int side, int sigma, double G, const 
   return acc;
 }
 
-void ContactModel::derivative(const GroundInput& in, double tau, const State& s, State& d) const {
+void ContactModel::derivative(const GroundInput& in, double tau, const State& s, State& d,
+                              Support* support) const {
   const double ax = in.ax(tau), G = in.ay(tau) + kGravity;
   d = {s[1], 0.0, s[3], 0.0, s[5], 0.0};
   switch (mode_) {
@@ -52,6 +53,8 @@ void ContactModel::derivative(const GroundInput& in, double tau, const State& s,
       d[3] = acc;
       d[1] = -pv.radius * (c * acc + side_ * sn * w2);
       d[5] = -pv.radius * c * w2 + side_ * pv.radius * sn * acc;
+      // rocking_reaction(): the same expressions, in the same order
+      if (support != nullptr) *support = {in.ax(tau) + d[1], kGravity + in.ay(tau) + d[5]};
       break;
     }
     case ContactMode::SlideRock: {
@@ -59,6 +62,7 @@ void ContactModel::derivative(const GroundInput& in, double tau, const State& s,
       d[3] = slide_rock_theta_ddot(side_, sigma_, G, s, normal);
       d[1] = -ax - sigma_ * mu_k_ * normal;
       d[5] = normal - G;
+      if (support != nullptr) support->ry = normal;
       break;
     }
     case ContactMode::Flight:
@@ -83,7 +87,7 @@ bool ContactModel::rock_friction_ok(const GroundInput& in, double tau, int side,
 // evaluated, the others set to -1; those evaluated together share the reaction or the rotation
 // (one sin/cos instead of one per event: this runs at every RK4 sub-step of a contact phase).
 void ContactModel::event_values(unsigned want, const GroundInput& in, double tau, const State& s,
-                                double (&f)[kCount]) const {
+                                double (&f)[kCount], const Support* support) const {
   for (double& v : f) v = -1.0;
   auto wanted = [want](int ev) { return (want >> ev) & 1u; };
   const double G = in.ay(tau) + kGravity;
@@ -98,16 +102,22 @@ void ContactModel::event_values(unsigned want, const GroundInput& in, double tau
       if (wanted(kOverturn)) f[kOverturn] = side_ * s[2] - body_.overturn_angle();
       if (mode_ == ContactMode::Rock) {
         if (!wanted(kFlight) && !(wanted(kSlipOrStick) && !std::isinf(mu_s_))) return;
-        const Pivot& pv = body_.pivot(side_);
-        const RockingOde ode{&pv, side_, ModelKind::Nonlinear, in};
-        const double acc = ode.angular_acceleration(tau, s[2]);
-        const ContactReaction r = rocking_reaction(pv, side_, s[2], s[3], acc, in.ax(tau), in.ay(tau));
+        ContactReaction r;
+        if (support != nullptr) {
+          r = {support->rx, support->ry};
+        } else {
+          const Pivot& pv = body_.pivot(side_);
+          const RockingOde ode{&pv, side_, ModelKind::Nonlinear, in};
+          const double acc = ode.angular_acceleration(tau, s[2]);
+          r = rocking_reaction(pv, side_, s[2], s[3], acc, in.ax(tau), in.ay(tau));
+        }
         if (wanted(kFlight)) f[kFlight] = -r.ry;
         if (wanted(kSlipOrStick) && !std::isinf(mu_s_)) f[kSlipOrStick] = std::abs(r.rx) - mu_s_ * r.ry;
       } else {
         if (wanted(kFlight)) {
           double normal;
-          slide_rock_theta_ddot(side_, sigma_, G, s, normal);
+          if (support != nullptr) normal = support->ry;
+          else slide_rock_theta_ddot(side_, sigma_, G, s, normal);
           f[kFlight] = -normal;
         }
         if (wanted(kSlipOrStick)) {  // pivot slip velocity reached zero

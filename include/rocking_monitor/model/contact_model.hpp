@@ -129,10 +129,18 @@ class ContactModel {
 
  private:
   enum Ev : int { kNone = -1, kImpact, kOverturn, kFlight, kSlipOrStick, kLanding, kCount };
-  void derivative(const GroundInput& in, double tau, const State& s, State& d) const;
+  // What the equations of motion of ROCK (the ground reaction) and SLIDE-ROCK (the normal force, in
+  // ry) give besides the derivative; the lift-off and slip events need the same, per unit mass, m/s^2.
+  struct Support {
+    double rx = 0.0, ry = 0.0;
+  };
+  void derivative(const GroundInput& in, double tau, const State& s, State& d, Support* support = nullptr) const;
   void rk4(const GroundInput& in, double tau, const State& s0, double h, State& out) const;
-  void event_values(unsigned want, const GroundInput& in, double tau, const State& s,
-                    double (&f)[kCount]) const;
+  // rk4() with the first stage k1 = derivative(in, tau, s0) given.
+  void rk4_from(const GroundInput& in, double tau, const State& s0, const State& k1, double h, State& out) const;
+  // support: what derivative() gave at (tau, s), or null.
+  void event_values(unsigned want, const GroundInput& in, double tau, const State& s, double (&f)[kCount],
+                    const Support* support = nullptr) const;
   double find_rest_exit(const GroundInput& in, double tau, double tau_end, unsigned& fired,
                         int& up_side) const;
   void leave_rest(const GroundInput& in, double tau, unsigned fired, int up_side);
