@@ -260,14 +260,28 @@ void Rocking3DModel::set_vertex_state(int vertex, const Eigen::Quaterniond& rota
                r, omega);
 }
 
+Eigen::Vector3d Rocking3DModel::edge_normal(int edge) const {
+  return yaw_ == 0.0 ? body_.edge(edge).normal : Eigen::Vector3d(yaw_matrix() * body_.edge(edge).normal);
+}
+
+void Rocking3DModel::apply_rest_samples(double t, const Eigen::Vector3d& a, double dt, long n) {
+  // What n calls of step() do at REST without a lift (or OVERTURNED and committed): a fresh report,
+  // the clock, the last input, the sample count.
+  report_ = StepReport{};
+  sample_dt_ = dt;
+  lifts_ = 0;
+  t_ = t;
+  a_prev_ = a;
+  outcome_.samples += n;
+}
+
 // ---------------------------------------------------------------- EDGE
 
 GroundInput Rocking3DModel::edge_input(const GroundInput3& in, int edge) const {
   // The horizontal acceleration that tips the body outward over this edge is minus the ground's
   // acceleration along the edge's outward normal (the planar convention: a_xg > 0 tips about the
   // -x corner); the normal is turned by the footprint's yaw into the world frame.
-  const Eigen::Vector3d n = yaw_ == 0.0 ? body_.edge(edge).normal
-                                         : Eigen::Vector3d(yaw_matrix() * body_.edge(edge).normal);
+  const Eigen::Vector3d n = edge_normal(edge);
   GroundInput g;
   g.ax0 = -(in.a0.x() * n.x() + in.a0.y() * n.y());
   g.ax_slope = -(in.slope.x() * n.x() + in.slope.y() * n.y());

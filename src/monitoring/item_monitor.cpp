@@ -129,9 +129,7 @@ const ItemEvents& ItemMonitor::step_planes(double ax, double ay, double az, doub
     // needs the time and the last input (reset below when it takes over).
     peak_x_ = std::max(peak_x_, std::abs(ax));
     peak_y_ = std::max(peak_y_, std::abs(ay));
-    const bool at_rest = mode() == ItemMode::Rest;
-    if (at_rest && std::min(peak_x_, peak_y_) >= bidirectional_ratio_ * std::max(peak_x_, peak_y_) &&
-        std::max(peak_x_, peak_y_) > 0.0) {
+    if (solid_takes_over()) {
       solid_->reset(t_, last_a_);
       solid_active_ = true;
     }
@@ -198,6 +196,12 @@ const ItemEvents& ItemMonitor::step_planes(double ax, double ay, double az, doub
     out.plane = first_plane;
   }
   return events_;
+}
+
+bool ItemMonitor::solid_takes_over() const {
+  return solid_ && !solid_active_ && mode() == ItemMode::Rest &&
+         std::min(peak_x_, peak_y_) >= bidirectional_ratio_ * std::max(peak_x_, peak_y_) &&
+         std::max(peak_x_, peak_y_) > 0.0;
 }
 
 void ItemMonitor::mark_alarmed(ItemMode level) {

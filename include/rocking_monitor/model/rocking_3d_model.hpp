@@ -62,6 +62,18 @@ class Rocking3DModel {
   /// dt finite > 0 and `a` finite, else std::invalid_argument (state unchanged). No allocation.
   const StepReport& step(const Eigen::Vector3d& a, double dt);
 
+  /// Whether step() would only count time at the current state: REST (as long as no edge lifts) or
+  /// OVERTURNED with its levels latched. MonitorBatch then defers its quiet samples.
+  bool rest_deferrable() const {
+    return mode_ == Mode3D::Rest || (mode_ == Mode3D::Overturned && outcome_.committed);
+  }
+  /// n samples that step() would have spent at REST without an edge lifting (or OVERTURNED), applied
+  /// at once: t is the caller's sum time() + dt + dt ... (the same additions as step()), `a` and dt
+  /// the last sample's.
+  void apply_rest_samples(double t, const Eigen::Vector3d& a, double dt, long n);
+  /// Outward normal of base edge k in the world frame (the footprint's yaw applied), unit.
+  Eigen::Vector3d edge_normal(int edge) const;
+
   /// Rocking about edge k at theta (> 0) and omega (tests, free rocking).
   void set_edge_state(int edge, double theta, double omega);
   /// Pivoting on vertex v with the body turned by `rotation` about it (from its rest pose) and

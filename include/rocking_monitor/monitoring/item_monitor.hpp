@@ -89,6 +89,9 @@ class ItemMonitor {
   // step() for the planes in `planes` (bit p: plane p) only: MonitorBatch defers a quiet plane of an
   // item whose other plane moves (the deferred plane has no events; the batch applies its samples).
   const ItemEvents& step_planes(double ax, double ay, double az, double dt, unsigned planes);
+  // Auto: whether the 3-D model takes over at the next step with the running peaks as they are (the
+  // item at rest and the shaking bidirectional).
+  bool solid_takes_over() const;
   ItemSpec spec_;
   std::array<std::unique_ptr<PlaneMonitor>, kPlaneCount> planes_;
   std::array<bool, 3> alarmed_{};  // BEYOND_TIPPING, COMMITTED, OVERTURNED reached by the item

@@ -22,7 +22,8 @@
 // Deferred too: planes that overturned before the sample, in the rocking or the contact model
 // (their model only counts time then); and each plane on its own: of an item whose one plane
 // rocks, the other plane at rest (or on its side) is deferred while the rocking plane is stepped
-// (ItemMonitor::step_planes).
+// (ItemMonitor::step_planes). Items with a 3-D description as a whole: their planes and the 3-D
+// model at rest (no edge of the base lifts) or on its side.
 // Not deferred (stepped by ItemMonitor::step): rocking, sliding, the contact model before an
 // overturn, the linearized tier, spectra with a pre-filter or several periods.
 
@@ -95,15 +96,39 @@ class MonitorBatch {
     StreamingIntensity::Lane intensity{};
   };
   struct Lane {
-    bool eligible = false;  // some plane may defer its next sample
+    bool eligible = false;  // some plane may defer its next sample (an item with a 3-D model: all of it)
     bool stepped = false;   // the last sample went through ItemMonitor::step (some of its planes)
     unsigned busy = 0;      // planes stepped in the last sample (bit p: plane p)
     int planes = 1;
+    int solid = -1;         // its SolidLane in solids_, or -1: no 3-D description
     PlaneLane plane[kPlaneCount];
   };
-  // Whether the sample is quiet for the plane (x1, y1: its horizontal and vertical input); if so it is
-  // applied to the plane's lane.
-  static bool quiet(PlaneLane& pl, double x1, double y1, double dt);
+  // An item with a 3-D description (ItemMonitor::solid()) is deferred as a whole only: its planes,
+  // and the 3-D model at rest (no edge of its base lifts: the planar uplift test per edge, on the
+  // input along the edge's outward normal) or on its side; before the 3-D model takes over, no
+  // running peak of the bidirectional test may grow.
+  struct SolidEdge {
+    double nx = 0.0, ny = 0.0;  // outward normal of the edge, world frame
+    double cs = 0.0, sn = 0.0;  // cos and sin of the edge's tipping angle
+  };
+  struct SolidLane {
+    bool active = false;         // the 3-D model decides (ItemMonitor::solid_active)
+    bool overturned = false;     // the 3-D model lies on its side
+    double peak_x = 0.0, peak_y = 0.0;  // not active: the running peaks of |ax|, |ay|, m/s^2
+    double t = 0.0;              // active: the 3-D model's clock after the samples deferred, s
+    // The item's clock and last input (x, y, z) after the samples deferred, s and m/s^2 (what the 3-D
+    // model starts from when it takes over); the last sample's interval, s; samples not yet applied.
+    double t_item = 0.0, last_a[3] = {0.0, 0.0, 0.0}, dt = 0.0;
+    long deferred = 0;
+    std::vector<SolidEdge> edges;  // sized once (the base's edges), refilled without allocation
+  };
+  // Whether the sample is quiet for the plane (x1, y1: its horizontal and vertical input). next: the
+  // plane's intensity lane after it.
+  static bool quiet_test(const PlaneLane& pl, double x1, double y1, StreamingIntensity::Lane& next);
+  // A quiet sample applied to the plane's lane.
+  static void defer(PlaneLane& pl, const StreamingIntensity::Lane& next, double x1, double y1, double dt);
+  // Whether the sample is quiet for the whole item with a 3-D description; if so it is applied.
+  bool quiet_solid(Lane& lane, double ax, double ay, double az, double dt);
   void prefetch_item(std::size_t k) const;
   void prefetch_planes(std::size_t k) const;
   void prefetch_models(std::size_t k) const;
@@ -113,6 +138,7 @@ class MonitorBatch {
   static const ItemEvents kNoEvents;
   std::vector<ItemMonitor*> items_;
   std::vector<Lane> lanes_;
+  std::vector<SolidLane> solids_;
   std::vector<ItemSummary> summaries_;
   std::vector<std::uint8_t> summary_due_;  // the item was stepped or refreshed since its summary was taken
 };
