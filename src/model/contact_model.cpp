@@ -169,7 +169,8 @@ int ContactModel::advance(const GroundInput& in, double& tau, double tau_end) {
   // The derivative at a step's end is the next step's first stage (same time, same state), and it
   // gives the event functions the reaction they need: one evaluation serves both.
   State k1;
-  derivative(in, tau, x_, k1);
+  Support support0;  // at (tau, x_), with k1
+  derivative(in, tau, x_, k1, &support0);
   while (tau < tau_end) {
     double h = std::min(h_nom, tau_end - tau);
     if (tau_end - tau - h < 1e-9 * h_nom) h = tau_end - tau;
@@ -181,11 +182,11 @@ int ContactModel::advance(const GroundInput& in, double& tau, double tau_end) {
     Support support;
     derivative(in, tau + h, x1, d1, &support);
     double f1[kCount], f0[kCount];
-    event_values(~0u, in, tau + h, x1, f1, &support);
+    event_values(~0u, in, tau + h, x1, f1, support);
     unsigned crossed = 0;
     for (int ev = 0; ev < kCount; ++ev)
       if (f1[ev] > 0.0) crossed |= 1u << ev;
-    if (crossed) event_values(crossed, in, tau, x_, f0);
+    if (crossed) event_values(crossed, in, tau, x_, f0, support0);
     for (int ev = 0; ev < kCount; ++ev) {
       if (!((crossed >> ev) & 1u)) continue;
       double te = tau;
@@ -194,10 +195,12 @@ int ContactModel::advance(const GroundInput& in, double& tau, double tau_end) {
         const double t0 = tau;
         te = bracketed_root(
             [&](double t) {
-              State y;
+              State y, d;
+              Support sup;
               rk4(in, t0, x0, t - t0, y);
+              derivative(in, t, y, d, &sup);
               double f[kCount];
-              event_values(1u << ev, in, t, y, f);
+              event_values(1u << ev, in, t, y, f, sup);
               return f[ev];
             },
             t0, t0 + h, f0[ev], f1[ev], t_tol);
@@ -211,6 +214,7 @@ int ContactModel::advance(const GroundInput& in, double& tau, double tau_end) {
       x_ = x1;
       tau = (h == tau_end - tau) ? tau_end : tau + h;
       k1 = d1;  // at tau + h: when tau became tau_end instead, the loop ends here
+      support0 = support;
       const int s = x_[2] < 0.0 ? -1 : 1;
       outcome_.max_rotation_ratio =
           std::max(outcome_.max_rotation_ratio, std::abs(x_[2]) / body_.pivot(s).alpha);

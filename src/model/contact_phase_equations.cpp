@@ -84,10 +84,10 @@ bool ContactModel::rock_friction_ok(const GroundInput& in, double tau, int side,
 }
 
 // Event functions: event ev happens when f[ev] becomes > 0. Only the events in `want` (bit ev) are
-// evaluated, the others set to -1; those evaluated together share the reaction or the rotation
-// (one sin/cos instead of one per event: this runs at every RK4 sub-step of a contact phase).
+// evaluated, the others set to -1. support: what derivative() gave at (tau, s): the lift-off and slip
+// events of ROCK and SLIDE-ROCK read the reaction the equations of motion already computed.
 void ContactModel::event_values(unsigned want, const GroundInput& in, double tau, const State& s,
-                                double (&f)[kCount], const Support* support) const {
+                                double (&f)[kCount], const Support& support) const {
   for (double& v : f) v = -1.0;
   auto wanted = [want](int ev) { return (want >> ev) & 1u; };
   const double G = in.ay(tau) + kGravity;
@@ -101,25 +101,11 @@ void ContactModel::event_values(unsigned want, const GroundInput& in, double tau
       if (wanted(kImpact)) f[kImpact] = -side_ * s[2];
       if (wanted(kOverturn)) f[kOverturn] = side_ * s[2] - body_.overturn_angle();
       if (mode_ == ContactMode::Rock) {
-        if (!wanted(kFlight) && !(wanted(kSlipOrStick) && !std::isinf(mu_s_))) return;
-        ContactReaction r;
-        if (support != nullptr) {
-          r = {support->rx, support->ry};
-        } else {
-          const Pivot& pv = body_.pivot(side_);
-          const RockingOde ode{&pv, side_, ModelKind::Nonlinear, in};
-          const double acc = ode.angular_acceleration(tau, s[2]);
-          r = rocking_reaction(pv, side_, s[2], s[3], acc, in.ax(tau), in.ay(tau));
-        }
-        if (wanted(kFlight)) f[kFlight] = -r.ry;
-        if (wanted(kSlipOrStick) && !std::isinf(mu_s_)) f[kSlipOrStick] = std::abs(r.rx) - mu_s_ * r.ry;
+        if (wanted(kFlight)) f[kFlight] = -support.ry;
+        if (wanted(kSlipOrStick) && !std::isinf(mu_s_))
+          f[kSlipOrStick] = std::abs(support.rx) - mu_s_ * support.ry;
       } else {
-        if (wanted(kFlight)) {
-          double normal;
-          if (support != nullptr) normal = support->ry;
-          else slide_rock_theta_ddot(side_, sigma_, G, s, normal);
-          f[kFlight] = -normal;
-        }
+        if (wanted(kFlight)) f[kFlight] = -support.ry;  // the normal force
         if (wanted(kSlipOrStick)) {  // pivot slip velocity reached zero
           double rx, ry;
           corner(side_, s, rx, ry);

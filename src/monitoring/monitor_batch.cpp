@@ -69,13 +69,16 @@ void MonitorBatch::refresh_planes(std::size_t k, unsigned planes) {
     pl.ax_prev = item.last_input_[p][0];
     pl.ay_prev = item.last_input_[p][1];
   }
-  lane.eligible = lane.plane[0].eligible || (lane.planes > 1 && lane.plane[1].eligible);
-  if (lane.solid < 0) return;
-  // With a 3-D description: every plane and the 3-D model (or the bidirectional test) quiet.
+  const bool second = lane.planes > 1 && lane.plane[1].eligible;
+  if (lane.solid < 0) {
+    lane.eligible = lane.plane[0].eligible || second;  // each plane on its own
+    return;
+  }
+  // With a 3-D description, as a whole: every plane, and the 3-D model (or the bidirectional test).
   SolidLane& sl = solids_[static_cast<std::size_t>(lane.solid)];
   const Rocking3DModel& solid = *item.solid();
   sl.active = item.solid_active();
-  lane.eligible = lane.plane[0].eligible && (lane.planes == 1 || lane.plane[1].eligible) &&
+  lane.eligible = lane.plane[0].eligible && (lane.planes == 1 || second) &&
                   (sl.active ? solid.rest_deferrable() : !item.solid_takes_over());
   if (!lane.eligible) return;
   sl.deferred = 0;

@@ -138,9 +138,9 @@ class ContactModel {
   void rk4(const GroundInput& in, double tau, const State& s0, double h, State& out) const;
   // rk4() with the first stage k1 = derivative(in, tau, s0) given.
   void rk4_from(const GroundInput& in, double tau, const State& s0, const State& k1, double h, State& out) const;
-  // support: what derivative() gave at (tau, s), or null.
+  // support: what derivative() gave at (tau, s).
   void event_values(unsigned want, const GroundInput& in, double tau, const State& s, double (&f)[kCount],
-                    const Support* support = nullptr) const;
+                    const Support& support) const;
   double find_rest_exit(const GroundInput& in, double tau, double tau_end, unsigned& fired,
                         int& up_side) const;
   void leave_rest(const GroundInput& in, double tau, unsigned fired, int up_side);

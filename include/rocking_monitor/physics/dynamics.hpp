@@ -61,8 +61,8 @@ struct ContactReaction {
   double ry = 0.0;
 };
 
-// Inline: evaluated next to RockingOde::angular_acceleration of the same angle (every RK4 sub-step
-// of the contact model's ROCK phase), whose sin/cos the compiler then shares.
+// Inline: its callers evaluate it right after RockingOde::angular_acceleration of the same angle
+// (ContactModel::rock_friction_ok, RockingModel::reaction), whose sin/cos the compiler then shares.
 inline ContactReaction rocking_reaction(const Pivot& pv, int side, double theta, double omega,
                                         double theta_ddot, double ax, double ay) {
   // CoM relative to the pivot: x = s R sin(phi), y = R cos(phi), phi = alpha - s theta.
