@@ -52,7 +52,7 @@ BatchRocking::BatchRocking(const std::vector<BodyParameters>& bodies,
                   &lanes_.k1b, &lanes_.fsal, &lanes_.radius, &lanes_.inertia, &lanes_.cos_al,
                   &lanes_.slide_checked, &lanes_.committed, &lanes_.theta_out, &lanes_.omega_out,
                   &lanes_.h_out, &lanes_.k1a_out, &lanes_.k1b_out, &lanes_.max_ratio, &lanes_.steps,
-                  &lanes_.pending_max, &lanes_.last_dt})
+                  &lanes_.pending_max, &lanes_.last_dt, &lanes_.mu_clear, &lanes_.ry_min})
     v->assign(np, 0.0);
   lanes_.clean.assign(np, 0);
   lanes_.end_clear.assign(np, 0);

@@ -237,7 +237,7 @@ HWY_INLINE void SinCos(Tag<U> t, Wide<U> phi, Wide<U>& s, Wide<U>& c) {
 }  // namespace w
 
 template <bool kExact, std::size_t U>
-void RockingSampleT(BatchRocking::Lanes& l, std::size_t m, double dt, double tol) {
+void RockingSampleT(BatchRocking::Lanes& l, const std::uint32_t* idx, std::size_t m, double dt, double tol) {
   using V = w::Wide<U>;
   const w::Tag<U> d;
   const std::size_t L = d.lanes();
@@ -250,7 +250,7 @@ void RockingSampleT(BatchRocking::Lanes& l, std::size_t m, double dt, double tol
 
   for (std::size_t i = 0; i < m; i += L) {
     // The lanes' state stays in place (index = lane); this group's lanes are gathered from it.
-    const std::uint32_t* ix = l.idx.data() + i;
+    const std::uint32_t* ix = idx + i;
     auto gather = [&](const std::vector<double>& a) HWY_INLINE_LAMBDA {
       alignas(64) double b[16];
       for (std::size_t k = 0; k < L; ++k) b[k] = a[ix[k]];
@@ -420,8 +420,16 @@ void RockingSampleT(BatchRocking::Lanes& l, std::size_t m, double dt, double tol
       const V ry = w::Add(w::Add(g, ay1), w::Add(w::Neg(w::Mul(w::Mul(R, cs), w2)),
                                                    w::Mul(w::Mul(side, w::Mul(R, sn)), thdd)));
       const V ry_scale = w::Add(w::Add(g, w::Abs(ay1)), w::Mul(R, w::Add(w2, w::Abs(thdd))));
-      const auto no_flight = w::Gt(ry, w::Mul(w::Set(d, 1e-9), ry_scale));
-      const auto no_slide = w::Eq(gather(l.slide_checked), zero);
+      const auto no_flight = w::Gt(ry, w::Add(gather(l.ry_min), w::Mul(w::Set(d, 1e-9), ry_scale)));
+      // rocking_reaction(): R_x = a_x + x'' (x'' = -R (cos(phi) theta'' + s sin(phi) w^2)); sliding
+      // surely not reached when |R_x| stays below mu_clear R_y by the margin (mu_clear 0: not screened).
+      const V rx = w::Sub(ax1, w::Mul(R, w::Add(w::Mul(cs, thdd), w::Mul(side, w::Mul(sn, w2)))));
+      const V rx_scale = w::Add(w::Abs(ax1), w::Mul(R, w::Add(w2, w::Abs(thdd))));
+      const V mu_clear = gather(l.mu_clear);
+      const auto under_friction = w::Lt(w::Add(w::Abs(rx), w::Mul(w::Mul(w::Set(d, 1e-9), w::Add(one, mu_clear)),
+                                                                  w::Add(rx_scale, ry_scale))),
+                                        w::Mul(mu_clear, ry));
+      const auto no_slide = w::Or(w::Eq(gather(l.slide_checked), zero), under_friction);
       // overturn_margin: deficit = (gR (1 - cos phi) - I w^2 / 2) / (gR (1 - cos alpha)).
       const V barrier = w::Mul(g, R);
       const V num = w::Sub(w::Mul(barrier, w::Sub(one, cs)),
@@ -454,11 +462,11 @@ void RockingSampleT(BatchRocking::Lanes& l, std::size_t m, double dt, double tol
 constexpr std::size_t kUnroll = 2;
 static_assert(kBlock % (kUnroll * (HWY_MAX_BYTES / sizeof(double))) == 0, "a block of whole wide vectors");
 
-void RockingSampleExact(BatchRocking::Lanes& l, std::size_t m, double dt, double tol) {
-  RockingSampleT<true, kUnroll>(l, m, dt, tol);
+void RockingSampleExact(BatchRocking::Lanes& l, const std::uint32_t* idx, std::size_t m, double dt, double tol) {
+  RockingSampleT<true, kUnroll>(l, idx, m, dt, tol);
 }
-void RockingSampleFast(BatchRocking::Lanes& l, std::size_t m, double dt, double tol) {
-  RockingSampleT<false, kUnroll>(l, m, dt, tol);
+void RockingSampleFast(BatchRocking::Lanes& l, const std::uint32_t* idx, std::size_t m, double dt, double tol) {
+  RockingSampleT<false, kUnroll>(l, idx, m, dt, tol);
 }
 const char* TargetName() { return hwy::TargetName(HWY_TARGET); }
 
@@ -499,8 +507,12 @@ void uplift_test(BatchRocking::Lanes& l, std::size_t n, bool linearized) {
   HWY_DYNAMIC_DISPATCH(UpliftTest)(l, n, linearized);
 }
 void rocking_sample(BatchRocking::Lanes& l, std::size_t m, double dt, double tol, bool exact_trig) {
-  if (exact_trig) HWY_DYNAMIC_DISPATCH(RockingSampleExact)(l, m, dt, tol);
-  else HWY_DYNAMIC_DISPATCH(RockingSampleFast)(l, m, dt, tol);
+  rocking_sample(l, l.idx.data(), m, dt, tol, exact_trig);
+}
+void rocking_sample(BatchRocking::Lanes& l, const std::uint32_t* idx, std::size_t m, double dt, double tol,
+                    bool exact_trig) {
+  if (exact_trig) HWY_DYNAMIC_DISPATCH(RockingSampleExact)(l, idx, m, dt, tol);
+  else HWY_DYNAMIC_DISPATCH(RockingSampleFast)(l, idx, m, dt, tol);
 }
 const char* target_name() { return HWY_DYNAMIC_DISPATCH(TargetName)(); }
 }  // namespace rocking_monitor::core::batch_detail

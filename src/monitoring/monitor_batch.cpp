@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <stdexcept>
+#include <type_traits>
 
 #include "rocking_monitor/constants.hpp"
 
@@ -11,8 +13,24 @@ namespace rocking_monitor::core {
 const ItemEvents MonitorBatch::kNoEvents{};
 
 MonitorBatch::MonitorBatch(std::vector<ItemMonitor*> items) : items_(std::move(items)), lanes_(items_.size()), summaries_(items_.size()), summary_due_(items_.size(), 1) {
+  // Rocking lanes: BatchRocking's arrays, one lane per plane (2 k + p), padded for the kernel's blocks.
+  const std::size_t nr = (kPlaneCount * items_.size() + batch_detail::kBlock - 1) / batch_detail::kBlock * batch_detail::kBlock;
+  BatchRocking::Lanes& l = rk_;
+  for (auto* v : {&l.vr, &l.side, &l.alpha, &l.p2, &l.atol_th, &l.atol_om, &l.overturn, &l.beyond, &l.theta, &l.omega,
+                  &l.h, &l.k1a, &l.k1b, &l.fsal, &l.radius, &l.inertia, &l.cos_al, &l.slide_checked, &l.committed,
+                  &l.mu_clear, &l.ry_min, &l.ax_prev, &l.ay_prev, &l.ax_now, &l.ay_now, &l.theta_out, &l.omega_out,
+                  &l.h_out, &l.k1a_out, &l.k1b_out, &l.max_ratio, &l.steps, &l.pending_max})
+    v->assign(nr, 0.0);
+  l.clean.assign(nr, 0);
+  l.end_clear.assign(nr, 0);
+  l.pending_steps.assign(nr, 0);
+  l.last_steps.assign(nr, 0);
   for (std::size_t k = 0; k < items_.size(); ++k) {
     if (items_[k] == nullptr) throw std::invalid_argument("MonitorBatch: item " + std::to_string(k) + " is null");
+    for (int p = 0; p < items_[k]->plane_count() && rk_tol_ < 0.0; ++p)  // the kernel runs one tolerance
+      if (const AdaptiveModel* a = items_[k]->planes_[p]->adaptive_.get()) rk_tol_ = a->nonlinear_model().settings().tol;
+  }
+  for (std::size_t k = 0; k < items_.size(); ++k) {
     if (const Rocking3DModel* solid = items_[k]->solid()) {
       lanes_[k].solid = static_cast<int>(solids_.size());
       solids_.emplace_back();
@@ -35,10 +53,15 @@ void MonitorBatch::refresh_planes(std::size_t k, unsigned planes) {
     const PlaneMonitor& pm = *item.planes_[p];
     PlaneLane& pl = lane.plane[p];
     pl.deferred = 0;
+    pl.rocking = false;
+    rk_.vr[kPlaneCount * k + static_cast<std::size_t>(p)] = 0.0;
     const AdaptiveModel* adaptive = pm.adaptive_.get();
     bool ok = item_ok && pm.started_ && pm.intensity_ && pm.intensity_->lane_eligible();
     if (adaptive != nullptr) {
-      ok = ok && adaptive->rest_deferrable();
+      // Rocking lanes for items without a 3-D description (those are deferred as a whole only).
+      pl.rocking = ok && lane.solid < 0 && adaptive->rocking_deferrable() &&
+                   adaptive->nonlinear_model().settings().tol == rk_tol_;
+      ok = ok && (pl.rocking || adaptive->rest_deferrable());
     } else {
       // Pure rocking: at rest with no validity criterion standing (a stale one is cleared by a step).
       ok = ok && (pm.model_.mode() == Mode::Rest ||
@@ -68,6 +91,7 @@ void MonitorBatch::refresh_planes(std::size_t k, unsigned planes) {
     pm.intensity_->to_lane(pl.intensity);
     pl.ax_prev = item.last_input_[p][0];
     pl.ay_prev = item.last_input_[p][1];
+    if (pl.rocking) mirror_rocking(k, p, *adaptive);
   }
   const bool second = lane.planes > 1 && lane.plane[1].eligible;
   if (lane.solid < 0) {
@@ -125,6 +149,69 @@ void MonitorBatch::refresh_planes(std::size_t k, unsigned planes) {
   pl.t += dt;
   pl.dt = dt;
   ++pl.deferred;
+}
+
+void MonitorBatch::mirror_rocking(std::size_t k, int p, const AdaptiveModel& a) {
+  // As BatchRocking::refresh_mirror: the model just stepped (or was set up); read once here.
+  const std::size_t r = kPlaneCount * k + static_cast<std::size_t>(p);
+  const PlaneLane& pl = lanes_[k].plane[p];
+  const RockingModel& m = a.nonlinear_model();
+  const int s = m.side();
+  const Pivot& pv = m.body().pivot(s);
+  const Dopri5Stepper& st = m.dopri5();
+  const double tol = m.settings().tol, mu = m.body().mu_s();
+  BatchRocking::Lanes& l = rk_;
+  l.vr[r] = 1.0;
+  l.side[r] = s;
+  l.alpha[r] = pv.alpha;
+  l.p2[r] = pv.p2;
+  l.atol_th[r] = tol * pv.alpha;
+  l.atol_om[r] = tol * pv.p * pv.alpha;
+  l.overturn[r] = m.body().overturn_angle();
+  l.beyond[r] = m.outcome().beyond_tipping ? 1.0 : 0.0;
+  l.theta[r] = m.theta();
+  l.omega[r] = m.omega();
+  l.h[r] = st.step_size();
+  l.k1a[r] = st.fsal_k1(0);
+  l.k1b[r] = st.fsal_k1(1);
+  l.fsal[r] = st.fsal_valid() ? 1.0 : 0.0;
+  l.radius[r] = pv.radius;
+  l.inertia[r] = pv.inertia;
+  l.cos_al[r] = pv.cos_alpha;
+  l.committed[r] = m.outcome().committed ? 1.0 : 0.0;
+  // The sample end must give no sliding (RockingModel's criterion, mu_s R_y) and none of
+  // AdaptiveModel::check_rocking's early margins (friction_safety mu_s R_y, lift_off_margin g): both
+  // are checked only with a friction coefficient.
+  const bool friction = !std::isinf(mu);
+  l.slide_checked[r] = friction ? 1.0 : 0.0;
+  l.mu_clear[r] = friction ? std::min(mu, a.settings().friction_safety * mu) : 0.0;
+  l.ry_min[r] = friction ? std::max(0.0, a.settings().lift_off_margin * kGravity) : 0.0;
+  l.ax_prev[r] = pl.ax_prev;
+  l.ay_prev[r] = pl.ay_prev;
+  l.pending_steps[r] = 0;
+  l.pending_max[r] = 0.0;
+  lanes_[k].plane[p].lin_ratio = a.linearized_entry_ratio();
+}
+
+[[gnu::always_inline]] inline void MonitorBatch::defer_rocking(PlaneLane& pl, std::size_t r,
+                                                                const StreamingIntensity::Lane& next, double x1,
+                                                                double y1, double dt) {
+  // BatchRocking::step's deferred rocking: the kernel's sample end becomes the lane's state.
+  BatchRocking::Lanes& l = rk_;
+  l.theta[r] = l.theta_out[r];
+  l.omega[r] = l.omega_out[r];
+  l.h[r] = l.h_out[r];
+  l.k1a[r] = l.k1a_out[r];
+  l.k1b[r] = l.k1b_out[r];
+  l.fsal[r] = 1.0;
+  const int steps = static_cast<int>(l.steps[r]);
+  l.pending_steps[r] += steps;
+  l.last_steps[r] = steps;
+  l.pending_max[r] = std::max(l.pending_max[r], l.max_ratio[r]);
+  l.ax_prev[r] = x1;
+  l.ay_prev[r] = y1;
+  ++pl.rocking_samples;
+  defer(pl, next, x1, y1, dt);
 }
 
 bool MonitorBatch::quiet_solid(Lane& lane, double ax, double ay, double az, double dt) {
@@ -204,10 +291,18 @@ std::size_t MonitorBatch::step(std::size_t begin, std::size_t end, const double*
   std::size_t busy[kBlock];
   for (std::size_t b = begin; b < end; b += kBlock) {
     const std::size_t e = std::min(end, b + kBlock);
+    // Rocking lanes whose input stays in the scene and raises no running maximum are candidates: the
+    // vector kernel steps them together after this loop, which then decides their items.
+    std::uint32_t rix[kPlaneCount * kBlock + batch_detail::kBlock];
+    // Raw storage: a Lane array would be zero-filled (30 KB) at every block.
+    std::aligned_storage_t<sizeof(StreamingIntensity::Lane), alignof(StreamingIntensity::Lane)> raw[kPlaneCount * kBlock];
+    auto* rnext = reinterpret_cast<StreamingIntensity::Lane*>(raw);
+    std::size_t nr = 0;
     std::size_t n = 0;
     for (std::size_t k = b; k < e; ++k) {
       Lane& lane = lanes_[k];
       lane.stepped = false;
+      lane.candidates = 0;
       if (active != nullptr && active[k] == 0) continue;
       // Each plane is deferred on its own; the item is stepped for the others. Invalid samples
       // (non-finite, dt <= 0) go to ItemMonitor::step, which rejects them.
@@ -219,20 +314,57 @@ std::size_t MonitorBatch::step(std::size_t begin, std::size_t end, const double*
         } else {
           for (int p = 0; p < lane.planes; ++p) {
             PlaneLane& pl = lane.plane[p];
+            if (!pl.eligible) continue;
+            const double x1 = p == 0 ? ax[k] : ay[k], y1 = az[k];
+            if (pl.rocking) {
+              if (x1 > pl.scene_h || -x1 > pl.scene_h || y1 > pl.scene_v || -y1 > pl.scene_v) continue;  // SceneEnvelope::contains
+              new (&rnext[nr]) StreamingIntensity::Lane(pl.intensity);
+              if (!StreamingIntensity::push_quiet(rnext[nr], x1)) continue;
+              const std::size_t r = kPlaneCount * k + static_cast<std::size_t>(p);
+              rk_.ax_now[r] = x1;
+              rk_.ay_now[r] = y1;
+              rix[nr++] = static_cast<std::uint32_t>(r);
+              lane.candidates |= 1u << p;
+              planes_busy &= ~(1u << p);
+              continue;
+            }
             StreamingIntensity::Lane next;
-            if (pl.eligible && quiet_test(pl, p == 0 ? ax[k] : ay[k], az[k], next)) {
-              defer(pl, next, p == 0 ? ax[k] : ay[k], az[k], dt);
+            if (quiet_test(pl, x1, y1, next)) {
+              defer(pl, next, x1, y1, dt);
               planes_busy &= ~(1u << p);
             }
           }
         }
       }
-      if (planes_busy == 0) {
-        ++deferred;
-        continue;
-      }
       lane.busy = planes_busy;
-      busy[n++] = k;
+      if (planes_busy != 0) busy[n++] = k;
+      else if (lane.candidates == 0) ++deferred;
+    }
+    // The candidates: a quiet rocking sample is deferred, any other goes back to its item's planes to
+    // step (a few lanes are not worth a kernel block of 16: they step in full).
+    if (nr > 0) {
+      const bool kernel = nr >= 4;
+      if (kernel) {
+        const std::size_t padded = (nr + batch_detail::kBlock - 1) / batch_detail::kBlock * batch_detail::kBlock;
+        for (std::size_t i = nr; i < padded; ++i) rix[i] = rix[nr - 1];  // the same lane again: same results
+        batch_detail::rocking_sample(rk_, rix, padded, dt, rk_tol_, true);
+      }
+      for (std::size_t i = 0; i < nr; ++i) {
+        const std::size_t r = rix[i], k = r / kPlaneCount;
+        const int p = static_cast<int>(r % kPlaneCount);
+        Lane& lane = lanes_[k];
+        PlaneLane& pl = lane.plane[p];
+        // AdaptiveModel::maybe_enter_linearized: below the ratio the next step() changes tier.
+        if (kernel && rk_.clean[r] && rk_.end_clear[r] && std::abs(rk_.theta_out[r]) / rk_.alpha[r] > pl.lin_ratio) {
+          defer_rocking(pl, r, rnext[i], p == 0 ? ax[k] : ay[k], az[k], dt);
+          summary_due_[k] = 1;
+        } else {
+          if (lane.busy == 0) busy[n++] = k;  // its first plane to step
+          lane.busy |= 1u << p;
+        }
+        lane.candidates &= ~(1u << p);
+        if (lane.candidates == 0 && lane.busy == 0) ++deferred;  // the item's last candidate: all deferred
+      }
     }
     for (std::size_t j = 0; j < std::min<std::size_t>(n, 6); ++j) prefetch_item(busy[j]);
     for (std::size_t j = 0; j < std::min<std::size_t>(n, 4); ++j) prefetch_planes(busy[j]);
@@ -262,7 +394,15 @@ void MonitorBatch::sync_planes(std::size_t k, unsigned planes) {
     if (!((planes >> p) & 1u) || pl.deferred == 0) continue;
     PlaneMonitor& pm = *item.planes_[p];
     pm.intensity_->from_lane(pl.intensity);
-    if (pm.adaptive_) pm.adaptive_->apply_rest_samples(pl.t, pl.ax_prev, pl.ay_prev, pl.dt, pl.deferred);
+    if (pl.rocking) {
+      BatchRocking::Lanes& l = rk_;
+      const std::size_t r = kPlaneCount * k + static_cast<std::size_t>(p);
+      pm.adaptive_->apply_rocking_samples(pl.t, pl.ax_prev, pl.ay_prev, pl.dt, pl.deferred, l.theta[r], l.omega[r],
+                                          l.h[r], l.k1a[r], l.k1b[r], l.pending_steps[r], l.last_steps[r],
+                                          l.pending_max[r]);
+      l.pending_steps[r] = 0;
+      l.pending_max[r] = 0.0;
+    } else if (pm.adaptive_) pm.adaptive_->apply_rest_samples(pl.t, pl.ax_prev, pl.ay_prev, pl.dt, pl.deferred);
     else pm.model_.apply_rest_samples(pl.t, pl.ax_prev, pl.ay_prev, pl.deferred);
     // Its last sample was deferred: no events.
     pm.events_.change_count = 0;

@@ -209,6 +209,26 @@ class AdaptiveModel {
   /// or OVERTURNED, with every input inside the scene envelope, applied at once: t is the caller's
   /// sum time() + dt + dt ... (the same additions as step()), (ax, ay) and dt the last sample's.
   void apply_rest_samples(double t, double ax, double ay, double dt, long n);
+  /// The next sample may be deferred as pure rocking (MonitorBatch's rocking lanes): adaptive
+  /// fidelity, the nonlinear rocking model under dopri5 (not the linearized tier) ROCKING with no
+  /// validity criterion standing, and no scene guarantee about to lapse.
+  bool rocking_deferrable() const {
+    return settings_.fidelity == Fidelity::Adaptive && active_ == ActiveModel::Rocking && !lin_active_ &&
+           rock_.mode() == Mode::Rocking && rock_.violations() == 0 && rock_.settings().method == Method::Dopri5 &&
+           rock_.settings().model == ModelKind::Nonlinear && !(scene_guarantee_ && outcome_.beyond_tipping);
+  }
+  /// The rocking model (nonlinear) whose state a rocking lane mirrors.
+  const RockingModel& nonlinear_model() const { return rock_; }
+  /// A deferred rocking sample must end with a rotation ratio above this (step() would otherwise enter
+  /// the linearized tier after it); -1 when the tier cannot be entered.
+  double linearized_entry_ratio() const { return lin_eligible_ ? 0.5 * settings_.linearized_max_ratio : -1.0; }
+  /// n samples that step() would have run as pure rocking with no event (RockingModel::
+  /// apply_rocking_samples), no validity criterion, switch margin or linearized entry at their ends, every
+  /// input inside the scene envelope, applied at once: the rocking model's state and counters, this
+  /// model's counters, clock and inputs (t, ax, ay, dt as in apply_rest_samples).
+  void apply_rocking_samples(double t, double ax, double ay, double dt, long n, double theta, double omega,
+                             double h_next, double k1_theta, double k1_omega, long integrator_steps,
+                             int last_integrator_steps, double max_ratio);
   const AdaptiveSettings& settings() const { return settings_; }
   /// |P_x| / P_y of a sticking impact from pure rocking that makes corner `new_side` the pivot
   /// (geometry and restitution only): the impact slips in ContactModel when mu_s is below it.

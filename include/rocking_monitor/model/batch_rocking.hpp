@@ -119,6 +119,10 @@ class BatchRocking {
     // Sample-end screen (criteria, committed test): per lane pivot R, I_O/m, cos(alpha), whether
     // sliding is checked (finite mu_s) and whether committed is already latched.
     std::vector<double> radius, inertia, cos_al, slide_checked, committed;
+    // Screens of other callers (MonitorBatch: the adaptive model's early switch margins), 0 for
+    // BatchRocking: a checked sliding criterion also counts as clear when |R_x| stays below
+    // mu_clear R_y, and the sample end is clear only with R_y above ry_min (m/s^2), both with margins.
+    std::vector<double> mu_clear, ry_min;
     // Kernel results of this sample (the state above is left as it was at the sample start).
     std::vector<double> theta_out, omega_out, h_out, k1a_out, k1b_out, max_ratio, steps;
     std::vector<std::uint8_t> clean, end_clear;
@@ -161,6 +165,9 @@ constexpr std::size_t kBlock = 16;
 /// Vector dopri5 over the sample [0, dt] for the m lanes l.idx[0..m) (m a multiple of kBlock):
 /// reads their state in place, writes their *_out arrays, l.clean and l.end_clear.
 void rocking_sample(BatchRocking::Lanes& l, std::size_t m, double dt, double tol, bool exact_trig);
+/// The same for the lanes idx[0..m) (a caller's own work list; disjoint lists may run on different threads).
+void rocking_sample(BatchRocking::Lanes& l, const std::uint32_t* idx, std::size_t m, double dt, double tol,
+                    bool exact_trig);
 const char* target_name();
 /// sin and cos of n values (n a multiple of 16) the way the dopri5 kernel evaluates them
 /// (benchmarks: the cost of the trigonometry per stage).

@@ -24,14 +24,23 @@
 // rocks, the other plane at rest (or on its side) is deferred while the rocking plane is stepped
 // (ItemMonitor::step_planes). Items with a 3-D description as a whole: their planes and the 3-D
 // model at rest (no edge of the base lifts) or on its side.
-// Not deferred (stepped by ItemMonitor::step): rocking, sliding, the contact model before an
-// overturn, the linearized tier, spectra with a pre-filter or several periods.
+// Deferred too (issue 28 part 3): planes rocking on the adaptive model's nonlinear rocking model
+// (dopri5), stepped in rocking lanes by BatchRocking's vector kernel with exact trigonometry (the
+// scalar model's step sizes and arithmetic, lane by lane) when the sample has no event (impact,
+// turning point, first passage beyond the tipping angle, overturn) and its end changes nothing
+// the item reports besides the rocking state itself: no free flight, sliding or switch margin
+// (|R_x| below friction_safety mu_s R_y, R_y above lift_off_margin g, both with margins), not newly
+// committed, no linearized entry, input inside the scene, no running maximum growing. The item's
+// summary then changes (theta, omega, ratio, margin): summary() syncs such items first.
+// Not deferred (stepped by ItemMonitor::step): impacts and other rocking events, sliding, the contact
+// model before an overturn, the linearized tier, spectra with a pre-filter or several periods.
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include "rocking_monitor/model/batch_rocking.hpp"
 #include "rocking_monitor/monitoring/item_monitor.hpp"
 #include "rocking_monitor/monitoring/item_summary.hpp"
 #include "rocking_monitor/motion/streaming_intensity.hpp"
@@ -70,12 +79,19 @@ class MonitorBatch {
     return l.planes > 1 ? std::max(l.plane[0].deferred, l.plane[1].deferred) : l.plane[0].deferred;
   }
 
+  /// Plane-samples of item k deferred in rocking lanes so far (tests: that the path is taken).
+  long rocking_deferred(std::size_t k) const {
+    const Lane& l = lanes_[k];
+    return l.plane[0].rocking_samples + (l.planes > 1 ? l.plane[1].rocking_samples : 0);
+  }
+
   /// What item k's monitor would report now, without sync (issue 28). Taken when read, if the item
   /// was stepped in full (or refreshed) since the last read: deferred samples change none of its
   /// fields, so pending ones need no sync, and the per-sample path pays nothing for it. Not while
   /// step() runs.
   const ItemSummary& summary(std::size_t k) {
     if (summary_due_[k]) {
+      if (rocking_pending(k)) sync(k);  // deferred rocking samples move theta and omega
       summarize(*items_[k], summaries_[k]);
       summary_due_[k] = 0;
     }
@@ -93,12 +109,16 @@ class MonitorBatch {
     double t = 0.0;                                  // the plane's models' clock after the deferred samples, s
     double dt = 0.0;                                 // the last deferred sample's interval, s
     long deferred = 0;                               // samples not yet applied to the plane's monitor
+    bool rocking = false;                            // a rocking lane: state in rk_ at 2 k + p
+    double lin_ratio = -1.0;                         // a deferred rocking sample must end above this ratio
+    long rocking_samples = 0;                        // rocking samples deferred so far (never reset)
     StreamingIntensity::Lane intensity{};
   };
   struct Lane {
     bool eligible = false;  // some plane may defer its next sample (an item with a 3-D model: all of it)
     bool stepped = false;   // the last sample went through ItemMonitor::step (some of its planes)
     unsigned busy = 0;      // planes stepped in the last sample (bit p: plane p)
+    unsigned candidates = 0;  // step(): rocking planes waiting for the kernel's verdict (bit p)
     int planes = 1;
     int solid = -1;         // its SolidLane in solids_, or -1: no 3-D description
     PlaneLane plane[kPlaneCount];
@@ -133,12 +153,26 @@ class MonitorBatch {
   void prefetch_planes(std::size_t k) const;
   void prefetch_models(std::size_t k) const;
   void sync_planes(std::size_t k, unsigned planes);   // sync() of these planes
+  bool rocking_pending(std::size_t k) const {
+    const Lane& l = lanes_[k];
+    for (int p = 0; p < l.planes; ++p)
+      if (l.plane[p].rocking && l.plane[p].deferred > 0) return true;
+    return false;
+  }
+  // Mirrors the rocking model of plane p of item k in rk_ (the kernel's state in place).
+  void mirror_rocking(std::size_t k, int p, const AdaptiveModel& a);
+  // Kernel results of a quiet rocking sample applied to the lane.
+  void defer_rocking(PlaneLane& pl, std::size_t r, const StreamingIntensity::Lane& next, double x1, double y1,
+                     double dt);
   void refresh_planes(std::size_t k, unsigned planes);  // refresh() of these planes
 
   static const ItemEvents kNoEvents;
   std::vector<ItemMonitor*> items_;
   std::vector<Lane> lanes_;
   std::vector<SolidLane> solids_;
+  // Rocking lanes (index 2 k + p), BatchRocking's layout, so that its kernel steps them in place.
+  BatchRocking::Lanes rk_;
+  double rk_tol_ = -1.0;  // the kernel's dopri5 tolerance: that of the first rocking lane (others must match)
   std::vector<ItemSummary> summaries_;
   std::vector<std::uint8_t> summary_due_;  // the item was stepped or refreshed since its summary was taken
 };
