@@ -8,13 +8,15 @@
 // The catalogue is the one scripts/measure_monitor_load.sh gives the node (scripts/make_catalogue.py,
 // seed 1: random geometry, mu_s and yaw), or ROCKING_BENCH_CATALOGUE=FILE. The input is Kobe 1995
 // Takatori (both horizontals, 100 Hz, 41 s; no vertical record: zero, as in the bag) from ROCKING_RECORDS_DIR, rotated into each
-// item's frame by its yaw as tf2 does in the node.
+// item's frame by its yaw as tf2 does in the node. ROCKING_BENCH_SAMPLES=N: the batch benchmark on the
+// first N samples only (the strongest shaking: N = 600).
 //
 // Counters: ms_per_sample (thread CPU time per input sample, all items), ns_per_item_sample,
 // allocs_per_sample (must be 0); the batch also deferred_frac (share of item-samples deferred).
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -84,6 +86,14 @@ ItemMonitor::Options options() {
   ItemMonitor::Options o;  // the node's defaults: adaptive, dopri5 tol 1e-8
   o.fidelity = Fidelity::Adaptive;
   return o;
+}
+
+// Input samples the batch benchmarks step: the whole record, or its first ROCKING_BENCH_SAMPLES (the
+// strongest shaking is within the first 800: profile it alone).
+std::size_t samples(const Case& c) {
+  const std::size_t all = c.feed.e.size();
+  const char* env = std::getenv("ROCKING_BENCH_SAMPLES");
+  return env != nullptr ? std::clamp<std::size_t>(std::strtoul(env, nullptr, 10), 2, all) : all;
 }
 
 // Item frame input: R(item <- sensor) = Rz(-yaw).
@@ -162,7 +172,7 @@ struct BatchFeed {
 void BM_MonitorBatch(benchmark::State& state) {
   const Case& c = *g_case;
   BatchFeed f(c);
-  const std::size_t n = c.feed.e.size(), m = f.size();
+  const std::size_t n = samples(c), m = f.size();
   double seconds = 0, samples = 0, allocs = 0, deferred = 0, planes = 0;
   for (auto _ : state) {
     MonitorBatch batch(f.start());

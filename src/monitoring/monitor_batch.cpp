@@ -73,8 +73,11 @@ void MonitorBatch::refresh_planes(std::size_t k, unsigned planes) {
     }
     pl.eligible = ok;
     if (!ok) continue;
-    const Body& body = pm.model_.body();
-    const bool linear = pm.options_.solver.model == ModelKind::Linearized;
+    // From the adaptive model when there is one (just stepped, in cache): the same body and solver
+    // as the plane's, whose own model_ and options_ are then cold (perf: half of this function's time).
+    const Body& body = adaptive != nullptr ? adaptive->body() : pm.model_.body();
+    const ModelKind kind = adaptive != nullptr ? adaptive->settings().rocking.model : pm.options_.solver.model;
+    const bool linear = kind == ModelKind::Linearized;
     for (int i = 0; i < 2; ++i) {
       const Pivot& pv = body.pivot(i == 0 ? 1 : -1);
       pl.cs[i] = linear ? 1.0 : pv.cos_alpha;  // uplift_function(): linearized cos -> 1, sin -> alpha
