@@ -144,13 +144,6 @@ double ContactModel::energy() const {
   return 0.5 * (x_[1] * x_[1] + x_[5] * x_[5] + ig2_ * x_[3] * x_[3]) + kGravity * x_[4];
 }
 
-void ContactModel::rk4(const GroundInput& in, double tau, const State& s0, double h,
-                       State& out) const {
-  State k1;
-  derivative(in, tau, s0, k1);
-  rk4_from(in, tau, s0, k1, h, out);
-}
-
 void ContactModel::rk4_from(const GroundInput& in, double tau, const State& s0, const State& k1, double h,
                             State& out) const {
   State k2, k3, k4, y;
@@ -197,7 +190,7 @@ int ContactModel::advance(const GroundInput& in, double& tau, double tau_end) {
             [&](double t) {
               State y, d;
               Support sup;
-              rk4(in, t0, x0, t - t0, y);
+              rk4_from(in, t0, x0, k1, t - t0, y);  // k1: the derivative at (t0, x0), as rk4() would compute it
               derivative(in, t, y, d, &sup);
               double f[kCount];
               event_values(1u << ev, in, t, y, f, sup);
@@ -222,7 +215,7 @@ int ContactModel::advance(const GroundInput& in, double& tau, double tau_end) {
     }
     if (t_best > tau) {
       State xe;
-      rk4(in, tau, x_, t_best - tau, xe);
+      rk4_from(in, tau, x_, k1, t_best - tau, xe);
       x_ = xe;
     }
     tau = t_best;

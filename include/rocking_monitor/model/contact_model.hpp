@@ -135,8 +135,7 @@ class ContactModel {
     double rx = 0.0, ry = 0.0;
   };
   void derivative(const GroundInput& in, double tau, const State& s, State& d, Support* support = nullptr) const;
-  void rk4(const GroundInput& in, double tau, const State& s0, double h, State& out) const;
-  // rk4() with the first stage k1 = derivative(in, tau, s0) given.
+  // One classical RK4 step of length h from (tau, s0), its first stage k1 = derivative(in, tau, s0) given.
   void rk4_from(const GroundInput& in, double tau, const State& s0, const State& k1, double h, State& out) const;
   // support: what derivative() gave at (tau, s).
   void event_values(unsigned want, const GroundInput& in, double tau, const State& s, double (&f)[kCount],
