@@ -114,14 +114,19 @@ void BatchRocking::refresh_mirror(std::size_t k) {
   if (vr == 0.0) return;
   // The model just stepped (or was set up): its pivot, flags and integrator state, read once here
   // instead of every sample.
+  mirror_rocking(l, k, m);
+}
+
+void BatchRocking::mirror_rocking(Lanes& l, std::size_t k, const RockingModel& m) {
   const int s = m.side();
   const Pivot& pv = m.body().pivot(s);
   const Dopri5Stepper& st = m.dopri5();
+  const double tol = m.settings().tol;
   l.side[k] = s;
   l.alpha[k] = pv.alpha;
   l.p2[k] = pv.p2;
-  l.atol_th[k] = settings_.tol * pv.alpha;
-  l.atol_om[k] = settings_.tol * pv.p * pv.alpha;
+  l.atol_th[k] = tol * pv.alpha;
+  l.atol_om[k] = tol * pv.p * pv.alpha;
   l.overturn[k] = m.body().overturn_angle();
   l.beyond[k] = m.outcome().beyond_tipping ? 1.0 : 0.0;
   l.theta[k] = m.theta();

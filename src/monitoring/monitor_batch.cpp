@@ -159,34 +159,14 @@ void MonitorBatch::mirror_rocking(std::size_t k, int p, const AdaptiveModel& a) 
   const std::size_t r = kPlaneCount * k + static_cast<std::size_t>(p);
   const PlaneLane& pl = lanes_[k].plane[p];
   const RockingModel& m = a.nonlinear_model();
-  const int s = m.side();
-  const Pivot& pv = m.body().pivot(s);
-  const Dopri5Stepper& st = m.dopri5();
-  const double tol = m.settings().tol, mu = m.body().mu_s();
+  const double mu = m.body().mu_s();
   BatchRocking::Lanes& l = rk_;
   l.vr[r] = 1.0;
-  l.side[r] = s;
-  l.alpha[r] = pv.alpha;
-  l.p2[r] = pv.p2;
-  l.atol_th[r] = tol * pv.alpha;
-  l.atol_om[r] = tol * pv.p * pv.alpha;
-  l.overturn[r] = m.body().overturn_angle();
-  l.beyond[r] = m.outcome().beyond_tipping ? 1.0 : 0.0;
-  l.theta[r] = m.theta();
-  l.omega[r] = m.omega();
-  l.h[r] = st.step_size();
-  l.k1a[r] = st.fsal_k1(0);
-  l.k1b[r] = st.fsal_k1(1);
-  l.fsal[r] = st.fsal_valid() ? 1.0 : 0.0;
-  l.radius[r] = pv.radius;
-  l.inertia[r] = pv.inertia;
-  l.cos_al[r] = pv.cos_alpha;
-  l.committed[r] = m.outcome().committed ? 1.0 : 0.0;
+  BatchRocking::mirror_rocking(l, r, m);
   // The sample end must give no sliding (RockingModel's criterion, mu_s R_y) and none of
   // AdaptiveModel::check_rocking's early margins (friction_safety mu_s R_y, lift_off_margin g): both
   // are checked only with a friction coefficient.
   const bool friction = !std::isinf(mu);
-  l.slide_checked[r] = friction ? 1.0 : 0.0;
   l.mu_clear[r] = friction ? std::min(mu, a.settings().friction_safety * mu) : 0.0;
   l.ry_min[r] = friction ? std::max(0.0, a.settings().lift_off_margin * kGravity) : 0.0;
   l.ax_prev[r] = pl.ax_prev;

@@ -133,6 +133,9 @@ class BatchRocking {
     // The vr lanes of this sample (the kernel's work list), padded with copies of the last.
     std::vector<std::uint32_t> idx;
   };
+  /// Lane k of the rocking kernel from a ROCKING model under dopri5 (nonlinear): its pivot's constants,
+  /// flags and integrator state (not the inputs, vr, mu_clear or ry_min). Also for other owners of lanes.
+  static void mirror_rocking(Lanes& l, std::size_t k, const RockingModel& m);
 
  private:
   void sync(std::size_t k) const {
