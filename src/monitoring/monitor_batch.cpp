@@ -13,8 +13,15 @@ namespace rocking_monitor::core {
 const ItemEvents MonitorBatch::kNoEvents{};
 
 MonitorBatch::MonitorBatch(std::vector<ItemMonitor*> items) : items_(std::move(items)), lanes_(items_.size()), summaries_(items_.size()), summary_due_(items_.size(), 1) {
-  // Rocking lanes: BatchRocking's arrays, one lane per plane (2 k + p), padded for the kernel's blocks.
-  const std::size_t nr = (kPlaneCount * items_.size() + batch_detail::kBlock - 1) / batch_detail::kBlock * batch_detail::kBlock;
+  for (std::size_t k = 0; k < items_.size(); ++k) {
+    if (items_[k] == nullptr) throw std::invalid_argument("MonitorBatch: item " + std::to_string(k) + " is null");
+    for (int p = 0; p < items_[k]->plane_count(); ++p)  // the kernel runs one tolerance
+      if (const AdaptiveModel* a = items_[k]->planes_[p]->adaptive_.get(); a != nullptr && rk_tol_ < 0.0)
+        rk_tol_ = a->nonlinear_model().settings().tol;
+  }
+  // Rocking lanes: BatchRocking's arrays, one lane per plane (2 k + p), padded for the kernel's blocks;
+  // none without an adaptive plane (~0.55 KB per item).
+  const std::size_t nr = rk_tol_ < 0.0 ? 0 : (kPlaneCount * items_.size() + batch_detail::kBlock - 1) / batch_detail::kBlock * batch_detail::kBlock;
   BatchRocking::Lanes& l = rk_;
   for (auto* v : {&l.vr, &l.side, &l.alpha, &l.p2, &l.atol_th, &l.atol_om, &l.overturn, &l.beyond, &l.theta, &l.omega,
                   &l.h, &l.k1a, &l.k1b, &l.fsal, &l.radius, &l.inertia, &l.cos_al, &l.slide_checked, &l.committed,
@@ -25,11 +32,6 @@ MonitorBatch::MonitorBatch(std::vector<ItemMonitor*> items) : items_(std::move(i
   l.end_clear.assign(nr, 0);
   l.pending_steps.assign(nr, 0);
   l.last_steps.assign(nr, 0);
-  for (std::size_t k = 0; k < items_.size(); ++k) {
-    if (items_[k] == nullptr) throw std::invalid_argument("MonitorBatch: item " + std::to_string(k) + " is null");
-    for (int p = 0; p < items_[k]->plane_count() && rk_tol_ < 0.0; ++p)  // the kernel runs one tolerance
-      if (const AdaptiveModel* a = items_[k]->planes_[p]->adaptive_.get()) rk_tol_ = a->nonlinear_model().settings().tol;
-  }
   for (std::size_t k = 0; k < items_.size(); ++k) {
     if (const Rocking3DModel* solid = items_[k]->solid()) {
       lanes_[k].solid = static_cast<int>(solids_.size());
@@ -54,7 +56,7 @@ void MonitorBatch::refresh_planes(std::size_t k, unsigned planes) {
     PlaneLane& pl = lane.plane[p];
     pl.deferred = 0;
     pl.rocking = false;
-    rk_.vr[kPlaneCount * k + static_cast<std::size_t>(p)] = 0.0;
+    if (!rk_.vr.empty()) rk_.vr[kPlaneCount * k + static_cast<std::size_t>(p)] = 0.0;
     const AdaptiveModel* adaptive = pm.adaptive_.get();
     bool ok = item_ok && pm.started_ && pm.intensity_ && pm.intensity_->lane_eligible();
     if (adaptive != nullptr) {
@@ -157,7 +159,6 @@ void MonitorBatch::refresh_planes(std::size_t k, unsigned planes) {
 void MonitorBatch::mirror_rocking(std::size_t k, int p, const AdaptiveModel& a) {
   // As BatchRocking::refresh_mirror: the model just stepped (or was set up); read once here.
   const std::size_t r = kPlaneCount * k + static_cast<std::size_t>(p);
-  const PlaneLane& pl = lanes_[k].plane[p];
   const RockingModel& m = a.nonlinear_model();
   const double mu = m.body().mu_s();
   BatchRocking::Lanes& l = rk_;
@@ -169,12 +170,16 @@ void MonitorBatch::mirror_rocking(std::size_t k, int p, const AdaptiveModel& a) 
   const bool friction = !std::isinf(mu);
   l.mu_clear[r] = friction ? std::min(mu, a.settings().friction_safety * mu) : 0.0;
   l.ry_min[r] = friction ? std::max(0.0, a.settings().lift_off_margin * kGravity) : 0.0;
-  l.ax_prev[r] = pl.ax_prev;
-  l.ay_prev[r] = pl.ay_prev;
+  l.ax_prev[r] = m.last_ax();  // the model's own input line starts there (the plane's last input too)
+  l.ay_prev[r] = m.last_ay();
   l.pending_steps[r] = 0;
   l.pending_max[r] = 0.0;
   lanes_[k].plane[p].lin_ratio = a.linearized_entry_ratio();
 }
+
+static_assert(std::is_trivially_copyable_v<StreamingIntensity::Lane> &&
+                  std::is_trivially_destructible_v<StreamingIntensity::Lane>,
+              "step() keeps intensity lanes in raw storage");
 
 [[gnu::always_inline]] inline void MonitorBatch::defer_rocking(PlaneLane& pl, std::size_t r,
                                                                 const StreamingIntensity::Lane& next, double x1,
@@ -279,7 +284,7 @@ std::size_t MonitorBatch::step(std::size_t begin, std::size_t end, const double*
     std::uint32_t rix[kPlaneCount * kBlock + batch_detail::kBlock];
     // Raw storage: a Lane array would be zero-filled (30 KB) at every block.
     std::aligned_storage_t<sizeof(StreamingIntensity::Lane), alignof(StreamingIntensity::Lane)> raw[kPlaneCount * kBlock];
-    auto* rnext = reinterpret_cast<StreamingIntensity::Lane*>(raw);
+    StreamingIntensity::Lane* rnext[kPlaneCount * kBlock];  // as placement new returns them
     std::size_t nr = 0;
     std::size_t n = 0;
     for (std::size_t k = b; k < e; ++k) {
@@ -301,8 +306,8 @@ std::size_t MonitorBatch::step(std::size_t begin, std::size_t end, const double*
             const double x1 = p == 0 ? ax[k] : ay[k], y1 = az[k];
             if (pl.rocking) {
               if (x1 > pl.scene_h || -x1 > pl.scene_h || y1 > pl.scene_v || -y1 > pl.scene_v) continue;  // SceneEnvelope::contains
-              new (&rnext[nr]) StreamingIntensity::Lane(pl.intensity);
-              if (!StreamingIntensity::push_quiet(rnext[nr], x1)) continue;
+              rnext[nr] = new (&raw[nr]) StreamingIntensity::Lane(pl.intensity);
+              if (!StreamingIntensity::push_quiet(*rnext[nr], x1)) continue;
               const std::size_t r = kPlaneCount * k + static_cast<std::size_t>(p);
               rk_.ax_now[r] = x1;
               rk_.ay_now[r] = y1;
@@ -339,7 +344,7 @@ std::size_t MonitorBatch::step(std::size_t begin, std::size_t end, const double*
         PlaneLane& pl = lane.plane[p];
         // AdaptiveModel::maybe_enter_linearized: below the ratio the next step() changes tier.
         if (kernel && rk_.clean[r] && rk_.end_clear[r] && std::abs(rk_.theta_out[r]) / rk_.alpha[r] > pl.lin_ratio) {
-          defer_rocking(pl, r, rnext[i], p == 0 ? ax[k] : ay[k], az[k], dt);
+          defer_rocking(pl, r, *rnext[i], p == 0 ? ax[k] : ay[k], az[k], dt);
           summary_due_[k] = 1;
         } else {
           if (lane.busy == 0) busy[n++] = k;  // its first plane to step

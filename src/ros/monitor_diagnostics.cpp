@@ -66,7 +66,7 @@ void RockingMonitor::sensor_diagnostics(std::size_t i, diagnostic_updater::Diagn
   st.add("processing per sample, max (s)", s.max_processing_s);
   st.add("processing per sample, mean (s)", s.processed > 0 ? s.total_processing_s / s.processed : 0.0);
   st.add("processing / sample period", s.mean_dt > 0.0 ? s.last_processing_s / s.mean_dt : 0.0);
-  st.add("item-samples deferred as quiet (at rest or overturned)", s.deferred);
+  st.add("item-samples deferred (at rest, overturned, or rocking with nothing to report)", s.deferred);
   st.add("gravity baseline (m/s^2)", std::to_string(s.baseline.baseline().x()) + " " +
                                         std::to_string(s.baseline.baseline().y()) + " " +
                                         std::to_string(s.baseline.baseline().z()));

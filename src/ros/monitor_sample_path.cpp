@@ -370,7 +370,8 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
     s.all_ready = all;
   }
   // Items are independent: step them in parallel when ~threads > 1 (results do not depend on it).
-  // The batch defers quiet item-samples (at rest or overturned: docs/performance.md), exactly.
+  // The batch defers item-samples that change nothing reported (at rest, overturned, or rocking without
+  // an event: docs/performance.md), exactly.
   std::atomic<std::uint64_t> deferred{0};
   auto step_range = [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
