@@ -36,8 +36,7 @@ BatchRocking::BatchRocking(const std::vector<BodyParameters>& bodies,
       lanes_.cos_a[j][k] = lin ? 1.0 : pv.cos_alpha;
     }
   }
-  for (auto* v : {&lanes_.ax_prev, &lanes_.ay_prev, &lanes_.ax_now, &lanes_.ay_now})
-    v->assign(np, 0.0);
+  lanes_.size_rocking(np);
   lanes_.t.assign(np, 0.0);
   lanes_.deferred.assign(np, 0);
   lanes_.mu_inf.assign(np, 0);
@@ -47,19 +46,6 @@ BatchRocking::BatchRocking(const std::vector<BodyParameters>& bodies,
   lanes_.rest.assign(np, 0);
   lanes_.over.assign(np, 0);
   lanes_.maybe_lift.assign(np, 0);
-  for (auto* v : {&lanes_.vr, &lanes_.side, &lanes_.alpha, &lanes_.p2, &lanes_.atol_th, &lanes_.atol_om,
-                  &lanes_.overturn, &lanes_.beyond, &lanes_.theta, &lanes_.omega, &lanes_.h, &lanes_.k1a,
-                  &lanes_.k1b, &lanes_.fsal, &lanes_.radius, &lanes_.inertia, &lanes_.cos_al,
-                  &lanes_.slide_checked, &lanes_.committed, &lanes_.theta_out, &lanes_.omega_out,
-                  &lanes_.h_out, &lanes_.k1a_out, &lanes_.k1b_out, &lanes_.max_ratio, &lanes_.steps,
-                  &lanes_.pending_max, &lanes_.last_dt, &lanes_.mu_clear, &lanes_.ry_min})
-    v->assign(np, 0.0);
-  lanes_.clean.assign(np, 0);
-  lanes_.end_clear.assign(np, 0);
-  lanes_.rocking_deferred.assign(np, 0);
-  lanes_.pending_steps.assign(np, 0);
-  lanes_.last_steps.assign(np, 0);
-  lanes_.idx.assign(np, 0);
   bcast_ax_.assign(n, 0.0);
   bcast_ay_.assign(n, 0.0);
 }
@@ -115,6 +101,20 @@ void BatchRocking::refresh_mirror(std::size_t k) {
   // The model just stepped (or was set up): its pivot, flags and integrator state, read once here
   // instead of every sample.
   mirror_rocking(l, k, m);
+}
+
+void BatchRocking::Lanes::size_rocking(std::size_t n) {
+  for (auto* v : {&vr, &side, &alpha, &p2, &atol_th, &atol_om, &overturn, &beyond, &theta, &omega, &h, &k1a, &k1b,
+                  &fsal, &radius, &inertia, &cos_al, &slide_checked, &committed, &mu_clear, &ry_min, &ax_prev,
+                  &ay_prev, &ax_now, &ay_now, &theta_out, &omega_out, &h_out, &k1a_out, &k1b_out, &max_ratio, &steps,
+                  &pending_max, &last_dt})
+    v->assign(n, 0.0);
+  clean.assign(n, 0);
+  end_clear.assign(n, 0);
+  rocking_deferred.assign(n, 0);
+  pending_steps.assign(n, 0);
+  last_steps.assign(n, 0);
+  idx.assign(n, 0);
 }
 
 void BatchRocking::mirror_rocking(Lanes& l, std::size_t k, const RockingModel& m) {
@@ -206,19 +206,8 @@ void BatchRocking::step(const double* ax, const double* ay, double dt) {
     if (l.vr[k] != 0.0 && l.clean[k] && l.end_clear[k]) {
       // Nothing can change at the sample end: the sample stays in the lane (the same additions as
       // commit_rocking_sample, applied by flush_rocking).
-      l.theta[k] = l.theta_out[k];
-      l.omega[k] = l.omega_out[k];
-      l.h[k] = l.h_out[k];
-      l.k1a[k] = l.k1a_out[k];
-      l.k1b[k] = l.k1b_out[k];
-      l.fsal[k] = 1.0;
-      const int steps = static_cast<int>(l.steps[k]);
-      l.pending_steps[k] += steps;
-      l.last_steps[k] = steps;
-      l.pending_max[k] = std::max(l.pending_max[k], l.max_ratio[k]);
+      l.keep_rocking_sample(k, ax[k], ay[k]);
       l.t[k] += dt;
-      l.ax_prev[k] = ax[k];
-      l.ay_prev[k] = ay[k];
       l.last_dt[k] = dt;
       ++l.rocking_deferred[k];
       ++stats_.rocking_fast;

@@ -22,16 +22,7 @@ MonitorBatch::MonitorBatch(std::vector<ItemMonitor*> items) : items_(std::move(i
   // Rocking lanes: BatchRocking's arrays, one lane per plane (2 k + p), padded for the kernel's blocks;
   // none without an adaptive plane (~0.55 KB per item).
   const std::size_t nr = rk_tol_ < 0.0 ? 0 : (kPlaneCount * items_.size() + batch_detail::kBlock - 1) / batch_detail::kBlock * batch_detail::kBlock;
-  BatchRocking::Lanes& l = rk_;
-  for (auto* v : {&l.vr, &l.side, &l.alpha, &l.p2, &l.atol_th, &l.atol_om, &l.overturn, &l.beyond, &l.theta, &l.omega,
-                  &l.h, &l.k1a, &l.k1b, &l.fsal, &l.radius, &l.inertia, &l.cos_al, &l.slide_checked, &l.committed,
-                  &l.mu_clear, &l.ry_min, &l.ax_prev, &l.ay_prev, &l.ax_now, &l.ay_now, &l.theta_out, &l.omega_out,
-                  &l.h_out, &l.k1a_out, &l.k1b_out, &l.max_ratio, &l.steps, &l.pending_max})
-    v->assign(nr, 0.0);
-  l.clean.assign(nr, 0);
-  l.end_clear.assign(nr, 0);
-  l.pending_steps.assign(nr, 0);
-  l.last_steps.assign(nr, 0);
+  rk_.size_rocking(nr);
   for (std::size_t k = 0; k < items_.size(); ++k) {
     if (const Rocking3DModel* solid = items_[k]->solid()) {
       lanes_[k].solid = static_cast<int>(solids_.size());
@@ -184,20 +175,7 @@ static_assert(std::is_trivially_copyable_v<StreamingIntensity::Lane> &&
 [[gnu::always_inline]] inline void MonitorBatch::defer_rocking(PlaneLane& pl, std::size_t r,
                                                                 const StreamingIntensity::Lane& next, double x1,
                                                                 double y1, double dt) {
-  // BatchRocking::step's deferred rocking: the kernel's sample end becomes the lane's state.
-  BatchRocking::Lanes& l = rk_;
-  l.theta[r] = l.theta_out[r];
-  l.omega[r] = l.omega_out[r];
-  l.h[r] = l.h_out[r];
-  l.k1a[r] = l.k1a_out[r];
-  l.k1b[r] = l.k1b_out[r];
-  l.fsal[r] = 1.0;
-  const int steps = static_cast<int>(l.steps[r]);
-  l.pending_steps[r] += steps;
-  l.last_steps[r] = steps;
-  l.pending_max[r] = std::max(l.pending_max[r], l.max_ratio[r]);
-  l.ax_prev[r] = x1;
-  l.ay_prev[r] = y1;
+  rk_.keep_rocking_sample(r, x1, y1);  // BatchRocking::step's deferred rocking
   ++pl.rocking_samples;
   defer(pl, next, x1, y1, dt);
 }

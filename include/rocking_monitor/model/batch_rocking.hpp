@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -132,6 +133,26 @@ class BatchRocking {
     std::vector<double> pending_max, last_dt;
     // The vr lanes of this sample (the kernel's work list), padded with copies of the last.
     std::vector<std::uint32_t> idx;
+
+    /// n lanes (a multiple of batch_detail::kBlock) of everything the rocking kernel reads and writes,
+    /// its inputs and the deferred samples' accumulators, all zero.
+    void size_rocking(std::size_t n);
+    /// Lane k's clean sample whose end changes nothing stays in the lane: the kernel's sample end
+    /// becomes its state, the sample's steps and largest ratio are accumulated, (x1, y1) is its last input.
+    void keep_rocking_sample(std::size_t k, double x1, double y1) {
+      theta[k] = theta_out[k];
+      omega[k] = omega_out[k];
+      h[k] = h_out[k];
+      k1a[k] = k1a_out[k];
+      k1b[k] = k1b_out[k];
+      fsal[k] = 1.0;
+      const int n = static_cast<int>(steps[k]);
+      pending_steps[k] += n;
+      last_steps[k] = n;
+      pending_max[k] = std::max(pending_max[k], max_ratio[k]);
+      ax_prev[k] = x1;
+      ay_prev[k] = y1;
+    }
   };
   /// Lane k of the rocking kernel from a ROCKING model under dopri5 (nonlinear): its pivot's constants,
   /// flags and integrator state (not the inputs, vr, mu_clear or ry_min). Also for other owners of lanes.
