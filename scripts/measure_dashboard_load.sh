@@ -11,7 +11,7 @@ export PATH=/usr/bin:$PATH
 set +u; source build/devel/setup.bash; set -u
 bag=$(realpath "$1"); shift
 counts=("$@"); [ ${#counts[@]} -gt 0 ] || counts=(10000)
-export ROS_HOME=${ROS_HOME:-/tmp/rocking_monitor_ros_home}
+fixed_home=${ROS_HOME:-}  # else a fresh ROS home per run: the monitor and the dashboard read the whole journal
 export ROS_MASTER_URI=http://localhost:${MASTER_PORT:-11397}
 port=${DASHBOARD_PORT:-18399}
 devtools=${DEVTOOLS_PORT:-19399}
@@ -21,6 +21,7 @@ tick=$(getconf CLK_TCK)
 printf "%7s %8s %11s %11s %11s %10s %10s %10s %12s %12s\n" items deltas "delta mean" "delta p95" "delta max" "frames" "draw mean" "draw max" "max changed" "dashboard CPU"
 for n in "${counts[@]}"; do
   cat=$(mktemp --suffix=.yaml); log=$(mktemp); dom=$(mktemp); profile=$(mktemp -d)
+  home=$(mktemp -d); export ROS_HOME=${fixed_home:-$home}
   /usr/bin/python3 scripts/make_catalogue.py "$n" "$cat"
   roslaunch -p "${ROS_MASTER_URI##*:}" rocking_monitor replay.launch bag:="$bag" catalogue:="$cat" required:=true \
     start_delay:="$delay" > "$log" 2>&1 &
@@ -46,5 +47,5 @@ for n in "${counts[@]}"; do
   /usr/bin/python3 -c "import sys; a=sys.argv; print('%7s %8s %11s %11s %11s %10s %10s %10s %12s %11.1f %%' % (a[1], a[2], a[3]+' ms', a[4]+' ms', a[5]+' ms', a[6], a[7]+' ms', a[8]+' ms', a[9], 100.0*(float(a[10])-float(a[11]))/float(a[12])/(float(a[13])-float(a[14]))))" \
     "$n" "$(get deltaCount)" "$(get deltaMeanMs)" "$(get deltaP95Ms)" "$(get deltaMaxMs)" "$(get drawCount)" \
     "$(get drawMeanMs)" "$(get drawMaxMs)" "$(get deltaItemsMax)" "$cpu1" "$cpu0" "$tick" "$t1" "$t0"
-  [ -n "${KEEP:-}" ] && echo "kept: $log $dom" || rm -rf "$cat" "$log" "$dom" "$profile"
+  [ -n "${KEEP:-}" ] && echo "kept: $log $dom" || rm -rf "$cat" "$log" "$dom" "$profile" "$home"
 done

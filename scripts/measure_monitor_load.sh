@@ -15,9 +15,14 @@ export PATH=/usr/bin:$PATH
 set +u; source build/devel/setup.bash; set -u
 bag=$(realpath "$1"); shift
 counts=("$@"); [ ${#counts[@]} -gt 0 ] || counts=(1 100 10000)
-export ROS_HOME=${ROS_HOME:-/tmp/rocking_monitor_ros_home}
+# A fresh ROS home per run unless ROS_HOME is given: the monitor reads its whole alarm journal and its
+# state snapshot at start, and one shared across runs grows by ~10 MB a run (10,000 items on
+# Takatori): 40 runs made a 430 MB journal whose reading overlapped the replay and doubled the lag.
+fixed_home=${ROS_HOME:-}
 printf "%8s %14s %14s %10s %16s %16s\n" items "mean (ms)" "max (ms)" "samples" "states (ms)" "markers+tf (ms)"
 for n in "${counts[@]}"; do
+  home=${fixed_home:-$(mktemp -d)}
+  export ROS_HOME=$home
   cat=$(mktemp --suffix=.yaml)
   single=(); [ "${PLANES:-2}" = 1 ] && single=(--single-plane)
   [ "${UNCERTAIN:-0}" = 1 ] && single+=(--uncertain)
@@ -63,4 +68,5 @@ for n in "${counts[@]}"; do
   grep -m1 "overload:" "$log" || true
   for r in "${relays[@]}"; do kill "$r" 2>/dev/null || true; done
   rm -f "$cat" "$log"
+  [ -n "$fixed_home" ] || rm -rf "$home"
 done

@@ -13,9 +13,11 @@ export PATH=/usr/bin:$PATH
 set +u; source build/devel/setup.bash; set -u
 records=${RECORDS:-../shared/records}/northridge_1994
 tools=build/devel/lib/rocking_monitor
-export ROS_MASTER_URI=http://localhost:11471 ROS_HOME=${ROS_HOME:-/tmp/rocking_monitor_ros_home}
 port=18571
 tmp=$(mktemp -d)
+# The run's own ROS home (journal, snapshot, logs) unless given: a journal kept across runs is read
+# whole at every start.
+export ROS_MASTER_URI=http://localhost:11471 ROS_HOME=${ROS_HOME:-$tmp/ros_home}
 pids=()
 cleanup() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done; wait 2>/dev/null || true; rm -rf "$tmp"; }
 trap cleanup EXIT
