@@ -11,7 +11,9 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
-#include <sstream>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -169,40 +171,116 @@ std::string to_json_line(const JournalRecord& r) {
   return j.dump();
 }
 
+namespace {
+
+/// The event id and kind of a journal line read without parsing it, for the lines before the last
+/// event: to_json_line writes `"event":"<id>"` (ids hold no quote) and `"kind":"<kind>"`. A quote
+/// inside a string value is escaped (\"), so the patterns cannot match inside one. False: the line
+/// does not look like a record; it is then parsed in full.
+bool peek_record(const std::string& line, std::string_view& event, bool& reset) {
+  if (line.size() < 2 || line.front() != '{' || line.back() != '}') return false;
+  constexpr std::string_view kKind = "\"kind\":\"";
+  const std::size_t k = line.find(kKind);
+  if (k == std::string::npos) return false;
+  const std::size_t ke = line.find('"', k + kKind.size());
+  if (ke == std::string::npos) return false;
+  JournalKind kind;
+  if (!parse_kind(line.substr(k + kKind.size(), ke - k - kKind.size()), kind)) return false;
+  reset = kind == JournalKind::Reset;
+  event = {};
+  constexpr std::string_view kEvent = "\"event\":\"";
+  const std::size_t e = line.find(kEvent);
+  if (e == std::string::npos) return reset;  // only a reset has no event
+  const std::size_t ee = line.find('"', e + kEvent.size());
+  if (ee == std::string::npos) return false;
+  event = std::string_view(line).substr(e + kEvent.size(), ee - e - kEvent.size());
+  return !event.empty();
+}
+
+}  // namespace
+
+// Streams the file twice with a line buffer, never whole: a journal grows by every event's alarms
+// (10,000 items on Kobe Takatori: ~10 MB) and is read at every start. The first pass finds where the
+// last event begins and counts the events from each line's event field; the second parses the lines
+// from there. Earlier lines are parsed only when they do not look like records (corrupt: reported).
+// Reading everything into records took 8.7 s and 1.4 GB for 430 MB of journal.
 JournalReading read_journal(const std::string& path) {
   JournalReading out;
   std::ifstream in(path, std::ios::binary);
   if (!in) return out;
   out.exists = true;
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string all = buffer.str();
-  std::set<std::string> ids;
-  std::size_t pos = 0, line_no = 0;
-  while (pos < all.size()) {
+  std::set<std::string, std::less<>> ids;
+  std::vector<std::pair<std::size_t, std::string>> errors;  // line, what is wrong
+  std::string line, last_id;
+  std::uint64_t pos = 0, tail_pos = 0;
+  std::size_t line_no = 0, tail_line = 0;
+  bool tail_found = false;
+  while (std::getline(in, line)) {
     ++line_no;
-    const std::size_t nl = all.find('\n', pos);
-    if (nl == std::string::npos) {
+    if (in.eof()) {  // no newline after it
       out.warnings.push_back(path + ":" + std::to_string(line_no) + ": last line cut in the middle (" +
-                             std::to_string(all.size() - pos) +
+                             std::to_string(line.size()) +
                              " bytes without a newline: power cut while writing?); read up to line " +
                              std::to_string(line_no - 1));
       break;
     }
-    std::string line = all.substr(pos, nl - pos);
-    pos = nl + 1;
+    const std::uint64_t line_pos = pos;
+    pos += line.size() + 1;
     out.whole_bytes = pos;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.find_first_not_of(" \t") == std::string::npos) continue;
-    try {
-      JournalRecord r = from_json_line(line);
-      if (!r.event.empty()) ids.insert(r.event);
-      out.records.push_back(std::move(r));
-    } catch (const std::exception& e) {
-      out.errors.push_back(path + ":" + std::to_string(line_no) + ": not a journal record (skipped): " + e.what());
+    std::string_view event;
+    bool reset = false;
+    std::string parsed_event;
+    if (!peek_record(line, event, reset)) {
+      try {
+        const JournalRecord r = from_json_line(line);
+        parsed_event = r.event;
+        event = parsed_event;
+        reset = r.kind == JournalKind::Reset;
+      } catch (const std::exception& e) {
+        errors.emplace_back(line_no, e.what());
+        continue;
+      }
+    }
+    if (!event.empty() && ids.find(event) == ids.end()) ids.emplace(event);
+    // The last event: that of the last record that is not a reset; its lines from its first one on.
+    if (!reset && !event.empty() && (!tail_found || event != last_id)) {
+      last_id.assign(event);
+      tail_pos = line_pos;
+      tail_line = line_no - 1;
+      tail_found = true;
     }
   }
   out.events = ids.size();
+  auto report = [&] {
+    std::sort(errors.begin(), errors.end());
+    for (const auto& [n, what] : errors)
+      out.errors.push_back(path + ":" + std::to_string(n) + ": not a journal record (skipped): " + what);
+  };
+  if (!tail_found) {
+    report();
+    return out;
+  }
+  // Second pass: the last event's lines (and the resets among and after them) parsed in full.
+  in.clear();
+  in.seekg(static_cast<std::streamoff>(tail_pos));
+  pos = tail_pos;
+  line_no = tail_line;
+  while (pos < out.whole_bytes && std::getline(in, line)) {
+    ++line_no;
+    pos += line.size() + 1;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.find_first_not_of(" \t") == std::string::npos) continue;
+    try {
+      out.records.push_back(from_json_line(line));
+    } catch (const std::exception& e) {
+      std::string_view event;
+      bool reset = false;
+      if (peek_record(line, event, reset)) errors.emplace_back(line_no, e.what());  // else the first pass has it
+    }
+  }
+  report();
   return out;
 }
 

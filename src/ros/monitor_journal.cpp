@@ -86,8 +86,8 @@ void RockingMonitor::open_journal() {
   const core::OpenEvent& ev = open ? journal_.event() : shown;
   if (!ev.open()) {
     if (!journal_path_.empty() && journal_status_.empty())
-      ROS_INFO("rocking_monitor: alarm journal %s: %zu records, no event open (window %g s)", journal_path_.c_str(),
-               journal_.reading().records.size(), journal_window_);
+      ROS_INFO("rocking_monitor: alarm journal %s: %lu events, none open (window %g s)", journal_path_.c_str(),
+               static_cast<unsigned long>(journal_.reading().events), journal_window_);
     return;
   }
   // id -> item: an event may hold an alarm of each of tens of thousands of items.

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "temp_root.hpp"
 
@@ -255,6 +256,79 @@ TEST(AlarmJournal, CorruptLinesAreReportedAsFileAndLineAndSkipped) {
   EXPECT_NE(r.errors[3].find(":6: "), std::string::npos) << r.errors[3];
   EXPECT_NE(r.errors[3].find("unknown level 'TOPPLED'"), std::string::npos) << r.errors[3];
   EXPECT_TRUE(r.warnings.empty());
+}
+
+// A journal keeps every event since it was created; a restart needs only the last one (the only one
+// that can be open) and the count (to number the next). The reading keeps that event's records, and
+// reports corrupt lines anywhere in the file.
+TEST(AlarmJournal, ManyEventsAreCountedAndOnlyTheLastIsKept) {
+  const std::string p = fresh("many.jsonl");
+  constexpr int kEvents = 40;
+  std::vector<JournalRecord> last;  // the last event's records as written
+  {
+    AlarmJournal j;
+    ASSERT_EQ(j.open(p, 3600.0, kNow), "");
+    for (int e = 0; e < kEvents; ++e) {
+      const double run = kRun + 100.0 * e, now = kNow + 100.0 * e;
+      for (int k = 0; k < 25; ++k) {
+        JournalRecord a = alarm("item" + std::to_string(k), 2 + k % 3, run + 1.0 + k);
+        ASSERT_EQ(j.append(a, run, now), "");
+        if (e == kEvents - 1) last.push_back(a);
+      }
+      if (e == 7) {
+        ASSERT_EQ(j.append_reset("operator", now + 50.0), "");  // closes event 8 without an end
+        continue;
+      }
+      if (e < kEvents - 1) ASSERT_EQ(j.append_end("shaking stopped", run + 60.0, now + 60.0), "");
+    }
+    ASSERT_EQ(j.append_reset("operator", kNow + 100.0 * kEvents), "");  // after the last event
+  }
+  // A corrupt line in an old event (line 3) is still reported, with its line.
+  std::string text = slurp(p);
+  const std::size_t second = text.find('\n', text.find('\n') + 1) + 1;
+  text.insert(second, "garbage\n");
+  std::ofstream(p, std::ios::binary | std::ios::trunc) << text;
+
+  const JournalReading r = read_journal(p);
+  EXPECT_EQ(r.events, static_cast<std::uint64_t>(kEvents));
+  EXPECT_TRUE(r.warnings.empty());
+  ASSERT_EQ(r.errors.size(), 1u);
+  EXPECT_EQ(r.errors[0].rfind(p + ":3: not a journal record", 0), 0u) << r.errors[0];
+  EXPECT_EQ(r.whole_bytes, text.size());
+  // The last event's 25 alarms, then the reset after it: nothing of the 39 events before.
+  ASSERT_EQ(r.records.size(), last.size() + 1);
+  for (std::size_t i = 0; i < last.size(); ++i) {
+    EXPECT_EQ(r.records[i].event, last[i].event);
+    EXPECT_EQ(r.records[i].item, last[i].item);
+    EXPECT_EQ(r.records[i].sequence, last[i].sequence);
+    EXPECT_EQ(r.records[i].time, last[i].time);
+  }
+  EXPECT_EQ(r.records.back().kind, JournalKind::Reset);
+  bool closed = false;
+  const OpenEvent ev = last_event(r, &closed);
+  EXPECT_EQ(ev.id, last[0].event);
+  EXPECT_EQ(ev.records.size(), last.size());
+  EXPECT_TRUE(closed);  // the reset after it
+  EXPECT_EQ(ev.id, "1994-01-17T13:35:55.000Z/40");
+
+  // Without the reset, the last event is open at a restart within the window and continues.
+  text.resize(text.rfind('\n', text.size() - 2) + 1);
+  std::ofstream(p, std::ios::binary | std::ios::trunc) << text;
+  AlarmJournal j;
+  ASSERT_EQ(j.open(p, 3600.0, kNow + 100.0 * kEvents), "");
+  ASSERT_TRUE(j.event().open());
+  EXPECT_EQ(j.event().id, last[0].event);
+  EXPECT_EQ(j.event().records.size(), last.size());
+  EXPECT_TRUE(j.holds(JournalKind::Alarm, "item24", 2));
+  JournalRecord more = alarm("vase", 4, kRun + 100.0 * (kEvents - 1) + 40.0);
+  ASSERT_EQ(j.append(more, kRun + 100.0 * (kEvents - 1), kNow + 100.0 * kEvents), "");
+  EXPECT_EQ(more.event, last[0].event);
+  EXPECT_EQ(more.sequence, last.size() + 1);
+  // After its end, the next event is numbered after all the others.
+  ASSERT_EQ(j.append_end("shaking stopped", kRun + 100.0 * kEvents, kNow + 100.0 * kEvents + 1.0), "");
+  JournalRecord next = alarm("vase", 4, kRun + 100.0 * kEvents + 50.0);
+  ASSERT_EQ(j.append(next, kRun + 100.0 * kEvents + 50.0, kNow + 100.0 * kEvents + 2.0), "");
+  EXPECT_EQ(next.event.substr(next.event.find('/')), "/41");
 }
 
 TEST(AlarmJournal, MissingFileIsAnEmptyJournalAndAnUnwritablePathIsAnError) {

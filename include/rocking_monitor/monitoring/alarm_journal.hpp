@@ -53,7 +53,10 @@ std::string to_json_line(const JournalRecord& r);
 
 /// What a journal file holds. Never throws for bad content: each problem is a "file:line: ..." text.
 struct JournalReading {
-  std::vector<JournalRecord> records;  ///< the valid whole lines, in file order
+  /// The valid records of the file's last event (that of its last record other than a reset), from
+  /// its first line on, resets among them included, in file order. Earlier events are counted in
+  /// `events`, not kept: a journal holds every event since it was created, and only the last can be open.
+  std::vector<JournalRecord> records;
   std::vector<std::string> warnings;   ///< a last line cut in the middle (power cut while writing)
   std::vector<std::string> errors;     ///< corrupt lines (skipped), file:line and what is wrong
   std::uint64_t whole_bytes = 0;       ///< length of the file up to its last whole line
