@@ -8,6 +8,9 @@
 #include <map>
 #include <thread>
 #include <type_traits>
+#include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include <geometry_msgs/TransformStamped.h>
 #include <tf2_eigen/tf2_eigen.h>
@@ -216,8 +219,7 @@ bool RockingMonitor::init() {
     s.suspects.resize(static_cast<std::size_t>(pc.rebase_samples));
     sensors_.push_back(std::move(s));
   }
-  static_broadcaster_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
-  std::vector<geometry_msgs::TransformStamped> statics;
+  tf2_msgs::TFMessage statics;
   for (const CatalogueItem& entry : cat.items) {
     Item it;
     it.entry = entry;
@@ -246,11 +248,23 @@ bool RockingMonitor::init() {
                                    Eigen::AngleAxisd(entry.pose.pitch, Eigen::Vector3d::UnitY()) *
                                    Eigen::AngleAxisd(entry.pose.roll, Eigen::Vector3d::UnitX());
       t.transform.rotation = tf2::toMsg(q);
-      statics.push_back(t);
+      statics.transforms.push_back(t);
     }
     items_.push_back(std::move(it));
   }
-  if (!statics.empty()) static_broadcaster_->sendTransform(statics);
+  if (!statics.transforms.empty()) {
+    // A frame given twice (two items in one frame) once, as tf2_ros's broadcaster keeps it: the last pose.
+    std::unordered_map<std::string, std::size_t> at;
+    std::vector<geometry_msgs::TransformStamped> unique;
+    for (geometry_msgs::TransformStamped& t : statics.transforms) {
+      const auto [it, fresh] = at.emplace(t.child_frame_id, unique.size());
+      if (fresh) unique.push_back(std::move(t));
+      else unique[it->second] = std::move(t);
+    }
+    statics.transforms = std::move(unique);
+    tf_static_pub_ = nh_.advertise<tf2_msgs::TFMessage>("/tf_static", 100, true);
+    tf_static_pub_.publish(statics);
+  }
 
   tf_buffer_ = std::make_unique<tf2_ros::Buffer>();
   tf_listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_buffer_, nh_);
