@@ -43,7 +43,7 @@ constexpr std::array<core::CriterionId, core::kScreeningCount> kScreening = {
 
 void RockingMonitor::publish_events(Item& it, const core::ItemEvents& ev, const ::ros::Time& stamp) {
   const core::ItemSpec& spec = it.entry.spec;
-  for (int i = 0; i < ev.change_count; ++i) {
+  for (int i = 0; i < (criteria_wanted_ ? ev.change_count : 0); ++i) {
     const core::CriterionChange& c = ev.changes[i];
     CriterionExceedance m;
     m.header.stamp = stamp;

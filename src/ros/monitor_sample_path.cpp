@@ -403,10 +403,12 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
   s.deferred += deferred.load();
   s.stepped_stamp = header.stamp;  // the input stamp of every ready item (input_stamp())
   // Serial: publish what happened, in catalogue order (an Item is touched only when it has events).
+  criteria_wanted_ = criteria_pub_.getNumSubscribers() > 0;
   for (std::size_t k = 0; k < s.items.size(); ++k) {
     if (!s.in_ready[k]) continue;
     const core::ItemEvents& ev = s.batch->events(k);
-    if (ev.change_count > 0 || ev.alarm_count > 0) publish_events(items_[s.items[k]], ev, header.stamp);
+    if ((criteria_wanted_ && ev.change_count > 0) || ev.alarm_count > 0)
+      publish_events(items_[s.items[k]], ev, header.stamp);
     if (!s.has_ensembles) continue;
     Item& it = items_[s.items[k]];
     if (it.ensemble && it.ensemble->events().count > 0) publish_crossings(it, it.ensemble->events(), header.stamp);

@@ -106,6 +106,40 @@ TEST(AlarmJournal, RecordsAreReadBackExactlyAndNumberedWithinTheEvent) {
   EXPECT_NE(text.find("\"level\":\"OVERTURNED\""), std::string::npos) << text;
 }
 
+// The monitor appends a sample's alarms without sync and calls sync() before it publishes them: the
+// lines reach the file then, in order, in one write; closing the journal writes what is left.
+TEST(AlarmJournal, LinesAppendedWithoutSyncReachTheFileAtSyncInOrder) {
+  const std::string p = fresh("batched.jsonl");
+  {
+    AlarmJournal j;
+    ASSERT_EQ(j.open(p, 3600.0, kNow), "");
+    for (int k = 0; k < 3; ++k) {
+      JournalRecord a = alarm("item" + std::to_string(k), 4, kRun + k);
+      ASSERT_EQ(j.append(a, kRun, kNow, false), "");
+    }
+    EXPECT_EQ(slurp(p), "");  // not yet: nothing is published before sync()
+    EXPECT_TRUE(j.holds(JournalKind::Alarm, "item2", 4));
+    ASSERT_EQ(j.sync(), "");
+    const JournalReading r = read_journal(p);
+    ASSERT_EQ(r.records.size(), 3u);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(r.records[k].item, "item" + std::to_string(k));
+      EXPECT_EQ(r.records[k].sequence, static_cast<std::uint64_t>(k + 1));
+    }
+    EXPECT_EQ(j.sync(), "");  // nothing pending: nothing written twice
+    JournalRecord late = alarm("late", 4, kRun + 9.0);
+    ASSERT_EQ(j.append(late, kRun, kNow, false), "");
+    // An end (written with fsync) follows the lines still waiting, not the other way round.
+    ASSERT_EQ(j.append_end("shaking stopped", kRun + 30.0, kNow + 30.0), "");
+    JournalRecord last = alarm("last", 4, kRun + 40.0);
+    ASSERT_EQ(j.append(last, kRun + 40.0, kNow + 40.0, false), "");
+  }  // closed without sync()
+  const std::string text = slurp(p);
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 6);
+  EXPECT_LT(text.find("\"late\""), text.find("\"end\""));
+  EXPECT_LT(text.find("\"end\""), text.find("\"last\""));
+}
+
 TEST(AlarmJournal, EventStaysOpenWithinTheWindowAndClosesAfterItOrOnReset) {
   const std::string p = fresh("window.jsonl");
   {

@@ -110,11 +110,12 @@ class AlarmJournal {
 
   /// Appends r: sets r.event, r.sequence, r.event_start, r.since_event_start and r.written (opening
   /// a new event with first sample `run_start` if none is open at `now`), writes the line and
-  /// fsyncs (sync = false: the caller calls sync() before it publishes: one fsync for all the
-  /// alarms of a sample, which matters when thousands of items alarm at once). Empty string on
-  /// success, else the error (the record is then not in the file).
+  /// fsyncs (sync = false: the line waits in memory and the caller calls sync() before it publishes:
+  /// one write and one fsync for all the alarms of a sample, which matters when thousands of items
+  /// alarm at once). Empty string on success, else the error (the record is then not in the file).
   std::string append(JournalRecord& r, double run_start, double now, bool sync = true);
-  /// fsync of the lines appended with sync = false (none: nothing to do). Empty string on success.
+  /// Writes the lines appended with sync = false (one write()), then fsync (none: nothing to do). Empty
+  /// string on success. A write error loses the lines not written (the error says so).
   std::string sync();
   /// A stale period of a sensor (its items frozen): from `from` to `to` (s since 1970; NaN `to`: still
   /// stale), in the sensor run that started at `run_start`; `now` is the node clock.
@@ -138,6 +139,7 @@ class AlarmJournal {
   OpenEvent event_;
   std::unordered_set<std::string> held_;  // key() of the open event's alarms: holds() in O(1)
   bool unsynced_ = false;                 // lines written since the last fsync
+  std::string pending_;                   // lines appended with sync = false, written by sync()
   std::uint64_t events_ = 0;  // events in the file, to number the next one
 };
 

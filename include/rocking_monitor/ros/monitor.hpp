@@ -353,6 +353,9 @@ class RockingMonitor {
   std::string catch_up_service_;      // ~catch_up_service; "" = off
   double catch_up_timeout_ = 2.0;     // ~catch_up_timeout, s to wait for the service to appear, then for its answer
   bool catching_up_ = false;          // stepping history samples: no lag or overload from their age
+  // ~criteria has a subscriber (read once per sample): else its messages are not built. Not latched,
+  // so nobody misses one; the strongest shaking changes ~700 criteria per sample (10,000 items).
+  bool criteria_wanted_ = true;
   struct CaughtUp {
     std::string sensor;
     std::string outcome;              // "caught up: ..." or why the gap stays frozen
