@@ -322,6 +322,15 @@ OpenEvent shown_event(const JournalReading& reading, double now, double window) 
 }
 
 AlarmJournal::~AlarmJournal() {
+  drain();
+  if (writer_.joinable()) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    cv_.notify_all();
+    writer_.join();
+  }
   if (fd_ >= 0) {
     sync();  // lines appended without sync: on disk before the file is closed
     ::close(fd_);
@@ -379,25 +388,71 @@ bool AlarmJournal::holds(JournalKind kind, const std::string& item, int level) c
   return held_.count(key(kind, item, level)) > 0;
 }
 
-std::string AlarmJournal::sync() {
-  if (fd_ < 0) return {};
+std::string AlarmJournal::write_lines(std::string& lines) {
+  if (lines.empty()) return {};
   std::size_t done = 0;
-  while (done < pending_.size()) {
-    const ssize_t n = ::write(fd_, pending_.data() + done, pending_.size() - done);
+  std::string e;
+  while (done < lines.size()) {
+    const ssize_t n = ::write(fd_, lines.data() + done, lines.size() - done);
     if (n < 0) {
       if (errno == EINTR) continue;
-      const std::string e = errno_text("cannot write", path_);
-      pending_.clear();  // not retried: the next line must not follow half a line
-      return e;
+      e = errno_text("cannot write", path_);  // not retried: the next line must not follow half a line
+      break;
     }
     done += static_cast<std::size_t>(n);
-    unsynced_ = true;
   }
-  pending_.clear();  // keeps its capacity
-  if (!unsynced_) return {};
-  unsynced_ = false;
-  if (::fsync(fd_) != 0) return errno_text("cannot fsync", path_);
-  return {};
+  lines.clear();  // keeps its capacity
+  if (e.empty() && ::fsync(fd_) != 0) e = errno_text("cannot fsync", path_);
+  return e;
+}
+
+std::string AlarmJournal::sync() {
+  drain();
+  if (fd_ < 0) {
+    pending_.clear();
+    return {};
+  }
+  return write_lines(pending_);
+}
+
+void AlarmJournal::sync_async(std::function<void(const std::string& error)> after) {
+  if (fd_ < 0) {  // no file: nothing to wait for
+    pending_.clear();
+    after(std::string());
+    return;
+  }
+  drain();
+  if (!writer_.joinable()) writer_ = std::thread([this] { writer_loop(); });
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    job_lines_.swap(pending_);  // pending_ takes the job's empty buffer (and its capacity)
+    job_after_ = std::move(after);
+    job_ = true;
+  }
+  cv_.notify_all();
+}
+
+void AlarmJournal::drain() {
+  if (!writer_.joinable()) return;
+  std::unique_lock<std::mutex> lock(mutex_);
+  cv_.wait(lock, [this] { return !job_; });
+}
+
+// The only place besides the caller's thread that touches fd_: while a job runs, the caller waits in
+// drain() before any other write.
+void AlarmJournal::writer_loop() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  for (;;) {
+    cv_.wait(lock, [this] { return job_ || stop_; });
+    if (!job_) return;
+    lock.unlock();
+    const std::string e = write_lines(job_lines_);
+    job_after_(e);
+    job_after_ = nullptr;
+    lock.lock();
+    job_ = false;
+    cv_.notify_all();
+  }
 }
 
 // Lines appended with sync = false wait in pending_ and go to the file with sync(), in one write():

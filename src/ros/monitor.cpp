@@ -48,7 +48,9 @@ bool param(const ::ros::NodeHandle& nh, const std::string& name, T& value, const
 
 RockingMonitor::RockingMonitor(::ros::NodeHandle nh, ::ros::NodeHandle pnh) : nh_(nh), pnh_(pnh) {}
 
-RockingMonitor::~RockingMonitor() = default;
+RockingMonitor::~RockingMonitor() {
+  journal_.drain();  // the last alarms published while the publishers are still there
+}
 
 bool RockingMonitor::load_parameters() {
   std::string method = "dopri5", model = "nonlinear", baseline = "tracked", fidelity = "adaptive", solid = "auto";

@@ -113,7 +113,7 @@ void RockingMonitor::catalogue_diagnostics(diagnostic_updater::DiagnosticStatusW
   st.add("pure-rocking model not valid now", invalid);
   st.add("items without transform", without_tf);
   st.add("item-samples skipped for want of a transform", skipped);
-  st.add("alarms published", alarms_published_);
+  st.add("alarms published", alarms_published_.load());
   // Off the per-sample path (timers, same thread): what publishing costs besides the stepping.
   st.add("states publication, mean (s)", states_cost_.mean());
   st.add("states publication, max (s)", states_cost_.max_s);

@@ -295,7 +295,7 @@ void RockingMonitor::journal_diagnostics(diagnostic_updater::DiagnosticStatusWra
   if (!journal_status_.empty() && !journal_path_.empty())
     st.summary(DiagnosticStatus::ERROR, "alarm journal not on file: " + journal_status_);
   else if (journal_errors_ > 0)
-    st.summary(DiagnosticStatus::ERROR, std::to_string(journal_errors_) + " journal errors (see the log)");
+    st.summary(DiagnosticStatus::ERROR, std::to_string(journal_errors_.load()) + " journal errors (see the log)");
   else if (journal_path_.empty())
     st.summary(DiagnosticStatus::WARN, "alarm journal off: alarms are not kept across a restart");
   else
@@ -306,7 +306,7 @@ void RockingMonitor::journal_diagnostics(diagnostic_updater::DiagnosticStatusWra
   st.add("records in the open event", journal_.event().records.size());
   st.add("alarms read back at start", journal_relatched_);
   st.add("repeats not alarmed again", journal_repeats_);
-  st.add("journal errors", journal_errors_);
+  st.add("journal errors", journal_errors_.load());
   st.add("events ended (shaking stopped)", events_ended_);
 }
 

@@ -102,20 +102,10 @@ void RockingMonitor::publish_events(Item& it, const core::ItemEvents& ev, const 
 
 void RockingMonitor::publish_pending_alarms() {
   if (pending_alarms_.empty() && pending_probability_alarms_.empty()) return;
-  if (const std::string e = journal_.sync(); !e.empty()) {
-    ++journal_errors_;
-    ROS_ERROR("rocking_monitor: alarm journal: %s: %zu alarms published without being on disk", e.c_str(),
-              pending_alarms_.size() + pending_probability_alarms_.size());
-  }
-  for (const OverturnAlarm& m : pending_alarms_) {
-    alarms_pub_.publish(m);
-    ++alarms_published_;
-  }
-  for (const ProbabilityAlarm& m : pending_probability_alarms_) probability_alarms_pub_.publish(m);
-  for (const PendingLog& l : pending_logs_) {
-    if (l.error) ROS_ERROR("%s", l.text.c_str());
-    else ROS_WARN("%s", l.text.c_str());
-  }
+  auto batch = std::make_shared<AlarmBatch>();
+  batch->alarms.swap(pending_alarms_);
+  batch->probability_alarms.swap(pending_probability_alarms_);
+  batch->logs.swap(pending_logs_);
   const std::size_t unlogged = unlogged_overturned_ + unlogged_committed_ + unlogged_beyond_ + unlogged_probability_;
   if (unlogged > 0) {
     char text[512];
@@ -124,13 +114,28 @@ void RockingMonitor::publish_pending_alarms() {
                   "%zu probability alarms), not logged one by one: each is on ~alarms / ~probability_alarms and in "
                   "the journal",
                   unlogged, unlogged_overturned_, unlogged_committed_, unlogged_beyond_, unlogged_probability_);
-    if (unlogged_overturned_ > 0) ROS_ERROR("%s", text);
-    else ROS_WARN("%s", text);
+    batch->logs.push_back({unlogged_overturned_ > 0, text});
     unlogged_overturned_ = unlogged_committed_ = unlogged_beyond_ = unlogged_probability_ = 0;
   }
-  pending_alarms_.clear();
-  pending_probability_alarms_.clear();
-  pending_logs_.clear();
+  // Published once the journal has them on disk, by its thread; the next sample's alarms wait for it.
+  journal_.sync_async([this, batch](const std::string& e) { publish_alarm_batch(*batch, e); });
+}
+
+void RockingMonitor::publish_alarm_batch(const AlarmBatch& batch, const std::string& journal_error) {
+  if (!journal_error.empty()) {
+    ++journal_errors_;
+    ROS_ERROR("rocking_monitor: alarm journal: %s: %zu alarms published without being on disk", journal_error.c_str(),
+              batch.alarms.size() + batch.probability_alarms.size());
+  }
+  for (const OverturnAlarm& m : batch.alarms) {
+    ++alarms_published_;
+    alarms_pub_.publish(m);
+  }
+  for (const ProbabilityAlarm& m : batch.probability_alarms) probability_alarms_pub_.publish(m);
+  for (const PendingLog& l : batch.logs) {
+    if (l.error) ROS_ERROR("%s", l.text.c_str());
+    else ROS_WARN("%s", l.text.c_str());
+  }
 }
 
 void RockingMonitor::publish_crossings(Item& it, const core::EnsembleEvents& ev, const ::ros::Time& stamp) {

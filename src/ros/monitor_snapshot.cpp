@@ -183,6 +183,9 @@ void RockingMonitor::take_snapshot(const ::ros::Time& stamp) {
   if (!snapshot_writer_) return;
   const auto t0 = std::chrono::steady_clock::now();
   last_snapshot_stamp_ = stamp;
+  // The journal's alarms on disk before a snapshot that has their items alarmed: a crash in between
+  // must not leave an item marked alarmed with no alarm in the journal.
+  journal_.drain();
   sync_items();
   std::vector<std::uint8_t>& buf = snapshot_writer_->buffer();
   snapshot_encoder_.begin(buf, fingerprint_, ::ros::WallTime::now().toSec(), sensors_.size(), items_.size());

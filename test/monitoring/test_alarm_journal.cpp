@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 #include <vector>
 
 #include "temp_root.hpp"
@@ -138,6 +139,56 @@ TEST(AlarmJournal, LinesAppendedWithoutSyncReachTheFileAtSyncInOrder) {
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 6);
   EXPECT_LT(text.find("\"late\""), text.find("\"end\""));
   EXPECT_LT(text.find("\"end\""), text.find("\"last\""));
+}
+
+// The monitor hands a sample's lines to the journal's thread (sync_async) and publishes its alarms in
+// `after`: `after` must see the lines on disk, run off the caller's thread, and every later write must
+// wait for it, so that the file keeps the order of the appends.
+TEST(AlarmJournal, SyncAsyncRunsAfterOnlyWithTheLinesOnDiskAndKeepsTheOrder) {
+  const std::string p = fresh("async.jsonl");
+  std::vector<std::string> seen;  // what `after` read from the file, per call
+  std::vector<std::thread::id> threads;
+  std::vector<std::string> errors;
+  {
+    AlarmJournal j;
+    ASSERT_EQ(j.open(p, 3600.0, kNow), "");
+    for (int sample = 0; sample < 50; ++sample) {
+      for (int k = 0; k < 4; ++k) {
+        JournalRecord a = alarm("item" + std::to_string(4 * sample + k), 2 + k % 3, kRun + sample + 0.1 * k);
+        ASSERT_EQ(j.append(a, kRun, kNow + sample, false), "");
+      }
+      j.sync_async([&, sample](const std::string& e) {
+        errors.push_back(e);
+        threads.push_back(std::this_thread::get_id());
+        const std::string text = slurp(p);
+        seen.push_back(text);
+        EXPECT_NE(text.find("\"item" + std::to_string(4 * sample + 3) + "\""), std::string::npos) << sample;
+      });
+      if (sample == 20) {  // a record written with its own fsync in between
+        ASSERT_EQ(j.append_stale("floor", kRun + 20.5, kRun + 20.7, kRun, kNow + 20.5), "");
+      }
+    }
+    j.drain();
+    EXPECT_EQ(seen.size(), 50u);
+  }
+  ASSERT_EQ(errors.size(), 50u);
+  for (const std::string& e : errors) EXPECT_EQ(e, "");
+  for (const std::thread::id& id : threads) EXPECT_NE(id, std::this_thread::get_id());
+  const JournalReading r = read_journal(p);
+  ASSERT_EQ(r.records.size(), 201u);
+  for (std::size_t i = 0; i < r.records.size(); ++i) EXPECT_EQ(r.records[i].sequence, i + 1) << i;
+  EXPECT_EQ(r.records[84].kind, JournalKind::Stale);  // after sample 20's four alarms
+  // Without a file, `after` runs at once on the caller's thread.
+  AlarmJournal off;
+  ASSERT_EQ(off.open("", 3600.0, kNow), "");
+  bool ran = false;
+  std::thread::id caller;
+  off.sync_async([&](const std::string& e) {
+    ran = e.empty();
+    caller = std::this_thread::get_id();
+  });
+  EXPECT_TRUE(ran);
+  EXPECT_EQ(caller, std::this_thread::get_id());
 }
 
 TEST(AlarmJournal, EventStaysOpenWithinTheWindowAndClosesAfterItOrOnReset) {

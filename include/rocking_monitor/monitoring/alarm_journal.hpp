@@ -12,9 +12,13 @@
 // "1994-01-17T12:30:55.000Z/3". Every record of an event carries a sequence number (1, 2, ... over all
 // the event's records: alarms, probability alarms and stale periods share it).
 
+#include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <limits>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <unordered_set>
 #include <vector>
 
@@ -117,6 +121,13 @@ class AlarmJournal {
   /// Writes the lines appended with sync = false (one write()), then fsync (none: nothing to do). Empty
   /// string on success. A write error loses the lines not written (the error says so).
   std::string sync();
+  /// sync() on the journal's own thread, so that the caller does not wait for the disk: the lines
+  /// appended since go to the file, then `after(error)` runs on that thread (empty error: they are on
+  /// disk). The next sync_async(), sync(), append() with sync, append_*(), open() or the destructor
+  /// first waits for it. Without a file (journal off or not open) `after` runs here, at once.
+  void sync_async(std::function<void(const std::string& error)> after);
+  /// Waits until the sync_async() in flight, if any, has run its `after`.
+  void drain();
   /// A stale period of a sensor (its items frozen): from `from` to `to` (s since 1970; NaN `to`: still
   /// stale), in the sensor run that started at `run_start`; `now` is the node clock.
   std::string append_stale(const std::string& sensor, double from, double to, double run_start, double now,
@@ -138,8 +149,16 @@ class AlarmJournal {
   JournalReading reading_;
   OpenEvent event_;
   std::unordered_set<std::string> held_;  // key() of the open event's alarms: holds() in O(1)
-  bool unsynced_ = false;                 // lines written since the last fsync
   std::string pending_;                   // lines appended with sync = false, written by sync()
+  // sync_async()'s thread (started by the first call) and its one job: the lines and what follows.
+  std::string write_lines(std::string& lines);  // write + fsync on fd_ (lines cleared); the error or ""
+  void writer_loop();
+  std::thread writer_;
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  bool job_ = false, stop_ = false;
+  std::string job_lines_;
+  std::function<void(const std::string&)> job_after_;
   std::uint64_t events_ = 0;  // events in the file, to number the next one
 };
 

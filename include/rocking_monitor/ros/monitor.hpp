@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
+#include <atomic>
 #include <memory>
 #include <string>
 #include <vector>
@@ -175,12 +176,20 @@ class RockingMonitor {
   }
   void publish_events(Item& item, const core::ItemEvents& events, const ::ros::Time& stamp);
   void publish_crossings(Item& item, const core::EnsembleEvents& events, const ::ros::Time& stamp);
-  // A sample's alarms are journaled first (written, not yet fsync'd), then one fsync, then published:
-  // one fsync per sample instead of one per alarm (10,000 items alarm within seconds).
+  // A sample's alarms are journaled first (lines kept, not yet written), then one write and one fsync,
+  // then published: one fsync per sample instead of one per alarm (10,000 items alarm within seconds).
+  // The write, the fsync and the publication run on the journal's thread (AlarmJournal::sync_async):
+  // the sample path does not wait for the disk (~1 ms a sample in the strongest shaking).
   struct PendingLog {
     bool error = false;  // ROS_ERROR, else ROS_WARN
     std::string text;
   };
+  struct AlarmBatch {  // one sample's alarms, handed to the journal's thread
+    std::vector<OverturnAlarm> alarms;
+    std::vector<ProbabilityAlarm> probability_alarms;
+    std::vector<PendingLog> logs;
+  };
+  void publish_alarm_batch(const AlarmBatch& batch, const std::string& journal_error);  // the journal's thread
   std::vector<OverturnAlarm> pending_alarms_;
   std::vector<ProbabilityAlarm> pending_probability_alarms_;
   std::vector<PendingLog> pending_logs_;
@@ -270,7 +279,7 @@ class RockingMonitor {
   // it looks each new child frame up in the message it holds, O(n^2): 1.6 s at start for 10,000 items.
   ::ros::Publisher tf_static_pub_;
   std::unique_ptr<diagnostic_updater::Updater> diagnostics_;
-  std::uint64_t alarms_published_ = 0;
+  std::atomic<std::uint64_t> alarms_published_{0};  // counted on the journal's thread
   // Wall time of the publication off the per-sample path (timers): ~states, and markers with tf.
   struct Cost {
     double total_s = 0.0, max_s = 0.0;
@@ -288,7 +297,8 @@ class RockingMonitor {
   double journal_window_ = 3600.0;   // ~journal_window, s of the node's clock
   core::AlarmJournal journal_;
   std::string journal_status_;       // why the journal is not on file, if it is not
-  std::uint64_t journal_errors_ = 0, journal_repeats_ = 0, journal_relatched_ = 0;
+  std::atomic<std::uint64_t> journal_errors_{0};  // also counted on the journal's thread
+  std::uint64_t journal_repeats_ = 0, journal_relatched_ = 0;
   std::vector<OverturnAlarm> event_alarms_;                // the open event's, in journal order
   std::vector<ProbabilityAlarm> event_probability_alarms_;
   bool load_journal_parameters();
