@@ -283,10 +283,12 @@ bool RockingMonitor::init() {
   open_snapshot(sensors, items);  // after the journal: levels it marked alarmed stay so when restored
   alarms_pub_ = pnh_.advertise<OverturnAlarm>(
       "alarms", 1000, [this](const ::ros::SingleSubscriberPublisher& p) {
+        journal_.drain();  // the last sample's alarms on disk (and published) before they are resent
         for (const OverturnAlarm& m : event_alarms_) p.publish(m);
       });
   probability_alarms_pub_ = pnh_.advertise<ProbabilityAlarm>(
       "probability_alarms", 1000, [this](const ::ros::SingleSubscriberPublisher& p) {
+        journal_.drain();
         for (const ProbabilityAlarm& m : event_probability_alarms_) p.publish(m);
       });
   if (publish_markers_) markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 2);
