@@ -369,6 +369,9 @@ std::string AlarmJournal::open(const std::string& path, double window, double no
     }
   }
   fd_ = fd;
+  // sync_async()'s thread, started here on the caller's thread (not later, where drain() may run on
+  // another thread and read writer_).
+  if (!writer_.joinable()) writer_ = std::thread([this] { writer_loop(); });
   events_ = reading_.events;
   event_ = open_event(reading_, now, window_);
   index_event();
@@ -422,7 +425,6 @@ void AlarmJournal::sync_async(std::function<void(const std::string& error)> afte
     return;
   }
   drain();
-  if (!writer_.joinable()) writer_ = std::thread([this] { writer_loop(); });
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     job_lines_.swap(pending_);  // pending_ takes the job's empty buffer (and its capacity)
