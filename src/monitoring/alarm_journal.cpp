@@ -322,8 +322,7 @@ OpenEvent shown_event(const JournalReading& reading, double now, double window) 
 }
 
 AlarmJournal::~AlarmJournal() {
-  drain();
-  if (writer_.joinable()) {
+  if (writer_.joinable()) {  // a job in flight is finished first: the loop stops only without one
     {
       const std::lock_guard<std::mutex> lock(mutex_);
       stop_ = true;

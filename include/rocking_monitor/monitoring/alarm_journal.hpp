@@ -150,7 +150,7 @@ class AlarmJournal {
   OpenEvent event_;
   std::unordered_set<std::string> held_;  // key() of the open event's alarms: holds() in O(1)
   std::string pending_;                   // lines appended with sync = false, written by sync()
-  // sync_async()'s thread (started by the first call) and its one job: the lines and what follows.
+  // sync_async()'s thread (started by open() with a file) and its one job: the lines and what follows.
   std::string write_lines(std::string& lines);  // write + fsync on fd_ (lines cleared); the error or ""
   void writer_loop();
   std::thread writer_;
