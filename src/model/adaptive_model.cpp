@@ -472,15 +472,18 @@ void AdaptiveModel::apply_rocking_samples(double t, double ax, double ay, double
   ay_prev_ = ay;
 }
 
-void AdaptiveModel::prefetch() const {
-  auto lines = [](const void* p, std::size_t bytes) {
-    const char* c = static_cast<const char*>(p);
-    for (std::size_t o = 0; o < bytes; o += 64) __builtin_prefetch(c + o);
+void AdaptiveModel::prefetch(std::uint8_t hint) const {
+  auto lines = [](const void* begin, const void* end) {  // every line [begin, end) touches
+    const auto e = reinterpret_cast<std::uintptr_t>(end);
+    for (auto a = reinterpret_cast<std::uintptr_t>(begin) & ~std::uintptr_t{63}; a < e; a += 64)
+      __builtin_prefetch(reinterpret_cast<const void*>(a));
   };
-  lines(&settings_, 128);
-  lines(&rocking_model(), sizeof(RockingModel));
-  lines(&outcome_, sizeof(outcome_));
-  lines(&report_, sizeof(report_));
+  lines(&body_, &settings_ + 1);  // body (friction) and settings
+  if (hint == 2) lines(&contact_, &contact_ + 1);
+  else if (hint == 1) lines(&lin_, &lin_ + 1);
+  else lines(&rock_, &rock_ + 1);
+  lines(&lin_eligible_, &scene_guarantee_ + 1);  // the flags
+  lines(&t_, &outcome_ + 1);                      // clock, inputs, report and totals
 }
 
 const AdaptiveReport& AdaptiveModel::step(double ax, double ay, double dt) {

@@ -49,6 +49,7 @@ void MonitorBatch::refresh_planes(std::size_t k, unsigned planes) {
     pl.rocking = false;
     if (!rk_.vr.empty()) rk_.vr[kPlaneCount * k + static_cast<std::size_t>(p)] = 0.0;
     const AdaptiveModel* adaptive = pm.adaptive_.get();
+    if (adaptive != nullptr) pl.model_hint = adaptive->prefetch_hint();
     bool ok = item_ok && pm.started_ && pm.intensity_ && pm.intensity_->lane_eligible();
     if (adaptive != nullptr) {
       // Rocking lanes for items without a 3-D description (those are deferred as a whole only).
@@ -213,10 +214,11 @@ bool MonitorBatch::quiet_solid(Lane& lane, double ax, double ay, double az, doub
 
 namespace {
 
-// A hint to start loading the cache lines of [p, p + bytes); no effect on any result.
-void prefetch(const void* p, std::size_t bytes = 64) {
-  const char* c = static_cast<const char*>(p);
-  for (std::size_t o = 0; o < bytes; o += 64) __builtin_prefetch(c + o);
+// A hint to start loading every cache line that [p, p + bytes) touches; no effect on any result.
+void prefetch(const void* p, std::size_t bytes = 8) {
+  const auto begin = reinterpret_cast<std::uintptr_t>(p);
+  for (std::uintptr_t a = begin & ~std::uintptr_t{63}; a < begin + bytes; a += 64)
+    __builtin_prefetch(reinterpret_cast<const void*>(a));
 }
 
 }  // namespace
@@ -224,17 +226,27 @@ void prefetch(const void* p, std::size_t bytes = 64) {
 // An item that is not quiet touches ~10 KB of its objects, spread over the heap: with 10,000 items
 // none of it is in cache, and every first touch stalls (perf). The objects of the items a few places
 // ahead are prefetched along the pointer chain in three stages (the item, its planes, their models),
-// each stage reading only pointers the stage before brought in.
-void MonitorBatch::prefetch_item(std::size_t k) const { prefetch(items_[k], sizeof(ItemMonitor)); }
+// each stage reading only pointers the stage before brought in. Only the lines a step touches: an
+// item's spec and event arrays (~1.1 KB of its 1.2) are read only when it has events, and prefetching
+// them cost 7 % of the strongest shaking's time (docs/performance.md, session 14).
+void MonitorBatch::prefetch_item(std::size_t k) const {
+  const ItemMonitor* item = items_[k];
+  prefetch(&item->planes_);  // with the change count
+  prefetch(&item->events_.alarm_count);
+  const char* tail = reinterpret_cast<const char*>(&item->last_input_);
+  prefetch(tail, static_cast<std::size_t>(reinterpret_cast<const char*>(item + 1) - tail));
+}
 
 void MonitorBatch::prefetch_planes(std::size_t k) const {
   const ItemMonitor& item = *items_[k];
   for (int p = 0; p < lanes_[k].planes; ++p) {
     if (!((lanes_[k].busy >> p) & 1u)) continue;  // a deferred plane is not touched
     const PlaneMonitor* pm = item.planes_[p].get();
-    prefetch(&pm->events_, sizeof(pm->events_));
-    prefetch(&pm->adaptive_);
-    prefetch(&pm->intensity_);
+    // The model and intensity pointers, the flags and the event counts (the event arrays are
+    // written only when there are events).
+    const char* first = reinterpret_cast<const char*>(&pm->adaptive_);
+    prefetch(first, static_cast<std::size_t>(reinterpret_cast<const char*>(&pm->events_.change_count + 1) - first));
+    prefetch(&pm->events_.alarm_count);
   }
 }
 
@@ -244,7 +256,7 @@ void MonitorBatch::prefetch_models(std::size_t k) const {
     if (!((lanes_[k].busy >> p) & 1u)) continue;
     const PlaneMonitor& pm = *item.planes_[p];
     if (pm.intensity_) prefetch(pm.intensity_.get(), sizeof(StreamingIntensity));
-    if (pm.adaptive_) pm.adaptive_->prefetch();
+    if (pm.adaptive_) pm.adaptive_->prefetch(lanes_[k].plane[p].model_hint);
   }
 }
 

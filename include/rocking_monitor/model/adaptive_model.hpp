@@ -184,9 +184,16 @@ class AdaptiveModel {
   double slip() const;  ///< m, horizontal displacement of the base (constant while rocking)
   double time() const { return t_; }
   const AdaptiveOutcome& outcome() const { return outcome_; }
+  /// Which of its models the next step() runs: 0 the nonlinear rocking model, 1 the linearized
+  /// tier, 2 the contact model. For prefetch(), read while the object is in cache.
+  std::uint8_t prefetch_hint() const {
+    if (settings_.fidelity == Fidelity::Contact || active_ == ActiveModel::Contact) return 2;
+    return settings_.fidelity != Fidelity::Rocking && lin_active_ ? 1 : 0;
+  }
   /// A hint that the model is stepped soon: starts loading the state a step touches (MonitorBatch:
-  /// its objects are not in cache with thousands of items). No effect on any result.
-  void prefetch() const;
+  /// its objects are not in cache with thousands of items), `hint` the model prefetch_hint() named.
+  /// Reads no member (one would be a cache miss itself). No effect on any result.
+  void prefetch(std::uint8_t hint) const;
   const AdaptiveReport& last_report() const { return report_; }
   const std::vector<SwitchRecord>& switches() const { return switches_; }
   SwitchReason initial_reason() const { return initial_reason_; }

@@ -112,6 +112,7 @@ class MonitorBatch {
     bool rocking = false;                            // a rocking lane: state in rk_ at 2 k + p
     double lin_ratio = -1.0;                         // a deferred rocking sample must end above this ratio
     long rocking_samples = 0;                        // rocking samples deferred so far (never reset)
+    std::uint8_t model_hint = 0;                     // AdaptiveModel::prefetch_hint() after its last step
     StreamingIntensity::Lane intensity{};
   };
   struct Lane {
