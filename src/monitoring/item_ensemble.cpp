@@ -109,6 +109,7 @@ const EnsembleEvents& ItemEnsemble::step(double ax, double ay, double az, double
     // Member times of this level in this sample, in order, to find the one that crossed.
     times_.clear();
     for (std::size_t i = 0; i < members_.size(); ++i) {
+      if (!(batch_->event_flags(i) & MonitorBatch::kHasAlarms)) continue;
       const ItemEvents& ev = batch_->events(i);
       for (int k = 0; k < ev.alarm_count; ++k) {
         if (static_cast<int>(ev.alarms[k].level) - static_cast<int>(ItemMode::BeyondTipping) != l) continue;

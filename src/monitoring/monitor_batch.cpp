@@ -12,7 +12,7 @@ namespace rocking_monitor::core {
 
 const ItemEvents MonitorBatch::kNoEvents{};
 
-MonitorBatch::MonitorBatch(std::vector<ItemMonitor*> items) : items_(std::move(items)), lanes_(items_.size()), summaries_(items_.size()), summary_due_(items_.size(), 1) {
+MonitorBatch::MonitorBatch(std::vector<ItemMonitor*> items) : items_(std::move(items)), lanes_(items_.size()), summaries_(items_.size()), event_flags_(items_.size(), 0), summary_due_(items_.size(), 1) {
   for (std::size_t k = 0; k < items_.size(); ++k) {
     if (items_[k] == nullptr) throw std::invalid_argument("MonitorBatch: item " + std::to_string(k) + " is null");
     for (int p = 0; p < items_[k]->plane_count(); ++p)  // the kernel runs one tolerance
@@ -281,6 +281,7 @@ std::size_t MonitorBatch::step(std::size_t begin, std::size_t end, const double*
       Lane& lane = lanes_[k];
       lane.stepped = false;
       lane.candidates = 0;
+      event_flags_[k] = 0;
       if (active != nullptr && active[k] == 0) continue;
       // Each plane is deferred on its own; the item is stepped for the others. Invalid samples
       // (non-finite, dt <= 0) go to ItemMonitor::step, which rejects them.
@@ -354,7 +355,8 @@ std::size_t MonitorBatch::step(std::size_t begin, std::size_t end, const double*
       const std::size_t k = busy[j];
       const unsigned planes = lanes_[k].busy;
       sync_planes(k, planes);
-      items_[k]->step_planes(ax[k], ay[k], az[k], dt, planes);
+      const ItemEvents& ev = items_[k]->step_planes(ax[k], ay[k], az[k], dt, planes);
+      event_flags_[k] = static_cast<std::uint8_t>((ev.change_count > 0 ? kHasChanges : 0) | (ev.alarm_count > 0 ? kHasAlarms : 0));
       lanes_[k].stepped = true;
       refresh_planes(k, planes);
     }

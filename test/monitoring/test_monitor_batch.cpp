@@ -212,11 +212,19 @@ BatchRun compare(const Catalogue& cat, const Component& rec, double scale, doubl
       run.deferred += batch.step(b, std::min(n, b + range), ax.data(), ay.data(), az.data(), rec.dt,
                                  active_share < 1.0 ? active.data() : nullptr);
     for (std::size_t k = 0; k < n; ++k) {
-      if (!active[k]) continue;
+      if (!active[k]) {
+        EXPECT_EQ(batch.event_flags(k), 0) << "item " << k << " not stepped in sample " << i;
+        continue;
+      }
       ++run.samples;
       const unsigned stepped = batch.stepped_planes(k);
       run.plane_deferred += stepped != 0 && stepped != (1u << batched[k]->plane_count()) - 1;
-      expect_same_events(batch.events(k), alone[k]->step(x, y, z, rec.dt), k, i);
+      const ItemEvents& oracle = alone[k]->step(x, y, z, rec.dt);
+      expect_same_events(batch.events(k), oracle, k, i);
+      // The compact flags a node scans instead of every item's events.
+      EXPECT_EQ(batch.event_flags(k), (oracle.change_count > 0 ? MonitorBatch::kHasChanges : 0) |
+                                          (oracle.alarm_count > 0 ? MonitorBatch::kHasAlarms : 0))
+          << "item " << k << " sample " << i;
     }
     // The summary (what ~states and markers read without a sync) equals the item stepped alone, read
     // in full, every sample; its revision moves exactly when a field changed (changed-items topics).

@@ -69,6 +69,11 @@ class MonitorBatch {
   unsigned stepped_planes(std::size_t k) const { return lanes_[k].stepped ? lanes_[k].busy : 0u; }
   /// Events of item k's last sample in step() (none when it was deferred).
   const ItemEvents& events(std::size_t k) const { return lanes_[k].stepped ? items_[k]->events() : kNoEvents; }
+  /// What events(k) holds, from a compact array: kHasChanges (criterion changes), kHasAlarms. A
+  /// caller that scans every item for events reads these bytes instead of each item's object (a
+  /// cache miss each with thousands of items).
+  static constexpr std::uint8_t kHasChanges = 1, kHasAlarms = 2;
+  std::uint8_t event_flags(std::size_t k) const { return event_flags_[k]; }
 
   /// Brings item k's monitor up to date (applies its deferred samples). Before reading it.
   void sync(std::size_t k);
@@ -175,6 +180,7 @@ class MonitorBatch {
   BatchRocking::Lanes rk_;
   double rk_tol_ = -1.0;  // the kernel's dopri5 tolerance: that of the first rocking lane (others must match)
   std::vector<ItemSummary> summaries_;
+  std::vector<std::uint8_t> event_flags_;  // event_flags(): set by step() for the items it was given
   std::vector<std::uint8_t> summary_due_;  // the item was stepped or refreshed since its summary was taken
 };
 
