@@ -198,7 +198,7 @@ void BM_MonitorBatch(benchmark::State& state) {
 void BM_MonitorBatchThreads(benchmark::State& state, int threads) {
   const Case& c = *g_case;
   BatchFeed f(c);
-  const std::size_t n = c.feed.e.size(), m = f.size();
+  const std::size_t n = samples(c), m = f.size();
   double wall = 0, cpu = 0, samples = 0;
   tbb::task_arena arena(threads);
   for (auto _ : state) {
