@@ -121,7 +121,8 @@ const ItemEvents& ItemMonitor::step(double ax, double ay, double az, double dt) 
   return step_planes(ax, ay, az, dt, (1u << kPlaneCount) - 1);
 }
 
-const ItemEvents& ItemMonitor::step_planes(double ax, double ay, double az, double dt, unsigned planes) {
+const ItemEvents& ItemMonitor::step_planes(double ax, double ay, double az, double dt, unsigned planes,
+                                           unsigned model_done) {
   events_.change_count = 0;
   events_.alarm_count = 0;
   if (solid_ && !solid_active_) {
@@ -136,11 +137,11 @@ const ItemEvents& ItemMonitor::step_planes(double ax, double ay, double az, doub
   }
   const PlaneEvents* ev[kPlaneCount] = {nullptr, nullptr};
   if (planes & 1u) {
-    ev[0] = &planes_[0]->step(ax, az, dt);
+    ev[0] = (model_done & 1u) ? &planes_[0]->step_after_model(ax, az) : &planes_[0]->step(ax, az, dt);
     last_input_[0] = {ax, az};
   }
   if (planes_[1] && (planes & 2u)) {
-    ev[1] = &planes_[1]->step(ay, az, dt);
+    ev[1] = (model_done & 2u) ? &planes_[1]->step_after_model(ay, az) : &planes_[1]->step(ay, az, dt);
     last_input_[1] = {ay, az};
   }
   for (int p = 0; p < kPlaneCount; ++p) {

@@ -141,6 +141,10 @@ void MonitorBatch::refresh_planes(std::size_t k, unsigned planes) {
 
 [[gnu::always_inline]] inline void MonitorBatch::defer(PlaneLane& pl, const StreamingIntensity::Lane& next, double x1, double y1, double dt) {
   pl.intensity = next;
+  defer_model(pl, x1, y1, dt);
+}
+
+[[gnu::always_inline]] inline void MonitorBatch::defer_model(PlaneLane& pl, double x1, double y1, double dt) {
   pl.ax_prev = x1;
   pl.ay_prev = y1;
   pl.t += dt;
@@ -275,12 +279,14 @@ std::size_t MonitorBatch::step(std::size_t begin, std::size_t end, const double*
     // Raw storage: a Lane array would be zero-filled (30 KB) at every block.
     std::aligned_storage_t<sizeof(StreamingIntensity::Lane), alignof(StreamingIntensity::Lane)> raw[kPlaneCount * kBlock];
     StreamingIntensity::Lane* rnext[kPlaneCount * kBlock];  // as placement new returns them
+    bool grows[kPlaneCount * kBlock];  // the candidate's sample raises a running PGA, PGV or PSV
     std::size_t nr = 0;
     std::size_t n = 0;
     for (std::size_t k = b; k < e; ++k) {
       Lane& lane = lanes_[k];
       lane.stepped = false;
       lane.candidates = 0;
+      lane.model_done = 0;
       event_flags_[k] = 0;
       if (active != nullptr && active[k] == 0) continue;
       // Each plane is deferred on its own; the item is stepped for the others. Invalid samples
@@ -298,7 +304,9 @@ std::size_t MonitorBatch::step(std::size_t begin, std::size_t end, const double*
             if (pl.rocking) {
               if (x1 > pl.scene_h || -x1 > pl.scene_h || y1 > pl.scene_v || -y1 > pl.scene_v) continue;  // SceneEnvelope::contains
               rnext[nr] = new (&raw[nr]) StreamingIntensity::Lane(pl.intensity);
-              if (!StreamingIntensity::push_quiet(*rnext[nr], x1)) continue;
+              // A sample that raises a running maximum is a candidate too: in the strongest shaking a
+              // third of the rocking plane-samples do. The kernel may still give its model sample.
+              grows[nr] = !StreamingIntensity::push_quiet(*rnext[nr], x1);
               const std::size_t r = kPlaneCount * k + static_cast<std::size_t>(p);
               rk_.ax_now[r] = x1;
               rk_.ay_now[r] = y1;
@@ -335,8 +343,20 @@ std::size_t MonitorBatch::step(std::size_t begin, std::size_t end, const double*
         PlaneLane& pl = lane.plane[p];
         // AdaptiveModel::maybe_enter_linearized: below the ratio the next step() changes tier.
         if (kernel && rk_.clean[r] && rk_.end_clear[r] && std::abs(rk_.theta_out[r]) / rk_.alpha[r] > pl.lin_ratio) {
-          defer_rocking(pl, r, *rnext[i], p == 0 ? ax[k] : ay[k], az[k], dt);
-          summary_due_[k] = 1;
+          if (!grows[i]) {
+            defer_rocking(pl, r, *rnext[i], p == 0 ? ax[k] : ay[k], az[k], dt);
+            summary_due_[k] = 1;
+          } else {
+            // The model's sample is the kernel's, kept as a deferred one (the sync before the item
+            // steps applies it); the plane then steps only its running intensity and screening
+            // criteria (PlaneMonitor::step_after_model), which the new maximum may change.
+            rk_.keep_rocking_sample(r, p == 0 ? ax[k] : ay[k], az[k]);
+            ++pl.rocking_samples;
+            defer_model(pl, p == 0 ? ax[k] : ay[k], az[k], dt);
+            lane.model_done |= 1u << p;
+            if (lane.busy == 0) busy[n++] = k;
+            lane.busy |= 1u << p;
+          }
         } else {
           if (lane.busy == 0) busy[n++] = k;  // its first plane to step
           lane.busy |= 1u << p;
@@ -355,7 +375,7 @@ std::size_t MonitorBatch::step(std::size_t begin, std::size_t end, const double*
       const std::size_t k = busy[j];
       const unsigned planes = lanes_[k].busy;
       sync_planes(k, planes);
-      const ItemEvents& ev = items_[k]->step_planes(ax[k], ay[k], az[k], dt, planes);
+      const ItemEvents& ev = items_[k]->step_planes(ax[k], ay[k], az[k], dt, planes, lanes_[k].model_done);
       event_flags_[k] = static_cast<std::uint8_t>((ev.change_count > 0 ? kHasChanges : 0) | (ev.alarm_count > 0 ? kHasAlarms : 0));
       lanes_[k].stepped = true;
       refresh_planes(k, planes);

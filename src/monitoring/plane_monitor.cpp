@@ -216,6 +216,14 @@ void PlaneMonitor::report_switch(SwitchReason reason, bool to_contact) {
   record_change(id, to_contact, 0.0, model_.body().mu_s());
 }
 
+const PlaneEvents& PlaneMonitor::step_after_model(double ax, double ay) {
+  events_.change_count = 0;
+  events_.alarm_count = 0;
+  intensity_->push(ax);
+  evaluate_criteria(ax, ay);
+  return events_;
+}
+
 const PlaneEvents& PlaneMonitor::step(double ax, double ay, double dt) {
   events_.change_count = 0;
   events_.alarm_count = 0;

@@ -88,7 +88,10 @@ class ItemMonitor {
   friend class MonitorBatch;  // defers quiet samples of many items (monitoring/monitor_batch.hpp)
   // step() for the planes in `planes` (bit p: plane p) only: MonitorBatch defers a quiet plane of an
   // item whose other plane moves (the deferred plane has no events; the batch applies its samples).
-  const ItemEvents& step_planes(double ax, double ay, double az, double dt, unsigned planes);
+  // Planes in `model_done` had their model's sample applied by the batch already: they step the rest
+  // (PlaneMonitor::step_after_model).
+  const ItemEvents& step_planes(double ax, double ay, double az, double dt, unsigned planes,
+                                unsigned model_done = 0);
   // Auto: whether the 3-D model takes over at the next step with the running peaks as they are (the
   // item at rest and the shaking bidirectional).
   bool solid_takes_over() const;

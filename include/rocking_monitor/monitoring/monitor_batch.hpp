@@ -125,6 +125,7 @@ class MonitorBatch {
     bool stepped = false;   // the last sample went through ItemMonitor::step (some of its planes)
     unsigned busy = 0;      // planes stepped in the last sample (bit p: plane p)
     unsigned candidates = 0;  // step(): rocking planes waiting for the kernel's verdict (bit p)
+    unsigned model_done = 0;  // step(): busy planes whose model sample the kernel gave (bit p)
     int planes = 1;
     int solid = -1;         // its SolidLane in solids_, or -1: no 3-D description
     PlaneLane plane[kPlaneCount];
@@ -153,6 +154,8 @@ class MonitorBatch {
   static bool quiet_test(const PlaneLane& pl, double x1, double y1, StreamingIntensity::Lane& next);
   // A quiet sample applied to the plane's lane.
   static void defer(PlaneLane& pl, const StreamingIntensity::Lane& next, double x1, double y1, double dt);
+  // The model's part of defer(): its clock and inputs (the plane's intensity steps in full).
+  static void defer_model(PlaneLane& pl, double x1, double y1, double dt);
   // Whether the sample is quiet for the whole item with a 3-D description; if so it is applied.
   bool quiet_solid(Lane& lane, double ax, double ay, double az, double dt);
   void prefetch_item(std::size_t k) const;

@@ -59,6 +59,11 @@ class PlaneMonitor {
   /// One sample: horizontal ax along the item's x and vertical ay (m/s^2), dt seconds after the
   /// previous one. No allocation.
   const PlaneEvents& step(double ax, double ay, double dt);
+  /// The rest of step() once the adaptive model's sample is applied already (MonitorBatch: a rocking
+  /// sample its vector kernel found clean, with nothing the model reports but its state, in which a
+  /// running PGA, PGV or PSV grows): the running intensity and the screening criteria. Such a sample
+  /// brings no alarm and no model switch (the same conditions as a deferred one).
+  const PlaneEvents& step_after_model(double ax, double ay);
 
   /// Everything one sample carries to the next (state snapshots, issue 29): restored into a plane
   /// monitor of the same body and options it continues bit for bit. The last sample's events are
