@@ -262,6 +262,8 @@ class AdaptiveModel {
   void switch_down(SwitchReason reason, double ax, double ay);
   void record(double time, ActiveModel to, SwitchReason reason, double onset);
 
+  // prefetch() loads address ranges between members (body_ .. settings_, lin_eligible_ ..
+  // scene_guarantee_, t_ .. outcome_): keep these groups together when reordering.
   Body body_;
   AdaptiveSettings settings_;
   RockingModel rock_;
