@@ -1,5 +1,7 @@
 #include "rocking_monitor/model/adaptive_model.hpp"
 
+#include "rocking_monitor/prefetch.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -473,17 +475,12 @@ void AdaptiveModel::apply_rocking_samples(double t, double ax, double ay, double
 }
 
 void AdaptiveModel::prefetch(std::uint8_t hint) const {
-  auto lines = [](const void* begin, const void* end) {  // every line [begin, end) touches
-    const auto e = reinterpret_cast<std::uintptr_t>(end);
-    for (auto a = reinterpret_cast<std::uintptr_t>(begin) & ~std::uintptr_t{63}; a < e; a += 64)
-      __builtin_prefetch(reinterpret_cast<const void*>(a));
-  };
-  lines(&body_, &settings_ + 1);  // body (friction) and settings
-  if (hint == 2) lines(&contact_, &contact_ + 1);
-  else if (hint == 1) lines(&lin_, &lin_ + 1);
-  else lines(&rock_, &rock_ + 1);
-  lines(&lin_eligible_, &scene_guarantee_ + 1);  // the flags
-  lines(&t_, &outcome_ + 1);                      // clock, inputs, report and totals
+  prefetch_lines(&body_, &settings_ + 1);  // body (friction) and settings
+  if (hint == 2) prefetch_lines(&contact_, sizeof(contact_));
+  else if (hint == 1) prefetch_lines(&lin_, sizeof(lin_));
+  else prefetch_lines(&rock_, sizeof(rock_));
+  prefetch_lines(&lin_eligible_, &scene_guarantee_ + 1);  // the flags
+  prefetch_lines(&t_, &outcome_ + 1);                      // clock, inputs, report and totals
 }
 
 const AdaptiveReport& AdaptiveModel::step(double ax, double ay, double dt) {

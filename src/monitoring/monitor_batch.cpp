@@ -7,6 +7,7 @@
 #include <type_traits>
 
 #include "rocking_monitor/constants.hpp"
+#include "rocking_monitor/prefetch.hpp"
 
 namespace rocking_monitor::core {
 
@@ -180,9 +181,15 @@ static_assert(std::is_trivially_copyable_v<StreamingIntensity::Lane> &&
 [[gnu::always_inline]] inline void MonitorBatch::defer_rocking(PlaneLane& pl, std::size_t r,
                                                                 const StreamingIntensity::Lane& next, double x1,
                                                                 double y1, double dt) {
+  pl.intensity = next;
+  defer_rocking_model(pl, r, x1, y1, dt);
+}
+
+[[gnu::always_inline]] inline void MonitorBatch::defer_rocking_model(PlaneLane& pl, std::size_t r, double x1,
+                                                                      double y1, double dt) {
   rk_.keep_rocking_sample(r, x1, y1);  // BatchRocking::step's deferred rocking
   ++pl.rocking_samples;
-  defer(pl, next, x1, y1, dt);
+  defer_model(pl, x1, y1, dt);
 }
 
 bool MonitorBatch::quiet_solid(Lane& lane, double ax, double ay, double az, double dt) {
@@ -216,17 +223,6 @@ bool MonitorBatch::quiet_solid(Lane& lane, double ax, double ay, double az, doub
   return true;
 }
 
-namespace {
-
-// A hint to start loading every cache line that [p, p + bytes) touches; no effect on any result.
-void prefetch(const void* p, std::size_t bytes = 8) {
-  const auto begin = reinterpret_cast<std::uintptr_t>(p);
-  for (std::uintptr_t a = begin & ~std::uintptr_t{63}; a < begin + bytes; a += 64)
-    __builtin_prefetch(reinterpret_cast<const void*>(a));
-}
-
-}  // namespace
-
 // An item that is not quiet touches ~10 KB of its objects, spread over the heap: with 10,000 items
 // none of it is in cache, and every first touch stalls (perf). The objects of the items a few places
 // ahead are prefetched along the pointer chain in three stages (the item, its planes, their models),
@@ -235,10 +231,9 @@ void prefetch(const void* p, std::size_t bytes = 8) {
 // them cost 7 % of the strongest shaking's time (docs/performance.md, session 14).
 void MonitorBatch::prefetch_item(std::size_t k) const {
   const ItemMonitor* item = items_[k];
-  prefetch(&item->planes_);  // with the change count
-  prefetch(&item->events_.alarm_count);
-  const char* tail = reinterpret_cast<const char*>(&item->last_input_);
-  prefetch(tail, static_cast<std::size_t>(reinterpret_cast<const char*>(item + 1) - tail));
+  prefetch_lines(&item->planes_);  // with the change count
+  prefetch_lines(&item->events_.alarm_count);
+  prefetch_lines(&item->last_input_, item + 1);
 }
 
 void MonitorBatch::prefetch_planes(std::size_t k) const {
@@ -248,9 +243,8 @@ void MonitorBatch::prefetch_planes(std::size_t k) const {
     const PlaneMonitor* pm = item.planes_[p].get();
     // The model and intensity pointers, the flags and the event counts (the event arrays are
     // written only when there are events).
-    const char* first = reinterpret_cast<const char*>(&pm->adaptive_);
-    prefetch(first, static_cast<std::size_t>(reinterpret_cast<const char*>(&pm->events_.change_count + 1) - first));
-    prefetch(&pm->events_.alarm_count);
+    prefetch_lines(&pm->adaptive_, &pm->events_.change_count + 1);
+    prefetch_lines(&pm->events_.alarm_count);
   }
 }
 
@@ -259,7 +253,7 @@ void MonitorBatch::prefetch_models(std::size_t k) const {
   for (int p = 0; p < lanes_[k].planes; ++p) {
     if (!((lanes_[k].busy >> p) & 1u)) continue;
     const PlaneMonitor& pm = *item.planes_[p];
-    if (pm.intensity_) prefetch(pm.intensity_.get(), sizeof(StreamingIntensity));
+    if (pm.intensity_) prefetch_lines(pm.intensity_.get(), sizeof(StreamingIntensity));
     if (pm.adaptive_) pm.adaptive_->prefetch(lanes_[k].plane[p].model_hint);
   }
 }
@@ -350,9 +344,7 @@ std::size_t MonitorBatch::step(std::size_t begin, std::size_t end, const double*
             // The model's sample is the kernel's, kept as a deferred one (the sync before the item
             // steps applies it); the plane then steps only its running intensity and screening
             // criteria (PlaneMonitor::step_after_model), which the new maximum may change.
-            rk_.keep_rocking_sample(r, p == 0 ? ax[k] : ay[k], az[k]);
-            ++pl.rocking_samples;
-            defer_model(pl, p == 0 ? ax[k] : ay[k], az[k], dt);
+            defer_rocking_model(pl, r, p == 0 ? ax[k] : ay[k], az[k], dt);
             lane.model_done |= 1u << p;
             if (lane.busy == 0) busy[n++] = k;
             lane.busy |= 1u << p;

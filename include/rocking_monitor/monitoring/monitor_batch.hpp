@@ -173,6 +173,8 @@ class MonitorBatch {
   // Kernel results of a quiet rocking sample applied to the lane.
   void defer_rocking(PlaneLane& pl, std::size_t r, const StreamingIntensity::Lane& next, double x1, double y1,
                      double dt);
+  // Its model's part: the plane's intensity steps in full (a sample that raises a running maximum).
+  void defer_rocking_model(PlaneLane& pl, std::size_t r, double x1, double y1, double dt);
   void refresh_planes(std::size_t k, unsigned planes);  // refresh() of these planes
 
   static const ItemEvents kNoEvents;
