@@ -309,7 +309,7 @@ void RockingSampleT(BatchRocking::Lanes& l, const std::uint32_t* idx, std::size_
         k1b = w::IfThenElse(fsal, k1b, f);
       }
     }
-    V t = zero, maxr = zero, steps = zero, attempts = zero, h_try = zero;
+    V t = zero, maxr = zero, steps = zero, attempts = zero, h_try = zero, peak = zero;
     auto active = lane_on;
     auto clean = active;
     auto retry = w::Lt(one, zero);  // all false
@@ -373,16 +373,51 @@ void RockingSampleT(BatchRocking::Lanes& l, const std::uint32_t* idx, std::size_
       const auto accept = w::And(
           active, w::Or(w::Or(w::Le(err, one), w::Le(h, h_min)), w::Ge(attempts, w::Set(d, 50.0))));
       // Events the scalar scan_step would act on: impact / degenerate (s*theta not > 0 at either
-      // end), a turning point (omega changes sign), overturn, the first passage beyond alpha,
-      // non-finite values. Such a lane goes back to the scalar model.
+      // end), overturn, the first passage beyond alpha, non-finite values. Such a lane goes back
+      // to the scalar model.
       const V g0 = w::Mul(side, th), g1 = w::Mul(side, y5a);
       const V w0 = w::Mul(side, om), w1 = w::Mul(side, y5b);
       auto bad = w::Not(w::And(w::Gt(g0, zero), w::Gt(g1, zero)));
-      bad = w::Or(bad, w::And(w::Gt(w0, zero), w::Lt(w1, zero)));
-      bad = w::Or(bad, w::And(w::Lt(w0, zero), w::Gt(w1, zero)));
       bad = w::Or(bad, w::Ge(g1, ovt));
       bad = w::Or(bad, w::And(not_beyond, w::And(w::Le(g0, alpha), w::Gt(g1, alpha))));
       bad = w::Or(bad, w::Not(w::And(w::IsFinite(y5a), w::IsFinite(y5b))));
+      // A turning point (omega changes sign) inside an accepted step: about one rocking sample in
+      // ten. Its peak (or a trough's touch of the ground) is found lane by lane on the step's dense
+      // output by the scalar model's own scan; only an impact or a first passage beyond alpha
+      // there sends the lane back.
+      const auto turning = w::AndNot(bad, w::And(accept, w::Or(w::And(w::Gt(w0, zero), w::Lt(w1, zero)),
+                                                               w::And(w::Lt(w0, zero), w::Gt(w1, zero)))));
+      if (!w::AllFalse(d, turning)) {
+        alignas(64) double tb[16], v[22][16];
+        w::Store(w::IfThenElseZero(turning, one), d, tb);
+        const V t1 = w::IfThenElse(w::Eq(h, remaining), dtv, t_h);
+        int j = 0;
+        for (const V& x : {th, om, y5a, y5b, k1a, k1b, k3a, k3b, k4a, k4b, k5a, k5b, k6a, k6b, k7a, k7b, h, t, t1,
+                           side, alpha, ovt})
+          w::Store(x, d, v[j++]);
+        alignas(64) double nb[16], pk[16], bb[16];
+        w::Store(w::IfThenElseZero(not_beyond, one), d, nb);
+        w::Store(peak, d, pk);
+        for (std::size_t k = 0; k < L; ++k) {
+          bb[k] = 0.0;
+          if (tb[k] == 0.0) continue;
+          const double y0[2] = {v[0][k], v[1][k]}, y5[2] = {v[2][k], v[3][k]};
+          double kk[8][2] = {};
+          for (int st = 1; st <= 7; ++st) {
+            if (st == 2) continue;  // not used by the dense output
+            const int c = 4 + 2 * (st == 1 ? 0 : st - 2);  // k1, k3..k7 follow y5 in v
+            kk[st][0] = v[c][k];
+            kk[st][1] = v[c + 1][k];
+          }
+          Dopri5Dense dense;
+          dense.set(v[17][k], v[18][k], v[16][k], y0, y5, kk);
+          if (!turning_step(dense, v[19][k], v[20][k], v[21][k], nb[k] == 0.0, y0[0], y0[1], y5[0], y5[1], dt,
+                            pk[k]))
+            bb[k] = 1.0;
+        }
+        bad = w::Or(bad, w::Ne(w::Load(d, bb), zero));
+        peak = w::Load(d, pk);
+      }
       const auto dropped = w::And(accept, bad);
       const auto good = w::AndNot(bad, accept);
       clean = w::AndNot(dropped, clean);
@@ -398,7 +433,7 @@ void RockingSampleT(BatchRocking::Lanes& l, const std::uint32_t* idx, std::size_
       t = w::IfThenElse(good, w::IfThenElse(at_end, dtv, t_h), t);
       steps = w::IfThenElse(good, w::Add(steps, attempts), steps);
       const V ratio = kExact ? w::Div(w::Abs(th), alpha) : w::Mul(w::Abs(th), inv_alpha);
-      maxr = w::IfThenElse(good, w::Max(maxr, ratio), maxr);
+      maxr = w::IfThenElse(good, w::Max(maxr, w::Max(ratio, peak)), maxr);
       sn_end = w::IfThenElse(good, sn7, sn_end);  // the last accepted step ends at the sample end
       cs_end = w::IfThenElse(good, cs7, cs_end);
       // Rejected steps retry with h * factor (not below h_min).
@@ -452,6 +487,7 @@ void RockingSampleT(BatchRocking::Lanes& l, const std::uint32_t* idx, std::size_
     scatter(k1b, l.k1b_out);
     scatter(steps, l.steps);
     scatter(maxr, l.max_ratio);
+    scatter(peak, l.peak_out);
     alignas(64) double cb[16];
     w::Store(w::IfThenElseZero(clean, one), d, cb);
     for (std::size_t k = 0; k < L; ++k) l.clean[ix[k]] = cb[k] != 0.0 ? 1 : 0;
