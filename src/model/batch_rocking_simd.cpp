@@ -236,6 +236,15 @@ HWY_INLINE void SinCos(Tag<U> t, Wide<U> phi, Wide<U>& s, Wide<U>& c) {
 }
 }  // namespace w
 
+// A step with a turning point, kept for the scan after the kernel's loop: the lane (within the
+// group), the state at its ends, the stages its dense output uses, h, t0 and t1.
+constexpr int kTurnFields = 19;
+constexpr int kMaxTurns = 32;
+struct Turn {
+  double v[kTurnFields];
+  std::size_t lane;
+};
+
 template <bool kExact, std::size_t U>
 void RockingSampleT(BatchRocking::Lanes& l, const std::uint32_t* idx, std::size_t m, double dt, double tol) {
   using V = w::Wide<U>;
@@ -309,7 +318,10 @@ void RockingSampleT(BatchRocking::Lanes& l, const std::uint32_t* idx, std::size_
         k1b = w::IfThenElse(fsal, k1b, f);
       }
     }
-    V t = zero, maxr = zero, steps = zero, attempts = zero, h_try = zero, peak = zero;
+    V t = zero, maxr = zero, steps = zero, attempts = zero, h_try = zero;
+    Turn turns[kMaxTurns];
+    int n_turns = 0;
+    alignas(64) double overflow[16] = {};
     auto active = lane_on;
     auto clean = active;
     auto retry = w::Lt(one, zero);  // all false
@@ -382,41 +394,27 @@ void RockingSampleT(BatchRocking::Lanes& l, const std::uint32_t* idx, std::size_
       bad = w::Or(bad, w::And(not_beyond, w::And(w::Le(g0, alpha), w::Gt(g1, alpha))));
       bad = w::Or(bad, w::Not(w::And(w::IsFinite(y5a), w::IsFinite(y5b))));
       // A turning point (omega changes sign) inside an accepted step: about one rocking sample in
-      // ten. Its peak (or a trough's touch of the ground) is found lane by lane on the step's dense
-      // output by the scalar model's own scan; only an impact or a first passage beyond alpha
-      // there sends the lane back.
+      // a hundred. The lane goes on; the step is kept and scanned after the loop (a call in here
+      // would make GCC keep the loop's vectors in memory).
       const auto turning = w::AndNot(bad, w::And(accept, w::Or(w::And(w::Gt(w0, zero), w::Lt(w1, zero)),
                                                                w::And(w::Lt(w0, zero), w::Gt(w1, zero)))));
-      if (!w::AllFalse(d, turning)) {
-        alignas(64) double tb[16], v[22][16];
+      if (HWY_UNLIKELY(!w::AllFalse(d, turning))) {
+        alignas(64) double tb[16], v[kTurnFields][16];
         w::Store(w::IfThenElseZero(turning, one), d, tb);
         const V t1 = w::IfThenElse(w::Eq(h, remaining), dtv, t_h);
         int j = 0;
-        for (const V& x : {th, om, y5a, y5b, k1a, k1b, k3a, k3b, k4a, k4b, k5a, k5b, k6a, k6b, k7a, k7b, h, t, t1,
-                           side, alpha, ovt})
+        for (const V& x : {th, om, y5a, y5b, k1a, k1b, k3a, k3b, k4a, k4b, k5a, k5b, k6a, k6b, k7a, k7b, h, t, t1})
           w::Store(x, d, v[j++]);
-        alignas(64) double nb[16], pk[16], bb[16];
-        w::Store(w::IfThenElseZero(not_beyond, one), d, nb);
-        w::Store(peak, d, pk);
         for (std::size_t k = 0; k < L; ++k) {
-          bb[k] = 0.0;
           if (tb[k] == 0.0) continue;
-          const double y0[2] = {v[0][k], v[1][k]}, y5[2] = {v[2][k], v[3][k]};
-          double kk[8][2] = {};
-          for (int st = 1; st <= 7; ++st) {
-            if (st == 2) continue;  // not used by the dense output
-            const int c = 4 + 2 * (st == 1 ? 0 : st - 2);  // k1, k3..k7 follow y5 in v
-            kk[st][0] = v[c][k];
-            kk[st][1] = v[c + 1][k];
+          if (n_turns == kMaxTurns) {  // more than a group ever meets: the lane goes back
+            overflow[k] = 1.0;
+            continue;
           }
-          Dopri5Dense dense;
-          dense.set(v[17][k], v[18][k], v[16][k], y0, y5, kk);
-          if (!turning_step(dense, v[19][k], v[20][k], v[21][k], nb[k] == 0.0, y0[0], y0[1], y5[0], y5[1], dt,
-                            pk[k]))
-            bb[k] = 1.0;
+          Turn& tp = turns[n_turns++];
+          tp.lane = k;
+          for (int f = 0; f < kTurnFields; ++f) tp.v[f] = v[f][k];
         }
-        bad = w::Or(bad, w::Ne(w::Load(d, bb), zero));
-        peak = w::Load(d, pk);
       }
       const auto dropped = w::And(accept, bad);
       const auto good = w::AndNot(bad, accept);
@@ -433,7 +431,7 @@ void RockingSampleT(BatchRocking::Lanes& l, const std::uint32_t* idx, std::size_
       t = w::IfThenElse(good, w::IfThenElse(at_end, dtv, t_h), t);
       steps = w::IfThenElse(good, w::Add(steps, attempts), steps);
       const V ratio = kExact ? w::Div(w::Abs(th), alpha) : w::Mul(w::Abs(th), inv_alpha);
-      maxr = w::IfThenElse(good, w::Max(maxr, w::Max(ratio, peak)), maxr);
+      maxr = w::IfThenElse(good, w::Max(maxr, ratio), maxr);
       sn_end = w::IfThenElse(good, sn7, sn_end);  // the last accepted step ends at the sample end
       cs_end = w::IfThenElse(good, cs7, cs_end);
       // Rejected steps retry with h * factor (not below h_min).
@@ -441,6 +439,39 @@ void RockingSampleT(BatchRocking::Lanes& l, const std::uint32_t* idx, std::size_
       h_try = w::IfThenElse(rejected, w::Max(w::Mul(h, factor), h_min), h_try);
       retry = rejected;
       active = w::And(w::AndNot(dropped, active), w::Lt(t, dtv));
+    }
+    // The turning points, scanned with the scalar model's own code: a peak goes into the largest
+    // ratio and the report's peak; an impact or first passage beyond alpha there makes the lane unclean.
+    V peak = zero;
+    if (n_turns > 0 || !w::AllFalse(d, w::Ne(w::Load(d, overflow), zero))) {
+      alignas(64) double cl[16], pk[16] = {}, sd[16], al[16], ov[16], nb[16];
+      w::Store(w::IfThenElseZero(clean, one), d, cl);
+      w::Store(side, d, sd);
+      w::Store(alpha, d, al);
+      w::Store(ovt, d, ov);
+      w::Store(w::IfThenElseZero(not_beyond, one), d, nb);
+      for (int i_t = 0; i_t < n_turns; ++i_t) {
+        const Turn& tp = turns[i_t];
+        const std::size_t k = tp.lane;
+        if (cl[k] == 0.0) continue;
+        const double* v = tp.v;
+        const double y0[2] = {v[0], v[1]}, y5[2] = {v[2], v[3]};
+        double kk[8][2] = {};
+        for (int st = 1; st <= 7; ++st) {
+          if (st == 2) continue;  // not used by the dense output
+          const int c = 4 + 2 * (st == 1 ? 0 : st - 2);  // k1, k3..k7 follow y5
+          kk[st][0] = v[c];
+          kk[st][1] = v[c + 1];
+        }
+        Dopri5Dense dense;
+        dense.set(v[17], v[18], v[16], y0, y5, kk);
+        if (!turning_step(dense, sd[k], al[k], ov[k], nb[k] == 0.0, y0[0], y0[1], y5[0], y5[1], dt, pk[k])) cl[k] = 0.0;
+      }
+      for (std::size_t k = 0; k < L; ++k)
+        if (overflow[k] != 0.0) cl[k] = 0.0;
+      clean = w::Ne(w::Load(d, cl), zero);
+      peak = w::Load(d, pk);
+      maxr = w::Max(maxr, peak);
     }
     // Sample-end screen (a filter only, with margins far above the error of its sin/cos: those of
     // the last stage, at the sample end's theta, exact or Highway's).
