@@ -77,9 +77,20 @@ int Dopri5Stepper::step(const RockingOde& ode, double t, double theta, double om
     const double factor =
         err == 0.0 ? 5.0 : std::min(5.0, std::max(0.2, 0.9 * std::pow(err, -0.2)));
     if (err <= 1.0 || h <= h_min || attempts >= 50) {
+      t0_ = t;
+      t1_ = (h == remaining) ? t_end : t + h;
       y1_[0] = s.y[0];
       y1_[1] = s.y[1];
-      dense_.set(t, (h == remaining) ? t_end : t + h, h, y0, s.y, k);
+      for (int i = 0; i < 2; ++i) {
+        const double ydiff = s.y[i] - y0[i];
+        const double bspl = h * k[1][i] - ydiff;
+        rcont_[0][i] = y0[i];
+        rcont_[1][i] = ydiff;
+        rcont_[2][i] = bspl;
+        rcont_[3][i] = ydiff - h * k[7][i] - bspl;
+        rcont_[4][i] = h * (d1 * k[1][i] + d3 * k[3][i] + d4 * k[4][i] + d5 * k[5][i] +
+                            d6 * k[6][i] + d7 * k[7][i]);
+      }
       k1_[0] = k[7][0];
       k1_[1] = k[7][1];
       fsal_valid_ = true;
@@ -101,30 +112,15 @@ void Dopri5Stepper::single_step(const RockingOde& ode, double t, double theta, d
   omega_out = s.y[1];
 }
 
-void Dopri5Stepper::eval(double t, double& theta, double& omega) const { dense_.eval(t, theta, omega); }
-
-void Dopri5Dense::set(double t_start, double t_end, double h, const double (&y0)[2], const double (&y5)[2],
-                      const double (&k)[8][2]) {
-  t0 = t_start;
-  t1 = t_end;
-  for (int i = 0; i < 2; ++i) {
-    const double ydiff = y5[i] - y0[i];
-    const double bspl = h * k[1][i] - ydiff;
-    rcont[0][i] = y0[i];
-    rcont[1][i] = ydiff;
-    rcont[2][i] = bspl;
-    rcont[3][i] = ydiff - h * k[7][i] - bspl;
-    rcont[4][i] = h * (d1 * k[1][i] + d3 * k[3][i] + d4 * k[4][i] + d5 * k[5][i] + d6 * k[6][i] + d7 * k[7][i]);
-  }
-}
-
-void Dopri5Dense::eval(double t, double& theta, double& omega) const {
-  const double h = t1 - t0;
-  const double s = h > 0.0 ? (t - t0) / h : 1.0;
+void Dopri5Stepper::eval(double t, double& theta, double& omega) const {
+  const double h = t1_ - t0_;
+  const double s = h > 0.0 ? (t - t0_) / h : 1.0;
   const double s1 = 1.0 - s;
   double out[2];
-  for (int i = 0; i < 2; ++i)
-    out[i] = rcont[0][i] + s * (rcont[1][i] + s1 * (rcont[2][i] + s * (rcont[3][i] + s1 * rcont[4][i])));
+  for (int i = 0; i < 2; ++i) {
+    out[i] = rcont_[0][i] +
+             s * (rcont_[1][i] + s1 * (rcont_[2][i] + s * (rcont_[3][i] + s1 * rcont_[4][i])));
+  }
   theta = out[0];
   omega = out[1];
 }

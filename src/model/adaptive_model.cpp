@@ -455,12 +455,11 @@ void AdaptiveModel::apply_rest_samples(double t, double ax, double ay, double dt
 
 void AdaptiveModel::apply_rocking_samples(double t, double ax, double ay, double dt, long n, double theta,
                                           double omega, double h_next, double k1_theta, double k1_omega,
-                                          long integrator_steps, int last_integrator_steps, double max_ratio,
-                                          double last_peak_ratio) {
+                                          long integrator_steps, int last_integrator_steps, double max_ratio) {
   // What n calls of step() do then: rock_.step() without an event (apply_rocking_samples), then
   // count_rocking_work(), check_rocking() finding nothing and accumulate_rocking() with an empty report.
   rock_.apply_rocking_samples(t, ax, ay, dt, n, theta, omega, h_next, k1_theta, k1_omega, integrator_steps,
-                              last_integrator_steps, max_ratio, last_peak_ratio);
+                              last_integrator_steps, max_ratio);
   report_ = AdaptiveReport{};
   report_.rocking_samples = 1;
   report_.rocking_steps = last_integrator_steps;

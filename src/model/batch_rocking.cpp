@@ -8,7 +8,6 @@
 #include <stdexcept>
 
 #include "rocking_monitor/constants.hpp"
-#include "rocking_monitor/integrate/event_location.hpp"
 
 namespace rocking_monitor::core {
 
@@ -81,7 +80,7 @@ void BatchRocking::flush_rocking(std::size_t k) const {
   Lanes& l = lanes_;
   models_[k].apply_rocking_samples(l.t[k], l.ax_prev[k], l.ay_prev[k], l.last_dt[k], l.rocking_deferred[k],
                                    l.theta[k], l.omega[k], l.h[k], l.k1a[k], l.k1b[k], l.pending_steps[k],
-                                   l.last_steps[k], l.pending_max[k], l.last_peak[k]);
+                                   l.last_steps[k], l.pending_max[k]);
   l.rocking_deferred[k] = 0;
   l.pending_steps[k] = 0;
   l.pending_max[k] = 0.0;
@@ -108,7 +107,7 @@ void BatchRocking::Lanes::size_rocking(std::size_t n) {
   for (auto* v : {&vr, &side, &alpha, &p2, &atol_th, &atol_om, &overturn, &beyond, &theta, &omega, &h, &k1a, &k1b,
                   &fsal, &radius, &inertia, &cos_al, &slide_checked, &committed, &mu_clear, &ry_min, &ax_prev,
                   &ay_prev, &ax_now, &ay_now, &theta_out, &omega_out, &h_out, &k1a_out, &k1b_out, &max_ratio, &steps,
-                  &peak_out, &pending_max, &last_dt, &last_peak})
+                  &pending_max, &last_dt})
     v->assign(n, 0.0);
   clean.assign(n, 0);
   end_clear.assign(n, 0);
@@ -219,8 +218,7 @@ void BatchRocking::step(const double* ax, const double* ay, double dt) {
     if (l.vr[k] != 0.0) {
       if (l.clean[k]) {
         m.commit_rocking_sample(ax[k], ay[k], dt, l.theta_out[k], l.omega_out[k], l.h_out[k], l.k1a_out[k],
-                                l.k1b_out[k], static_cast<int>(l.steps[k]), l.max_ratio[k], l.peak_out[k],
-                                l.end_clear[k] != 0);
+                                l.k1b_out[k], static_cast<int>(l.steps[k]), l.max_ratio[k], l.end_clear[k] != 0);
         ++stats_.rocking_fast;
       } else {
         m.step(ax[k], ay[k], dt);  // the model was not touched: this is the roll-back
@@ -238,19 +236,6 @@ void BatchRocking::step(const double* ax, const double* ay, double dt) {
     note_violations(k);
     refresh_mirror(k);
   }
-}
-
-bool batch_detail::turning_step(const Dopri5Dense& dense, double side, double alpha, double overturn, bool beyond,
-                                double theta0, double omega0, double theta1, double omega1, double dt,
-                                double& peak) {
-  // RockingModel::handle_step's scan, with its tolerance and the model's int side.
-  const int s = side > 0.0 ? 1 : -1;
-  const double t_tol = 1e-12 * std::max(dt, 1e-6);
-  const StepEvents ev = scan_step([&dense](double t, double& th, double& om) { dense.eval(t, th, om); }, s, alpha,
-                                  overturn, dense.t0, dense.t1, theta0, omega0, theta1, omega1, t_tol);
-  if (ev.terminal != StepEvents::Terminal::None || (ev.tipping_crossed && !beyond)) return false;
-  if (ev.has_peak) peak = std::max(peak, ev.peak_abs_theta / alpha);
-  return true;
 }
 
 }  // namespace rocking_monitor::core

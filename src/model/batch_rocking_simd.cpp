@@ -236,30 +236,6 @@ HWY_INLINE void SinCos(Tag<U> t, Wide<U> phi, Wide<U>& s, Wide<U>& c) {
 }
 }  // namespace w
 
-// A step with a turning point, kept for the scan after the kernel's loop: the lane (within the
-// group), the state at its ends, the stages its dense output uses, h, t0 and t1.
-constexpr int kTurnFields = 19;
-constexpr int kMaxTurns = 32;
-struct Turn {
-  double v[kTurnFields];
-  std::size_t lane;
-};
-
-// Out of line: inlined, GCC grew the exact kernel fourfold and made it twice as slow.
-HWY_NOINLINE void KeepTurns(const double* tb, const double (*v)[16], std::size_t L, Turn* turns, int& n_turns,
-                            double* overflow) {
-  for (std::size_t k = 0; k < L; ++k) {
-    if (tb[k] == 0.0) continue;
-    if (n_turns == kMaxTurns) {  // more than a group ever meets: the lane goes back
-      overflow[k] = 1.0;
-      continue;
-    }
-    Turn& tp = turns[n_turns++];
-    tp.lane = k;
-    for (int f = 0; f < kTurnFields; ++f) tp.v[f] = v[f][k];
-  }
-}
-
 template <bool kExact, std::size_t U>
 void RockingSampleT(BatchRocking::Lanes& l, const std::uint32_t* idx, std::size_t m, double dt, double tol) {
   using V = w::Wide<U>;
@@ -334,10 +310,6 @@ void RockingSampleT(BatchRocking::Lanes& l, const std::uint32_t* idx, std::size_
       }
     }
     V t = zero, maxr = zero, steps = zero, attempts = zero, h_try = zero;
-    Turn turns[kMaxTurns];
-    int n_turns = 0;
-    alignas(64) double tb[16], v[kTurnFields][16];
-    alignas(64) double overflow[16] = {};
     auto active = lane_on;
     auto clean = active;
     auto retry = w::Lt(one, zero);  // all false
@@ -401,43 +373,16 @@ void RockingSampleT(BatchRocking::Lanes& l, const std::uint32_t* idx, std::size_
       const auto accept = w::And(
           active, w::Or(w::Or(w::Le(err, one), w::Le(h, h_min)), w::Ge(attempts, w::Set(d, 50.0))));
       // Events the scalar scan_step would act on: impact / degenerate (s*theta not > 0 at either
-      // end), overturn, the first passage beyond alpha, non-finite values. Such a lane goes back
-      // to the scalar model.
+      // end), a turning point (omega changes sign), overturn, the first passage beyond alpha,
+      // non-finite values. Such a lane goes back to the scalar model.
       const V g0 = w::Mul(side, th), g1 = w::Mul(side, y5a);
       const V w0 = w::Mul(side, om), w1 = w::Mul(side, y5b);
       auto bad = w::Not(w::And(w::Gt(g0, zero), w::Gt(g1, zero)));
+      bad = w::Or(bad, w::And(w::Gt(w0, zero), w::Lt(w1, zero)));
+      bad = w::Or(bad, w::And(w::Lt(w0, zero), w::Gt(w1, zero)));
       bad = w::Or(bad, w::Ge(g1, ovt));
       bad = w::Or(bad, w::And(not_beyond, w::And(w::Le(g0, alpha), w::Gt(g1, alpha))));
       bad = w::Or(bad, w::Not(w::And(w::IsFinite(y5a), w::IsFinite(y5b))));
-      // A turning point (omega changes sign) inside an accepted step: about one rocking sample in
-      // a hundred. The lane goes on; the step is kept and scanned after the loop (a call in here
-      // would make GCC keep the loop's vectors in memory).
-      const auto turning = w::AndNot(bad, w::And(accept, w::Or(w::And(w::Gt(w0, zero), w::Lt(w1, zero)),
-                                                               w::And(w::Lt(w0, zero), w::Gt(w1, zero)))));
-      if (HWY_UNLIKELY(!w::AllFalse(d, turning))) {
-        w::Store(w::IfThenElseZero(turning, one), d, tb);
-        const V t1 = w::IfThenElse(w::Eq(h, remaining), dtv, t_h);
-        w::Store(th, d, v[0]);
-        w::Store(om, d, v[1]);
-        w::Store(y5a, d, v[2]);
-        w::Store(y5b, d, v[3]);
-        w::Store(k1a, d, v[4]);
-        w::Store(k1b, d, v[5]);
-        w::Store(k3a, d, v[6]);
-        w::Store(k3b, d, v[7]);
-        w::Store(k4a, d, v[8]);
-        w::Store(k4b, d, v[9]);
-        w::Store(k5a, d, v[10]);
-        w::Store(k5b, d, v[11]);
-        w::Store(k6a, d, v[12]);
-        w::Store(k6b, d, v[13]);
-        w::Store(k7a, d, v[14]);
-        w::Store(k7b, d, v[15]);
-        w::Store(h, d, v[16]);
-        w::Store(t, d, v[17]);
-        w::Store(t1, d, v[18]);
-        KeepTurns(tb, v, L, turns, n_turns, overflow);
-      }
       const auto dropped = w::And(accept, bad);
       const auto good = w::AndNot(bad, accept);
       clean = w::AndNot(dropped, clean);
@@ -461,39 +406,6 @@ void RockingSampleT(BatchRocking::Lanes& l, const std::uint32_t* idx, std::size_
       h_try = w::IfThenElse(rejected, w::Max(w::Mul(h, factor), h_min), h_try);
       retry = rejected;
       active = w::And(w::AndNot(dropped, active), w::Lt(t, dtv));
-    }
-    // The turning points, scanned with the scalar model's own code: a peak goes into the largest
-    // ratio and the report's peak; an impact or first passage beyond alpha there makes the lane unclean.
-    V peak = zero;
-    if (n_turns > 0 || !w::AllFalse(d, w::Ne(w::Load(d, overflow), zero))) {
-      alignas(64) double cl[16], pk[16] = {}, sd[16], al[16], ov[16], nb[16];
-      w::Store(w::IfThenElseZero(clean, one), d, cl);
-      w::Store(side, d, sd);
-      w::Store(alpha, d, al);
-      w::Store(ovt, d, ov);
-      w::Store(w::IfThenElseZero(not_beyond, one), d, nb);
-      for (int i_t = 0; i_t < n_turns; ++i_t) {
-        const Turn& tp = turns[i_t];
-        const std::size_t k = tp.lane;
-        if (cl[k] == 0.0) continue;
-        const double* v = tp.v;
-        const double y0[2] = {v[0], v[1]}, y5[2] = {v[2], v[3]};
-        double kk[8][2] = {};
-        for (int st = 1; st <= 7; ++st) {
-          if (st == 2) continue;  // not used by the dense output
-          const int c = 4 + 2 * (st == 1 ? 0 : st - 2);  // k1, k3..k7 follow y5
-          kk[st][0] = v[c];
-          kk[st][1] = v[c + 1];
-        }
-        Dopri5Dense dense;
-        dense.set(v[17], v[18], v[16], y0, y5, kk);
-        if (!turning_step(dense, sd[k], al[k], ov[k], nb[k] == 0.0, y0[0], y0[1], y5[0], y5[1], dt, pk[k])) cl[k] = 0.0;
-      }
-      for (std::size_t k = 0; k < L; ++k)
-        if (overflow[k] != 0.0) cl[k] = 0.0;
-      clean = w::Ne(w::Load(d, cl), zero);
-      peak = w::Load(d, pk);
-      maxr = w::Max(maxr, peak);
     }
     // Sample-end screen (a filter only, with margins far above the error of its sin/cos: those of
     // the last stage, at the sample end's theta, exact or Highway's).
@@ -540,7 +452,6 @@ void RockingSampleT(BatchRocking::Lanes& l, const std::uint32_t* idx, std::size_
     scatter(k1b, l.k1b_out);
     scatter(steps, l.steps);
     scatter(maxr, l.max_ratio);
-    scatter(peak, l.peak_out);
     alignas(64) double cb[16];
     w::Store(w::IfThenElseZero(clean, one), d, cb);
     for (std::size_t k = 0; k < L; ++k) l.clean[ix[k]] = cb[k] != 0.0 ? 1 : 0;

@@ -394,7 +394,7 @@ const StepReport& RockingModel::commit_rocking_sample(double ax, double ay, doub
                                                       double theta, double omega, double h_next,
                                                       double k1_theta, double k1_omega,
                                                       int integrator_steps, double max_ratio,
-                                                      double peak_ratio, bool end_clear) {
+                                                      bool end_clear) {
   report_ = StepReport{};
   sample_dt_ = dt;
   const GroundInput in = GroundInput::first_order_hold(ax_prev_, ay_prev_, ax, ay, dt);
@@ -402,7 +402,6 @@ const StepReport& RockingModel::commit_rocking_sample(double ax, double ay, doub
   omega_ = omega;
   dopri5_.restore(h_next, k1_theta, k1_omega);
   report_.integrator_steps = integrator_steps;
-  report_.peak_ratio = peak_ratio;
   if (max_ratio > outcome_.max_rotation_ratio) {
     outcome_.max_rotation_ratio = max_ratio;
     outcome_.max_rotation_side = side_;
@@ -414,10 +413,9 @@ const StepReport& RockingModel::commit_rocking_sample(double ax, double ay, doub
 void RockingModel::apply_rocking_samples(double t, double ax, double ay, double dt, long n, double theta,
                                          double omega, double h_next, double k1_theta, double k1_omega,
                                          long integrator_steps, int last_integrator_steps,
-                                         double max_ratio, double last_peak_ratio) {
+                                         double max_ratio) {
   report_ = StepReport{};
   report_.integrator_steps = last_integrator_steps;
-  report_.peak_ratio = last_peak_ratio;
   sample_dt_ = dt;
   theta_ = theta;
   omega_ = omega;

@@ -391,7 +391,7 @@ void MonitorBatch::sync_planes(std::size_t k, unsigned planes) {
       const std::size_t r = kPlaneCount * k + static_cast<std::size_t>(p);
       pm.adaptive_->apply_rocking_samples(pl.t, pl.ax_prev, pl.ay_prev, pl.dt, pl.deferred, l.theta[r], l.omega[r],
                                           l.h[r], l.k1a[r], l.k1b[r], l.pending_steps[r], l.last_steps[r],
-                                          l.pending_max[r], l.last_peak[r]);
+                                          l.pending_max[r]);
       l.pending_steps[r] = 0;
       l.pending_max[r] = 0.0;
     } else if (pm.adaptive_) pm.adaptive_->apply_rest_samples(pl.t, pl.ax_prev, pl.ay_prev, pl.dt, pl.deferred);

@@ -4,19 +4,6 @@
 
 namespace rocking_monitor::core {
 
-/// One dopri5 step's continuous interpolant (Hairer's dense output), built from the step's stages:
-/// what Dopri5Stepper keeps for event location, and what the batch kernel builds for a lane whose
-/// step must be looked inside (a turning point), with the same arithmetic.
-struct Dopri5Dense {
-  double t0 = 0.0, t1 = 0.0;
-  double rcont[5][2] = {};
-  /// y0: the state at t0, y5: the 5th-order solution at t1, k[1..7]: the stages (k[7] = f(t1, y5)),
-  /// h: the step size taken (t1 - t0 up to the rounding of an end placed exactly).
-  void set(double t_start, double t_end, double h, const double (&y0)[2], const double (&y5)[2],
-           const double (&k)[8][2]);
-  void eval(double t, double& theta, double& omega) const;
-};
-
 /// Adaptive Dormand-Prince 5(4) for the rocking ODE (theta, omega), with Hairer's 4th-order
 /// dense output (Hairer, Norsett & Wanner, "Solving ODEs I", DOPRI5) used for event location.
 /// Error per step is measured against atol_theta + tol*|theta| and atol_omega + tol*|omega|.
@@ -42,8 +29,8 @@ class Dopri5Stepper {
                    double& theta_out, double& omega_out) const;
 
   void eval(double t, double& theta, double& omega) const;
-  double t0() const { return dense_.t0; }
-  double t1() const { return dense_.t1; }
+  double t0() const { return t0_; }
+  double t1() const { return t1_; }
   double theta1() const { return y1_[0]; }
   double omega1() const { return y1_[1]; }
   double step_size() const { return h_; }
@@ -78,8 +65,9 @@ class Dopri5Stepper {
   double h_ = 1e-3;
   bool fsal_valid_ = false;
   double k1_[2] = {0.0, 0.0};
+  double t0_ = 0.0, t1_ = 0.0;
   double y1_[2] = {0.0, 0.0};
-  Dopri5Dense dense_;
+  double rcont_[5][2] = {};
 };
 
 }  // namespace rocking_monitor::core

@@ -235,7 +235,7 @@ class AdaptiveModel {
   /// model's counters, clock and inputs (t, ax, ay, dt as in apply_rest_samples).
   void apply_rocking_samples(double t, double ax, double ay, double dt, long n, double theta, double omega,
                              double h_next, double k1_theta, double k1_omega, long integrator_steps,
-                             int last_integrator_steps, double max_ratio, double last_peak_ratio);
+                             int last_integrator_steps, double max_ratio);
   const AdaptiveSettings& settings() const { return settings_; }
   /// |P_x| / P_y of a sticking impact from pure rocking that makes corner `new_side` the pivot
   /// (geometry and restitution only): the impact slips in ContactModel when mu_s is below it.

@@ -125,13 +125,12 @@ class BatchRocking {
     // mu_clear R_y, and the sample end is clear only with R_y above ry_min (m/s^2), both with margins.
     std::vector<double> mu_clear, ry_min;
     // Kernel results of this sample (the state above is left as it was at the sample start).
-    // peak_out: the largest s*theta/alpha at a turning point inside the sample (0: none).
-    std::vector<double> theta_out, omega_out, h_out, k1a_out, k1b_out, max_ratio, steps, peak_out;
+    std::vector<double> theta_out, omega_out, h_out, k1a_out, k1b_out, max_ratio, steps;
     std::vector<std::uint8_t> clean, end_clear;
     // Clean samples not yet applied to the model: count, step counts, largest |theta|/alpha.
     std::vector<long> rocking_deferred, pending_steps;
     std::vector<int> last_steps;
-    std::vector<double> pending_max, last_dt, last_peak;  // last_peak: the last kept sample's peak_out
+    std::vector<double> pending_max, last_dt;
     // The vr lanes of this sample (the kernel's work list), padded with copies of the last.
     std::vector<std::uint32_t> idx;
 
@@ -151,7 +150,6 @@ class BatchRocking {
       pending_steps[k] += n;
       last_steps[k] = n;
       pending_max[k] = std::max(pending_max[k], max_ratio[k]);
-      last_peak[k] = peak_out[k];
       ax_prev[k] = x1;
       ay_prev[k] = y1;
     }
@@ -194,13 +192,6 @@ void rocking_sample(BatchRocking::Lanes& l, std::size_t m, double dt, double tol
 /// The same for the lanes idx[0..m) (a caller's own work list; disjoint lists may run on different threads).
 void rocking_sample(BatchRocking::Lanes& l, const std::uint32_t* idx, std::size_t m, double dt, double tol,
                     bool exact_trig);
-/// A kernel lane's accepted step over [t0, t1] in which omega changes sign, scanned on its dense output
-/// as RockingModel::handle_step scans it (same code: same bits). True when the step changes nothing
-/// but the peak: then peak = max(peak, s*theta/alpha at the turning point) for a peak (a trough that
-/// stays off the ground changes nothing). False when the scalar model must take the sample: the
-/// trough touches the ground (an impact) or the peak is a first passage beyond alpha (!beyond).
-bool turning_step(const Dopri5Dense& dense, double side, double alpha, double overturn, bool beyond,
-                  double theta0, double omega0, double theta1, double omega1, double dt, double& peak);
 const char* target_name();
 /// sin and cos of n values (n a multiple of 16) the way the dopri5 kernel evaluates them
 /// (benchmarks: the cost of the trigonometry per stage).

@@ -131,27 +131,25 @@ class RockingModel {
   void apply_rest_samples(double t, double ax, double ay, long n);
 
   /// A sample in which a ROCKING body took dopri5 steps elsewhere, with the same arithmetic as
-  /// step(), and nothing happened (no impact, overturn or first passage beyond alpha; turning points
-  /// scanned as step() scans them): sets theta, omega, the controller's next step size and FSAL
-  /// derivative, the step count, the largest |theta|/alpha at step ends and peaks, and the report's
-  /// peak_ratio (0: no peak), then finishes the sample as step() does.
+  /// step(), and nothing happened (no impact, overturn, turning point, first passage beyond
+  /// alpha): sets theta, omega, the controller's next step size and FSAL derivative, the step
+  /// count and the largest |theta|/alpha at step ends, then finishes the sample as step() does.
   /// end_clear: the caller has shown that at the sample end no criterion is violated (ground
   /// reaction > 0, sliding not checked) and the body is not committed (or already was): the
   /// criteria and the committed test, whose outcome is then known (nothing), are not evaluated.
   const StepReport& commit_rocking_sample(double ax, double ay, double dt, double theta,
                                           double omega, double h_next, double k1_theta,
                                           double k1_omega, int integrator_steps,
-                                          double max_ratio, double peak_ratio, bool end_clear = false);
+                                          double max_ratio, bool end_clear = false);
 
   /// n such samples (each one end_clear) that BatchRocking kept in its lanes, applied at once: the
   /// state after the last (theta, omega, controller), the time (the caller's sum t_ + dt + dt...,
-  /// the same additions as step()), the last inputs, the step counts (total and the last sample's),
-  /// the largest |theta|/alpha over them and the last sample's peak_ratio. Leaves the model exactly as n calls of
+  /// the same additions as step()), the last inputs, the step counts (total and the last sample's)
+  /// and the largest |theta|/alpha over them. Leaves the model exactly as n calls of
   /// commit_rocking_sample(..., end_clear = true) would. No allocation.
   void apply_rocking_samples(double t, double ax, double ay, double dt, long n, double theta,
                              double omega, double h_next, double k1_theta, double k1_omega,
-                             long integrator_steps, int last_integrator_steps, double max_ratio,
-                             double last_peak_ratio);
+                             long integrator_steps, int last_integrator_steps, double max_ratio);
 
  private:
   void finish_sample(const GroundInput& in, double ax, double ay, double dt, bool end_clear = false);
