@@ -519,7 +519,9 @@ const AdaptiveReport& AdaptiveModel::step(double ax, double ay, double dt) {
     const ContactMode m = contact_.mode();
     if (m == ContactMode::Rest || m == ContactMode::Rock) hold_ += dt;
     else hold_ = 0.0;
-    if (hold_ >= settings_.hold_time_s && m != ContactMode::Overturned)
+    // Only from REST or ROCK: with hold_time_s = 0 the timer test alone also passed in SLIDE-ROCK or
+    // FLIGHT, and the rocking model restarted upright from a body about to fall.
+    if ((m == ContactMode::Rest || m == ContactMode::Rock) && hold_ >= settings_.hold_time_s)
       switch_down(m == ContactMode::Rest ? SwitchReason::RestHeld : SwitchReason::RockHeld, ax, ay);
   }
   if (settings_.fidelity == Fidelity::Adaptive && !report_.switched) maybe_enter_linearized(ax, ay);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "rocking_monitor/model/adaptive_model.hpp"
+#include "rocking_monitor/motion/record_reader.hpp"
 #include "rocking_monitor/motion/synthetic_motion.hpp"
 #include "test_helpers.hpp"
 
@@ -350,6 +351,30 @@ TEST(AdaptiveModel, BoundedWorkOneRockingPlusOneContactSampleAndNoRevisedAlarm) 
   AdaptiveSettings bad;
   bad.friction_safety = 0.0;
   EXPECT_THROW(AdaptiveModel(box(0.3, 0.6, 0.5, 0.5), bad), std::invalid_argument);
+}
+
+// The hand-back to the rocking model happens only from the contact model at REST or in pure ROCK, also
+// with hold_time_s = 0: there the hold test alone once passed in SLIDE-ROCK, and a body 1.27 rad over
+// (about to fall) restarted upright at rest. A 0.194 x 0.456 m box (mu_s 0.68, nu1 0.49) under Kobe
+// Takatori 090 slides and rocks over: the contact model alone overturns it, and so must the adaptive
+// model whatever the hold time (with 0 it came back to rest).
+TEST(AdaptiveModel, HandsBackOnlyFromRestOrRockEvenWithoutAHoldTime) {
+  const rm::Component c = rm::read_record(std::string(ROCKING_RECORDS_DIR) + "/kobe_1995/RSN1120_KOBE_TAK090.AT2").front();
+  Input in{"Takatori 090"};
+  in.dt = c.dt;
+  in.ax = c.accel;
+  const rm::BodyParameters body = box(0.194, 0.228, 0.49, 0.68);
+  const RunResult contact = run(body, Fidelity::Contact, in);
+  ASSERT_TRUE(contact.o.overturned);
+  for (const double hold : {0.1, 0.02, 0.0}) {
+    AdaptiveSettings s;
+    s.hold_time_s = hold;
+    const RunResult a = run(body, Fidelity::Adaptive, in, s);
+    EXPECT_TRUE(a.o.overturned) << "hold " << hold << " s";
+    // No down switch moves the body: theta right after one is within a sample's motion of before.
+    for (std::size_t k = 1; k < a.theta.size(); ++k)
+      EXPECT_LT(std::abs(a.theta[k] - a.theta[k - 1]), 0.5) << "hold " << hold << " s, sample " << k;
+  }
 }
 
 TEST(AdaptiveModel, CostsLessThanAlwaysContactOnAMostlyQuietInput) {
