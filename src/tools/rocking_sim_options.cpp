@@ -118,6 +118,11 @@ void add_options(CLI::App& app, CommandLine& c) {
                  "RK4 sub-steps per input sample of the contact model (--fidelity contact|adaptive)")
       ->default_val(opt.contact.substeps)
       ->check(CLI::Range(1, 100000));
+  app.add_option("--hold-time", opt.hold_time_s,
+                 "--fidelity adaptive: back to the rocking model after the contact model has been at rest or "
+                 "in pure rocking (sticking pivot) this long, s")
+      ->default_val(opt.hold_time_s)
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--linearized-max-alpha", opt.linearized_max_alpha,
                  "--fidelity adaptive: items with both tipping angles <= this (rad) rock on the linearized "
                  "closed form while |theta|/alpha < 0.5 (0 = off; docs/fidelity.md)")

@@ -27,6 +27,7 @@ struct RunOptions {
   rm::Fidelity fidelity = rm::Fidelity::Adaptive;
   std::string scene_text;
   rm::ContactSettings contact;
+  double hold_time_s = rm::AdaptiveSettings{}.hold_time_s;
   double linearized_max_alpha = 0.0;
   double scale = 1.0;
 };

@@ -149,6 +149,7 @@ PlaneRun run_plane(const RunOptions& opt, const rm::BodyParameters& params,
     as.rocking = settings;
     as.scene = parse_scene(opt.scene_text, motion);  // "auto": this plane's own record
     as.contact = opt.contact;
+    as.hold_time_s = opt.hold_time_s;
     as.linearized_max_alpha = opt.linearized_max_alpha;
     const FidelityRun f = run_fidelity(rigid, as, motion, history_path);
     const rm::AdaptiveOutcome& o = f.outcome;
