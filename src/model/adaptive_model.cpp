@@ -516,13 +516,14 @@ const AdaptiveReport& AdaptiveModel::step(double ax, double ay, double dt) {
   ay_prev_ = ay;
   if (settings_.fidelity == Fidelity::Adaptive && active_ == ActiveModel::Contact &&
       !report_.switched) {
+    // Back only from REST or ROCK, whatever the hold time (a zero hold must not hand back a body in
+    // SLIDE-ROCK or FLIGHT: it would restart upright at rest).
     const ContactMode m = contact_.mode();
-    if (m == ContactMode::Rest || m == ContactMode::Rock) hold_ += dt;
-    else hold_ = 0.0;
-    // Only from REST or ROCK: with hold_time_s = 0 the timer test alone also passed in SLIDE-ROCK or
-    // FLIGHT, and the rocking model restarted upright from a body about to fall.
-    if ((m == ContactMode::Rest || m == ContactMode::Rock) && hold_ >= settings_.hold_time_s)
+    if (m != ContactMode::Rest && m != ContactMode::Rock) {
+      hold_ = 0.0;
+    } else if ((hold_ += dt) >= settings_.hold_time_s) {
       switch_down(m == ContactMode::Rest ? SwitchReason::RestHeld : SwitchReason::RockHeld, ax, ay);
+    }
   }
   if (settings_.fidelity == Fidelity::Adaptive && !report_.switched) maybe_enter_linearized(ax, ay);
   report_.model = active_;
