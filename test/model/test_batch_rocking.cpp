@@ -500,13 +500,9 @@ std::vector<Input> property_inputs() {
   return out;
 }
 
-// The property test: 10,000 random bodies x 3 inputs (about 40 s in Release). Under
-// AddressSanitizer (scripts/run_sanitizers.sh, ~5x slower) 2,000 of the same bodies.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr int kPropertyBodies = 2000;
-#else
-constexpr int kPropertyBodies = 10000;
-#endif
+// The property test: 10,000 random bodies x 3 inputs (about 20 s in Release); under the
+// sanitizers 2,000 of the same bodies.
+constexpr int kPropertyBodies = testing::kUnderSanitizers ? 2000 : 10000;
 
 TEST(BatchRocking, RandomBodiesTimesThreeInputsSameDecisions) {
   const std::vector<BodyParameters> bodies = random_bodies(kPropertyBodies, 2024);
@@ -612,11 +608,7 @@ Judged judge_run(const BodyParameters& body, const SolverSettings& s, const Inpu
 // run's is judged against a converged reference (dopri5 1e-12 and rk4 x16, both on the input 8x
 // finer, agreeing): it fails when the scalar run is right and the fast lane is not. Cases where
 // the two references disagree are chaotic (counted, printed, not judged).
-#if defined(__SANITIZE_ADDRESS__)
-constexpr int kPolicyBodies = 400;  // ~20x slower under the sanitizers: the first 400 of the same bodies
-#else
-constexpr int kPolicyBodies = 2000;
-#endif
+constexpr int kPolicyBodies = testing::kUnderSanitizers ? 400 : 2000;  // the first 400 of the same bodies
 
 TEST(BatchRocking, FastTrigMeetsTheAccuracyPolicy) {
   const std::vector<BodyParameters> bodies = random_bodies(kPolicyBodies, 2024);

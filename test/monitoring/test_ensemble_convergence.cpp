@@ -16,6 +16,7 @@
 #include "rocking_monitor/monitoring/item_ensemble.hpp"
 #include "rocking_monitor/monitoring/uncertain_item.hpp"
 #include "rocking_monitor/motion/record_reader.hpp"
+#include "test_helpers.hpp"
 
 namespace rocking_monitor::core {
 namespace {
@@ -64,13 +65,9 @@ TEST(EnsembleConvergence, SmallEnsemblesCoverTheTenThousandMemberReference) {
   std::vector<Component> motions;
   for (const std::string& r : records) motions.push_back(read_record(dir + "/" + r).front());
   constexpr std::array<int, 3> kSizes{32, 128, 512};
-#if defined(__SANITIZE_ADDRESS__)
-  // ~20x slower under the sanitizers (scripts/run_sanitizers.sh): a 2,500-member reference (its
-  // own sampling error, <= 0.01, stays well inside the 512-member interval, +-0.043 at P = 0.5).
-  constexpr int kReference = 2500;
-#else
-  constexpr int kReference = 10000;
-#endif
+  // Under the sanitizers a 2,500-member reference (its own sampling error, <= 0.01, stays well
+  // inside the 512-member interval, +-0.043 at P = 0.5).
+  constexpr int kReference = testing::kUnderSanitizers ? 2500 : 10000;
   const std::size_t cases = records.size() * bodies.size();
   ASSERT_EQ(cases, 20u);
   // Per case: the reference counts and each small ensemble's counts.

@@ -16,6 +16,14 @@
 
 namespace rocking_monitor::core::testing {
 
+/// Built with AddressSanitizer (scripts/run_sanitizers.sh, 5-20x slower): the heaviest statistical
+/// tests take fewer cases there, with the same assertions; the Release ctest runs them in full.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kUnderSanitizers = true;
+#else
+inline constexpr bool kUnderSanitizers = false;
+#endif
+
 /// Homogeneous symmetric rectangle with given p (rad/s) and alpha (rad): for a rectangle
 /// I_O = (4/3) m R^2, so p^2 = 3 g / (4 R).
 inline BodyParameters rectangle_with(double p, double alpha) {
