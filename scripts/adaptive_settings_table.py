@@ -11,7 +11,7 @@ a case is converged when the two decide alike. Each variant of the node's defaul
 (docs/performance.md). Prints a Markdown table, and on stderr each case a variant gets wrong where the
 default is right: a faster default must have none (docs/performance.md, "Session 15").
 
-usage: scripts/contact_substeps_table.py --sim build/devel/lib/rocking_monitor/rocking_sim
+usage: scripts/adaptive_settings_table.py --sim build/devel/lib/rocking_monitor/rocking_sim
                                          [--records ../shared/records] [--items 300]
                                          [--substeps 4,8,12,16,32] [--hold-times 0.05,0.02,0]
                                          [--reference 256] [--check 64]
@@ -58,7 +58,7 @@ def main():
     for x, y in RECORDS.values():
         for f in (x, y):
             if not os.path.isfile(os.path.join(a.records, f)):
-                sys.exit("contact_substeps_table: record not found: " + os.path.join(a.records, f))
+                sys.exit("adaptive_settings_table: record not found: " + os.path.join(a.records, f))
     with tempfile.TemporaryDirectory() as tmp:
         catalogue = os.path.join(tmp, "catalogue.yaml")
         subprocess.run([sys.executable, os.path.join(here, "make_catalogue.py"), str(a.items), catalogue],
@@ -72,7 +72,7 @@ def main():
                                   "--record", os.path.join(a.records, x), "--record-y", os.path.join(a.records, y),
                                   "--json"] + variants[label], capture_output=True, text=True)
             if out.returncode != 0:
-                sys.exit("contact_substeps_table: %s %s %s: %s" % (item, record, label, out.stderr.strip()[-300:]))
+                sys.exit("adaptive_settings_table: %s %s %s: %s" % (item, record, label, out.stderr.strip()[-300:]))
             j = json.loads(out.stdout)
             it = j["item"]
             decision = (it["beyond_tipping"], it["committed"], it["overturned"],
