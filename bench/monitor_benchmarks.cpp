@@ -9,7 +9,9 @@
 // seed 1: random geometry, mu_s and yaw), or ROCKING_BENCH_CATALOGUE=FILE. The input is Kobe 1995
 // Takatori (both horizontals, 100 Hz, 41 s; no vertical record: zero, as in the bag) from ROCKING_RECORDS_DIR, rotated into each
 // item's frame by its yaw as tf2 does in the node. ROCKING_BENCH_SAMPLES=N: the batch benchmark on the
-// first N samples only (the strongest shaking: N = 600).
+// first N samples only (the strongest shaking: N = 600). ROCKING_BENCH_SOLID=3d|planar|auto: which model
+// decides items with a 3-D description (a catalogue from make_catalogue.py --solid; default auto, as
+// the node's solid_model).
 //
 // Counters: ms_per_sample (thread CPU time per input sample, all items), ns_per_item_sample,
 // allocs_per_sample (must be 0); the batch also deferred_frac (share of item-samples deferred).
@@ -85,6 +87,8 @@ Feed load_takatori(const std::string& dir) {
 ItemMonitor::Options options() {
   ItemMonitor::Options o;  // the node's defaults: adaptive, dopri5 tol 1e-8
   o.fidelity = Fidelity::Adaptive;
+  if (const char* env = std::getenv("ROCKING_BENCH_SOLID"); env != nullptr && !parse_solid_choice(env, o.solid))
+    throw std::runtime_error(std::string("monitor_benchmarks: ROCKING_BENCH_SOLID must be 3d, planar or auto, not '") + env + "'");
   return o;
 }
 
@@ -307,7 +311,9 @@ int main(int argc, char** argv) {
     g_case->cos_yaw.push_back(std::cos(it.pose.yaw));
     g_case->sin_yaw.push_back(std::sin(it.pose.yaw));
   }
-  const std::string tag = "monitor/takatori/" + std::to_string(g_case->items.size()) + "_two_plane/adaptive";
+  const char* solid = std::getenv("ROCKING_BENCH_SOLID");
+  const std::string tag = "monitor/takatori/" + std::to_string(g_case->items.size()) + "_two_plane/adaptive" +
+                          (solid != nullptr ? std::string("/solid:") + solid : std::string());
   benchmark::RegisterBenchmark((tag + "/item_monitors").c_str(), BM_ItemMonitors)->Unit(benchmark::kMillisecond)->Iterations(1);
   benchmark::RegisterBenchmark((tag + "/batch").c_str(), BM_MonitorBatch)->Unit(benchmark::kMillisecond)->Iterations(1);
   const int cores = static_cast<int>(std::thread::hardware_concurrency());

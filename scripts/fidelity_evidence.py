@@ -8,6 +8,11 @@ and the measured tables between the markers in docs/fidelity.md.
 
 usage: scripts/fidelity_evidence.py --sim build-adapt/devel/lib/rocking_monitor/rocking_sim
                                     [--records ../shared/records] [--repeat 3]
+                                    [--adaptive-args "--hold-time 0.02"] [--out-dir /tmp/hold_0.02]
+
+--adaptive-args: extra rocking_sim options of every adaptive run (a setting other than the default);
+--out-dir: where the CSV and PNG go (default docs/fidelity); docs/fidelity.md is rewritten only with
+the default, otherwise the tables are printed.
 """
 import argparse
 import csv
@@ -81,8 +86,12 @@ def main():
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="parallel runs in the sweep")
     ap.add_argument("--sweep-scales", default="0.5,1.0",
                     help="agreement sweep: every .AT2 under --records at these scales ('' = skip)")
+    ap.add_argument("--adaptive-args", default="", help="extra rocking_sim options of the adaptive runs")
+    ap.add_argument("--out-dir", default=os.path.join(ROOT, "docs", "fidelity"))
     args = ap.parse_args()
-    out_dir = os.path.join(ROOT, "docs", "fidelity")
+    out_dir = args.out_dir
+    to_docs = os.path.abspath(out_dir) == os.path.join(ROOT, "docs", "fidelity")
+    adaptive_extra = args.adaptive_args.split()
     os.makedirs(out_dir, exist_ok=True)
     tmp = tempfile.mkdtemp()
     noise = os.path.join(tmp, "quiet_noise.csv")
@@ -101,7 +110,8 @@ def main():
     rows, agree = [], []
     for level, name, record, scale in scenes:
         for item, item_args in CATALOGUE:
-            res = {f: run(args.sim, record, scale, item_args, f, args.repeat) for f in FIDELITIES}
+            res = {f: run(args.sim, record, scale, item_args, f, args.repeat,
+                          adaptive_extra if f == "adaptive" else ()) for f in FIDELITIES}
             n = res["rocking"]["samples"]
             for f in FIDELITIES:
                 r = res[f]
@@ -169,7 +179,7 @@ def main():
         def one(job):
             rec, sc, item, item_args = job
             try:
-                a = run(args.sim, rec, sc, item_args, "adaptive", 1)
+                a = run(args.sim, rec, sc, item_args, "adaptive", 1, adaptive_extra)
                 c = run(args.sim, rec, sc, item_args, "contact", 1)
             except subprocess.CalledProcessError:
                 return None  # unreadable record (rocking_sim reports it)
@@ -196,13 +206,13 @@ def main():
             w.writerows(sweep)
         bad = [x for x in sweep if not x["agree"]]
         lines += ["", "Sweep: %d historical records x scales %s x 6 items = %d runs: adaptive alarms == contact alarms in %d "
-                  "(%d with beyond tipping, %d overturned, %d with at least one switch, %d where the record's own envelope "
+                  "(%d with beyond tipping, %d overturned, %d with at least one switch, %d switches in all, %d where the record's own envelope "
                   "rules the contact model out); max alarm time difference %.3g s; "
                   "integrator steps adaptive / contact = %.3f; CPU adaptive / contact = %.3f "
                   "(docs/fidelity/agreement_sweep.csv)." % (
                       len({x["record"] for x in sweep}), ",".join("x%g" % s for s in scales), len(sweep),
                       len(sweep) - len(bad), sum(x["beyond_tipping"] for x in sweep),
-                      sum(x["overturned"] for x in sweep), sum(x["switches"] > 0 for x in sweep),
+                      sum(x["overturned"] for x in sweep), sum(x["switches"] > 0 for x in sweep), sum(x["switches"] for x in sweep),
                       sum(x["ruled_out"] for x in sweep),
                       max([x["max_time_diff_s"] for x in sweep if x["agree"]] + [0.0]),
                       sum(x["adaptive_steps"] for x in sweep) / max(1, sum(x["contact_steps"] for x in sweep)),
@@ -212,11 +222,12 @@ def main():
                          "sub-steps per sample %s itself)" % (
                              x["record"], x["scale"], x["item"], x["max_time_diff_s"],
                              "agrees with" if x["contact_self_agree_x4_substeps"] else "**differs from**"))
-    md = os.path.join(ROOT, "docs", "fidelity.md")
-    text = open(md).read()
-    b, e = "<!-- measured:begin -->", "<!-- measured:end -->"
-    text = text[:text.index(b) + len(b)] + "\n" + "\n".join(lines) + "\n" + text[text.index(e):]
-    open(md, "w").write(text)
+    if to_docs:
+        md = os.path.join(ROOT, "docs", "fidelity.md")
+        text = open(md).read()
+        b, e = "<!-- measured:begin -->", "<!-- measured:end -->"
+        text = text[:text.index(b) + len(b)] + "\n" + "\n".join(lines) + "\n" + text[text.index(e):]
+        open(md, "w").write(text)
 
     import matplotlib
     matplotlib.use("Agg")
