@@ -14,7 +14,6 @@ default is right: a faster default must have none (docs/performance.md, "Session
 usage: scripts/adaptive_settings_table.py --sim build/devel/lib/rocking_monitor/rocking_sim
                                          [--records ../shared/records] [--items 300]
                                          [--substeps 4,8,12,16,32] [--hold-times 0.05,0.02,0]
-                                         [--dopri5 1e-8/1,1e-8/4]
                                          [--reference 256] [--check 64]
 """
 import argparse
@@ -44,9 +43,6 @@ def main():
     p.add_argument("--items", type=int, default=300)
     p.add_argument("--substeps", default="4,8,12,16,32", help="adaptive, hold 0.1 s, these sub-steps")
     p.add_argument("--hold-times", default="", help="adaptive, 16 sub-steps, these hold times (s)")
-    p.add_argument("--dopri5", default="",
-                   help="adaptive, hold 0.1 s, the contact model on dopri5: TOL/STEPS,... (tolerance, steps of at most "
-                        "1/STEPS of a sample), e.g. 1e-8/1,1e-8/4")
     p.add_argument("--reference", type=int, default=256)
     p.add_argument("--check", type=int, default=64)
     p.add_argument("--jobs", type=int, default=os.cpu_count() or 2)
@@ -56,10 +52,6 @@ def main():
     for n in sorted({int(s) for s in a.substeps.split(",") if s} | {16}):
         label = DEFAULT if n == 16 else "adaptive, %d sub-steps, hold 0.1 s" % n
         variants[label] = ["--fidelity", "adaptive", "--contact-substeps", str(n)]
-    for v in [s for s in a.dopri5.split(",") if s]:
-        tol, steps = v.split("/")
-        variants["adaptive, dopri5 tol %s, steps <= dt/%s, hold 0.1 s" % (tol, steps)] = [
-            "--fidelity", "adaptive", "--contact-tol", tol, "--contact-substeps", steps]
     for h in sorted({float(s) for s in a.hold_times.split(",") if s}, reverse=True):
         if h != 0.1:
             variants["adaptive, 16 sub-steps, hold %g s" % h] = ["--fidelity", "adaptive", "--hold-time", repr(h)]

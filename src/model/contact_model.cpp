@@ -8,7 +8,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "rocking_monitor/integrate/dopri5_vector.hpp"
 #include "rocking_monitor/integrate/event_location.hpp"
 
 namespace rocking_monitor::core {
@@ -32,8 +31,6 @@ ContactModel::ContactModel(const Body& body, const ContactSettings& settings)
     : body_(body), settings_(settings) {
   if (settings_.substeps < 1 || settings_.substeps > 100000)
     throw std::invalid_argument("ContactSettings::substeps must be in [1, 100000]");
-  if (!(settings_.tol >= 0.0 && settings_.tol <= 1e-2))
-    throw std::invalid_argument("ContactSettings::tol must be 0 (RK4) or in (0, 1e-2] (dopri5)");
   if (settings_.max_events_per_sample < 1)
     throw std::invalid_argument("ContactSettings::max_events_per_sample must be >= 1");
   if (!(settings_.rest_capture_ratio >= 0.0))
@@ -160,7 +157,6 @@ void ContactModel::rk4_from(const GroundInput& in, double tau, const State& s0, 
 }
 
 int ContactModel::advance(const GroundInput& in, double& tau, double tau_end) {
-  if (settings_.tol > 0.0) return advance_dopri5(in, tau, tau_end);
   const double h_nom = dt_ / settings_.substeps;
   const double t_tol = 1e-12 * dt_;
   // The derivative at a step's end is the next step's first stage (same time, same state), and it
@@ -222,104 +218,6 @@ int ContactModel::advance(const GroundInput& in, double& tau, double tau_end) {
       rk4_from(in, tau, x_, k1, t_best - tau, xe);
       x_ = xe;
     }
-    tau = t_best;
-    return best;
-  }
-  return kNone;
-}
-
-// advance() with Dormand-Prince 5(4): a few error-controlled steps per sample where RK4 takes
-// `substeps` fixed ones (each 4 derivatives). Events are checked at step ends as there and located on
-// the step's dense output; a turning point inside a step (omega changes sign) is located too, so the
-// peak rotation is not only sampled. The stepper lives for this call: no state besides x_ is carried.
-int ContactModel::advance_dopri5(const GroundInput& in, double& tau, double tau_end) {
-  using Vec = Dopri5Vector<6>::State;
-  const double h_max = dt_ / settings_.substeps;
-  const double t_tol = 1e-12 * dt_;
-  const Pivot& p1 = body_.pivot(1);
-  const Pivot& p2 = body_.pivot(-1);
-  const double r = std::max(p1.radius, p2.radius), p = std::max(p1.p, p2.p), alpha = std::min(p1.alpha, p2.alpha);
-  const double tol = settings_.tol;
-  Vec atol;
-  atol << tol * r, tol * p * r, tol * alpha, tol * p * alpha, tol * r, tol * p * r;
-  auto f = [&](double t, const Vec& y, Vec& dy) {
-    State s, d;
-    for (int i = 0; i < 6; ++i) s[i] = y(i);
-    derivative(in, t, s, d);
-    for (int i = 0; i < 6; ++i) dy(i) = d[i];
-  };
-  auto at = [](const Vec& y) {
-    State s;
-    for (int i = 0; i < 6; ++i) s[i] = y(i);
-    return s;
-  };
-  Dopri5Vector<6> dp;
-  dp.reset(h_max);
-  Support support0;  // at (tau, x_)
-  {
-    State d0;
-    derivative(in, tau, x_, d0, &support0);
-  }
-  while (tau < tau_end) {
-    const double t_stop = tau_end - tau <= h_max * (1.0 + 1e-9) ? tau_end : tau + h_max;
-    Vec y0;
-    for (int i = 0; i < 6; ++i) y0(i) = x_[i];
-    report_.integrator_steps += dp.step(f, tau, y0, t_stop, tol, atol);
-    const double t1 = dp.t1();
-    const State x1 = at(dp.y1());
-    State d1;
-    Support support;
-    derivative(in, t1, x1, d1, &support);
-    double f1[kCount], f0[kCount];
-    event_values(~0u, in, t1, x1, f1, support);
-    unsigned crossed = 0;
-    for (int ev = 0; ev < kCount; ++ev)
-      if (f1[ev] > 0.0) crossed |= 1u << ev;
-    if (crossed) event_values(crossed, in, tau, x_, f0, support0);
-    int best = kNone;
-    double t_best = t1;
-    for (int ev = 0; ev < kCount; ++ev) {
-      if (!((crossed >> ev) & 1u)) continue;
-      double te = tau;
-      if (!(f0[ev] > 0.0)) {
-        te = bracketed_root(
-            [&](double t) {
-              const State y = at(dp.eval(t));
-              State d;
-              Support sup;
-              derivative(in, t, y, d, &sup);
-              double fe[kCount];
-              event_values(1u << ev, in, t, y, fe, sup);
-              return fe[ev];
-            },
-            tau, t1, f0[ev], f1[ev], t_tol);
-      }
-      if (best == kNone || te < t_best) {
-        best = ev;
-        t_best = te;
-      }
-    }
-    const double t_end_step = best == kNone ? t1 : t_best;
-    if (mode_ == ContactMode::Rock || mode_ == ContactMode::SlideRock || mode_ == ContactMode::Flight) {
-      // A turning point inside the step: its |theta| for the peak ratio.
-      const double w0 = x_[3], w1 = best == kNone ? x1[3] : dp.eval(t_end_step)(3);
-      if ((w0 > 0.0 && w1 < 0.0) || (w0 < 0.0 && w1 > 0.0)) {
-        const double tt = bracketed_root([&](double t) { return dp.eval(t)(3); }, tau, t_end_step, w0, w1, t_tol);
-        const double th = dp.eval(tt)(2);
-        outcome_.max_rotation_ratio =
-            std::max(outcome_.max_rotation_ratio, std::abs(th) / body_.pivot(th < 0.0 ? -1 : 1).alpha);
-      }
-    }
-    if (best == kNone) {
-      x_ = x1;
-      tau = t1;
-      support0 = support;
-      const int s = x_[2] < 0.0 ? -1 : 1;
-      outcome_.max_rotation_ratio =
-          std::max(outcome_.max_rotation_ratio, std::abs(x_[2]) / body_.pivot(s).alpha);
-      continue;
-    }
-    if (t_best > tau) x_ = at(dp.eval(t_best));
     tau = t_best;
     return best;
   }

@@ -118,11 +118,6 @@ void add_options(CLI::App& app, CommandLine& c) {
                  "RK4 sub-steps per input sample of the contact model (--fidelity contact|adaptive)")
       ->default_val(opt.contact.substeps)
       ->check(CLI::Range(1, 100000));
-  app.add_option("--contact-tol", opt.contact.tol,
-                 "contact model integrator: 0 = classical RK4 with --contact-substeps per sample; > 0 = dopri5 "
-                 "at this tolerance, steps of at most 1/--contact-substeps of a sample")
-      ->default_val(opt.contact.tol)
-      ->check(CLI::Range(0.0, 1e-2));
   app.add_option("--hold-time", opt.hold_time_s,
                  "--fidelity adaptive: back to the rocking model after the contact model has been at rest or "
                  "in pure rocking (sticking pivot) this long, s")

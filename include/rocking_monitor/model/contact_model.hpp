@@ -23,12 +23,7 @@ const char* to_string(ContactMode mode);
 
 struct ContactSettings {
   /// Classical RK4 sub-steps per input sample (events located on the re-stepped RK4 solution).
-  /// With tol > 0: the most steps dopri5 takes at once is dt / substeps (events are checked at step ends).
   int substeps = 16;
-  /// 0: classical RK4 as above. > 0: Dormand-Prince 5(4) at this relative tolerance (absolute: tol
-  /// times the body's R, p R, alpha, p alpha), events located on its dense output; nothing carried
-  /// from one sample to the next but the state.
-  double tol = 0.0;
   /// Rest capture after an impact, as in SolverSettings: |omega'| < ratio * p * alpha -> flat.
   double rest_capture_ratio = 1e-3;
   /// Bound on mode transitions in one input sample; beyond it the body is put at REST (forced).
@@ -48,7 +43,7 @@ struct ContactReport {
   int transitions = 0;          ///< mode changes (events) in this sample
   bool overturned = false;      ///< reached the overturn angle during this sample
   bool forced_rest = false;     ///< the per-sample event bound was hit
-  int integrator_steps = 0;     ///< RK4 sub-steps or dopri5 step attempts (cost)
+  int integrator_steps = 0;     ///< RK4 sub-steps (cost)
 };
 
 /// Totals since reset().
@@ -56,7 +51,7 @@ struct ContactOutcome {
   long slip_episodes = 0, impacts = 0, flight_episodes = 0, forced_rests = 0, samples = 0;
   bool overturned = false;
   double max_abs_slip = 0.0;      ///< m
-  double max_rotation_ratio = 0.0;  ///< max |theta| / alpha(side), sampled at sub-steps (dopri5: step ends and turning points)
+  double max_rotation_ratio = 0.0;  ///< max |theta| / alpha(side), sampled at sub-steps
   double first_slip_time = std::numeric_limits<double>::quiet_NaN();
   double first_uplift_time = std::numeric_limits<double>::quiet_NaN();
   double first_flight_time = std::numeric_limits<double>::quiet_NaN();
@@ -149,7 +144,6 @@ class ContactModel {
                         int& up_side) const;
   void leave_rest(const GroundInput& in, double tau, unsigned fired, int up_side);
   int advance(const GroundInput& in, double& tau, double tau_end);
-  int advance_dopri5(const GroundInput& in, double& tau, double tau_end);
   void handle_event(int ev, const GroundInput& in, double tau);
   void impact(int corner, const GroundInput& in, double tau, bool from_flight);
   void set_mode(ContactMode m, int side, int sigma, double tau);
