@@ -84,11 +84,12 @@ Feed load_takatori(const std::string& dir) {
   return f;
 }
 
+SolidChoice g_solid = SolidChoice::Auto;  // ROCKING_BENCH_SOLID, read once in main()
+
 ItemMonitor::Options options() {
   ItemMonitor::Options o;  // the node's defaults: adaptive, dopri5 tol 1e-8
   o.fidelity = Fidelity::Adaptive;
-  if (const char* env = std::getenv("ROCKING_BENCH_SOLID"); env != nullptr && !parse_solid_choice(env, o.solid))
-    throw std::runtime_error(std::string("monitor_benchmarks: ROCKING_BENCH_SOLID must be 3d, planar or auto, not '") + env + "'");
+  o.solid = g_solid;
   return o;
 }
 
@@ -303,6 +304,11 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "monitor_benchmarks: records folder %s not found (set ROCKING_RECORDS_DIR)\n", dir.c_str());
     return 0;
   }
+  const char* solid = std::getenv("ROCKING_BENCH_SOLID");
+  if (solid != nullptr && !parse_solid_choice(solid, g_solid)) {
+    std::fprintf(stderr, "monitor_benchmarks: ROCKING_BENCH_SOLID must be 3d, planar or auto, not '%s'\n", solid);
+    return 1;
+  }
   const std::size_t n_items = std::getenv("ROCKING_BENCH_ITEMS") ? std::stoul(std::getenv("ROCKING_BENCH_ITEMS")) : 10000;
   g_case = std::make_unique<Case>();
   g_case->items = load_catalogue_items_file(catalogue_path(n_items, false));
@@ -311,7 +317,6 @@ int main(int argc, char** argv) {
     g_case->cos_yaw.push_back(std::cos(it.pose.yaw));
     g_case->sin_yaw.push_back(std::sin(it.pose.yaw));
   }
-  const char* solid = std::getenv("ROCKING_BENCH_SOLID");
   const std::string tag = "monitor/takatori/" + std::to_string(g_case->items.size()) + "_two_plane/adaptive" +
                           (solid != nullptr ? std::string("/solid:") + solid : std::string());
   benchmark::RegisterBenchmark((tag + "/item_monitors").c_str(), BM_ItemMonitors)->Unit(benchmark::kMillisecond)->Iterations(1);

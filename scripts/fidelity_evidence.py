@@ -209,14 +209,15 @@ def main():
                   "(%d with beyond tipping, %d overturned, %d with at least one switch, %d switches in all, %d where the record's own envelope "
                   "rules the contact model out); max alarm time difference %.3g s; "
                   "integrator steps adaptive / contact = %.3f; CPU adaptive / contact = %.3f "
-                  "(docs/fidelity/agreement_sweep.csv)." % (
+                  "(%s)." % (
                       len({x["record"] for x in sweep}), ",".join("x%g" % s for s in scales), len(sweep),
                       len(sweep) - len(bad), sum(x["beyond_tipping"] for x in sweep),
                       sum(x["overturned"] for x in sweep), sum(x["switches"] > 0 for x in sweep), sum(x["switches"] for x in sweep),
                       sum(x["ruled_out"] for x in sweep),
                       max([x["max_time_diff_s"] for x in sweep if x["agree"]] + [0.0]),
                       sum(x["adaptive_steps"] for x in sweep) / max(1, sum(x["contact_steps"] for x in sweep)),
-                      sum(x["adaptive_cpu_s"] for x in sweep) / max(1e-12, sum(x["contact_cpu_s"] for x in sweep)))]
+                      sum(x["adaptive_cpu_s"] for x in sweep) / max(1e-12, sum(x["contact_cpu_s"] for x in sweep)),
+                      "docs/fidelity/agreement_sweep.csv" if to_docs else os.path.join(out_dir, "agreement_sweep.csv"))]
         for x in bad:
             lines.append("* disagreement: %s x%g %s (max time diff %.3g s; always-contact with 64 instead of 16 "
                          "sub-steps per sample %s itself)" % (
