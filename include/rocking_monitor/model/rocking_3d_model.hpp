@@ -7,8 +7,8 @@
 // on one hull vertex without slip: 3 rotational degrees of freedom, the corner wobble);
 // OVERTURNED. Transitions: uplift from rest about the edge or vertex whose moment first lifts the
 // base; EDGE -> VERTEX when one end of the edge would be pulled off the floor (its reaction turns
-// negative); impacts (physics/impact_3d.hpp) when the base lands flat (EDGE, theta -> 0) or a
-// vertex touches down (VERTEX). The ground frame is non-inertial: gravity plus the ground's
+// negative); landings (physics/impact_3d.hpp: the plastic impact over every base point on the floor
+// at that instant) when the base comes back flat (EDGE, theta -> 0) or a vertex touches down (VERTEX). The ground frame is non-inertial: gravity plus the ground's
 // acceleration act at the centre of mass. Sliding and flight are not modelled (flagged only).
 //
 // Frames: the item's floor frame at rest (x, y horizontal, z up); the body keeps a footprint
@@ -46,6 +46,14 @@ struct Rocking3DOutcome {
   double max_tilt = 0.0;          ///< largest tilt of the base from the floor, rad
   /// Largest kinetic energy after / before of any impact (<= 1 by the law; tests check it).
   double max_impact_energy_ratio = 0.0;
+  /// Largest violation of the impact law's complementarity at any landing, m/s (0: every landing
+  /// had an admissible solution; > 0 only where rounding or a degenerate contact set left none).
+  double max_landing_violation = 0.0;
+  /// Largest horizontal / normal impulse of any landing: the friction coefficient the sticking
+  /// impact needs. Above the item's mu_s the real body slides at that landing (not modelled).
+  double max_friction_demand = 0.0;
+  /// See-saws on a tilted edge put onto the edge by the Zeno rule (rocking_3d_landing.cpp).
+  long edge_captures = 0;
 };
 
 class Rocking3DModel {
@@ -154,8 +162,10 @@ class Rocking3DModel {
                     const Eigen::Vector3d& omega_world);
   void enter_edge_from_pose(int edge, const Eigen::Matrix3d& rotation, const Eigen::Vector3d& pivot_world,
                             int pivot_vertex, double omega_axis);
-  void flat_impact(double tau);
-  void vertex_impact(int touching, double tau);
+  void land(int touching, double tau);
+  void capture_rest(const Eigen::Matrix3d& rotation, int vertex, const Eigen::Vector3d& point);
+  double ratio_of(const Vec7& y) const;
+  double rise_rate(const Vec7& y) const;
   void record_impact(double tau, double energy_before);
   void go_to_rest();
   void note_ratio();
@@ -179,7 +189,8 @@ class Rocking3DModel {
   double sample_dt_ = 0.0;
   bool armed_[kMaxBaseVertices] = {};
   static constexpr int kMaxLiftsPerSample = 8;
-  int lifts_ = 0;                      // EDGE -> VERTEX switches in the current sample                // VERTEX: vertex i has left the floor since the pivot began
+  int lifts_ = 0;                      // EDGE -> VERTEX switches in the current sample
+  double floor_tol_ = 0.0;             // m: a base point this close to the floor is on it
   StepReport report_;
   RockingOutcome outcome_;
   Rocking3DOutcome outcome3_;

@@ -15,7 +15,7 @@
 namespace rocking_monitor::core {
 
 /// Hull vertices a base may have (the 3-D model keeps a fixed-size per-vertex state).
-inline constexpr int kMaxBaseVertices = 64;
+inline constexpr int kMaxBaseVertices = 128;
 
 /// What the user (or scripts/rocking_geometry.py) describes. SI units, in the item's floor frame:
 /// z up, z = 0 the floor, x the item's x (its first rocking plane), y = z cross x.

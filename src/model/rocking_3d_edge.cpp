@@ -1,0 +1,237 @@
+// The 3-D model on a base edge: planar rocking about the edge, one end lifting (EDGE -> VERTEX), and
+// the uplift from rest.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+
+#include "rocking_3d_internal.hpp"
+#include "rocking_monitor/model/rocking_3d_model.hpp"
+#include "rocking_monitor/integrate/event_location.hpp"
+#include "rocking_monitor/physics/criteria.hpp"
+
+namespace rocking_monitor::core {
+
+using rocking_3d::gravity_and_inertia;
+using rocking_3d::rot_z;
+
+// ---------------------------------------------------------------- EDGE
+
+GroundInput Rocking3DModel::edge_input(const GroundInput3& in, int edge) const {
+  // The horizontal acceleration that tips the body outward over this edge is minus the ground's
+  // acceleration along the edge's outward normal (the planar convention: a_xg > 0 tips about the
+  // -x corner); the normal is turned by the footprint's yaw into the world frame.
+  const Eigen::Vector3d n = edge_normal(edge);
+  GroundInput g;
+  g.ax0 = -(in.a0.x() * n.x() + in.a0.y() * n.y());
+  g.ax_slope = -(in.slope.x() * n.x() + in.slope.y() * n.y());
+  g.ay0 = in.a0.z();
+  g.ay_slope = in.slope.z();
+  return g;
+}
+
+double Rocking3DModel::uplift_at(const GroundInput3& in, int edge, double tau) const {
+  const GroundInput g = edge_input(in, edge);
+  return uplift_function(body_.edge(edge).pivot, 1, ModelKind::Nonlinear, g.ax(tau), g.ay(tau));
+}
+
+// Reactions (per unit mass, vertical) at the two ends of the rocking edge, in the footprint frame:
+// from the moment equation about one end, the other end's force (see the note in the header).
+void Rocking3DModel::endpoint_reactions(int edge, double theta, double omega, double theta_ddot,
+                                        const Eigen::Vector3d& a_fp, double& fa, double& fb) const {
+  const BaseEdge& e = body_.edge(edge);
+  const Eigen::Matrix3d re = Eigen::AngleAxisd(theta, e.axis).toRotationMatrix();
+  const Eigen::Vector3d g = gravity_and_inertia(a_fp);
+  const Eigen::Vector3d w = omega * e.axis, alpha = theta_ddot * e.axis;
+  auto moment = [&](int end) {
+    const BaseVertex& v = body_.vertex(end);
+    const Eigen::Matrix3d j = re * v.inertia * re.transpose();
+    const Eigen::Vector3d r = re * v.to_centre;
+    return Eigen::Vector3d(j * alpha + w.cross(j * w) - r.cross(g));
+  };
+  // L e x F_b = M_a  =>  F_b,perp = (M_a / L) x e ;  -L e x F_a = M_b  =>  F_a,perp = -(M_b / L) x e
+  fb = moment(e.a).cross(e.axis).z() / e.length;
+  fa = -moment(e.b).cross(e.axis).z() / e.length;
+}
+
+// Pivoting on end `stays` of the rocking edge alone (the vertex mode's equations at this state), the
+// vertical acceleration of the other end, m/s^2 (> 0: it rises).
+double Rocking3DModel::end_rise(int edge, double theta, double omega, const Eigen::Vector3d& a_fp, int stays) const {
+  const BaseEdge& e = body_.edge(edge);
+  const int other = stays == e.a ? e.b : e.a;
+  const BaseVertex& v = body_.vertex(stays);
+  const Eigen::Matrix3d re = Eigen::AngleAxisd(theta, e.axis).toRotationMatrix();
+  const Eigen::Matrix3d j = re * v.inertia * re.transpose();
+  const Eigen::Vector3d w = omega * e.axis;
+  const Eigen::Vector3d w_dot =
+      re * v.inertia_inverse * re.transpose() * ((re * v.to_centre).cross(gravity_and_inertia(a_fp)) - w.cross(j * w));
+  // The edge's ends lie on the axis: no centripetal term.
+  return w_dot.cross(body_.vertex(other).position - v.position).z();
+}
+
+Rocking3DModel::Event Rocking3DModel::advance_edge(const GroundInput3& in, double& tau, double tau_end,
+                                                   int& lift_vertex) {
+  const BaseEdge& edge = body_.edge(contact_);
+  const Pivot& pv = edge.pivot;
+  const RockingOde ode{&pv, 1, ModelKind::Nonlinear, edge_input(in, contact_)};
+  const double t_tol = 1e-12 * std::max(sample_dt_, 1e-6);
+  while (tau < tau_end) {
+    const double t_start = tau, th_start = theta_, om_start = omega_;
+    report_.integrator_steps += dopri5_.step(ode, tau, theta_, omega_, tau_end, settings_.tol,
+                                             settings_.tol * pv.alpha, settings_.tol * pv.p * pv.alpha);
+    const StepEvents ev = scan_step(
+        [this](double t, double& th, double& om) { dopri5_.eval(t, th, om); }, 1, pv.alpha,
+        body_.overturn_angle(), dopri5_.t0(), dopri5_.t1(), theta_, omega_, dopri5_.theta1(),
+        dopri5_.omega1(), t_tol);
+    if (ev.has_peak) {
+      report_.peak_ratio = std::max(report_.peak_ratio, ev.peak_abs_theta / pv.alpha);
+      if (ev.peak_abs_theta / pv.alpha > outcome_.max_rotation_ratio) {
+        outcome_.max_rotation_ratio = ev.peak_abs_theta / pv.alpha;
+        outcome_.max_rotation_side = contact_ + 1;
+      }
+      outcome3_.max_tilt = std::max(outcome3_.max_tilt, ev.peak_abs_theta);
+    }
+    if (ev.tipping_crossed && !outcome_.beyond_tipping) {
+      outcome_.beyond_tipping = true;
+      outcome_.beyond_tipping_time = t_ + ev.t_tipping;
+      report_.beyond_tipping_entered = true;
+    }
+    // One end of the edge lifting (the corner wobble begins): checked at the step's end, located
+    // on the dense output, before the step's own events when it comes first.
+    double t_end_step = dopri5_.t1();
+    Event terminal = Event::None;
+    if (ev.terminal == StepEvents::Terminal::Impact) { terminal = Event::Impact; t_end_step = ev.t_event; }
+    if (ev.terminal == StepEvents::Terminal::Overturn) { terminal = Event::Overturn; t_end_step = ev.t_event; }
+    if (ev.terminal == StepEvents::Terminal::Degenerate) { tau = dopri5_.t1(); return Event::Degenerate; }
+    {
+      double th, om;
+      dopri5_.eval(t_end_step, th, om);
+      // < 0 when one end lets go: its reaction would have to pull (f < 0) AND, pivoting on the other
+      // end alone, it rises (the vertex mode's own acceleration of it, > 0). With sticking contacts
+      // the two tests can disagree (the end's friction force is released too); then the edge holds,
+      // which keeps the modes from chattering.
+      auto lift_margin = [&](double t, double theta, double omega, int& stays) {
+        const Eigen::Vector3d a_fp = to_footprint(in.at(t));
+        double fa, fb;
+        endpoint_reactions(contact_, theta, omega, ode.angular_acceleration(t, theta), a_fp, fa, fb);
+        stays = fb < fa ? edge.a : edge.b;
+        if (!(fa + fb > 0.0)) return 1.0;
+        const double f = std::min(fa, fb);
+        if (f >= 0.0) return f;
+        return std::max(f, -end_rise(contact_, theta, omega, a_fp, stays));
+      };
+      int stays = -1;
+      // Bounded: after kMaxLiftsPerSample lifts in one sample the edge holds for the rest of it (a
+      // body whose end neither holds nor lifts consistently, where the real one slips: flagged by
+      // the count in the outcome, never a loop without time advancing).
+      const double m1 = lifts_ < kMaxLiftsPerSample ? lift_margin(t_end_step, th, om, stays) : 1.0;
+      if (m1 < 0.0) {
+        ++lifts_;
+        auto f = [&](double t) {
+          double a, b;
+          dopri5_.eval(t, a, b);
+          int s;
+          return lift_margin(t, a, b, s);
+        };
+        const double f0 = f(dopri5_.t0());
+        const double t_lift = f0 > 0.0 ? bracketed_root(f, dopri5_.t0(), t_end_step, f0, m1, t_tol)
+                                       : dopri5_.t0();
+        if (t_lift > t_start) {
+          dopri5_.single_step(ode, t_start, th_start, om_start, t_lift - t_start, theta_, omega_);
+        } else {
+          theta_ = th_start;
+          omega_ = om_start;
+        }
+        dopri5_.invalidate();
+        tau = t_lift;
+        lift_margin(t_lift, theta_, omega_, stays);
+        lift_vertex = stays;  // the end that keeps touching: the new vertex pivot
+        return Event::Lift;
+      }
+    }
+    if (terminal == Event::None) {
+      theta_ = dopri5_.theta1();
+      omega_ = dopri5_.omega1();
+      tau = dopri5_.t1();
+      if (theta_ / pv.alpha > outcome_.max_rotation_ratio) {
+        outcome_.max_rotation_ratio = theta_ / pv.alpha;
+        outcome_.max_rotation_side = contact_ + 1;
+      }
+      outcome3_.max_tilt = std::max(outcome3_.max_tilt, theta_);
+      continue;
+    }
+    tau = t_end_step;
+    dopri5_.single_step(ode, t_start, th_start, om_start, tau - t_start, theta_, omega_);
+    dopri5_.invalidate();
+    return terminal;
+  }
+  return Event::None;
+}
+
+// ---------------------------------------------------------------- REST -> motion
+
+double Rocking3DModel::find_uplift(const GroundInput3& in, double tau, double tau_end) const {
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < body_.vertex_count(); ++k) {
+    const double u0 = uplift_at(in, k, tau), u1 = uplift_at(in, k, tau_end);
+    double when;
+    if (u0 > 0.0) when = tau;
+    else if (u1 > 0.0) when = std::clamp(tau + (tau_end - tau) * (-u0) / (u1 - u0), tau, tau_end);
+    else continue;
+    const RockingOde ode{&body_.edge(k).pivot, 1, ModelKind::Nonlinear, edge_input(in, k)};
+    if (!(ode.angular_acceleration(when, 0.0) > 0.0) && !(ode.angular_acceleration(tau_end, 0.0) > 0.0))
+      continue;
+    best = std::min(best, when);
+  }
+  return best;
+}
+
+// At the uplift instant: the edge with the largest angular acceleration lifts, unless one of its
+// ends would be pulled off the floor, or its neighbour lifts too and the shared vertex alone
+// carries the body (then it pivots on that vertex).
+void Rocking3DModel::start_motion(const GroundInput3& in, double tau) {
+  const Eigen::Vector3d a_fp = to_footprint(in.at(tau));
+  const Eigen::Vector3d g = gravity_and_inertia(a_fp);
+  int best = -1;
+  double best_acc = 0.0;
+  for (int k = 0; k < body_.vertex_count(); ++k) {
+    const RockingOde ode{&body_.edge(k).pivot, 1, ModelKind::Nonlinear, edge_input(in, k)};
+    const double acc = ode.angular_acceleration(tau, 0.0);
+    if (acc > best_acc || best < 0) {
+      best_acc = acc;
+      best = k;
+    }
+  }
+  report_.uplift = true;
+  if (std::isnan(outcome_.uplift_time)) outcome_.uplift_time = t_ + tau;
+  const BaseEdge& e = body_.edge(best);
+  double fa, fb;
+  endpoint_reactions(best, 0.0, 0.0, best_acc, a_fp, fa, fb);
+  int vertex = -1;
+  if (fa + fb > 0.0 && std::min(fa, fb) < 0.0) vertex = fb < fa ? e.a : e.b;
+  if (vertex < 0) {
+    mode_ = Mode3D::Edge;
+    contact_ = best;
+    theta_ = omega_ = 0.0;
+    dopri5_.invalidate();
+    return;
+  }
+  // Pivoting on the vertex from rest: check that neither neighbour is pushed into the floor.
+  const BaseVertex& v = body_.vertex(vertex);
+  const Eigen::Vector3d w_dot = v.inertia_inverse * v.to_centre.cross(g);
+  for (int m : {body_.previous(vertex), body_.next(vertex)}) {
+    if (w_dot.cross(body_.vertex(m).position - v.position).z() < 0.0) {
+      mode_ = Mode3D::Edge;  // the reactions' sign was rounding: keep the edge
+      contact_ = best;
+      theta_ = omega_ = 0.0;
+      dopri5_.invalidate();
+      return;
+    }
+  }
+  enter_vertex(vertex, yaw_matrix() * v.position + Eigen::Vector3d(shift_.x(), shift_.y(), 0.0),
+               yaw_matrix(), Eigen::Vector3d::Zero());
+}
+
+}  // namespace rocking_monitor::core

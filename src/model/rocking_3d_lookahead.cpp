@@ -1,0 +1,105 @@
+// The 3-D model's measures of how close it is to overturning: the rotation ratio, the energy margin,
+// and COMMITTED on a corner, found by stepping the free motion ahead on a copy.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+
+#include "rocking_3d_internal.hpp"
+#include "rocking_monitor/model/rocking_3d_model.hpp"
+#include "rocking_monitor/physics/criteria.hpp"
+#include "rocking_monitor/physics/impact_3d.hpp"
+
+namespace rocking_monitor::core {
+
+using rocking_3d::gravity_and_inertia;
+using rocking_3d::rot_z;
+
+bool Rocking3DModel::falls_if_shaking_stops(double t_now) {
+  Rocking3DModel& p = *probe_;
+  // the state of the motion (save/restore: plain values, no allocation), the input gone from now on
+  Saved state;
+  save(state);
+  p.restore(state);
+  p.t_ = t_now;
+  p.a_prev_.setZero();
+  p.dopri5_.invalidate();  // the derivative cached for the shaken motion no longer holds
+  p.vector_.invalidate();
+  for (double s = 0.0; s < kProbeHorizon; s += kProbeStep) {
+    p.step(Eigen::Vector3d::Zero(), kProbeStep);
+    if (p.mode_ == Mode3D::Overturned) return true;
+    if (p.mode_ == Mode3D::Rest) return false;
+  }
+  return false;
+}
+
+double Rocking3DModel::rotation_ratio() const {
+  if (mode_ == Mode3D::Edge) return theta_ / body_.edge(contact_).pivot.alpha;
+  if (mode_ == Mode3D::Overturned) return outcome_.max_rotation_ratio;  // as it went over (> 1)
+  if (mode_ != Mode3D::Vertex) return 0.0;
+  return ratio_of(y_);
+}
+
+double Rocking3DModel::ratio_of(const Vec7& y) const {
+  const BaseVertex& v = body_.vertex(contact_);
+  const Eigen::Matrix3d r = vertex_rotation(y);
+  const Eigen::Vector3d lever = r * v.to_centre;
+  // Which side of the vertical through the vertex the centre of mass is on: the side of the base
+  // (inside, ratio < 1) or beyond it (ratio > 1). The base's inward direction is lowered by 45
+  // degrees so that its horizontal part keeps its sign up to a tilt of 135 degrees (the base itself
+  // stands vertical at the overturn angle of 90 degrees).
+  const Eigen::Vector3d in_base = body_.centroid() - v.position;
+  const Eigen::Vector3d inside = r * (in_base - in_base.norm() * Eigen::Vector3d::UnitZ());
+  const double phi = std::atan2(std::hypot(lever.x(), lever.y()), lever.z());
+  const bool beyond = lever.x() * inside.x() + lever.y() * inside.y() < 0.0;
+  return beyond ? 1.0 + phi / v.alpha : 1.0 - phi / v.alpha;
+}
+
+// VERTEX: the vertical velocity of the centre of mass, m/s. On the base's side of the pivot the
+// rotation ratio peaks where it turns from rising to falling (the planar model's omega = 0).
+double Rocking3DModel::rise_rate(const Vec7& y) const {
+  const Eigen::Vector3d w = y.tail<3>();
+  return w.cross(vertex_rotation(y) * body_.vertex(contact_).to_centre).z();
+}
+
+OverturnMargin Rocking3DModel::margin() const {
+  switch (mode_) {
+    case Mode3D::Rest: return {1.0, false};
+    case Mode3D::Overturned: return {-1.0, true};
+    case Mode3D::Edge:
+      return overturn_margin(body_.edge(contact_).pivot, 1, ModelKind::Nonlinear, theta_, omega_);
+    case Mode3D::Vertex: break;
+  }
+  const BaseVertex& v = body_.vertex(contact_);
+  const double height = (vertex_rotation(y_) * v.to_centre).z();
+  const double energy = kinetic_energy() + kGravity * height;
+  const double tip = kGravity * v.radius, rest = kGravity * v.to_centre.z();
+  const double m = (tip - energy) / (tip - rest);
+  return {m, m < 0.0};
+}
+
+double Rocking3DModel::kinetic_energy() const {
+  if (mode_ == Mode3D::Edge) return 0.5 * body_.edge(contact_).pivot.inertia * omega_ * omega_;
+  if (mode_ != Mode3D::Vertex) return 0.0;
+  const Eigen::Matrix3d r = vertex_rotation(y_);
+  const Eigen::Vector3d w = y_.tail<3>();
+  return rotation_energy(r * body_.vertex(contact_).inertia * r.transpose(), w);
+}
+
+void Rocking3DModel::note_ratio() {
+  const double ratio = rotation_ratio();
+  if (ratio > outcome_.max_rotation_ratio) {
+    outcome_.max_rotation_ratio = ratio;
+    outcome_.max_rotation_side = contact_ + 1;
+  }
+  outcome3_.max_tilt = std::max(outcome3_.max_tilt, tilt());
+  if (ratio > 1.0 && !outcome_.beyond_tipping) {
+    outcome_.beyond_tipping = true;
+    outcome_.beyond_tipping_time = t_;
+    report_.beyond_tipping_entered = true;
+  }
+}
+
+}  // namespace rocking_monitor::core

@@ -1,0 +1,215 @@
+// The 3-D model pivoting on a base vertex: Euler's equations about the vertex, the quaternion, and the
+// first touchdown of another base point.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+
+#include "rocking_3d_internal.hpp"
+#include "rocking_monitor/model/rocking_3d_model.hpp"
+#include "rocking_monitor/integrate/event_location.hpp"
+
+namespace rocking_monitor::core {
+
+using rocking_3d::gravity_and_inertia;
+using rocking_3d::rot_z;
+
+// ---------------------------------------------------------------- VERTEX
+
+void Rocking3DModel::vertex_rhs(const GroundInput3& in, double t, const Vec7& y, Vec7& dy) const {
+  const BaseVertex& v = body_.vertex(contact_);
+  const Eigen::Quaterniond q = Eigen::Quaterniond(y(0), y(1), y(2), y(3)).normalized();
+  const Eigen::Matrix3d r = q.toRotationMatrix();
+  const Eigen::Vector3d w = y.tail<3>();
+  const Eigen::Matrix3d j = r * v.inertia * r.transpose();
+  const Eigen::Matrix3d j_inv = r * v.inertia_inverse * r.transpose();
+  const Eigen::Vector3d torque = (r * v.to_centre).cross(gravity_and_inertia(in.at(t)));
+  // Euler's equations about the fixed vertex, in the ground frame: J w' = M - w x J w.
+  dy.tail<3>() = j_inv * (torque - w.cross(j * w));
+  // q' = 1/2 (0, w) q (w in the world frame).
+  const Eigen::Quaterniond wq(0.0, w.x(), w.y(), w.z());
+  const Eigen::Quaterniond qd = wq * Eigen::Quaterniond(y(0), y(1), y(2), y(3));
+  dy(0) = 0.5 * qd.w();
+  dy(1) = 0.5 * qd.x();
+  dy(2) = 0.5 * qd.y();
+  dy(3) = 0.5 * qd.z();
+}
+
+int Rocking3DModel::edge_between(int v, int u) const {
+  if (u == body_.next(v)) return v;
+  if (v == body_.next(u)) return u;
+  return -1;
+}
+
+void Rocking3DModel::enter_vertex(int vertex, const Eigen::Vector3d& pivot_world,
+                                  const Eigen::Matrix3d& rotation, const Eigen::Vector3d& omega_world) {
+  mode_ = Mode3D::Vertex;
+  contact_ = vertex;
+  pivot_world_ = Eigen::Vector3d(pivot_world.x(), pivot_world.y(), 0.0);
+  const Eigen::Quaterniond q(rotation);
+  y_ << q.w(), q.x(), q.y(), q.z(), omega_world;
+  vector_.invalidate();
+  // A vertex on the floor now may only trigger an impact after it has been off the floor (it is
+  // an end of the edge just left, or a neighbour of a flat base).
+  // (A vertex within floor_tol_ of the floor is on it: the pose at an event is exact to the
+  // integrator's tolerance only.)
+  const double eps = 3.0 * floor_tol_;  // (a landing's set is within floor_tol_ of the floor, seen from any of its points within 2 floor_tol_)
+  for (int i = 0; i < body_.vertex_count(); ++i) {
+    const double z = (rotation * (body_.vertex(i).position - body_.vertex(vertex).position)).z();
+    armed_[i] = i != vertex && z > eps;
+  }
+}
+
+void Rocking3DModel::enter_vertex_from_edge(int vertex) {
+  const BaseEdge& e = body_.edge(contact_);
+  const Eigen::Matrix3d r = yaw_matrix() * Eigen::AngleAxisd(theta_, e.axis).toRotationMatrix();
+  const Eigen::Vector3d w = yaw_matrix() * (omega_ * e.axis);
+  const Eigen::Vector3d p =
+      yaw_matrix() * body_.vertex(vertex).position + Eigen::Vector3d(shift_.x(), shift_.y(), 0.0);
+  ++outcome3_.edge_to_vertex;
+  enter_vertex(vertex, p, r, w);
+}
+
+// The body rests on edge `edge` (both ends on the floor) with pose `rotation` and angular velocity
+// omega_axis about the edge: the footprint (yaw, shift) and theta follow from the pose.
+void Rocking3DModel::enter_edge_from_pose(int edge, const Eigen::Matrix3d& rotation,
+                                          const Eigen::Vector3d& pivot_world, int pivot_vertex,
+                                          double omega_axis) {
+  const BaseEdge& e = body_.edge(edge);
+  Eigen::Vector3d axis_w = rotation * e.axis;
+  axis_w.z() = 0.0;  // both ends on the floor (to the event tolerance)
+  axis_w.normalize();
+  const Eigen::Vector3d normal_w = axis_w.cross(Eigen::Vector3d::UnitZ());
+  const Eigen::Vector3d base_normal = rotation.col(2);
+  const double theta = std::max(0.0, std::atan2(base_normal.dot(normal_w), base_normal.z()));
+  const Eigen::Matrix3d flat = Eigen::AngleAxisd(-theta, axis_w).toRotationMatrix() * rotation;
+  yaw_ = std::atan2(flat(1, 0), flat(0, 0));
+  // The pivot vertex keeps its place on the floor.
+  const Eigen::Vector3d placed = yaw_matrix() * body_.vertex(pivot_vertex).position;
+  shift_ = Eigen::Vector2d(pivot_world.x() - placed.x(), pivot_world.y() - placed.y());
+  mode_ = Mode3D::Edge;
+  contact_ = edge;
+  theta_ = theta;
+  omega_ = omega_axis;
+  dopri5_.invalidate();
+}
+
+Rocking3DModel::Event Rocking3DModel::advance_vertex(const GroundInput3& in, double& tau, double tau_end,
+                                                     int& touching) {
+  const double t_tol = 1e-12 * std::max(sample_dt_, 1e-6);
+  const double alpha = body_.min_alpha(), p = body_.max_p();
+  Vec7 atol;
+  atol << Eigen::Vector4d::Constant(settings_.tol * alpha), Eigen::Vector3d::Constant(settings_.tol * p * alpha);
+  auto f = [&](double t, const Vec7& y, Vec7& dy) { vertex_rhs(in, t, y, dy); };
+  const int n = body_.vertex_count();
+  const BaseVertex& pivot = body_.vertex(contact_);
+  const double eps = 3.0 * floor_tol_;  // (a landing's set is within floor_tol_ of the floor, seen from any of its points within 2 floor_tol_)
+  const double sink = 10.0 * floor_tol_;  // an unarmed vertex this far below the floor touches down
+  const double cos_over = std::cos(body_.overturn_angle());
+  auto height = [&](const Vec7& y, int i) {
+    return (vertex_rotation(y) * (body_.vertex(i).position - pivot.position)).z();
+  };
+  while (tau < tau_end) {
+    report_.integrator_steps += vector_.step(f, tau, y_, tau_end, settings_.tol, atol);
+    const double t0 = vector_.t0(), t1 = vector_.t1();
+    // The first touchdown of an armed vertex or the overturn inside the step, on the dense
+    // output, probed at quarter steps so that a grazing dip inside the step is not missed.
+    double t_event = std::numeric_limits<double>::infinity();
+    Event event = Event::None;
+    touching = -1;
+    constexpr int kProbes = 4;
+    for (int i = 0; i < n; ++i) {
+      if (i == contact_) continue;
+      double ta = t0, za = height(y_, i);
+      for (int k = 1; k <= kProbes; ++k) {
+        const double tb = k == kProbes ? t1 : t0 + (t1 - t0) * k / kProbes;
+        const double zb = height(k == kProbes ? vector_.y1() : Vec7(vector_.eval(tb)), i);
+        const bool armed = armed_[i] || za > eps;
+        // An unarmed vertex that sinks clearly below the floor is a touchdown too (the pivot
+        // turned the wrong way for the vertex it left): resolved as an impact.
+        if ((armed && zb <= 0.0 && za > 0.0) || zb < -sink) {
+          auto z_at = [&](double t) { return height(Vec7(vector_.eval(t)), i); };
+          double te = ta;
+          if (za > 0.0) {
+            te = bracketed_root(z_at, ta, tb, za, zb, t_tol);
+          } else {
+            // An unarmed vertex below the floor: it may have hopped up and come back inside the
+            // probe interval (a hop lower than the arming height): then the touchdown is where it
+            // came back through the floor, after the top of the hop.
+            double t_top = t0, z_top = height(y_, i);
+            constexpr int kScan = 16;
+            for (int m = 1; m <= kScan; ++m) {
+              const double tm = t0 + (tb - t0) * m / kScan;
+              const double zm = z_at(tm);
+              if (zm > z_top) { z_top = zm; t_top = tm; }
+            }
+            if (z_top > 0.0) te = bracketed_root(z_at, t_top, tb, z_top, zb, t_tol);
+          }
+          if (te < t_event) {
+            t_event = te;
+            event = Event::Impact;
+            touching = i;
+          }
+          break;
+        }
+        ta = tb;
+        za = zb;
+      }
+    }
+    {
+      const double c1 = vertex_rotation(vector_.y1())(2, 2) - cos_over;
+      if (c1 <= 0.0) {
+        const double c0 = vertex_rotation(y_)(2, 2) - cos_over;
+        const double te = c0 > 0.0 ? bracketed_root(
+                                         [&](double t) { return vertex_rotation(Vec7(vector_.eval(t)))(2, 2) - cos_over; },
+                                         t0, t1, c0, c1, t_tol)
+                                   : t0;
+        if (te < t_event) {
+          t_event = te;
+          event = Event::Overturn;
+        }
+      }
+    }
+    {
+      // A turning point of the centre of mass inside the step (before any event): the peak of the
+      // rotation ratio, located on the dense output as the planar model locates omega = 0.
+      const double t_stop = event == Event::None ? t1 : t_event;
+      const double g0 = rise_rate(y_);
+      const Vec7 y_stop = event == Event::None ? Vec7(vector_.y1()) : Vec7(vector_.eval(t_stop));
+      const double g1 = rise_rate(y_stop);
+      if (g0 > 0.0 && g1 <= 0.0) {
+        const double tp = bracketed_root([&](double t) { return rise_rate(Vec7(vector_.eval(t))); }, t0, t_stop,
+                                         g0, g1, t_tol);
+        Vec7 yp = vector_.eval(tp);
+        yp.head<4>().normalize();
+        const double ratio = ratio_of(yp);
+        report_.peak_ratio = std::max(report_.peak_ratio, ratio);
+        if (ratio > outcome_.max_rotation_ratio) {
+          outcome_.max_rotation_ratio = ratio;
+          outcome_.max_rotation_side = contact_ + 1;
+        }
+        outcome3_.max_tilt = std::max(outcome3_.max_tilt, std::acos(std::clamp(vertex_rotation(yp)(2, 2), -1.0, 1.0)));
+      }
+    }
+    if (event == Event::None) {
+      y_ = vector_.y1();
+      y_.head<4>().normalize();
+      tau = t1;
+      for (int i = 0; i < n; ++i)
+        if (!armed_[i] && i != contact_ && height(y_, i) > eps) armed_[i] = true;
+      note_ratio();
+      continue;
+    }
+    y_ = vector_.eval(t_event);
+    y_.head<4>().normalize();
+    vector_.invalidate();
+    tau = t_event;
+    note_ratio();
+    return event;
+  }
+  return Event::None;
+}
+
+}  // namespace rocking_monitor::core
