@@ -27,7 +27,8 @@ namespace {
 // One candidate active set's motion after the impact and how far it violates complementarity.
 struct Candidate {
   Eigen::Vector3d omega, velocity;
-  double violation;
+  double violation;  // the larger of the two below, m/s
+  double into_floor = 0.0;  // fastest contact point moving into the floor, m/s
 };
 
 double energy(const LandingBody& b, const Eigen::Vector3d& omega, const Eigen::Vector3d& v) {
@@ -53,7 +54,8 @@ Candidate pivot_on(const LandingBody& b, const LandingContacts& c, int i) {
   out.omega = inertia_about(b.central_inertia, b.centre, q).inverse() * h;
   out.velocity = out.omega.cross(b.centre - q);
   const double impulse_z = out.velocity.z() - b.velocity.z();
-  out.violation = std::max({0.0, -impulse_z, -worst_other(c, out.omega, q, i, i)});
+  out.into_floor = std::max(0.0, -worst_other(c, out.omega, q, i, i));
+  out.violation = std::max(-impulse_z, out.into_floor);
   return out;
 }
 
@@ -74,7 +76,8 @@ Candidate rock_about(const LandingBody& b, const LandingContacts& c, int i, int 
   const Eigen::Vector3d side = e.cross(Eigen::Vector3d::UnitZ());
   const double pj_z = (b.central_inertia * dw + (b.centre - pi).cross(dv)).dot(side) / length;
   const double pi_z = -(b.central_inertia * dw + (b.centre - pj).cross(dv)).dot(side) / length;
-  out.violation = std::max({0.0, -pi_z, -pj_z, -worst_other(c, out.omega, pi, i, j)});
+  out.into_floor = std::max(0.0, -worst_other(c, out.omega, pi, i, j));
+  out.violation = std::max({-pi_z, -pj_z, out.into_floor});
   return out;
 }
 
@@ -116,14 +119,20 @@ Landing plastic_landing(const LandingBody& b, const LandingContacts& c) {
   best.energy_before = energy(b, b.omega, b.velocity);
   double best_violation = std::numeric_limits<double>::infinity();
   double best_energy = -1.0;
+  bool best_kinematic = false;
   auto consider = [&](const Candidate& k, LandingMode mode, int first, int second) {
     const double e = energy(b, k.omega, k.velocity);
     const bool ok = k.violation <= v_tol;
     if (ok) ++best.admissible;
     const bool best_ok = best_violation <= v_tol;
     // Admissible candidates first; among them (ties of rounding) the one that dissipates least.
-    const bool better = ok ? (!best_ok || e > best_energy) : (!best_ok && k.violation < best_violation);
+    // Without one (the landing would need slip), the least violation among the candidates that
+    // move no contact into the floor (so that the landing is not found again at once).
+    const bool kinematic = k.into_floor <= v_tol;
+    const bool better = ok ? (!best_ok || e > best_energy)
+                           : !best_ok && (kinematic != best_kinematic ? kinematic : k.violation < best_violation);
     if (!better) return;
+    best_kinematic = kinematic;
     best_violation = k.violation;
     best_energy = e;
     best.mode = mode;
