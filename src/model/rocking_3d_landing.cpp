@@ -78,9 +78,12 @@ void Rocking3DModel::land(int touching, double tau) {
   lb.velocity = omega.cross(lb.centre - fixed);
   const Landing law = plastic_landing(lb, set);
   outcome3_.max_landing_violation = std::max(outcome3_.max_landing_violation, law.violation);
-  if (law.normal_impulse > 0.0)
-    outcome3_.max_friction_demand =
-        std::max(outcome3_.max_friction_demand, law.tangential_impulse / law.normal_impulse);
+  if (law.normal_impulse > 0.0) {
+    const double demand = law.tangential_impulse / law.normal_impulse;
+    outcome3_.max_friction_demand = std::max(outcome3_.max_friction_demand, demand);
+    // (mu_s = +inf when the item does not give it: never counted)
+    if (demand > body_.parameters().mu_s) ++outcome3_.slipping_landings;
+  }
   const double kappa = body_.restitution_factor();
   Eigen::Vector3d w = kappa * law.omega;
   Landing chosen = law;

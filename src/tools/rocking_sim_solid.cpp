@@ -109,6 +109,10 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
              {"edge_to_vertex", r3.edge_to_vertex},
              {"vertex_impacts", r3.vertex_impacts},
              {"flat_impacts", r3.flat_impacts},
+             {"edge_captures", r3.edge_captures},
+             {"max_landing_violation_m_s", r3.max_landing_violation},
+             {"max_friction_demand", r3.max_friction_demand},
+             {"slipping_landings", r3.slipping_landings},
              {"final_mode", rm::to_string(model.mode())},
              {"final_contact", model.contact()},
              {"samples", mx.size()},
@@ -127,6 +131,9 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
                      r.max_rotation_ratio));
   L.push_back(format("impacts     %ld (flat %ld, on a vertex %ld), edge-to-vertex lifts %ld", r.impacts,
                      r3.flat_impacts, r3.vertex_impacts, r3.edge_to_vertex));
+  L.push_back(format("landings    friction demand up to %.3f (%ld above mu_s: the real body slides there), "
+                     "largest violation of the impact law %.2g m/s", r3.max_friction_demand, r3.slipping_landings,
+                     r3.max_landing_violation));
   L.push_back(format("cost        %zu samples, %.4f s CPU", mx.size(), cpu));
   return run;
 }

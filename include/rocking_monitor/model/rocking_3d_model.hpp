@@ -52,6 +52,8 @@ struct Rocking3DOutcome {
   /// Largest horizontal / normal impulse of any landing: the friction coefficient the sticking
   /// impact needs. Above the item's mu_s the real body slides at that landing (not modelled).
   double max_friction_demand = 0.0;
+  /// Landings whose friction demand exceeded the item's mu_s: the real body slid there.
+  long slipping_landings = 0;
   /// See-saws on a tilted edge put onto the edge by the Zeno rule (rocking_3d_landing.cpp).
   long edge_captures = 0;
 };
