@@ -1,0 +1,21 @@
+# Your own objects (issue 43): a scan or an inventory spreadsheet to a checked catalogue entry.
+# catalogue_check loads a catalogue with the node's parser and prints its error or (--json) what the
+# monitor derives per item and plane; scripts/rocking_catalogue (from-table, check) and
+# scripts/rocking_geometry.py (meshes in PLY, STL, OBJ, OFF, glTF/GLB) call it.
+add_executable(catalogue_check src/tools/catalogue_check.cpp)
+target_link_libraries(catalogue_check PRIVATE rocking_monitor_core CLI11::CLI11 nlohmann_json::nlohmann_json)
+target_compile_options(catalogue_check PRIVATE -Wall -Wextra -Wpedantic)
+set_target_properties(catalogue_check PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_TOOL_DIR})
+
+if(catkin_FOUND)
+  install(TARGETS catalogue_check RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+  catkin_install_python(PROGRAMS scripts/rocking_catalogue scripts/rocking_geometry.py
+                        DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+  # imported by the two above from beside them
+  install(FILES scripts/mesh_input.py scripts/scan_entry.py scripts/catalogue_table.py DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+endif()
+
+if(BUILD_TESTING)
+  add_test(NAME cli.catalogue_check.unknown_flag_is_one_error_line
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/unknown_flag.sh catalogue_check $<TARGET_FILE:catalogue_check>)
+endif()
