@@ -48,7 +48,7 @@ def _via_assimp(src, tmp):
     if not tool:
         raise GeometryError(f"{src}: glTF/GLB needs assimp's tool (apt-get install assimp-utils)")
     out = os.path.join(tmp, "converted.ply")
-    run = subprocess.run([tool, "export", src, out, "-fply", "-ptv"], capture_output=True, text=True)
+    run = subprocess.run([tool, "export", src, out, "-fplyb", "-ptv"], capture_output=True, text=True)
     if run.returncode != 0 or not os.path.isfile(out):
         last = [ln for ln in (run.stdout + run.stderr).splitlines() if ln.strip()][-1:] or ["no output"]
         raise GeometryError(f"{src}: assimp cannot read it as glTF ({last[0].strip()})")
@@ -67,6 +67,25 @@ def _without_obj_attributes(src, tmp):
                     fout.write(line)
     except OSError as e:
         raise GeometryError(f"{src}: cannot read ({e})")
+    return out
+
+
+def _ply_face_list_named(src, tmp):
+    """meshio 5 reads a PLY face list only under the name vertex_indices; assimp and several scanners
+    write vertex_index. A copy with the header's name changed (the body is untouched)."""
+    try:
+        with open(src, "rb") as fin:
+            data = fin.read()
+    except OSError as e:
+        raise GeometryError(f"{src}: cannot read ({e})")
+    end = data.find(b"end_header")
+    head = data[:end]
+    if end < 0 or b" vertex_index\n" not in head.replace(b"\r\n", b"\n"):
+        return src
+    out = os.path.join(tmp, "renamed.ply")
+    with open(out, "wb") as fout:
+        fout.write(head.replace(b" vertex_index\r\n", b" vertex_indices\r\n")
+                   .replace(b" vertex_index\n", b" vertex_indices\n") + data[end:])
     return out
 
 
@@ -95,6 +114,8 @@ def read_mesh(path):
             src = _without_obj_attributes(src, tmp)
         if fmt == "gltf":
             src, fmt = _via_assimp(src, tmp), "ply"
+        if fmt == "ply":
+            src = _ply_face_list_named(src, tmp)
         try:
             mesh = meshio.read(src, file_format=fmt)
         except Exception as e:  # meshio raises ReadError, ValueError, IndexError, ... on bad files
@@ -292,7 +313,7 @@ def find_slab(vertices, faces, up, min_ratio=2.0, max_thickness=0.1):
     (under max_thickness of the height) whose plan (convex hull area) is at least min_ratio times
     that of everything above it. Returns (faces to keep, note); keep is None when none recognised."""
     from scipy.spatial import ConvexHull
-    from scipy.spatial.qhull import QhullError
+    from scipy.spatial import QhullError
     used = np.unique(faces)
     up = np.asarray(up, float) / np.linalg.norm(up)
     e1 = np.cross(up, [1.0, 0, 0] if abs(up[0]) < 0.9 else [0, 1.0, 0])

@@ -77,15 +77,20 @@ def scan_geometry(path, mass=1.0, tolerance=1e-3, com=None, unit="auto", up=None
         notes.append(note)
         if keep is not None:
             f = f[keep]
+    used, f = np.unique(f, return_inverse=True)  # only the vertices of faces: the floor is theirs
+    v, f = v[used], f.reshape(-1, 3)
     loops, unchecked = mi.check_solid(v, f, path)
     if unchecked:
         notes.append("self-intersection not checked: too many candidate triangle pairs")
     vc, fc = mi.cap_loops(v, f, loops)
-    volume, com_mesh, _ = rg.mass_properties(vc, fc)
-    box = float(np.prod(np.ptp(vc, axis=0)))
-    if not volume > 1e-6 * box:
-        raise mi.GeometryError(f"{path}: degenerate: encloses {volume:.3g} m^3, {volume / box:.2g} of its "
-                               "bounding box (a flat sheet or a collapsed mesh, not a solid)")
+    try:
+        volume, com_mesh, _ = rg.mass_properties(vc, fc)
+    except mi.GeometryError:  # exactly zero
+        volume, com_mesh = 0.0, None
+    cube = float(np.ptp(vc, axis=0).max()) ** 3
+    if not volume > 1e-6 * cube:
+        raise mi.GeometryError(f"{path}: degenerate: encloses {volume:.3g} m^3, {volume / cube:.2g} of the "
+                               "cube of its largest extent (a flat sheet or a collapsed mesh, not a solid)")
     if loops:
         notes.append(f"open: {len(loops)} hole(s), {sum(map(len, loops))} boundary edges, each capped")
     else:
