@@ -229,19 +229,25 @@ def scan_lines(path, row, default_sensor, plan_frame):
     return lines + pose_lines(path, row, plan_frame)
 
 
-def catalogue_text(path, rows, default_sensor=None, plan_frame="map", topics=None, made_by=""):
+def catalogue_text(path, rows, default_sensor=None, plan_frame="accelerometer", topics=None, made_by=""):
     """The whole YAML (sensors: and items:) with its comments; rows in order."""
-    items, sensors = [], []
-    for row in rows:
-        lines = (scan_lines if "scan" in row else item_lines)(path, row, default_sensor, plan_frame)
-        items.append("\n".join(lines))
-        s = lines[[k for k, ln in enumerate(lines) if ln.startswith("    sensor:")][0]].split(":", 1)[1].strip()
+    blocks = [(scan_lines if "scan" in row else item_lines)(path, row, default_sensor, plan_frame) for row in rows]
+    return document(f"from-table {os.path.basename(path)}", blocks, topics, made_by,
+                    "each item names its spreadsheet row")
+
+
+def document(source, blocks, topics=None, made_by="", about=""):
+    """The catalogue file: a sensors: list for the items' sensors (topic from `topics`, default
+    /<sensor>/imu) and the items' blocks of lines."""
+    sensors = []
+    for lines in blocks:
+        s = [ln for ln in lines if ln.startswith("    sensor:")][0].split(":", 1)[1].strip()
         if s not in sensors:
             sensors.append(s)
     topics = topics or {}
-    out = [f"# rocking_monitor catalogue written by rocking_catalogue from-table {os.path.basename(path)}",
+    out = [f"# rocking_monitor catalogue written by rocking_catalogue {source}",
            f"# {made_by}" if made_by else "#",
-           "# Units SI. Items' keys: config/catalogue_example.yaml; each item names its spreadsheet row.",
+           f"# Units SI. Items' keys: config/catalogue_example.yaml{'; ' + about if about else ''}.",
            "# Edit the sensors' topics to your accelerometers (default /<sensor>/imu, sensor_msgs/Imu).",
            "sensors:"]
     for s in sensors:
@@ -249,7 +255,7 @@ def catalogue_text(path, rows, default_sensor=None, plan_frame="map", topics=Non
         out.append(f"  - name: {s}\n    topic: {topics.get(name, '/' + re.sub(r'[^A-Za-z0-9_/]', '_', name) + '/imu')}"
                    "\n    type: imu")
     out.append("items:")
-    return "\n".join(out + items) + "\n"
+    return "\n".join(out + ["\n".join(b) for b in blocks]) + "\n"
 
 
 ERROR_RE = re.compile(r"items\[(\d+)\](?: '([^']*)')?: ([A-Za-z_]+)")

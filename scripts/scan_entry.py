@@ -52,7 +52,8 @@ def largest_face_rotation(vertices, faces, com, tolerance):
 
 
 def scan_geometry(path, mass=1.0, tolerance=1e-3, com=None, unit="auto", up=None, floor="auto",
-                  keep_slab=False, cap_tolerance=None, quaternion=None, settle=False, com_shift=None):
+                  keep_slab=False, cap_tolerance=None, quaternion=None, settle=False, com_shift=None,
+                  keep_mesh=False):
     """(g, placed, notes): rocking_geometry's result for the mesh file at `path`, the placed vertices
     (floor frame) and the statements of what was decided. com: measured centre of mass in the mesh's
     frame, metres (after the unit conversion)."""
@@ -72,11 +73,13 @@ def scan_geometry(path, mass=1.0, tolerance=1e-3, com=None, unit="auto", up=None
         up = "y" if mi.FORMATS.get(_ext(path)) == "gltf" else "z"
     start = (rg.quaternion_matrix(*quaternion) if quaternion is not None
              else rotation_onto(AXES[up], (0, 0, 1)))
+    removed = f[:0]
     if not keep_slab:
         keep, note = mi.find_slab(v, f, start.T @ np.array([0.0, 0, 1]))
         notes.append(note)
         if keep is not None:
-            f = f[keep]
+            removed, f = f[~keep], f[keep]
+    v_all = v
     used, f = np.unique(f, return_inverse=True)  # only the vertices of faces: the floor is theirs
     v, f = v[used], f.reshape(-1, 3)
     loops, unchecked = mi.check_solid(v, f, path)
@@ -125,6 +128,10 @@ def scan_geometry(path, mass=1.0, tolerance=1e-3, com=None, unit="auto", up=None
     g["notes"] = notes
     g["size"] = np.ptp(placed, axis=0).tolist()
     g["convex_hull"] = convex_hull_3d(placed[np.unique(fc)])
+    if keep_mesh:  # for pictures (not JSON): the capped mesh and the removed slab, floor frame
+        r, floor_z = np.array(g["rotation"]), float((vc @ np.array(g["rotation"]).T)[:, 2].min())
+        g["_mesh"] = {"vertices": placed, "faces": fc, "caps": len(fc) - len(f),
+                      "removed": v_all[removed] @ r.T - [0.0, 0.0, floor_z]}
     return g, placed, notes
 
 

@@ -86,6 +86,8 @@ class RoundTrip(unittest.TestCase):
             r = run("from-table", table, "--out", out, "--topic", "floor_0=/lobby/imu")
             self.assertEqual(r.returncode, 0, r.stderr)
             self.assertIn("100 items, checked by the node's parser", r.stderr)
+            unposed = sum(1 for w in want if w["pose"] is None)
+            self.assertIn(f"items.csv: {unposed} rows without x, y (rows ", r.stderr)
             doc = parsed(out)
             self.assertEqual(doc["sensors"], 3)
             with open(out) as fh:
@@ -106,7 +108,7 @@ class RoundTrip(unittest.TestCase):
                     self.assertNotIn("pose", got, what)
                 else:
                     p = got["pose"]
-                    self.assertEqual(p["parent_frame"], "map")
+                    self.assertEqual(p["parent_frame"], "accelerometer")
                     for k, v in zip(("x", "y", "yaw"), w["pose"]):
                         self.assertAlmostEqual(p[k], v, delta=1e-8, msg=f"{what} {k}")
 
@@ -182,10 +184,40 @@ class Check(unittest.TestCase):
             # The plan's layout is the dashboard's: posed items at their pose, the unposed one below.
             sys.path.insert(0, os.path.dirname(TOOL))
             import importlib.machinery
-            rc = importlib.machinery.SourceFileLoader("rocking_catalogue", TOOL).load_module()
+            import importlib.util
+            loader = importlib.machinery.SourceFileLoader("rocking_catalogue", TOOL)
+            rc = importlib.util.module_from_spec(importlib.util.spec_from_loader("rocking_catalogue", loader))
+            loader.exec_module(rc)
             place = rc.plan_layout(list(items.values()))
             np.testing.assert_allclose(place["box"], (1, 2, math.radians(90)), rtol=1e-8)  # 9 digits written
             self.assertLess(place["loose"][1], 0.0)
+
+
+class FromScan(unittest.TestCase):
+    def test_scan_to_checked_catalogue_and_picture(self):
+        sys.path.insert(0, HERE)
+        import test_mesh_input as tm
+        with tempfile.TemporaryDirectory() as tmp:
+            v, f, bottom, *_ = tm.case_cylinder()
+            scan = tm.write(os.path.join(tmp, "vase.glb"), v * 1000, np.delete(f, bottom, axis=0), "glb", y_up=True)
+            out, fig = os.path.join(tmp, "c.yaml"), os.path.join(tmp, "vase.png")
+            r = run("from-scan", scan, "--id", "vase", "--mass", "30", "--mu-s", "0.4", "--out", out,
+                    "--figure", fig)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertIn("unit mm (largest extent 700", r.stderr)
+            self.assertIn("open: 1 hole(s), 24 boundary edges, each capped", r.stderr)
+            item = parsed(out)["items"][0]
+            self.assertTrue(item["solid"])
+            self.assertEqual(item["pose"], {"parent_frame": "accelerometer", "x": 0, "y": 0, "yaw": 0})
+            self.assertAlmostEqual(item["planes"][0]["cg_height"], 0.35, delta=1e-6)
+            import matplotlib.image
+            self.assertEqual(matplotlib.image.imread(fig).shape[:2], (540, 1500))
+            top = np.array([k for k in range(len(f)) if v[f[k], 2].min() > 0.69])
+            bad = tm.write(os.path.join(tmp, "lidless.ply"), v, np.delete(f, top, axis=0), "ply")
+            r = run("from-scan", bad, "--id", "x", "--mass", "1", "--out", out + "2")
+            self.assertEqual(r.returncode, 1)
+            self.assertIn("open elsewhere than at its base", r.stderr)
+            self.assertFalse(os.path.exists(out + "2"))
 
 
 if __name__ == "__main__":
