@@ -193,13 +193,13 @@ def merge_vertices(vertices, faces, tolerance):
 
 def edge_report(faces):
     """(non-manifold undirected edges, directed edges used twice, boundary directed edges k x 2)."""
-    directed = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
-    und = np.sort(directed, axis=1)
-    _, ucount = np.unique(und, axis=0, return_counts=True)
-    _, dcount = np.unique(directed, axis=0, return_counts=True)
-    rev = {(int(a), int(b)) for a, b in directed}
-    boundary = np.array([[a, b] for a, b in directed.tolist() if (b, a) not in rev], dtype=np.int64)
-    return int((ucount > 2).sum()), int((dcount > 1).sum()), boundary.reshape(-1, 2)
+    directed = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]).astype(np.int64)
+    n = int(directed.max()) + 1
+    key, rev = directed[:, 0] * n + directed[:, 1], directed[:, 1] * n + directed[:, 0]
+    _, ucount = np.unique(np.minimum(key, rev), return_counts=True)
+    _, dcount = np.unique(key, return_counts=True)
+    boundary = directed[~np.isin(rev, key)]
+    return int((ucount > 2).sum()), int((dcount > 1).sum()), boundary
 
 
 def boundary_loops(boundary, path):
@@ -240,35 +240,72 @@ def cap_loops(vertices, faces, loops):
     return np.vstack(v), np.vstack([faces, np.asarray(extra, dtype=np.int64)])
 
 
-def crossing_triangles(vertices, faces, max_pairs=20_000_000):
+def _candidate_pairs(lo, hi, max_pairs):
+    """Pairs of triangles whose bounding boxes share a cell of a uniform grid (cell: the median box
+    size), i < j, without repeats; None when there would be more than max_pairs."""
+    ext = (hi - lo).max(axis=1)
+    size = max(float(np.median(ext)), 1e-12 * float(ext.max()), 1e-300)
+    origin = lo.min(axis=0)
+    c0 = np.floor((lo - origin) / size).astype(np.int64)
+    c1 = np.floor((hi - origin) / size).astype(np.int64)
+    span = c1 - c0 + 1
+    count = span.prod(axis=1)
+    if count.sum() > max_pairs:
+        return None
+    tri = np.repeat(np.arange(len(lo)), count)
+    k = np.arange(len(tri)) - np.repeat(np.cumsum(count) - count, count)
+    nx, ny = span[tri, 0], span[tri, 1]
+    cell = np.stack([c0[tri, 0] + k % nx, c0[tri, 1] + (k // nx) % ny, c0[tri, 2] + k // (nx * ny)], axis=1)
+    dims = c1.max(axis=0) + 1
+    key = (cell[:, 0] * dims[1] + cell[:, 1]) * dims[2] + cell[:, 2]
+    order = np.lexsort((tri, key))
+    key, tri = key[order], tri[order]
+    found, total, d = [], 0, 1
+    while d < len(key):
+        same = key[:-d] == key[d:]
+        if not same.any():
+            break
+        a, b = tri[:-d][same], tri[d:][same]
+        found.append(np.minimum(a, b) * len(lo) + np.maximum(a, b))
+        total += len(a)
+        if total > max_pairs:
+            return None
+        d += 1
+    pairs = np.unique(np.concatenate(found)) if found else np.zeros(0, dtype=np.int64)
+    return np.stack([pairs // len(lo), pairs % len(lo)], axis=1)
+
+
+def crossing_triangles(vertices, faces, max_pairs=30_000_000, chunk=400_000):
     """Pairs of triangles (no shared vertex) where an edge of one passes through the other's interior:
     a self-intersecting surface. Returns (count, an example (i, j, point)) or (None, None) when too
     many candidate pairs to check."""
-    from scipy.spatial import cKDTree
     a, b, c = vertices[faces[:, 0]], vertices[faces[:, 1]], vertices[faces[:, 2]]
     lo, hi = np.minimum(np.minimum(a, b), c), np.maximum(np.maximum(a, b), c)
-    centre, radius = (lo + hi) / 2, np.linalg.norm(hi - lo, axis=1) / 2
-    pairs = cKDTree(centre).query_pairs(2 * radius.max() * (1 + 1e-9), output_type="ndarray")
-    if len(pairs) > max_pairs:
+    pairs = _candidate_pairs(lo, hi, max_pairs)
+    if pairs is None:
         return None, None
-    i, j = pairs[:, 0], pairs[:, 1]
     tol = 1e-9 * float(np.ptp(vertices, axis=0).max())
-    keep = np.all(lo[i] <= hi[j] + tol, axis=1) & np.all(lo[j] <= hi[i] + tol, axis=1)
-    keep &= ~(faces[i][:, :, None] == faces[j][:, None, :]).any(axis=(1, 2))
-    i, j = i[keep], j[keep]
-    hit = np.zeros(len(i), dtype=bool)
-    where = np.zeros((len(i), 3))
-    for s, t in ((i, j), (j, i)):
-        tri = [vertices[faces[t, k]] for k in range(3)]
-        for e in range(3):
-            p0, p1 = vertices[faces[s, e]], vertices[faces[s, (e + 1) % 3]]
-            h, q = _segment_hits(p0, p1, *tri)
-            where[h & ~hit] = q[h & ~hit]
-            hit |= h
-    if not hit.any():
-        return 0, None
-    k = int(np.argmax(hit))
-    return int(hit.sum()), (int(i[k]), int(j[k]), where[k])
+    count, example = 0, None
+    for start in range(0, len(pairs), chunk):
+        i, j = pairs[start:start + chunk, 0], pairs[start:start + chunk, 1]
+        keep = np.all(lo[i] <= hi[j] + tol, axis=1) & np.all(lo[j] <= hi[i] + tol, axis=1)
+        i, j = i[keep], j[keep]
+        keep = ~(faces[i][:, :, None] == faces[j][:, None, :]).any(axis=(1, 2))
+        i, j = i[keep], j[keep]
+        hit = np.zeros(len(i), dtype=bool)
+        where = np.zeros((len(i), 3))
+        for s, t in ((i, j), (j, i)):
+            tri = [vertices[faces[t, k]] for k in range(3)]
+            for e in range(3):
+                p0, p1 = vertices[faces[s, e]], vertices[faces[s, (e + 1) % 3]]
+                h, q = _segment_hits(p0, p1, *tri)
+                where[h & ~hit] = q[h & ~hit]
+                hit |= h
+        if hit.any() and example is None:
+            k = int(np.argmax(hit))
+            example = (int(i[k]), int(j[k]), where[k])
+        count += int(hit.sum())
+    return count, example
 
 
 def _segment_hits(p0, p1, a, b, c, eps=1e-9):

@@ -124,7 +124,7 @@ def scan_geometry(path, mass=1.0, tolerance=1e-3, com=None, unit="auto", up=None
                 "at the base is capped: fill this one in the scanning software (or check --up / --floor)")
     if loops:
         notes.append(f"the hole(s) lie at the floor (within {cap_tol * 1000:.3g} mm)")
-    g["open_edges"] = rg.open_edges(vc, fc)
+    g["open_edges"] = len(mi.edge_report(fc)[2])  # 0: every hole was capped
     g["notes"] = notes
     g["size"] = np.ptp(placed, axis=0).tolist()
     g["convex_hull"] = convex_hull_3d(placed[np.unique(fc)])
