@@ -32,3 +32,9 @@ if(BUILD_TESTING)
   add_test(NAME cli.catalogue_check.unknown_flag_is_one_error_line
            COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/unknown_flag.sh catalogue_check $<TARGET_FILE:catalogue_check>)
 endif()
+
+# The monitor node starts on a catalogue rocking_catalogue wrote (test/ros/own_objects.test).
+if(catkin_FOUND AND CATKIN_ENABLE_TESTING AND TARGET monitor)
+  find_package(rostest REQUIRED)
+  add_rostest(test/ros/own_objects.test DEPENDENCIES monitor)
+endif()

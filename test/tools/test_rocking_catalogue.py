@@ -193,6 +193,20 @@ class Check(unittest.TestCase):
             self.assertLess(place["loose"][1], 0.0)
 
 
+class Fixture(unittest.TestCase):
+    def test_rostest_catalogue_is_what_the_tool_writes(self):
+        # test/ros/own_objects.test starts the monitor on this file: it must be today's output
+        root = os.path.join(HERE, "..", "..")
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "c.yaml")
+            r = run("from-table", os.path.join(root, "docs", "own_objects", "items.csv"), "--out", out,
+                    "--topic", "ground_floor=/ground/imu")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(out) as a, open(os.path.join(root, "test", "ros", "own_objects_catalogue.yaml")) as b:
+                strip = lambda t: [ln for ln in t.read().splitlines() if not ln.startswith("# made by:")]  # noqa: E731
+                self.assertEqual(strip(a), strip(b))
+
+
 class FromScan(unittest.TestCase):
     def test_scan_to_checked_catalogue_and_picture(self):
         sys.path.insert(0, HERE)
