@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
-"""rocking_geometry: a rocking item's catalogue entry from a closed surface mesh (issue 20).
+"""rocking_geometry: a rocking item's catalogue entry from a mesh or a scan (issues 20, 43).
 
-Reads a triangle mesh (OBJ, optionally gzipped), places it (quaternion, translation, mass), and
-computes, exactly for the polyhedron (signed tetrahedra, homogeneous density):
+Reads PLY, STL, OBJ, OFF, glTF or GLB (.gz allowed; meshio and assimp, mesh_input.py); a MESH is a
+scan: unit, floor or turntable, holes, floor face and bad meshes handled as scan_entry.py states
+(docs/own_objects.md). Places it, and computes exactly (signed tetrahedra, homogeneous density):
   - volume, centre of mass, central inertia tensor;
   - the base contact: the vertices within --contact-tolerance of the lowest one, and their convex
     hull on the floor;
@@ -21,7 +22,7 @@ The planar model (docs/validation.md) assumes both pivots on one flat floor: the
 height of the centre of mass above the lowest vertex; the pivots' own heights (within the tolerance)
 are reported, with the exact per-pivot alpha they would give.
 
-  rocking_geometry.py MESH [--quaternion X Y Z W] [--mass KG] [--com X Y Z] ...
+  rocking_geometry.py MESH [--mass KG] [--com X Y Z] [--unit U] [--up AXIS] [--floor F] [--write-hull] ...
   rocking_geometry.py --granite DIR [--yaml OUT] [--plot-dir DIR]   (the two granite specimens)
   ... [--com-shift DX DY]: the centre of mass moved horizontally after placement (calibration)
   ... [--planar-only]: without the 3-D keys (for a catalogue reader that does not know them yet)
