@@ -57,6 +57,10 @@ def scan_geometry(path, mass=1.0, tolerance=1e-3, com=None, unit="auto", up=None
     """(g, placed, notes): rocking_geometry's result for the mesh file at `path`, the placed vertices
     (floor frame) and the statements of what was decided. com: measured centre of mass in the mesh's
     frame, metres (after the unit conversion)."""
+    if unit != "auto" and unit not in mi.UNITS:
+        raise mi.GeometryError(f"unit '{unit}': one of auto, {', '.join(mi.UNITS)}")
+    if up is not None and up not in AXES:
+        raise mi.GeometryError(f"up axis '{up}': one of {', '.join(AXES)}")
     v, f, notes = mi.read_mesh(path)
     scale, note = mi.unit_scale(v, f, unit, path)
     notes.append(note)
