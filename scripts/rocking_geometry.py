@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
-"""rocking_geometry: a rocking item's catalogue entry from a closed surface mesh (issue 20).
+"""rocking_geometry: a rocking item's catalogue entry from a mesh or a scan (issues 20, 43).
 
-Reads a triangle mesh (OBJ, optionally gzipped), places it (quaternion, translation, mass), and
-computes, exactly for the polyhedron (signed tetrahedra, homogeneous density):
+Reads PLY, STL, OBJ, OFF, glTF or GLB (.gz allowed; meshio and assimp, mesh_input.py); a MESH is a
+scan: unit, floor or turntable, holes, floor face and bad meshes handled as scan_entry.py states
+(docs/own_objects.md). Places it, and computes exactly (signed tetrahedra, homogeneous density):
   - volume, centre of mass, central inertia tensor;
   - the base contact: the vertices within --contact-tolerance of the lowest one, and their convex
     hull on the floor;
@@ -21,13 +22,12 @@ The planar model (docs/validation.md) assumes both pivots on one flat floor: the
 height of the centre of mass above the lowest vertex; the pivots' own heights (within the tolerance)
 are reported, with the exact per-pivot alpha they would give.
 
-  rocking_geometry.py MESH [--quaternion X Y Z W] [--mass KG] [--com X Y Z] ...
+  rocking_geometry.py MESH [--mass KG] [--com X Y Z] [--unit U] [--up AXIS] [--floor F] [--write-hull] ...
   rocking_geometry.py --granite DIR [--yaml OUT] [--plot-dir DIR]   (the two granite specimens)
   ... [--com-shift DX DY]: the centre of mass moved horizontally after placement (calibration)
   ... [--planar-only]: without the 3-D keys (for a catalogue reader that does not know them yet)
 """
 import argparse
-import gzip
 import json
 import math
 import os
@@ -36,49 +36,16 @@ import sys
 import numpy as np
 
 
-class GeometryError(Exception):
-    """Bad mesh or placement; the message names the file (and line) or the quantity."""
+from mesh_input import GeometryError, read_mesh  # noqa: E402  (beside this script)
 
 
 # ---------------------------------------------------------------- reading
 
 def read_obj(path):
-    """Vertices (n x 3) and triangles (m x 3, 0-based) of an OBJ file (.gz allowed).
-    Polygons are fanned into triangles; v/vt/vn face tokens and negative indices are accepted."""
-    opener = gzip.open if path.endswith(".gz") else open
-    vertices, faces = [], []
-    try:
-        with opener(path, "rt", encoding="utf-8", errors="replace") as f:
-            for lineno, line in enumerate(f, 1):
-                parts = line.split()
-                if not parts:
-                    continue
-                if parts[0] == "v":
-                    try:
-                        vertices.append([float(parts[1]), float(parts[2]), float(parts[3])])
-                    except (IndexError, ValueError):
-                        raise GeometryError(f"{path}:{lineno}: vertex needs three numbers: {line.strip()}")
-                elif parts[0] == "f":
-                    idx = []
-                    for tok in parts[1:]:
-                        try:
-                            i = int(tok.split("/")[0])
-                        except ValueError:
-                            raise GeometryError(f"{path}:{lineno}: bad face index '{tok}'")
-                        i = i - 1 if i > 0 else len(vertices) + i
-                        if i < 0 or i >= len(vertices):
-                            raise GeometryError(f"{path}:{lineno}: face index {tok} outside the "
-                                                f"{len(vertices)} vertices read so far")
-                        idx.append(i)
-                    if len(idx) < 3:
-                        raise GeometryError(f"{path}:{lineno}: face with fewer than 3 vertices")
-                    for k in range(1, len(idx) - 1):
-                        faces.append([idx[0], idx[k], idx[k + 1]])
-    except OSError as e:
-        raise GeometryError(f"{path}: cannot read ({e})")
-    if not faces:
-        raise GeometryError(f"{path}: no faces")
-    return np.asarray(vertices, dtype=float), np.asarray(faces, dtype=np.int64)
+    """Vertices (n x 3) and triangles (m x 3, 0-based) of a mesh file in metres, as stored (PLY, STL,
+    OBJ, OFF, glTF/GLB, .gz allowed; mesh_input.read_mesh: meshio and assimp, polygons fanned)."""
+    v, f, _ = read_mesh(path)
+    return v, f
 
 
 def open_edges(vertices, faces):
@@ -356,7 +323,8 @@ def entry_3d(g):
             "mesh's about that point)"]
 
 
-def catalogue_entry(item_id, g, sensor="table", restitution_shift=None, mu_s=None, planar_only=False):
+def catalogue_entry(item_id, g, sensor="table", restitution_shift=None, mu_s=None, planar_only=False,
+                    extra=()):
     """YAML text of a catalogue item (both planes and the 3-D description), with the derivation in
     comments; an ensemble member may also carry its restitution_shift (added to eq. 34 per pivot) and
     mu_s. planar_only: without the 3-D keys."""
@@ -376,6 +344,7 @@ def catalogue_entry(item_id, g, sensor="table", restitution_shift=None, mu_s=Non
                          f"{piv['radius']:.6f} m, I_O {piv['inertia']:.4f} kg m^2")
     if not planar_only:
         lines += entry_3d(g)
+    lines += list(extra)  # a scan's decisions (comments) and its hull (scan_entry.py)
     if restitution_shift is not None:
         lines.append(f"    restitution_shift: {restitution_shift:.6f}   # added to eq. 34's ratio of each pivot")
     if mu_s is not None:
@@ -513,10 +482,29 @@ def granite_ensemble(directory, members, seed, tolerance, max_tilt_deg=5.0, tol_
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("mesh", nargs="?", help="OBJ mesh (metres), .gz allowed")
+    ap.add_argument("mesh", nargs="?", help="mesh or scan: PLY, STL, OBJ, OFF, glTF, GLB (.gz allowed)")
     ap.add_argument("--granite", metavar="DIR", help="the granite_pbr data set: both specimens")
     ap.add_argument("--quaternion", nargs=4, type=float, metavar=("X", "Y", "Z", "W"),
-                    default=(0.0, 0.0, 0.0, 1.0), help="placement rotation, mesh -> world")
+                    help="placement rotation, mesh -> world (then --floor given)")
+    ap.add_argument("--unit", choices=["auto", "m", "mm", "cm", "in"], default="auto",
+                    help="the mesh file's length unit (default auto: mm when its largest extent is "
+                         "over 10 units, else m; stated)")
+    ap.add_argument("--up", choices=["x", "y", "z", "-x", "-y", "-z"],
+                    help="the mesh file's up axis (default z; y for glTF/GLB)")
+    ap.add_argument("--floor", choices=["auto", "lowest", "largest", "given"], default="auto",
+                    help="what it stands on: lowest (default) the convex-hull face nearest to -up that "
+                         "carries the centre of mass; largest: the largest such face; given: the "
+                         "--quaternion placement (the default when --quaternion is given)")
+    ap.add_argument("--keep-slab", action="store_true",
+                    help="keep a wide flat bottom layer (default: a scanned floor or turntable is "
+                         "recognised and removed, and the removal stated)")
+    ap.add_argument("--cap-tolerance", type=float, metavar="M",
+                    help="a hole is capped when it lies within M of the floor (default max(3 x "
+                         "contact tolerance, 2 %% of the height)); elsewhere the mesh is refused")
+    ap.add_argument("--sensor", default="table", help="the entry's sensor (default table)")
+    ap.add_argument("--write-hull", action="store_true",
+                    help="also write hull: the mesh's convex hull vertices, floor frame (for a "
+                         "catalogue reader that knows the key)")
     ap.add_argument("--mass", type=float, default=1.0, help="kg (default 1)")
     ap.add_argument("--com", nargs=3, type=float, help="measured centre of mass, mesh frame, m")
     ap.add_argument("--contact-tolerance", type=float, default=0.001,
@@ -573,11 +561,15 @@ def main(argv=None):
                 results, entries = granite(a.granite, a.contact_tolerance, a.plot_dir, not a.no_settle,
                                            a.homogeneous, a.com_shift, a.specimen, a.planar_only)
         elif a.mesh:
-            v, f = read_obj(a.mesh)
-            g, placed = rocking_geometry(v, f, quaternion_matrix(*a.quaternion), a.mass,
-                                         a.contact_tolerance, a.com, a.settle, a.com_shift)
-            g["open_edges"] = open_edges(v, f)
-            results, entries = {a.id: g}, [catalogue_entry(a.id, g, planar_only=a.planar_only)]
+            import scan_entry  # noqa: E402  (beside this script; it imports this module)
+            g, placed, notes = scan_entry.scan_geometry(
+                a.mesh, a.mass, a.contact_tolerance, a.com, a.unit, a.up, a.floor, a.keep_slab,
+                a.cap_tolerance, a.quaternion, a.settle, a.com_shift)
+            for n in notes + [scan_entry.describe(g)]:
+                print(f"rocking_geometry: {a.mesh}: {n}", file=sys.stderr)
+            extra = scan_entry.entry_comments(g) + ([scan_entry.hull_line(g)] if a.write_hull else [])
+            results = {a.id: g}
+            entries = [catalogue_entry(a.id, g, a.sensor, planar_only=a.planar_only, extra=extra)]
             if a.plot_dir:
                 plot_outline(os.path.join(a.plot_dir, f"{a.id}.png"), a.id, placed, g)
         else:

@@ -44,7 +44,7 @@ for node in $nodes; do
 done
 
 # 2. The tools.
-for tool in rocking_sim rocking_study rocking_experiments record_to_bag record_to_mseed rocking_report; do
+for tool in rocking_sim rocking_study rocking_experiments record_to_bag record_to_mseed rocking_report rocking_catalogue catalogue_check; do
   if [ ! -x "$inst/lib/rocking_monitor/$tool" ]; then
     fail "$tool is not installed in lib/rocking_monitor"
   elif ! "$inst/lib/rocking_monitor/$tool" --help >"$prefix/help.txt" 2>&1; then
