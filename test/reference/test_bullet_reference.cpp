@@ -375,23 +375,30 @@ TEST(Bullet3D, BoxUnderADiagonalPulse) {
     EXPECT_TRUE(c.core.vertex);
     EXPECT_FALSE(c.core.overturned);
     EXPECT_FALSE(c.bullet.overturned);
-    EXPECT_GT(c.core.max_tilt, 0.1);  // a quarter of the corner's tipping angle (0.44 rad)
-    EXPECT_NEAR(c.bullet.max_tilt / c.core.max_tilt, 1.0, kPeakTol);
+    EXPECT_GT(c.core.max_tilt, 0.08);  // a fifth of the corner's tipping angle (0.44 rad)
     EXPECT_NEAR(c.bullet.first_impact_time, c.core.first_impact_time, kImpactTimeTol);
+    // The first landing is flat on three corners at once. The core's law (issue 40) gives eq. 34
+    // of the body through the diagonal there (the far corner takes the impulse: Rocking3DLandings,
+    // ImpactLaw tests); Bullet's sequential impulses activate the three corners one after another
+    // and keep more energy (issue 40: ratio 0.861 against eq. 34's 0.721 in Siconos), so its driven
+    // second swing is higher: measured 0.114 against the core's 0.093 rad (1/8000 s; 0.113 at 1/4000).
+    // A time-stepping code is the reference for the free motion and single-contact landings here,
+    // not for a landing on several contacts.
+    EXPECT_GT(c.bullet.max_tilt / c.core.max_tilt, 1.0 + kPeakTol);
+    EXPECT_LT(c.bullet.max_tilt / c.core.max_tilt, 1.35);
   }
   {
-    // Overturns on the return swing after one landing: the landing in the diagonal plane is
-    // symmetric (the three other corners arrive together), so the overturn time after it depends
-    // on how each code breaks that symmetry (Bullet: its sequential impulse order). Measured
-    // 0.3-4 ms apart (1/4000 to 1/32000 s); at 1.0-1.5 g it is not converged in Bullet at all (up
-    // to 0.2 s apart), so those are not compared.
-    SCOPED_TRACE("0.8 g: one landing, then overturns");
+    // Overturns after landing flat on three corners at once. Bullet (sequential impulses) keeps
+    // more energy at that landing than the law (eq. 34 of the diagonal body, issue 40) and
+    // overturns on the return swing (1.24 s); the core loses eq. 34's share, swings again and
+    // overturns at 2.38 s. The same first landing; the later overturn is the law's, not a defect.
+    SCOPED_TRACE("0.8 g: lands flat on three corners, then overturns");
     const Compared c = compare_box_pulse(diagonal, 0.8);
     EXPECT_TRUE(c.core.overturned);
     EXPECT_TRUE(c.bullet.overturned);
     EXPECT_GE(c.core.impacts, 1);
     EXPECT_NEAR(c.bullet.first_impact_time, c.core.first_impact_time, kImpactTimeTol);
-    EXPECT_NEAR(c.bullet.overturn_time, c.core.overturn_time, kOverturnAfterImpactTol);
+    EXPECT_GT(c.core.overturn_time, c.bullet.overturn_time + kOverturnAfterImpactTol);
   }
   {
     SCOPED_TRACE("2.0 g: overturns on the first swing");
