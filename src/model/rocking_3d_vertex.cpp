@@ -120,12 +120,20 @@ Rocking3DModel::Event Rocking3DModel::advance_vertex(const GroundInput3& in, dou
     Event event = Event::None;
     touching = -1;
     constexpr int kProbes = 4;
+    // The vertical row of the rotation at each probe, once for all vertices (a vertex's height is
+    // its dot product with the vertex's offset from the pivot).
+    Eigen::Vector3d up[kProbes + 1];
+    for (int k = 0; k <= kProbes; ++k) {
+      const Vec7 yk = k == 0 ? y_ : k == kProbes ? Vec7(vector_.y1()) : Vec7(vector_.eval(t0 + (t1 - t0) * k / kProbes));
+      up[k] = vertex_rotation(yk).row(2).transpose();
+    }
     for (int i = 0; i < n; ++i) {
       if (i == contact_) continue;
-      double ta = t0, za = height(y_, i);
+      const Eigen::Vector3d offset = body_.vertex(i).position - pivot.position;
+      double ta = t0, za = up[0].dot(offset);
       for (int k = 1; k <= kProbes; ++k) {
         const double tb = k == kProbes ? t1 : t0 + (t1 - t0) * k / kProbes;
-        const double zb = height(k == kProbes ? vector_.y1() : Vec7(vector_.eval(tb)), i);
+        const double zb = up[k].dot(offset);
         const bool armed = armed_[i] || za > eps;
         // An unarmed vertex that sinks clearly below the floor is a touchdown too (the pivot
         // turned the wrong way for the vertex it left): resolved as an impact.
