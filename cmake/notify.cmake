@@ -26,3 +26,18 @@ if(BUILD_TESTING)
     ROCKING_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
   gtest_discover_tests(notify_tests DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 120)
 endif()
+
+# alarm_notifier: the ROS node around the core (src/ros/alarm_notifier*.cpp) and its rostest.
+if(catkin_FOUND)
+  add_executable(alarm_notifier src/ros/alarm_notifier.cpp src/ros/alarm_notifier_node.cpp)
+  target_include_directories(alarm_notifier PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/include ${catkin_INCLUDE_DIRS})
+  target_link_libraries(alarm_notifier PRIVATE rocking_monitor_notify ${catkin_LIBRARIES})
+  target_compile_options(alarm_notifier PRIVATE -Wall -Wextra)
+  add_dependencies(alarm_notifier ${PROJECT_NAME}_generate_messages_cpp)
+  install(TARGETS alarm_notifier RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+endif()
+if(catkin_FOUND AND CATKIN_ENABLE_TESTING)
+  find_package(rostest REQUIRED)
+  # The demo's pulse through the monitor and the node to real servers; the node killed and restarted; a pair.
+  add_rostest(test/ros/alarm_notifier.test DEPENDENCIES alarm_notifier monitor)
+endif()

@@ -218,7 +218,7 @@ TEST_F(NotifyServers, BurstOfTenThousandItemsIsAFewEmails) {
   EXPECT_LE(mail.size(), 4u);
   EXPECT_LE(hook.size(), 4u);
   int posted = 0;
-  for (const auto& h : hook) posted += h["alarms"].get<int>();
+  for (const auto& h : hook) posted += static_cast<int>(h["alarms"].size());
   EXPECT_EQ(posted, items);
   int listed = 0;
   for (const auto& m : mail) {
