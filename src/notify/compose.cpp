@@ -12,11 +12,14 @@ namespace rocking_monitor::notify {
 
 using nlohmann::json;
 
-std::string meaning(int level) {
+std::string meaning(int level, std::size_t count) {
+  const bool one = count == 1;
   switch (level) {
-    case kBeyondTipping: return "rocked past its tipping angle; it may still settle back";
+    case kBeyondTipping:
+      return one ? "rocked past its tipping angle; it may still settle back"
+                 : "rocked past their tipping angles; they may still settle back";
     case kCommitted: return "will fall even if the shaking stopped now";
-    case kOverturned: return "has fallen";
+    case kOverturned: return one ? "has fallen" : "have fallen";
   }
   return "reached level " + std::to_string(level);
 }
@@ -115,7 +118,7 @@ OutMessage compose_group(const NotifyConfig& config, const RecipientConfig& reci
        << "Event " << (events_text.empty() ? "(no journal id)" : events_text) << ", first alarm of this message at "
        << iso_utc(first) << " (sensor time).\n";
   for (const auto& [level, list] : by_level) {
-    body << "\n" << level_name(level) << ": " << list.size() << (list.size() == 1 ? " item " : " items ") << meaning(level)
+    body << "\n" << level_name(level) << ": " << list.size() << (list.size() == 1 ? " item " : " items ") << meaning(level, list.size())
          << ".\nWhat to do: " << instructions(level) << "\n";
     const std::size_t shown = std::min(list.size(), config.max_items_listed);
     for (std::size_t i = 0; i < shown; ++i) body << line_of(list[i]->alarm) << "\n";

@@ -173,11 +173,15 @@ TEST_F(NotifierCore, RestartSendsWhatWasNotAcknowledgedAndRemembersWhatWas) {
     n->accept(alarm("/a", "vase_2", kCommitted, 100.5, 2), 1000.5);  // waits for the window: not in a message yet
     ASSERT_EQ(n->tick(1000.5), "");
     // the refusal is reported with the server's reason
-    for (int i = 0; i < 1000 && n->status()[0].failures == 0; ++i) n->wait_idle(0.01);
-    bool reported = false;
-    for (const auto& s : n->status())
-      reported = reported || (s.name == "mail" && s.last_error.find("451 4.3.0") != std::string::npos && s.queued == 1);
-    EXPECT_TRUE(reported);
+    auto mail = [&] {
+      for (const auto& s : n->status())
+        if (s.name == "mail") return s;
+      return Notifier::ChannelStatus{};
+    };
+    // waits (on the condition, at most 10 s) for the mail channel's first refusal
+    for (int i = 0; i < 1000 && mail().failures == 0; ++i) n->wait_idle(0.01);
+    EXPECT_NE(mail().last_error.find("451 4.3.0"), std::string::npos) << mail().last_error;
+    EXPECT_EQ(mail().queued, 1u);
   }  // "killed": the notifier goes; its outbox stays
   EXPECT_TRUE(rec.of("curator").empty());
   rec.fail_next = 0;

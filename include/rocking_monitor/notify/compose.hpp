@@ -14,8 +14,8 @@ namespace rocking_monitor::notify {
 
 /// What the operator should do, in plain words, for an item at `level`.
 std::string instructions(int level);
-/// What the level means, in plain words ("has fallen").
-std::string meaning(int level);
+/// What the level means for `count` items, in plain words ("has fallen", "have fallen").
+std::string meaning(int level, std::size_t count = 1);
 /// ISO 8601 UTC with milliseconds, e.g. 1994-01-17T12:30:55.250Z.
 std::string iso_utc(double seconds_since_1970);
 
