@@ -43,7 +43,9 @@ core::AlarmIdentity identity(const NotifyAlarm& a) {
 }  // namespace
 
 Notifier::Notifier(NotifyConfig config, const std::string& outbox_path, const ChannelFactory& factory, double now)
-    : config_(std::move(config)), dedup_(config_.window) {
+    // The pair's copies: the dedup's own window on input stamps (10 s, as the dashboard's), not the
+    // grouping window, which is about people.
+    : config_(std::move(config)), dedup_(core::AlarmDedup::kDefaultWindow) {
   if (std::string e = outbox_.open(outbox_path); !e.empty()) throw std::runtime_error("notify outbox: " + e);
   for (const auto& [name, ch] : config_.channels) {
     auto s = std::make_unique<Sender>();

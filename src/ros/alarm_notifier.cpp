@@ -125,6 +125,7 @@ void AlarmNotifier::accept(const notify::NotifyAlarm& a) {
 void AlarmNotifier::tick(const ros::WallTimerEvent&) {
   if (const std::string e = notifier_->tick(wall_now()); !e.empty())
     ROS_ERROR_THROTTLE(10.0, "alarm_notifier: outbox: %s (nothing is sent that is not on disk)", e.c_str());
+  std::lock_guard<std::mutex> lock(reported_mutex_);
   for (const auto& s : notifier_->status()) {
     std::string& said = reported_[s.name];
     const std::string now = s.failing_attempts > 0 ? s.last_error : "";

@@ -5,11 +5,14 @@ appended to LOG as one JSON line and fsync'd before the server acknowledges it, 
 the server accepted. Prints "ready PORT" when it listens.
 
   servers.py smtp|http PORT LOG [--die-at N] [--reject TEXT] [--fail-first K]
+             [--starttls CERT KEY] [--login USER:PASSWORD]
 
 --die-at N      the N-th message (counting from 1 over this process's life) kills the server before
                 it is stored or acknowledged: a crash in the middle of a delivery
 --reject TEXT   SMTP: refuse every recipient containing TEXT with 550 (a permanent error with a reason)
 --fail-first K  HTTP: answer the first K POSTs with 503 and a reason in the body
+--starttls      SMTP: require STARTTLS with this certificate and key before anything else
+--login         SMTP: require AUTH (LOGIN or PLAIN) with this user and password (after STARTTLS)
 """
 import argparse
 import email
@@ -37,6 +40,8 @@ def main():
     p.add_argument('--die-at', type=int, default=0)
     p.add_argument('--reject', default='')
     p.add_argument('--fail-first', type=int, default=0)
+    p.add_argument('--starttls', nargs=2, metavar=('CERT', 'KEY'))
+    p.add_argument('--login', default='')
     a = p.parse_args()
     seen = [0]
 
@@ -59,10 +64,25 @@ def main():
                 arrived()
                 msg = email.message_from_bytes(envelope.content, policy=email.policy.default)
                 append(a.log, {'id': msg['Message-ID'], 'to': envelope.rcpt_tos, 'from': envelope.mail_from,
-                               'subject': str(msg['Subject']), 'body': msg.get_content()})
+                               'subject': str(msg['Subject']), 'body': msg.get_content(),
+                               'tls': session.ssl is not None, 'authenticated': bool(session.authenticated)})
                 return '250 OK queued'
 
-        controller = Controller(Handler(), hostname='127.0.0.1', port=a.port)
+        options = {}
+        if a.starttls:
+            import ssl
+            context = ssl.create_default_context(ssl.Purpose.CLIENT_AUTH)
+            context.load_cert_chain(*a.starttls)
+            options.update(tls_context=context, require_starttls=True)
+        if a.login:
+            from aiosmtpd.smtp import AuthResult
+            user, password = a.login.split(':', 1)
+
+            def authenticator(server, session, envelope, mechanism, auth_data):
+                ok = auth_data.login.decode() == user and auth_data.password.decode() == password
+                return AuthResult(success=ok, handled=False)
+            options.update(authenticator=authenticator, auth_required=True, auth_require_tls=bool(a.starttls))
+        controller = Controller(Handler(), hostname='127.0.0.1', port=a.port, **options)
         controller.start()
         print('ready', a.port, flush=True)
         signal.sigwait({signal.SIGTERM, signal.SIGINT})

@@ -229,3 +229,37 @@ TEST_F(NotifyServers, BurstOfTenThousandItemsIsAFewEmails) {
   }
   EXPECT_EQ(listed, items) << "every item listed or counted";
 }
+
+TEST_F(NotifyServers, StartTlsAndLogin) {
+  // A self-signed certificate for the test's SMTP server (openssl), so verify_tls: false.
+  const std::string cert = dir + "/cert.pem", key = dir + "/key.pem";
+  const std::string cmd = "openssl req -x509 -newkey rsa:2048 -nodes -subj /CN=127.0.0.1 -days 1 -keyout " + key +
+                          " -out " + cert + " >/dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  auto smtp = start_server("smtp", smtp_port, smtp_log, {"--starttls", cert, key, "--login", "monitor:s3cret"});
+  const std::string yaml = "channels:\n  mail: {type: smtp, url: 'smtp://127.0.0.1:" + std::to_string(smtp_port) +
+                           "', from: monitor@test.example, starttls: true, verify_tls: false, username: monitor, "
+                           "password: PASSWORD}\nretry: {initial: 0.02, max: 0.1}\n"
+                           "recipients:\n  - {name: curator, channel: mail, to: curator@test.example}\n";
+  {  // the wrong password: refused, with the server's reason
+    auto bad = yaml;
+    bad.replace(bad.find("PASSWORD"), 8, "wrong");
+    Notifier n(parse_notify_config(bad, "tls.yaml"), dir + "/outbox_bad.jsonl", make_channel, 1000.0);
+    n.accept(alarm("vase_1", kCommitted, 100.0, 1), 1000.0);
+    ASSERT_EQ(n.tick(1000.0), "");
+    ASSERT_TRUE(wait_for([&] { return !channel_error(n, "mail").empty(); }));
+    EXPECT_NE(channel_error(n, "mail").find("535"), std::string::npos) << channel_error(n, "mail");
+    std::printf("[ refused  ] %s\n", channel_error(n, "mail").c_str());
+    EXPECT_TRUE(read_log(smtp_log).empty());
+  }
+  auto good = yaml;
+  good.replace(good.find("PASSWORD"), 8, "s3cret");
+  Notifier n(parse_notify_config(good, "tls.yaml"), dir + "/outbox.jsonl", make_channel, 1000.0);
+  n.accept(alarm("vase_1", kCommitted, 100.0, 1), 1000.0);
+  ASSERT_EQ(n.tick(1000.0), "");
+  ASSERT_TRUE(wait_for([&] { return read_log(smtp_log).size() == 1; }));
+  const auto mail = read_log(smtp_log)[0];
+  EXPECT_EQ(mail["tls"], true);
+  EXPECT_EQ(mail["authenticated"], true);
+  EXPECT_EQ(mail["subject"], "[rocking monitor] 1 item COMMITTED: vase_1");
+}

@@ -19,6 +19,7 @@
 
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,7 @@ class AlarmNotifier {
   std::vector<ros::Subscriber> subs_;
   ros::Publisher diag_pub_;
   ros::WallTimer tick_timer_, diag_timer_;
+  std::mutex reported_mutex_;                    // tick() runs on the timer and on a COMMITTED alarm's callback
   std::map<std::string, std::string> reported_;  // channel -> the failure last logged ("" while it works)
 };
 
