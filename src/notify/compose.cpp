@@ -170,6 +170,7 @@ std::vector<OutMessage> compose_mqtt(const ChannelConfig& channel, const Recipie
   doc["what_to_do"] = instructions(alarm.alarm.level);
   level.topic = base + (alarm.alarm.probability ? "probability/" : "") + level_name(alarm.alarm.level);
   level.body = doc.dump(-1, ' ', false, json::error_handler_t::replace);
+  if (alarm.alarm.probability) return {level};  // a share of an ensemble is not the item's state
   OutMessage state = level;
   state.topic = base + "state";
   state.body = level_name(state_level);

@@ -77,8 +77,16 @@ Notifier::Notifier(NotifyConfig config, const std::string& outbox_path, const Ch
   }
   for (auto& m : outbox_.unacknowledged()) {
     auto it = senders_.find(m.channel);
-    if (it != senders_.end()) it->second->queue.push_back(std::move(m));
+    if (it != senders_.end()) {
+      it->second->queue.push_back(std::move(m));
+      continue;
+    }
+    // Its channel was removed from the configuration since: it cannot be sent. Said, and closed.
+    warnings_.push_back("outbox message " + m.id + " for channel '" + m.channel +
+                        "', no longer configured, dropped: " + m.subject);
+    outbox_.add_ack(m.id);
   }
+  if (std::string e = outbox_.sync(); !e.empty()) throw std::runtime_error("notify outbox: " + e);
   for (auto& [name, s] : senders_) {
     Sender* sp = s.get();
     sp->status.queued = sp->queue.size();

@@ -277,3 +277,38 @@ TEST_F(NotifierCore, CorruptOutboxIsAClearError) {
     EXPECT_NE(std::string(e.what()).find("outbox.jsonl:2: corrupt outbox line"), std::string::npos) << e.what();
   }
 }
+
+TEST_F(NotifierCore, MessagesOfARemovedChannelAreDroppedAndSaid) {
+  rec.fail_next = 1000000;
+  {
+    auto n = start(1000.0);
+    n->accept(alarm("/a", "vase_1", kOverturned, 100.0, 1), 1000.0);
+    ASSERT_EQ(n->tick(1000.0), "");
+  }
+  rec.fail_next = 0;
+  config.channels.erase("bms");
+  config.recipients.pop_back();
+  auto n = start(1001.0);
+  const auto w = n->warnings();
+  ASSERT_EQ(w.size(), 2u);  // the two publications of the building's MQTT recipient
+  EXPECT_NE(w[0].find("for channel 'bms', no longer configured, dropped"), std::string::npos) << w[0];
+  ASSERT_TRUE(n->wait_idle(10));
+  EXPECT_EQ(rec.of("curator").size(), 1u);
+  EXPECT_EQ(rec.of("facilities").size(), 1u);
+  EXPECT_TRUE(rec.of("building").empty());
+}
+
+TEST(NotifyCompose, ProbabilityAlarmIsNoItemState) {
+  const NotifyConfig c = parse_notify_config(kConfig, "test.yaml");
+  OutboxAlarm a;
+  a.number = 7;
+  a.alarm = alarm("/a", "vase/1", kCommitted, 100.0, 1);
+  const auto det = compose_mqtt(c.channels.at("bms"), c.recipients[2], a, kCommitted);
+  ASSERT_EQ(det.size(), 2u);
+  EXPECT_EQ(det[0].topic, "museum/vase_1/COMMITTED");  // a '/' in an item id is no topic level
+  EXPECT_EQ(det[1].topic, "museum/vase_1/state");
+  a.alarm.probability = true;
+  const auto prob = compose_mqtt(c.channels.at("bms"), c.recipients[2], a, 0);
+  ASSERT_EQ(prob.size(), 1u);
+  EXPECT_EQ(prob[0].topic, "museum/vase_1/probability/COMMITTED");
+}

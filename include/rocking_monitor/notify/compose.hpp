@@ -26,6 +26,7 @@ OutMessage compose_group(const NotifyConfig& config, const RecipientConfig& reci
 
 /// An mqtt recipient's publications for one alarm: <prefix>/<item>/<level> (the alarm as JSON) and
 /// <prefix>/<item>/state (the highest level reached, `state_level`), both retained when the channel says so.
+/// A probability alarm: <prefix>/<item>/probability/<level> only.
 std::vector<OutMessage> compose_mqtt(const ChannelConfig& channel, const RecipientConfig& recipient,
                                      const OutboxAlarm& alarm, int state_level);
 

@@ -82,8 +82,12 @@ class Notifier {
     std::uint64_t accepted = 0, unrouted = 0, repeats = 0, merged = 0, messages = 0;
   };
   Counts counts() const;
-  /// Outbox replay warnings (a cut last line).
-  const std::vector<std::string>& warnings() const { return outbox_.warnings(); }
+  /// Start warnings: the outbox's (a cut last line), messages of a channel no longer configured.
+  std::vector<std::string> warnings() const {
+    auto all = outbox_.warnings();
+    all.insert(all.end(), warnings_.begin(), warnings_.end());
+    return all;
+  }
   /// Waits until every channel's queue is empty (for tests and a clean shutdown); false at timeout.
   bool wait_idle(double timeout_s) const;
 
@@ -109,6 +113,7 @@ class Notifier {
   std::map<std::string, int> item_state_;               // mqtt: highest level per item (and channel)
   std::vector<OutboxAlarm> to_route_;                   // accepted since the last tick
   Counts counts_;
+  std::vector<std::string> warnings_;
   std::map<std::string, std::unique_ptr<Sender>> senders_;  // by channel
 };
 
