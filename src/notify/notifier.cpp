@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <set>
 #include <stdexcept>
 
 #include "rocking_monitor/notify/compose.hpp"
@@ -207,12 +208,7 @@ std::string Notifier::tick(double now) {
   return "";
 }
 
-void Notifier::acknowledge(Sender& s, std::size_t n) {
-  std::vector<std::string> ids;
-  {
-    std::lock_guard<std::mutex> l(s.mutex);
-    for (std::size_t i = 0; i < n && i < s.queue.size(); ++i) ids.push_back(s.queue[i].id);
-  }
+void Notifier::acknowledge(Sender& s, const std::vector<std::string>& ids) {
   std::string error;
   {
     std::lock_guard<std::mutex> l(outbox_mutex_);
@@ -220,7 +216,9 @@ void Notifier::acknowledge(Sender& s, std::size_t n) {
     error = outbox_.sync();
   }
   std::lock_guard<std::mutex> l(s.mutex);
-  for (std::size_t i = 0; i < ids.size(); ++i) s.queue.pop_front();
+  const std::set<std::string> done(ids.begin(), ids.end());
+  s.queue.erase(std::remove_if(s.queue.begin(), s.queue.end(), [&](const OutMessage& m) { return done.count(m.id) > 0; }),
+                s.queue.end());
   s.status.delivered += ids.size();
   s.status.queued = s.queue.size();
   // Delivered, but the ack did not reach the disk: sent again after a restart. Said, not hidden.
@@ -228,33 +226,65 @@ void Notifier::acknowledge(Sender& s, std::size_t n) {
   s.cv.notify_all();
 }
 
+// Backoff is per recipient: a recipient the server refuses (550 user unknown) waits and is retried,
+// without holding up the others' messages; each recipient's messages stay in order.
 void Notifier::sender_loop(Sender& s) {
-  unsigned attempt = 0;
+  using Clock = std::chrono::steady_clock;
+  struct Backoff {
+    unsigned attempt = 0;
+    Clock::time_point next{};
+  };
+  std::map<std::string, Backoff> backoff;  // recipients in backoff
+  auto failing = [&] {
+    unsigned most = 0;
+    for (const auto& [r, b] : backoff) most = std::max(most, b.attempt);
+    return most;
+  };
   for (;;) {
     std::vector<OutMessage> batch;
     {
       std::unique_lock<std::mutex> l(s.mutex);
-      s.cv.wait(l, [&] { return s.stop || !s.queue.empty(); });
-      if (s.stop) return;
-      const std::size_t n = std::min(s.queue.size(), std::max<std::size_t>(1, s.channel->batch_size()));
-      batch.assign(s.queue.begin(), s.queue.begin() + static_cast<std::ptrdiff_t>(n));
+      for (;;) {
+        if (s.stop) return;
+        const auto now = Clock::now();
+        auto earliest = Clock::time_point::max();
+        const std::size_t most = std::max<std::size_t>(1, s.channel->batch_size());
+        std::set<std::string> waiting;  // recipients skipped: none of their later messages may overtake
+        for (const auto& m : s.queue) {
+          if (batch.size() >= most) break;
+          auto b = backoff.find(m.recipient);
+          if (waiting.count(m.recipient) || (b != backoff.end() && b->second.next > now)) {
+            if (b != backoff.end()) earliest = std::min(earliest, b->second.next);
+            waiting.insert(m.recipient);
+            continue;
+          }
+          batch.push_back(m);
+        }
+        if (!batch.empty()) break;
+        if (earliest == Clock::time_point::max()) s.cv.wait(l);
+        else s.cv.wait_until(l, earliest);
+      }
     }
     std::string error;
     const std::size_t done = std::min(batch.size(), s.channel->deliver(batch, &error));
-    if (done > 0) acknowledge(s, done);
-    if (done == batch.size()) {
-      attempt = 0;
-      std::lock_guard<std::mutex> l(s.mutex);
-      s.status.failing_attempts = 0;
-      continue;
+    if (done > 0) {
+      std::vector<std::string> ids;
+      for (std::size_t i = 0; i < done; ++i) {
+        ids.push_back(batch[i].id);
+        backoff.erase(batch[i].recipient);
+      }
+      acknowledge(s, ids);
     }
-    ++attempt;
-    std::unique_lock<std::mutex> l(s.mutex);
-    ++s.status.failures;
-    s.status.failing_attempts = attempt;
-    s.status.last_error = error.empty() ? "delivery failed (no reason given)" : error;
-    s.cv.wait_for(l, std::chrono::duration<double>(backoff_delay(config_, attempt)), [&] { return s.stop; });
-    if (s.stop) return;
+    std::lock_guard<std::mutex> l(s.mutex);
+    if (done < batch.size()) {
+      Backoff& b = backoff[batch[done].recipient];
+      ++b.attempt;
+      b.next = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                  std::chrono::duration<double>(backoff_delay(config_, b.attempt)));
+      ++s.status.failures;
+      s.status.last_error = error.empty() ? "delivery failed (no reason given)" : error;
+    }
+    s.status.failing_attempts = failing();
   }
 }
 

@@ -11,8 +11,9 @@
 // for the window (from the first alarm waiting, or from the last message) and goes in one message.
 // A digest recipient gets one message per digest_window. An mqtt recipient gets each alarm at once, as
 // retained per-item state (compose_mqtt).
-// Each channel has one sender thread: messages go in order; a failed delivery is retried after a backoff
-// (retry_initial * retry_factor^(n-1), at most retry_max); a message is acknowledged in the outbox
+// Each channel has one sender thread: each recipient's messages go in order; a failed delivery is
+// retried after a backoff (retry_initial * retry_factor^(n-1), at most retry_max) of that recipient,
+// while the other recipients' messages go on; a message is acknowledged in the outbox
 // (fsync'd) when the server accepted it, and never sent again. Killed before the ack is on disk, the
 // message is sent again after the restart (at least once); its id (Message-ID, Idempotency-Key) is the
 // same, so the receiver can tell.
@@ -74,7 +75,7 @@ class Notifier {
     std::size_t queued = 0;          ///< messages not yet acknowledged
     std::uint64_t delivered = 0;     ///< acknowledged since start
     std::uint64_t failures = 0;      ///< failed attempts since start
-    unsigned failing_attempts = 0;   ///< consecutive failed attempts now (0: the last attempt worked)
+    unsigned failing_attempts = 0;   ///< consecutive failed attempts of the recipient failing longest (0: none failing)
     std::string last_error;          ///< the last failure's reason (the server's reply)
   };
   std::vector<ChannelStatus> status() const;
@@ -102,7 +103,7 @@ class Notifier {
   void route(const OutboxAlarm& a, double now);
   double due_at(const RecipientConfig& r, const Waiting& w) const;
   void sender_loop(Sender& s);
-  void acknowledge(Sender& s, std::size_t n);
+  void acknowledge(Sender& s, const std::vector<std::string>& ids);
 
   NotifyConfig config_;
   mutable std::mutex outbox_mutex_;   // outbox_, counts_
