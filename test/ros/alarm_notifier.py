@@ -12,6 +12,7 @@ replays the demo's one-sine pulse and to two test publishers standing for a redu
 - the pair's copies give one message entry per alarm;
 - /diagnostics says when a channel cannot deliver, with the server's reason (the webhook receiver is
   started late: the node reports "Couldn't connect to server" first).
+A bad configuration: the node exits (status 2) with one line naming the file, line and field.
 Measured and printed: time from the monitor's first COMMITTED alarm to the SMTP server's log.
 """
 import json
@@ -193,6 +194,18 @@ recipients:
             'channel bms' in n and lvl == 0 and waiting == '0' for n, lvl, _, waiting in list(self.diag)))
         print('[ measured ] %d alarms, %d e-mails, %d webhook posts' % (
             len(expected), len(read_log(self.smtp_log)), len(read_log(self.http_log))))
+
+    def test_bad_config_is_one_clear_error(self):
+        config = self.tmp + '/bad.yaml'
+        with open(config, 'w') as f:
+            f.write('channels:\n  mail: {type: smtp, url: "smtp://127.0.0.1:25", from: a@b.example}\n'
+                    'recipients:\n  - {name: x, channel: mial, to: x@b.example}\n')
+        exe = [p for p in roslib.packages.find_node('rocking_monitor', 'alarm_notifier') if os.access(p, os.X_OK)][0]
+        run = subprocess.run([exe, '__name:=alarm_notifier_bad', '_config:=' + config, '_outbox:=' + self.tmp + '/o.jsonl'],
+                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=30)
+        self.assertEqual(run.returncode, 2)
+        self.assertIn("bad.yaml:4: recipients[0].channel: unknown channel 'mial' (defined: mail)", run.stdout.decode())
+        self.assertFalse(os.path.exists(self.tmp + '/o.jsonl'), 'nothing started')
 
 
 if __name__ == '__main__':
