@@ -8,6 +8,8 @@
 #   motion       motion/       ground motion, records    csv
 #   monitoring   monitoring/   per-item monitor, offline model, motion and below
 #   study        study/        the paper's study         monitoring (catalogue items, ensembles) and below
+#   feeds        feeds/        live instrument streams   (nothing)
+#   notify       notify/       alarm notifier's core     monitoring (AlarmDedup) and below
 #
 include(${CMAKE_CURRENT_LIST_DIR}/layers_rules.cmake)  # who may include whom
 
@@ -95,9 +97,14 @@ endforeach()
 # Umbrella: the whole core, for tools, tests and the ROS layer.
 add_library(rocking_monitor_core INTERFACE)
 foreach(layer ${ROCKING_CORE_LAYER_NAMES})
-  target_link_libraries(rocking_monitor_core INTERFACE rocking_monitor_${layer})
+  # notify (libcurl, libmosquitto) only where it is used: the notifier and its tests.
+  if(NOT layer STREQUAL "notify")
+    target_link_libraries(rocking_monitor_core INTERFACE rocking_monitor_${layer})
+  endif()
 endforeach()
 target_link_libraries(rocking_monitor_core INTERFACE Threads::Threads)
 
 # --- feeds (issue 18): its third-party libraries and gtests.
 include(${CMAKE_CURRENT_LIST_DIR}/feeds.cmake)
+# --- notify (issue 44): libcurl, libmosquitto, yaml-cpp; its gtests (notify_tests).
+include(${CMAKE_CURRENT_LIST_DIR}/notify.cmake)

@@ -10,5 +10,8 @@ set(ROCKING_LAYER_ALLOWS_study monitoring model integrate physics motion csv)
 # feeds: live instrument streams (UDP shaking-table datagrams, the SeedLink client, miniSEED decoding,
 # channel merging), ROS-free; uses nothing below. Its third-party libraries: cmake/feeds.cmake.
 set(ROCKING_LAYER_ALLOWS_feeds "")
-set(ROCKING_CORE_LAYER_NAMES physics integrate model csv motion monitoring study feeds)
+# notify: the alarm notifier's core (issue 44): routing, outbox, grouping, SMTP/HTTP/MQTT channels; uses
+# monitoring's AlarmDedup (one alarm however many monitors raised it). Libraries: cmake/notify.cmake.
+set(ROCKING_LAYER_ALLOWS_notify monitoring model integrate physics motion csv)
+set(ROCKING_CORE_LAYER_NAMES physics integrate model csv motion monitoring study feeds notify)
 

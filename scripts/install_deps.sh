@@ -18,6 +18,7 @@ packages=(
   libcpp-httplib-dev chromium
   zlib1g-dev
   libbullet-dev
+  libcurl4-openssl-dev libmosquitto-dev mosquitto python3-aiosmtpd
 )
 
 missing=()

@@ -54,6 +54,7 @@ ROSDEP_KEY = {
     'libtf2-eigen-dev': 'tf2_eigen',
     'tf2-tools': 'tf2_tools',
     'topic-tools': 'topic_tools',
+    'libcurl4-openssl-dev': 'libcurl-dev',
 }
 
 # Installed but never declared, and why: no ROS package declares these.

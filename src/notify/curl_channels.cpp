@@ -1,0 +1,214 @@
+// SMTP and HTTP webhook channels over libcurl (channels.hpp).
+#include <curl/curl.h>
+
+#include <algorithm>
+#include <cstring>
+#include <ctime>
+#include <mutex>
+
+#include "rocking_monitor/notify/channels.hpp"
+
+namespace rocking_monitor::notify {
+namespace {
+
+void global_init() {
+  static std::once_flag once;
+  std::call_once(once, [] { curl_global_init(CURL_GLOBAL_DEFAULT); });
+}
+
+// The server's first refusal (an SMTP or HTTP reply line starting 4xx or 5xx: "550 5.1.1 <x>: Recipient
+// address rejected"), from libcurl's debug stream; what follows it (QUIT's "221 Bye") says nothing.
+int on_debug(CURL*, curl_infotype type, char* data, size_t size, void* user) {
+  auto* reply = static_cast<std::string*>(user);
+  if (type != CURLINFO_HEADER_IN || !reply->empty()) return 0;
+  std::string line(data, size);
+  while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+  if (line.rfind("HTTP/", 0) == 0 && line.size() > 9) line = line.substr(line.find(' ') + 1);
+  if (!line.empty() && (line[0] == '4' || line[0] == '5')) *reply = line;
+  return 0;
+}
+
+size_t on_body(char* data, size_t size, size_t n, void* user) {
+  auto* body = static_cast<std::string*>(user);
+  if (body->size() < 400) body->append(data, std::min<size_t>(size * n, 400 - body->size()));
+  return size * n;
+}
+
+struct Upload {
+  std::string text;
+  size_t at = 0;
+};
+size_t on_read(char* buffer, size_t size, size_t n, void* user) {
+  auto* u = static_cast<Upload*>(user);
+  const size_t k = std::min(size * n, u->text.size() - u->at);
+  std::memcpy(buffer, u->text.data() + u->at, k);
+  u->at += k;
+  return k;
+}
+
+bool ascii(const std::string& s) {
+  return std::all_of(s.begin(), s.end(), [](unsigned char ch) { return ch < 128; });
+}
+
+// RFC 2047 encoded word for a non-ASCII subject (a description with accents).
+std::string header_text(const std::string& s) {
+  if (ascii(s)) return s;
+  static const char* b64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  size_t i = 0;
+  for (; i + 2 < s.size(); i += 3) {
+    const unsigned v = (unsigned char)s[i] << 16 | (unsigned char)s[i + 1] << 8 | (unsigned char)s[i + 2];
+    out += {b64[v >> 18], b64[(v >> 12) & 63], b64[(v >> 6) & 63], b64[v & 63]};
+  }
+  if (i + 1 == s.size()) {
+    const unsigned v = (unsigned char)s[i] << 16;
+    out += {b64[v >> 18], b64[(v >> 12) & 63], '=', '='};
+  } else if (i + 2 == s.size()) {
+    const unsigned v = (unsigned char)s[i] << 16 | (unsigned char)s[i + 1] << 8;
+    out += {b64[v >> 18], b64[(v >> 12) & 63], b64[(v >> 6) & 63], '='};
+  }
+  return "=?UTF-8?B?" + out + "?=";
+}
+
+std::string crlf(const std::string& text) {
+  std::string out;
+  out.reserve(text.size() + text.size() / 40);
+  for (char ch : text) {
+    if (ch == '\n') out += "\r\n";
+    else if (ch != '\r') out += ch;
+  }
+  return out;
+}
+
+class CurlChannel : public Channel {
+ public:
+  explicit CurlChannel(const ChannelConfig& c) : config_(c) {
+    global_init();
+    curl_ = curl_easy_init();
+  }
+  ~CurlChannel() override { curl_easy_cleanup(curl_); }
+
+ protected:
+  // Common settings, reset before each message (the connection itself is kept by the handle).
+  void prepare(std::string* reply) {
+    curl_easy_reset(curl_);
+    errbuf_[0] = '\0';
+    reply->clear();
+    curl_easy_setopt(curl_, CURLOPT_URL, config_.url.c_str());
+    curl_easy_setopt(curl_, CURLOPT_NOSIGNAL, 1L);
+    curl_easy_setopt(curl_, CURLOPT_ERRORBUFFER, errbuf_);
+    curl_easy_setopt(curl_, CURLOPT_TIMEOUT_MS, static_cast<long>(config_.timeout * 1000));
+    curl_easy_setopt(curl_, CURLOPT_CONNECTTIMEOUT_MS, static_cast<long>(config_.timeout * 1000));
+    curl_easy_setopt(curl_, CURLOPT_SSL_VERIFYPEER, config_.verify_tls ? 1L : 0L);
+    curl_easy_setopt(curl_, CURLOPT_SSL_VERIFYHOST, config_.verify_tls ? 2L : 0L);
+    curl_easy_setopt(curl_, CURLOPT_VERBOSE, 1L);  // the debug function keeps the server's last reply
+    curl_easy_setopt(curl_, CURLOPT_DEBUGFUNCTION, on_debug);
+    curl_easy_setopt(curl_, CURLOPT_DEBUGDATA, reply);
+    if (!config_.username.empty()) {
+      curl_easy_setopt(curl_, CURLOPT_USERNAME, config_.username.c_str());
+      curl_easy_setopt(curl_, CURLOPT_PASSWORD, config_.password.c_str());
+    }
+  }
+  std::string failure(CURLcode rc, const std::string& reply) const {
+    std::string e = config_.url + ": " + (errbuf_[0] ? std::string(errbuf_) : curl_easy_strerror(rc));
+    if (!reply.empty()) e += " (server: " + reply + ")";
+    return e;
+  }
+  ChannelConfig config_;
+  CURL* curl_ = nullptr;
+  char errbuf_[CURL_ERROR_SIZE] = {};
+};
+
+class SmtpChannel : public CurlChannel {
+ public:
+  using CurlChannel::CurlChannel;
+  std::size_t deliver(const std::vector<OutMessage>& batch, std::string* error) override {
+    std::size_t done = 0;
+    for (const auto& m : batch) {
+      std::string reply;
+      prepare(&reply);
+      Upload up{text(m)};
+      const std::string from = "<" + config_.from + ">", to = "<" + m.to + ">";
+      curl_slist* rcpt = curl_slist_append(nullptr, to.c_str());
+      curl_easy_setopt(curl_, CURLOPT_MAIL_FROM, from.c_str());
+      curl_easy_setopt(curl_, CURLOPT_MAIL_RCPT, rcpt);
+      curl_easy_setopt(curl_, CURLOPT_READFUNCTION, on_read);
+      curl_easy_setopt(curl_, CURLOPT_READDATA, &up);
+      curl_easy_setopt(curl_, CURLOPT_UPLOAD, 1L);
+      curl_easy_setopt(curl_, CURLOPT_USE_SSL, config_.starttls ? static_cast<long>(CURLUSESSL_ALL) : static_cast<long>(CURLUSESSL_NONE));
+      const CURLcode rc = curl_easy_perform(curl_);
+      curl_slist_free_all(rcpt);
+      if (rc != CURLE_OK) {
+        *error = failure(rc, reply);
+        break;
+      }
+      ++done;
+    }
+    return done;
+  }
+
+ private:
+  std::string text(const OutMessage& m) const {
+    char date[64];
+    const std::time_t now = std::time(nullptr);
+    std::tm tm{};
+    gmtime_r(&now, &tm);
+    std::strftime(date, sizeof date, "%a, %d %b %Y %H:%M:%S +0000", &tm);
+    return crlf(std::string("Date: ") + date + "\nFrom: " + config_.from + "\nTo: " + m.to +
+                "\nSubject: " + header_text(m.subject) + "\nMessage-ID: <" + m.id + "@rocking-monitor>" +
+                "\nMIME-Version: 1.0\nContent-Type: text/plain; charset=utf-8\nContent-Transfer-Encoding: 8bit" +
+                "\nX-Rocking-Monitor-Recipient: " + m.recipient + "\n\n" + m.body);
+  }
+};
+
+class WebhookChannel : public CurlChannel {
+ public:
+  using CurlChannel::CurlChannel;
+  std::size_t deliver(const std::vector<OutMessage>& batch, std::string* error) override {
+    std::size_t done = 0;
+    for (const auto& m : batch) {
+      std::string reply, body;
+      prepare(&reply);
+      curl_slist* headers = curl_slist_append(nullptr, "Content-Type: application/json");
+      const std::string key = "Idempotency-Key: " + m.id;
+      headers = curl_slist_append(headers, key.c_str());
+      headers = curl_slist_append(headers, "Expect:");  // no 100-continue round trip
+      curl_easy_setopt(curl_, CURLOPT_HTTPHEADER, headers);
+      curl_easy_setopt(curl_, CURLOPT_POST, 1L);
+      curl_easy_setopt(curl_, CURLOPT_POSTFIELDS, m.body.c_str());
+      curl_easy_setopt(curl_, CURLOPT_POSTFIELDSIZE, static_cast<long>(m.body.size()));
+      curl_easy_setopt(curl_, CURLOPT_WRITEFUNCTION, on_body);
+      curl_easy_setopt(curl_, CURLOPT_WRITEDATA, &body);
+      const CURLcode rc = curl_easy_perform(curl_);
+      curl_slist_free_all(headers);
+      long status = 0;
+      curl_easy_getinfo(curl_, CURLINFO_RESPONSE_CODE, &status);
+      if (rc != CURLE_OK) {
+        *error = failure(rc, reply);
+        break;
+      }
+      if (status < 200 || status >= 300) {
+        *error = config_.url + ": HTTP " + std::to_string(status) + (body.empty() ? "" : ": " + body);
+        break;
+      }
+      ++done;
+    }
+    return done;
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Channel> make_smtp_channel(const ChannelConfig& config) { return std::make_unique<SmtpChannel>(config); }
+std::unique_ptr<Channel> make_webhook_channel(const ChannelConfig& config) { return std::make_unique<WebhookChannel>(config); }
+
+std::unique_ptr<Channel> make_channel(const ChannelConfig& config) {
+  switch (config.type) {
+    case ChannelType::Smtp: return make_smtp_channel(config);
+    case ChannelType::Webhook: return make_webhook_channel(config);
+    case ChannelType::Mqtt: return make_mqtt_channel(config);
+  }
+  return nullptr;
+}
+
+}  // namespace rocking_monitor::notify
