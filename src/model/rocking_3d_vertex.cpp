@@ -23,11 +23,12 @@ void Rocking3DModel::vertex_rhs(const GroundInput3& in, double t, const Vec7& y,
   const Eigen::Quaterniond q = Eigen::Quaterniond(y(0), y(1), y(2), y(3)).normalized();
   const Eigen::Matrix3d r = q.toRotationMatrix();
   const Eigen::Vector3d w = y.tail<3>();
-  const Eigen::Matrix3d j = r * v.inertia * r.transpose();
-  const Eigen::Matrix3d j_inv = r * v.inertia_inverse * r.transpose();
-  const Eigen::Vector3d torque = (r * v.to_centre).cross(gravity_and_inertia(in.at(t)));
-  // Euler's equations about the fixed vertex, in the ground frame: J w' = M - w x J w.
-  dy.tail<3>() = j_inv * (torque - w.cross(j * w));
+  // Euler's equations about the fixed vertex, in the body's frame (J constant there, no turned
+  // tensors to form): J wb' = Mb - wb x J wb, w' = R wb' (R wb' = (R wb)' - w x w = (R wb)').
+  const Eigen::Vector3d wb = r.transpose() * w;
+  const Eigen::Vector3d gb = r.transpose() * gravity_and_inertia(in.at(t));
+  const Eigen::Vector3d mb = v.to_centre.cross(gb) - wb.cross(v.inertia * wb);
+  dy.tail<3>() = r * (v.inertia_inverse * mb);
   // q' = 1/2 (0, w) q (w in the world frame).
   const Eigen::Quaterniond wq(0.0, w.x(), w.y(), w.z());
   const Eigen::Quaterniond qd = wq * Eigen::Quaterniond(y(0), y(1), y(2), y(3));
