@@ -81,7 +81,9 @@ find_package(yaml-cpp REQUIRED)
 target_link_libraries(rocking_monitor_monitoring PUBLIC nlohmann_json::nlohmann_json)
 target_link_libraries(rocking_monitor_study PUBLIC Threads::Threads PRIVATE nlohmann_json::nlohmann_json)
 # The shaking-table experiments (study/shaking_table_experiments.cpp) read gzipped CSV with zlib;
-# the state snapshots (monitoring/state_snapshot.cpp) are checksummed with its CRC-32.
+# the state snapshots (monitoring/state_snapshot.cpp) are checksummed with its CRC-32 and written on a
+# thread of their own (monitoring/snapshot_file_writer.cpp); their payload's layout is the private
+# header src/monitoring/state_snapshot_fields.hpp.
 find_package(ZLIB REQUIRED)
 target_link_libraries(rocking_monitor_study PRIVATE ZLIB::ZLIB)
 target_link_libraries(rocking_monitor_monitoring PRIVATE ZLIB::ZLIB Threads::Threads)

@@ -39,6 +39,7 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest_gtest(test_monitor_replay test/ros/monitor_replay.test test/ros/test_monitor_replay.cpp
                   test/support/rostest_main.cpp)
   target_link_libraries(test_monitor_replay rocking_monitor_ros ${catkin_LIBRARIES})
+  add_rostest(test/ros/monitor_states_rate.test DEPENDENCIES monitor)
   add_rostest(test/ros/monitor_nodelet.test DEPENDENCIES test_monitor_replay rocking_monitor_nodelet)
   add_rostest(test/ros/monitor_adaptive.test DEPENDENCIES test_monitor_replay rocking_monitor_nodelet)
   add_rostest(test/ros/monitor_ensemble.test DEPENDENCIES test_monitor_replay monitor)

@@ -3,12 +3,13 @@
 //    in order, with the record's values (REP 145: z = g, covariances), AccelStamped without gravity,
 //    stamps from ros::Time::now() spaced at the record's dt / 4 without drift, and ~finished = true.
 //  * GroundMotionPlayerSimTime (player_sim_time.test): /use_sim_time with this test publishing /clock
-//    at 4x wall speed: the player follows /clock (stamps exactly on the record's schedule with
+//    at 8x wall speed: the player follows /clock (stamps exactly on the record's schedule with
 //    ~stamp_source = schedule, never published before they are due) and signals the end.
 //  * GroundMotionPlayerBadParam (player_bad_param.test): a bad parameter makes the node exit at once
 //    without advertising anything.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <geometry_msgs/AccelStamped.h>
 #include <ros/ros.h>
@@ -20,7 +21,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <mutex>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -149,17 +154,24 @@ TEST(GroundMotionPlayerSimTime, FollowsClockAndStampsOnSchedule) {
   ros::Publisher clock_pub = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
   const rocking_monitor::core::Component pulse = rocking_monitor::core::read_record(kPulseCsv).at(0);
   Listener l(nh);
-  // Sim time starts at 100 s and runs at 4x wall speed in 1 ms steps.
+  // Sim time starts at 100 s and runs at 8x wall speed on a 1 ms grid, from the steady clock (so at
+  // 8x however late the thread wakes on a loaded machine).
   std::atomic<bool> stop{false};
   std::thread clock([&] {
-    std::int64_t ns = 100'000'000'000LL;
+    const auto start = std::chrono::steady_clock::now();
+    std::int64_t last = -1;
     while (!stop && ros::ok()) {
-      rosgraph_msgs::Clock c;
-      c.clock.fromNSec(static_cast<std::uint64_t>(ns));
-      g_last_clock_ns = ns;
-      clock_pub.publish(c);
-      ns += 1'000'000;
-      std::this_thread::sleep_for(std::chrono::microseconds(250));
+      const std::int64_t elapsed =
+          std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
+      const std::int64_t ns = 100'000'000'000LL + (8 * elapsed) / 1'000'000 * 1'000'000;
+      if (ns != last) {
+        rosgraph_msgs::Clock c;
+        c.clock.fromNSec(static_cast<std::uint64_t>(ns));
+        g_last_clock_ns = ns;
+        clock_pub.publish(c);
+        last = ns;
+      }
+      std::this_thread::sleep_for(std::chrono::microseconds(500));
     }
   });
   const double wall0 = steady_s();
@@ -179,14 +191,32 @@ TEST(GroundMotionPlayerSimTime, FollowsClockAndStampsOnSchedule) {
     // not published before it was due on /clock (the latest /clock published when it arrived >= stamp)
     ASSERT_GE(l.r.imu_arrival_ros[i], l.r.imu[i].header.stamp) << i;
   }
-  // 8 s of sim time at 4x took about 2 s of wall time (it follows /clock, not the wall clock)
+  // 8 s of sim time at 8x: about 1 s of wall time. A player on the wall clock would need 8 s; the
+  // 6 s bound (the one wall-time bound here) leaves 5 s for a loaded machine (issue 42).
   EXPECT_LT(wall, 6.0);
 }
 
 TEST(GroundMotionPlayerBadParam, ExitsWithoutAdvertising) {
   // The node (rate_factor -1) must exit at once: it never shows up as a publisher of /ground/imu, and
-  // it is gone from the master within a few seconds.
-  std::this_thread::sleep_for(std::chrono::seconds(3));
+  // it is gone from the master. rostest starts the launch file's nodes before this test: waits for
+  // the player's process to end (a condition, not a fixed time; the time limit catches a hang).
+  // Only this rostest's player: a child of the roslaunch that started this test too.
+  const auto player_running = [] {
+    const std::string parent = std::to_string(getppid());
+    for (const auto& e : std::filesystem::directory_iterator("/proc")) {
+      std::ifstream f(e.path() / "cmdline");
+      const std::string cmd((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+      if (cmd.find("__name:=player_bad") == std::string::npos) continue;
+      std::ifstream st(e.path() / "stat");
+      std::string stat((std::istreambuf_iterator<char>(st)), std::istreambuf_iterator<char>());
+      std::istringstream fields(stat.substr(stat.rfind(')') + 1));  // state, ppid, ...
+      std::string state, ppid;
+      fields >> state >> ppid;
+      if (ppid == parent && state != "Z") return true;
+    }
+    return false;
+  };
+  while (player_running()) std::this_thread::sleep_for(std::chrono::milliseconds(50));
   ros::master::V_TopicInfo topics;
   ASSERT_TRUE(ros::master::getTopics(topics));
   for (const auto& t : topics) EXPECT_NE(t.name, "/ground/imu");

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <diagnostic_msgs/DiagnosticArray.h>
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <ros/ros.h>
@@ -31,9 +33,11 @@ class BadInput : public ::testing::Test {
           for (const auto& st : m->status) {
             status_[st.name] = st;
           }
+          diag_stamp_ = std::max(diag_stamp_, m->header.stamp);
         });
     const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(20.0);
-    while ((imu_pub_.getNumSubscribers() == 0 || clock_pub_.getNumSubscribers() == 0) &&
+    while ((imu_pub_.getNumSubscribers() == 0 || clock_pub_.getNumSubscribers() == 0 ||
+            states_sub_.getNumPublishers() == 0 || diag_sub_.getNumPublishers() == 0) &&
            ros::WallTime::now() < deadline)
       ros::WallDuration(0.05).sleep();
     set_clock(clock_);
@@ -70,12 +74,28 @@ class BadInput : public ::testing::Test {
     return "<no key '" + key + "'>";
   }
 
-  void spin_for(double seconds) {
-    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
-    while (ros::WallTime::now() < end) {
+  // Waits (on conditions, not a fixed time) until the node has stepped the sample stamped `last`
+  // (item "good" carries its stamp in ~states, published after every sample) and then published
+  // diagnostics after it: the clock is moved on (no input) until the updater (1 s of the node's
+  // clock) has run. Gives up after 60 s of wall time (a hang, not a verdict).
+  void settle(double last) {
+    const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(60.0);
+    auto stepped = [&] {
+      return !last_states_.items.empty() && std::abs(last_states_.items[0].input_stamp.toSec() - last) < 1e-6;
+    };
+    while (!stepped() && ros::WallTime::now() < give_up) {
       ros::spinOnce();
-      ros::WallDuration(0.01).sleep();
+      ros::WallDuration(0.005).sleep();
     }
+    ASSERT_TRUE(stepped()) << "the sample stamped " << last << " was never stepped";
+    const ros::Time after = ros::Time().fromSec(clock_);
+    while (diag_stamp_ <= after && ros::WallTime::now() < give_up) {
+      clock_ += 0.05;
+      set_clock(clock_);
+      ros::WallDuration(0.005).sleep();
+      ros::spinOnce();
+    }
+    ASSERT_GT(diag_stamp_, after) << "no diagnostics after the last sample";
   }
 
   ros::NodeHandle nh_;
@@ -83,6 +103,7 @@ class BadInput : public ::testing::Test {
   ros::Subscriber states_sub_, diag_sub_;
   rocking_monitor::RockingStateArray last_states_;
   int states_ = 0;
+  ros::Time diag_stamp_;  // newest /diagnostics stamp: the node's clock when it published them
   // The node's clock runs ahead of the sensor's stamps (an own clock): stamps more than ~max_future
   // ahead of it would be rejected as implausible (issue 19).
   // One clock for all tests of the node (static): a clock going back would hold its timers.
@@ -105,7 +126,7 @@ TEST_F(BadInput, EachFaultIsHandledCountedAndTheNodeKeepsGoing) {
   const int states_before_jump = states_;
   t = 3.0;                                                                     // stamps jump back 7.7 s
   for (int i = 0; i < 350; ++i, t += 0.01) sample(t, 0.0);
-  spin_for(3.0);
+  ASSERT_NO_FATAL_FAILURE(settle(t - 0.01));
 
   EXPECT_GT(states_, states_before_jump) << "the node stopped publishing after the faults";
   ASSERT_EQ(last_states_.items.size(), 2u);
@@ -135,7 +156,7 @@ TEST_F(BadInput, ResetReArmsAnOverturnedItem) {
   for (int i = 0; i < 20; ++i, t += 0.01) sample(t, 0.0);
   for (int i = 0; i < 150; ++i, t += 0.01) sample(t, 20.0);  // 2 g for 1.5 s: the 0.4 x 0.8 m box falls
   for (int i = 0; i < 100; ++i, t += 0.01) sample(t, 0.0);
-  spin_for(0.5);
+  ASSERT_NO_FATAL_FAILURE(settle(t - 0.01));
   ASSERT_EQ(last_states_.items.size(), 2u);
   ASSERT_EQ(last_states_.items[0].mode, rocking_monitor::RockingState::OVERTURNED);
   std_srvs::Trigger srv;
@@ -143,7 +164,7 @@ TEST_F(BadInput, ResetReArmsAnOverturnedItem) {
   ASSERT_TRUE(ros::service::call("/rocking_monitor/reset", srv));
   EXPECT_TRUE(srv.response.success);
   for (int i = 0; i < 50; ++i, t += 0.01) sample(t, 0.0);
-  spin_for(0.5);
+  ASSERT_NO_FATAL_FAILURE(settle(t - 0.01));
   EXPECT_TRUE(last_states_.items[0].mode == rocking_monitor::RockingState::REST ||
               last_states_.items[0].mode == rocking_monitor::RockingState::ROCKING);
   EXPECT_EQ(last_states_.items[0].impacts, 0u);
@@ -156,8 +177,8 @@ TEST_F(BadInput, ResetReArmsAnOverturnedItem) {
 // in about 0.2 s); stepped on the real samples only (20 ms of push) it rocks a little and stays up.
 TEST_F(BadInput, AGapIsNotBridgedTheItemsContinueFromTheirState) {
   double t = 150.0;  // a new time base (confirmed after ~rebase_samples): the items continue
-  for (int i = 0; i < 200; ++i, t += 0.01) sample(t, 0.0);  // 2 s: fresh diagnostics (1 Hz) before the gap
-  spin_for(0.2);
+  for (int i = 0; i < 200; ++i, t += 0.01) sample(t, 0.0);
+  ASSERT_NO_FATAL_FAILURE(settle(t - 0.01));  // diagnostics from after the last sample, before the gap
   const std::string s = "rocking_monitor: sensor floor samples";
   ASSERT_TRUE(status_.count(s)) << "no diagnostics";
   const long gaps0 = std::stol(value(s, "data gaps (not bridged)")), lost0 = std::stol(value(s, "lost in transport"));
@@ -165,7 +186,7 @@ TEST_F(BadInput, AGapIsNotBridgedTheItemsContinueFromTheirState) {
   t += 0.3;
   sample(t, 20.0);
   for (int i = 0; i < 300; ++i) sample(t += 0.01, 0.0);
-  spin_for(1.5);
+  ASSERT_NO_FATAL_FAILURE(settle(t));
   ASSERT_EQ(last_states_.items.size(), 2u);
   EXPECT_NE(last_states_.items[0].mode, rocking_monitor::RockingState::OVERTURNED)
       << "the gap was bridged: 2 g held for 0.3 s of invented motion";

@@ -100,6 +100,7 @@ class Faults : public ::testing::Test {
               for (const auto& kv : st.values) sensor_[kv.key] = kv.value;
               level_ = st.level;
               message_ = st.message;
+              diag_stamp_ = std::max(diag_stamp_, m->header.stamp);
             }
         });
     const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(20.0);
@@ -113,6 +114,19 @@ class Faults : public ::testing::Test {
     rosgraph_msgs::Clock c;
     c.clock = t;
     clock_pub_.publish(c);
+  }
+
+  // The clock to t, returning once the node has it: diagnostics stamped t or later (the updater runs
+  // on the node's clock, 1 s period; every jump here is longer). Not a fixed wait: a loaded machine
+  // may take longer than any fixed one to deliver /clock.
+  void set_clock_and_wait(const ros::Time& t) {
+    set_clock(t);
+    const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(30.0);
+    while (diag_stamp_ < t && ros::WallTime::now() < give_up) {
+      spin_for(0.02);
+      set_clock(t);
+    }
+    ASSERT_GE(diag_stamp_, t) << "the monitor never showed the clock " << t << " in its diagnostics";
   }
 
   void spin_for(double seconds) {
@@ -162,8 +176,8 @@ class Faults : public ::testing::Test {
     EXPECT_TRUE(ros::service::waitForService("/rocking_monitor/reset", ros::Duration(5.0)));
     EXPECT_TRUE(ros::service::call("/rocking_monitor/reset", srv));
     const ros::Duration base(k * kCaseSpacing);
-    set_clock(record_.front().header.stamp + base);  // before the first sample: the clock jumped with the case
-    spin_for(0.3);
+    set_clock_and_wait(record_.front().header.stamp + base);  // before the first sample: the clock jumped with the case
+    if (HasFatalFailure()) return 0;
     acked_ = 0.0;
     const std::size_t p = peak();
     std::mt19937 rng(19 + k);
@@ -174,8 +188,8 @@ class Faults : public ::testing::Test {
       const ros::Time t = record_[i].header.stamp + base;
       if (kind == Kind::ClockStep && i == p) {
         step = ros::Duration(3600.0);
-        set_clock(t + step);  // the node's clock steps too
-        spin_for(0.2);
+        set_clock_and_wait(t + step);  // the node's clock steps too
+        if (HasFatalFailure()) return dropped;
       }
       const ros::Time now = t + step;
       bool acked = i > 0;
@@ -241,6 +255,7 @@ class Faults : public ::testing::Test {
   int repeated_ = 0;
   long stale_states_ = 0;  // item states published with stale = true
   std::uint8_t level_ = 0;
+  ros::Time diag_stamp_;  // newest stamp of the sensor's diagnostics: the node's clock when it published them
   std::string message_;
   double worst_ = 0.0;  // largest alarm time difference to the clean run of the last case, s
   std::map<int, Alarms> alarms_;  // case -> alarms
