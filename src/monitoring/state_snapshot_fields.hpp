@@ -393,6 +393,10 @@ void visit(V& v, Rocking3DModel::Saved& s) {
     v("flat_impacts", s.outcome_3d.flat_impacts);
     v("max_tilt", s.outcome_3d.max_tilt);
     v("max_impact_energy_ratio", s.outcome_3d.max_impact_energy_ratio);
+    v("max_landing_violation", s.outcome_3d.max_landing_violation);
+    v("max_friction_demand", s.outcome_3d.max_friction_demand);
+    v("slipping_landings", s.outcome_3d.slipping_landings);
+    v("edge_captures", s.outcome_3d.edge_captures);
   });
   v("last_probe_t", s.last_probe_t);
   v.group("dopri5", [&] { visit(v, s.dopri5); });

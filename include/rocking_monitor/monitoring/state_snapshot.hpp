@@ -28,7 +28,7 @@
 
 namespace rocking_monitor::core {
 
-inline constexpr std::uint32_t kSnapshotVersion = 1;
+inline constexpr std::uint32_t kSnapshotVersion = 2;  // 2: the 3-D model's landing outcome, 128 base vertices
 inline constexpr std::size_t kSnapshotHeaderBytes = 32;
 
 /// A sensor's stream position at the snapshot (what the node needs to continue its items).
