@@ -480,22 +480,13 @@ std::vector<BodyParameters> random_bodies(std::size_t n, std::uint64_t seed) {
 
 std::vector<Input> property_inputs() {
   std::vector<Input> out{pulse_csv()};
-  const std::string dir = ROCKING_RECORDS_DIR;
   for (const char* file : {"northridge_1994/Rinaldi228.AT2", "landers_1992/RSN879_LANDERS_LCN345.AT2"}) {
-    const std::string path = dir + "/" + file;
-    if (!std::ifstream(path).good()) {
-      std::printf("[ notice ] %s not found: record skipped in the property test\n", path.c_str());
-      continue;
-    }
-    for (const Component& c : read_record(path)) {
-      if (c.vertical) continue;
-      const GroundMotion g = make_ground_motion(c, nullptr, 1.0);
-      Input in{file};
-      in.dt = g.dt;
-      in.ax = g.horizontal;
-      out.push_back(in);
-      break;
-    }
+    GroundMotion g;
+    if (!testing::first_horizontal(file, g)) continue;
+    Input in{file};
+    in.dt = g.dt;
+    in.ax = g.horizontal;
+    out.push_back(in);
   }
   return out;
 }

@@ -16,15 +16,10 @@
 #include "rocking_monitor/model/rocking_model.hpp"
 #include "rocking_monitor/motion/ground_motion.hpp"
 #include "rocking_monitor/motion/record_reader.hpp"
+#include "test_helpers.hpp"
 
 namespace rocking_monitor::core {
 namespace {
-
-SolverSettings tight() {
-  SolverSettings s;
-  s.tol = 1e-10;
-  return s;
-}
 
 // A body with a vertical plane of symmetry through x, exactly (mirrored coordinates, diagonal
 // inertia), and the planar body it reduces to under shaking along x.
@@ -77,8 +72,8 @@ struct Compared {
 // targets: decision always, overturn time within 1 ms, peak theta/alpha within 1e-6 relative, the
 // same impacts and final state, the 3-D motion in the loading plane throughout.
 Compared compare(const Reduction& r, const std::vector<double>& ax, double dt, const std::string& what) {
-  RockingModel planar(r.planar, tight());
-  Rocking3DModel solid(BaseBody(r.solid), tight());
+  RockingModel planar(r.planar, testing::tight_settings());
+  Rocking3DModel solid(BaseBody(r.solid), testing::tight_settings());
   double off_plane = 0.0;
   const std::size_t still = static_cast<std::size_t>(3.0 / dt);
   for (std::size_t k = 0; k < ax.size() + still; ++k) {
@@ -110,8 +105,7 @@ std::vector<double> one_sine(double amp_g, double f_hz, double dt) {
   return a;
 }
 
-// Real records (skipped with a notice when ../shared/records is absent), their first horizontal
-// component.
+// Real records (skipped with a notice when ../shared/records is absent), their first horizontal.
 struct Record {
   std::string name;
   std::vector<double> ax;
@@ -119,19 +113,9 @@ struct Record {
 };
 std::vector<Record> records() {
   std::vector<Record> out;
-  const std::string dir = ROCKING_RECORDS_DIR;
   for (const char* file : {"northridge_1994/Rinaldi228.AT2", "kobe_1995/RSN1106_KOBE_KJM000.AT2"}) {
-    const std::string path = dir + "/" + file;
-    if (!std::ifstream(path).good()) {
-      std::printf("[ notice ] %s not found: record skipped\n", path.c_str());
-      continue;
-    }
-    for (const Component& c : read_record(path)) {
-      if (c.vertical) continue;
-      const GroundMotion g = make_ground_motion(c, nullptr, 1.0);
-      out.push_back({file, g.horizontal, g.dt});
-      break;
-    }
+    GroundMotion g;
+    if (testing::first_horizontal(file, g)) out.push_back({file, g.horizontal, g.dt});
   }
   return out;
 }

@@ -10,9 +10,13 @@
 #include <string>
 #include <vector>
 
+#include <fstream>
+
 #include "rocking_monitor/physics/body.hpp"
 #include "rocking_monitor/constants.hpp"
+#include "rocking_monitor/integrate/solver_settings.hpp"
 #include "rocking_monitor/motion/ground_motion.hpp"
+#include "rocking_monitor/motion/record_reader.hpp"
 
 namespace rocking_monitor::core::testing {
 
@@ -49,6 +53,31 @@ inline GroundMotion one_sine_pulse(double a_p, double w, double dt, double t_end
 }
 
 inline double deg(double d) { return d * kPi / 180.0; }
+
+/// Default settings at a tolerance tight enough to compare two models' states closely.
+inline SolverSettings tight_settings(double tol = 1e-10) {
+  SolverSettings s;
+  s.tol = tol;
+  return s;
+}
+
+#ifdef ROCKING_RECORDS_DIR
+/// The first horizontal component of a real record under ROCKING_RECORDS_DIR (../shared/records),
+/// unscaled; false, with a printed notice, when the file is absent (the caller skips that case).
+inline bool first_horizontal(const std::string& relative, GroundMotion& out) {
+  const std::string path = std::string(ROCKING_RECORDS_DIR) + "/" + relative;
+  if (!std::ifstream(path).good()) {
+    std::printf("[ notice ] %s not found: record skipped\n", path.c_str());
+    return false;
+  }
+  for (const Component& c : read_record(path)) {
+    if (c.vertical) continue;
+    out = make_ground_motion(c, nullptr, 1.0);
+    return true;
+  }
+  return false;
+}
+#endif
 
 /// Runs a shell command (tests of the command-line tools); `out` is its standard output (append
 /// 2>&1 to the command to capture errors too), `status` its exit status (-1 if it did not exit).
