@@ -1,5 +1,6 @@
 // Convergence of the live ensemble's probabilities (issue 13): P(level) from N = 32, 128 and 512
-// Latin-hypercube members against a 10,000-member reference on 20 real record / body cases. The
+// Latin-hypercube members against a 2,500-member reference on 20 real record / body cases (issue 42:
+// 10,000 took 100 s of CPU, the longest test in CI; ROCKING_ENSEMBLE_REFERENCE=10000 runs that one). The
 // reference is drawn with another seed (so it shares no member with the small ensembles); a small
 // ensemble "covers" when the reference lies inside its 95 % Wilson interval.
 #include <gtest/gtest.h>
@@ -9,6 +10,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <thread>
 #include <vector>
@@ -54,7 +56,7 @@ std::array<long, kLevelCount> reached(const UncertainItemSpec& spec, int n, std:
   return k;
 }
 
-TEST(EnsembleConvergence, SmallEnsemblesCoverTheTenThousandMemberReference) {
+TEST(EnsembleConvergence, SmallEnsemblesCoverALargeReference) {
   const std::string dir = ROCKING_RECORDS_DIR;
   const std::vector<std::string> records{"kobe_1995/RSN1120_KOBE_TAK090.AT2", "kobe_1995/NIS090.AT2",
                                          "northridge_1994/RSN1044_NORTHR_NWH360.AT2",
@@ -65,9 +67,11 @@ TEST(EnsembleConvergence, SmallEnsemblesCoverTheTenThousandMemberReference) {
   std::vector<Component> motions;
   for (const std::string& r : records) motions.push_back(read_record(dir + "/" + r).front());
   constexpr std::array<int, 3> kSizes{32, 128, 512};
-  // Under the sanitizers a 2,500-member reference (its own sampling error, <= 0.01, stays well
-  // inside the 512-member interval, +-0.043 at P = 0.5).
-  constexpr int kReference = testing::kUnderSanitizers ? 2500 : 10000;
+  // A 2,500-member reference: its own sampling error, <= 0.01, stays well inside the 512-member
+  // interval (+-0.043 at P = 0.5). ROCKING_ENSEMBLE_REFERENCE sets another size (docs/monitor.md: 10,000).
+  const char* env = std::getenv("ROCKING_ENSEMBLE_REFERENCE");
+  const int kReference = env ? std::atoi(env) : 2500;
+  ASSERT_GE(kReference, 2500) << "ROCKING_ENSEMBLE_REFERENCE: a smaller reference proves little";
   const std::size_t cases = records.size() * bodies.size();
   ASSERT_EQ(cases, 20u);
   // Per case: the reference counts and each small ensemble's counts.
