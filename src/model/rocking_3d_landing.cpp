@@ -32,6 +32,13 @@ void Rocking3DModel::capture_rest(const Eigen::Matrix3d& rotation, int vertex, c
   ++outcome_.rest_captures;
 }
 
+// The energy below which a landing puts the body at rest: that of rest_capture_ratio * p * alpha about
+// the vertex (for a planar motion exactly the planar engine's rule on omega), J/kg.
+double Rocking3DModel::capture_energy(const BaseVertex& v) const {
+  const double r = settings_.rest_capture_ratio;
+  return 0.5 * r * r * kGravity * v.radius * v.alpha * v.alpha;
+}
+
 // `touching`: the vertex whose touchdown was located (VERTEX), or -1 (EDGE back to flat).
 void Rocking3DModel::land(int touching, double tau) {
   const double before = kinetic_energy();
@@ -95,14 +102,10 @@ void Rocking3DModel::land(int touching, double tau) {
     // capture's energy (rest_capture_ratio * p * alpha, as for rest), it rocks about the edge.
     const int a = (set.vertex[0] + 1) % n == set.vertex[1] ? 0 : 1;
     const Eigen::Vector3d& pa = set.point[a];
-    const Eigen::Vector3d e = (set.point[1 - a] - pa).normalized();
-    const Eigen::Vector3d h = lb.central_inertia * lb.omega + (lb.centre - pa).cross(lb.velocity);
+    const Eigen::Vector3d w_edge = rotation_about_line(lb, pa, (set.point[1 - a] - pa).normalized());
     const Eigen::Matrix3d j = inertia_about(lb.central_inertia, lb.centre, pa);
-    const Eigen::Vector3d w_edge = (e.dot(h) / e.dot(j * e)) * e;
-    const BaseVertex& v = body_.vertex(set.vertex[chosen.first]);
-    const double capture =
-        0.5 * settings_.rest_capture_ratio * settings_.rest_capture_ratio * kGravity * v.radius * v.alpha * v.alpha;
-    if (kappa * kappa * (law.energy_after - rotation_energy(j, w_edge)) < capture) {
+    if (kappa * kappa * (law.energy_after - rotation_energy(j, w_edge)) <
+        capture_energy(body_.vertex(set.vertex[chosen.first]))) {
       chosen.mode = LandingMode::Edge;
       chosen.first = a;
       chosen.second = 1 - a;
@@ -111,16 +114,17 @@ void Rocking3DModel::land(int touching, double tau) {
     }
   }
 
+  // The planar engine's rest capture (its Zeno rule) needs an almost flat base.
+  const bool near_flat =
+      flat || std::acos(std::clamp(r(2, 2), -1.0, 1.0)) < settings_.rest_capture_ratio * body_.min_alpha();
   if (chosen.mode == LandingMode::Rest || kappa <= 0.0) {
     capture_rest(r, set.vertex[0], set.point[0]);
   } else if (chosen.mode == LandingMode::Edge) {
     const int edge = set.vertex[chosen.first];  // edge k joins vertex k and k + 1
     const BaseEdge& e = body_.edge(edge);
     const double w_axis = w.dot(r * e.axis);
-    const double tilt_now = std::acos(std::clamp(r(2, 2), -1.0, 1.0));
-    // The planar engine's rest capture (its Zeno rule): almost no energy left at an almost flat base.
-    if (!(w_axis > 0.0) || (w_axis < settings_.rest_capture_ratio * e.pivot.p * e.pivot.alpha &&
-                            (flat || tilt_now < settings_.rest_capture_ratio * body_.min_alpha()))) {
+    // almost no energy left: w below rest_capture_ratio * p * alpha of the edge
+    if (!(w_axis > 0.0) || (w_axis < settings_.rest_capture_ratio * e.pivot.p * e.pivot.alpha && near_flat)) {
       capture_rest(r, set.vertex[chosen.first], set.point[chosen.first]);
     } else if (from_edge) {
       mode_ = Mode3D::Edge;
@@ -134,13 +138,7 @@ void Rocking3DModel::land(int touching, double tau) {
   } else {
     const int vertex = set.vertex[chosen.first];
     const BaseVertex& v = body_.vertex(vertex);
-    const double tilt_now = std::acos(std::clamp(r(2, 2), -1.0, 1.0));
-    // The same rule by energy (for a planar motion it is the edge's rule exactly): below the energy
-    // of rest_capture_ratio * p * alpha about the vertex, at an almost flat base.
-    const double capture = 0.5 * settings_.rest_capture_ratio * settings_.rest_capture_ratio * kGravity * v.radius *
-                           v.alpha * v.alpha;
-    const Eigen::Matrix3d j = r * v.inertia * r.transpose();
-    if (rotation_energy(j, w) < capture && (flat || tilt_now < settings_.rest_capture_ratio * body_.min_alpha())) {
+    if (rotation_energy(r * v.inertia * r.transpose(), w) < capture_energy(v) && near_flat) {
       capture_rest(r, vertex, set.point[chosen.first]);
     } else {
       enter_vertex(vertex, set.point[chosen.first], r, w);

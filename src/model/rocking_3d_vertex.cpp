@@ -38,12 +38,6 @@ void Rocking3DModel::vertex_rhs(const GroundInput3& in, double t, const Vec7& y,
   dy(3) = 0.5 * qd.z();
 }
 
-int Rocking3DModel::edge_between(int v, int u) const {
-  if (u == body_.next(v)) return v;
-  if (v == body_.next(u)) return u;
-  return -1;
-}
-
 void Rocking3DModel::enter_vertex(int vertex, const Eigen::Vector3d& pivot_world,
                                   const Eigen::Matrix3d& rotation, const Eigen::Vector3d& omega_world) {
   mode_ = Mode3D::Vertex;
@@ -207,7 +201,8 @@ Rocking3DModel::Event Rocking3DModel::advance_vertex(const GroundInput3& in, dou
       y_.head<4>().normalize();
       tau = t1;
       for (int i = 0; i < n; ++i)
-        if (!armed_[i] && i != contact_ && height(y_, i) > eps) armed_[i] = true;
+        if (!armed_[i] && i != contact_ && up[kProbes].dot(body_.vertex(i).position - pivot.position) > eps)
+          armed_[i] = true;
       note_ratio();
       continue;
     }

@@ -22,6 +22,11 @@ Eigen::Matrix3d inertia_about(const Eigen::Matrix3d& central_inertia, const Eige
   return central_inertia + d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose();
 }
 
+Eigen::Vector3d rotation_about_line(const LandingBody& b, const Eigen::Vector3d& p, const Eigen::Vector3d& e) {
+  const Eigen::Vector3d h = b.central_inertia * b.omega + (b.centre - p).cross(b.velocity);
+  return (e.dot(h) / e.dot(inertia_about(b.central_inertia, b.centre, p) * e)) * e;
+}
+
 namespace {
 
 // One candidate active set's motion after the impact and how far it violates complementarity.
@@ -67,10 +72,8 @@ Candidate rock_about(const LandingBody& b, const LandingContacts& c, int i, int 
   const Eigen::Vector3d d = pj - pi;
   const double length = d.norm();
   const Eigen::Vector3d e = d / length;
-  const Eigen::Vector3d h = b.central_inertia * b.omega + (b.centre - pi).cross(b.velocity);
-  const double j_e = e.dot(inertia_about(b.central_inertia, b.centre, pi) * e);
   Candidate out;
-  out.omega = (e.dot(h) / j_e) * e;
+  out.omega = rotation_about_line(b, pi, e);
   out.velocity = out.omega.cross(b.centre - pi);
   const Eigen::Vector3d dw = out.omega - b.omega, dv = out.velocity - b.velocity;
   const Eigen::Vector3d side = e.cross(Eigen::Vector3d::UnitZ());

@@ -159,12 +159,12 @@ class Rocking3DModel {
   Event advance_edge(const GroundInput3& in, double& tau, double tau_end, int& lift_vertex);
   Event advance_vertex(const GroundInput3& in, double& tau, double tau_end, int& touching);
   void enter_vertex_from_edge(int vertex);
-  int edge_between(int v, int u) const;
   void enter_vertex(int vertex, const Eigen::Vector3d& pivot_world, const Eigen::Matrix3d& rotation,
                     const Eigen::Vector3d& omega_world);
   void enter_edge_from_pose(int edge, const Eigen::Matrix3d& rotation, const Eigen::Vector3d& pivot_world,
                             int pivot_vertex, double omega_axis);
   void land(int touching, double tau);
+  double capture_energy(const BaseVertex& v) const;
   void capture_rest(const Eigen::Matrix3d& rotation, int vertex, const Eigen::Vector3d& point);
   double ratio_of(const Vec7& y) const;
   double rise_rate(const Vec7& y) const;

@@ -79,6 +79,10 @@ struct Landing {
   int admissible = 0;             ///< how many candidates were admissible (1 in a well-posed landing)
 };
 
+/// The angular velocity after an impact that leaves the body turning about the line through p along
+/// the unit vector e: the angular momentum about the line is conserved, w+ = e (e . H_p) / (e . J_p e).
+Eigen::Vector3d rotation_about_line(const LandingBody& body, const Eigen::Vector3d& p, const Eigen::Vector3d& e);
+
 /// Solves the plastic sticking impact over the contact set (see the header comment). `count` >= 1.
 Landing plastic_landing(const LandingBody& body, const LandingContacts& contacts);
 
