@@ -86,31 +86,32 @@ bool AlarmNotifier::init() {
   return true;
 }
 
-void AlarmNotifier::on_alarm(const std::string& monitor, const OverturnAlarm::ConstPtr& m) {
+namespace {
+// The fields both alarm messages carry.
+template <class Message>
+notify::NotifyAlarm common_fields(const std::string& monitor, const Message& m) {
   notify::NotifyAlarm a;
   a.source = monitor;
-  a.item = m->item_id;
-  a.description = m->description;
-  a.level = m->level;
-  a.stamp_ns = static_cast<std::int64_t>(m->header.stamp.toNSec());
-  a.event_time = m->event_time;
-  a.event_id = m->event_id;
-  a.sequence = m->sequence;
+  a.item = m.item_id;
+  a.description = m.description;
+  a.level = m.level;
+  a.stamp_ns = static_cast<std::int64_t>(m.header.stamp.toNSec());
+  a.event_time = m.event_time;
+  a.event_id = m.event_id;
+  a.sequence = m.sequence;
+  return a;
+}
+}  // namespace
+
+void AlarmNotifier::on_alarm(const std::string& monitor, const OverturnAlarm::ConstPtr& m) {
+  notify::NotifyAlarm a = common_fields(monitor, *m);
   a.whole = m->frozen_s == 0.0;
   accept(a);
 }
 
 void AlarmNotifier::on_probability(const std::string& monitor, const ProbabilityAlarm::ConstPtr& m) {
-  notify::NotifyAlarm a;
+  notify::NotifyAlarm a = common_fields(monitor, *m);
   a.probability = true;
-  a.source = monitor;
-  a.item = m->item_id;
-  a.description = m->description;
-  a.level = m->level;
-  a.stamp_ns = static_cast<std::int64_t>(m->header.stamp.toNSec());
-  a.event_time = m->event_time;
-  a.event_id = m->event_id;
-  a.sequence = m->sequence;
   a.probability_value = m->value.probability;
   a.threshold = m->threshold;
   accept(a);
