@@ -34,47 +34,52 @@ GroundInput Rocking3DModel::edge_input(const GroundInput3& in, int edge) const {
 
 double Rocking3DModel::uplift_at(const GroundInput3& in, int edge, double tau) const {
   const GroundInput g = edge_input(in, edge);
-  return uplift_function(body_.edge(edge).pivot, 1, ModelKind::Nonlinear, g.ax(tau), g.ay(tau));
+  return uplift_function(fb().edge(edge).pivot, 1, ModelKind::Nonlinear, g.ax(tau), g.ay(tau));
 }
 
 // Reactions (per unit mass, vertical) at the two ends of the rocking edge, in the footprint frame:
 // from the moment equation about one end, the other end's force (see the note in the header).
 void Rocking3DModel::endpoint_reactions(int edge, double theta, double omega, double theta_ddot,
-                                        const Eigen::Vector3d& a_fp, double& fa, double& fb) const {
-  const BaseEdge& e = body_.edge(edge);
+                                        const Eigen::Vector3d& a_fp, double& f_a, double& f_b) const {
+  const BaseEdge& e = fb().edge(edge);
   const Eigen::Matrix3d re = Eigen::AngleAxisd(theta, e.axis).toRotationMatrix();
   const Eigen::Vector3d g = gravity_and_inertia(a_fp);
   const Eigen::Vector3d w = omega * e.axis, alpha = theta_ddot * e.axis;
   auto moment = [&](int end) {
-    const BaseVertex& v = body_.vertex(end);
+    const BaseVertex& v = fb().vertex(end);
     const Eigen::Matrix3d j = re * v.inertia * re.transpose();
     const Eigen::Vector3d r = re * v.to_centre;
     return Eigen::Vector3d(j * alpha + w.cross(j * w) - r.cross(g));
   };
   // L e x F_b = M_a  =>  F_b,perp = (M_a / L) x e ;  -L e x F_a = M_b  =>  F_a,perp = -(M_b / L) x e
-  fb = moment(e.a).cross(e.axis).z() / e.length;
-  fa = -moment(e.b).cross(e.axis).z() / e.length;
+  f_b = moment(e.a).cross(e.axis).z() / e.length;
+  f_a = -moment(e.b).cross(e.axis).z() / e.length;
 }
 
 // Pivoting on end `stays` of the rocking edge alone (the vertex mode's equations at this state), the
 // vertical acceleration of the other end, m/s^2 (> 0: it rises).
 double Rocking3DModel::end_rise(int edge, double theta, double omega, const Eigen::Vector3d& a_fp, int stays) const {
-  const BaseEdge& e = body_.edge(edge);
+  const BaseEdge& e = fb().edge(edge);
   const int other = stays == e.a ? e.b : e.a;
-  const BaseVertex& v = body_.vertex(stays);
+  const BaseVertex& v = fb().vertex(stays);
   const Eigen::Matrix3d re = Eigen::AngleAxisd(theta, e.axis).toRotationMatrix();
   const Eigen::Matrix3d j = re * v.inertia * re.transpose();
   const Eigen::Vector3d w = omega * e.axis;
   const Eigen::Vector3d w_dot =
       re * v.inertia_inverse * re.transpose() * ((re * v.to_centre).cross(gravity_and_inertia(a_fp)) - w.cross(j * w));
   // The edge's ends lie on the axis: no centripetal term.
-  return w_dot.cross(body_.vertex(other).position - v.position).z();
+  return w_dot.cross(fb().vertex(other).position - v.position).z();
 }
 
 Rocking3DModel::Event Rocking3DModel::advance_edge(const GroundInput3& in, double& tau, double tau_end,
                                                    int& lift_vertex) {
-  const BaseEdge& edge = body_.edge(contact_);
+  const BaseEdge& edge = fb().edge(contact_);
   const Pivot& pv = edge.pivot;
+  // The rotation that ends the edge's motion on the far side: the face across lying flat (a hull)
+  // or the side (the overturn angle, about a base edge).
+  const double fold = fc().fold[static_cast<std::size_t>(contact_)];
+  const bool folds = face_ != 0 || fold < body_.overturn_angle();
+  const double limit = folds ? fold : body_.overturn_angle();
   const RockingOde ode{&pv, 1, ModelKind::Nonlinear, edge_input(in, contact_)};
   const double t_tol = 1e-12 * std::max(sample_dt_, 1e-6);
   while (tau < tau_end) {
@@ -83,7 +88,7 @@ Rocking3DModel::Event Rocking3DModel::advance_edge(const GroundInput3& in, doubl
                                              settings_.tol * pv.alpha, settings_.tol * pv.p * pv.alpha);
     const StepEvents ev = scan_step(
         [this](double t, double& th, double& om) { dopri5_.eval(t, th, om); }, 1, pv.alpha,
-        body_.overturn_angle(), dopri5_.t0(), dopri5_.t1(), theta_, omega_, dopri5_.theta1(),
+        limit, dopri5_.t0(), dopri5_.t1(), theta_, omega_, dopri5_.theta1(),
         dopri5_.omega1(), t_tol);
     if (ev.has_peak) {
       report_.peak_ratio = std::max(report_.peak_ratio, ev.peak_abs_theta / pv.alpha);
@@ -103,7 +108,11 @@ Rocking3DModel::Event Rocking3DModel::advance_edge(const GroundInput3& in, doubl
     double t_end_step = dopri5_.t1();
     Event terminal = Event::None;
     if (ev.terminal == StepEvents::Terminal::Impact) { terminal = Event::Impact; t_end_step = ev.t_event; }
-    if (ev.terminal == StepEvents::Terminal::Overturn) { terminal = Event::Overturn; t_end_step = ev.t_event; }
+    if (ev.terminal == StepEvents::Terminal::Overturn) {
+      terminal = folds ? Event::Impact : Event::Overturn;
+      if (folds) lift_vertex = -2;  // the face across lands
+      t_end_step = ev.t_event;
+    }
     if (ev.terminal == StepEvents::Terminal::Degenerate) { tau = dopri5_.t1(); return Event::Degenerate; }
     {
       double th, om;
@@ -114,11 +123,11 @@ Rocking3DModel::Event Rocking3DModel::advance_edge(const GroundInput3& in, doubl
       // which keeps the modes from chattering.
       auto lift_margin = [&](double t, double theta, double omega, int& stays) {
         const Eigen::Vector3d a_fp = to_footprint(in.at(t));
-        double fa, fb;
-        endpoint_reactions(contact_, theta, omega, ode.angular_acceleration(t, theta), a_fp, fa, fb);
-        stays = fb < fa ? edge.a : edge.b;
-        if (!(fa + fb > 0.0)) return 1.0;
-        const double f = std::min(fa, fb);
+        double f_a, f_b;
+        endpoint_reactions(contact_, theta, omega, ode.angular_acceleration(t, theta), a_fp, f_a, f_b);
+        stays = f_b < f_a ? edge.a : edge.b;
+        if (!(f_a + f_b > 0.0)) return 1.0;
+        const double f = std::min(f_a, f_b);
         if (f >= 0.0) return f;
         return std::max(f, -end_rise(contact_, theta, omega, a_fp, stays));
       };
@@ -174,13 +183,13 @@ Rocking3DModel::Event Rocking3DModel::advance_edge(const GroundInput3& in, doubl
 
 double Rocking3DModel::find_uplift(const GroundInput3& in, double tau, double tau_end) const {
   double best = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < body_.vertex_count(); ++k) {
+  for (int k = 0; k < fb().vertex_count(); ++k) {
     const double u0 = uplift_at(in, k, tau), u1 = uplift_at(in, k, tau_end);
     double when;
     if (u0 > 0.0) when = tau;
     else if (u1 > 0.0) when = std::clamp(tau + (tau_end - tau) * (-u0) / (u1 - u0), tau, tau_end);
     else continue;
-    const RockingOde ode{&body_.edge(k).pivot, 1, ModelKind::Nonlinear, edge_input(in, k)};
+    const RockingOde ode{&fb().edge(k).pivot, 1, ModelKind::Nonlinear, edge_input(in, k)};
     if (!(ode.angular_acceleration(when, 0.0) > 0.0) && !(ode.angular_acceleration(tau_end, 0.0) > 0.0))
       continue;
     best = std::min(best, when);
@@ -196,8 +205,8 @@ void Rocking3DModel::start_motion(const GroundInput3& in, double tau) {
   const Eigen::Vector3d g = gravity_and_inertia(a_fp);
   int best = -1;
   double best_acc = 0.0;
-  for (int k = 0; k < body_.vertex_count(); ++k) {
-    const RockingOde ode{&body_.edge(k).pivot, 1, ModelKind::Nonlinear, edge_input(in, k)};
+  for (int k = 0; k < fb().vertex_count(); ++k) {
+    const RockingOde ode{&fb().edge(k).pivot, 1, ModelKind::Nonlinear, edge_input(in, k)};
     const double acc = ode.angular_acceleration(tau, 0.0);
     if (acc > best_acc || best < 0) {
       best_acc = acc;
@@ -206,11 +215,11 @@ void Rocking3DModel::start_motion(const GroundInput3& in, double tau) {
   }
   report_.uplift = true;
   if (std::isnan(outcome_.uplift_time)) outcome_.uplift_time = t_ + tau;
-  const BaseEdge& e = body_.edge(best);
-  double fa, fb;
-  endpoint_reactions(best, 0.0, 0.0, best_acc, a_fp, fa, fb);
+  const BaseEdge& e = fb().edge(best);
+  double f_a, f_b;
+  endpoint_reactions(best, 0.0, 0.0, best_acc, a_fp, f_a, f_b);
   int vertex = -1;
-  if (fa + fb > 0.0 && std::min(fa, fb) < 0.0) vertex = fb < fa ? e.a : e.b;
+  if (f_a + f_b > 0.0 && std::min(f_a, f_b) < 0.0) vertex = f_b < f_a ? e.a : e.b;
   if (vertex < 0) {
     mode_ = Mode3D::Edge;
     contact_ = best;
@@ -219,10 +228,10 @@ void Rocking3DModel::start_motion(const GroundInput3& in, double tau) {
     return;
   }
   // Pivoting on the vertex from rest: check that neither neighbour is pushed into the floor.
-  const BaseVertex& v = body_.vertex(vertex);
+  const BaseVertex& v = fb().vertex(vertex);
   const Eigen::Vector3d w_dot = v.inertia_inverse * v.to_centre.cross(g);
-  for (int m : {body_.previous(vertex), body_.next(vertex)}) {
-    if (w_dot.cross(body_.vertex(m).position - v.position).z() < 0.0) {
+  for (int m : {fb().previous(vertex), fb().next(vertex)}) {
+    if (w_dot.cross(fb().vertex(m).position - v.position).z() < 0.0) {
       mode_ = Mode3D::Edge;  // the reactions' sign was rounding: keep the edge
       contact_ = best;
       theta_ = omega_ = 0.0;
@@ -230,8 +239,9 @@ void Rocking3DModel::start_motion(const GroundInput3& in, double tau) {
       return;
     }
   }
-  enter_vertex(vertex, yaw_matrix() * v.position + Eigen::Vector3d(shift_.x(), shift_.y(), 0.0),
-               yaw_matrix(), Eigen::Vector3d::Zero());
+  const Eigen::Matrix3d r = face_ == 0 ? yaw_matrix() : Eigen::Matrix3d(yaw_matrix() * fc().rotation);
+  enter_vertex(fc().hull_vertex[static_cast<std::size_t>(vertex)],
+               yaw_matrix() * v.position + Eigen::Vector3d(shift_.x(), shift_.y(), 0.0), r, Eigen::Vector3d::Zero());
 }
 
 }  // namespace rocking_monitor::core

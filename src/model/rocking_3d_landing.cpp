@@ -4,6 +4,7 @@
 // a vertex, a neighbour vertex touching down while the base is tilted.
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -22,14 +23,42 @@ void Rocking3DModel::record_impact(double tau, double energy_before) {
     outcome3_.max_impact_energy_ratio = std::max(outcome3_.max_impact_energy_ratio, after / energy_before);
 }
 
-void Rocking3DModel::capture_rest(const Eigen::Matrix3d& rotation, int vertex, const Eigen::Vector3d& point) {
-  // The footprint from the pose: the base lies flat, the vertex keeps its place on the floor.
-  yaw_ = std::atan2(rotation(1, 0), rotation(0, 0));
-  const Eigen::Vector3d placed = yaw_matrix() * body_.vertex(vertex).position;
+// At rest on hull face `face` in pose `rotation` (item frame) with hull vertex `vertex` at `point` on
+// the floor: the footprint from the pose (the face lies flat, the vertex keeps its place).
+void Rocking3DModel::capture_rest(const Eigen::Matrix3d& rotation, int vertex, const Eigen::Vector3d& point, int face) {
+  face_ = face;
+  const Eigen::Matrix3d rf = face == 0 ? rotation : Eigen::Matrix3d(rotation * fc().rotation.transpose());
+  yaw_ = std::atan2(rf(1, 0), rf(0, 0));
+  const Eigen::Vector3d placed = face == 0 ? Eigen::Vector3d(yaw_matrix() * hv(vertex).position)
+                                           : Eigen::Vector3d(yaw_matrix() * (fc().rotation * hv(vertex).position + fc().offset));
   shift_ = Eigen::Vector2d(point.x() - placed.x(), point.y() - placed.y());
   go_to_rest();
   report_.rest_capture = true;
   ++outcome_.rest_captures;
+  if (face != 0) ++outcome3_.rests_off_base;
+}
+
+// Angle of hull face `face` from the floor in pose `rotation` (item frame), rad.
+double Rocking3DModel::face_tilt(const Eigen::Matrix3d& rotation, int face) const {
+  const Eigen::Vector3d down = rotation * (hull().faces[static_cast<std::size_t>(face)].rotation.transpose() * -Eigen::Vector3d::UnitZ());
+  return std::acos(std::clamp(-down.z(), -1.0, 1.0));
+}
+
+// Flat on a hull face beyond whose edge the centre of mass lies (it cannot rest there): the body
+// tips over the edge it overhangs most, as rocking about that edge on the face across it (at the
+// fold, from rest).
+void Rocking3DModel::tip_off_face(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& translation, int face) {
+  const HullFace& f = hull().faces[static_cast<std::size_t>(face)];
+  const int n = f.body->vertex_count();
+  int k = 0;
+  for (int i = 1; i < n; ++i)
+    if (f.body->edge(i).pivot.alpha < f.body->edge(k).pivot.alpha) k = i;
+  const int a = f.hull_vertex[static_cast<std::size_t>(k)], b = f.hull_vertex[static_cast<std::size_t>((k + 1) % n)];
+  int g = -1, e = -1;
+  hull().face_with_edge(a, b, g, e);
+  const HullFace& h = hull().faces[static_cast<std::size_t>(g)];
+  const int pv = h.hull_vertex[static_cast<std::size_t>(e)] == a ? e : (e + 1) % h.body->vertex_count();
+  enter_edge_from_pose(g, e, rotation, rotation * hv(a).position + translation, pv, 0.0);
 }
 
 // The energy below which a landing puts the body at rest: that of rest_capture_ratio * p * alpha about
@@ -39,43 +68,74 @@ double Rocking3DModel::capture_energy(const BaseVertex& v) const {
   return 0.5 * r * r * kGravity * v.radius * v.alpha * v.alpha;
 }
 
-// `touching`: the vertex whose touchdown was located (VERTEX), or -1 (EDGE back to flat).
+// `touching`: the hull vertex whose touchdown was located (VERTEX); EDGE: -1 back flat on the face,
+// -2 the face across the edge comes flat (a hull).
 void Rocking3DModel::land(int touching, double tau) {
   const double before = kinetic_energy();
   const bool from_edge = mode_ == Mode3D::Edge;
-  // The pose, the motion before and a point that does not move (on the edge's axis or the pivot).
+  const bool flat_edge = from_edge && touching == -1;
+  const bool with_hull = hull().from_hull;
+  const int face_before = face_;
+  // The pose (item frame), the motion before and a point that does not move (on the edge's axis or
+  // the pivot).
   Eigen::Matrix3d r;
   Eigen::Vector3d t, omega, fixed;
+  const std::vector<int>* landing_face = nullptr;  // EDGE: the face that comes flat
   if (from_edge) {
-    // Back to flat: the pose is the footprint exactly (theta = 0 is the event), every base vertex
-    // on the floor.
-    r = yaw_matrix();
-    t = Eigen::Vector3d(shift_.x(), shift_.y(), 0.0);
-    omega = r * (omega_ * body_.edge(contact_).axis);
-    fixed = r * body_.vertex(body_.edge(contact_).a).position + t;
+    // Back to flat: the pose is the footprint exactly (theta = 0 is the event), every face vertex
+    // on the floor. Onto the face across: the pose at the event.
+    // (The event is located on theta to the integrator's tolerance: the pose is put exactly there.)
+    const int across = fc().across[static_cast<std::size_t>(contact_)];
+    if (flat_edge) theta_ = 0.0;
+    else theta_ = fc().fold[static_cast<std::size_t>(contact_)];
+    landing_face = flat_edge ? &fc().hull_vertex : &hull().faces[static_cast<std::size_t>(across)].hull_vertex;
+    r = rotation();
+    t = translation();
+    omega = angular_velocity();
+    fixed = r * hv(fc().hull_vertex[static_cast<std::size_t>(fb().edge(contact_).a)]).position + t;
     ++outcome3_.flat_impacts;
   } else {
     r = vertex_rotation(y_);
-    t = pivot_world_ - r * body_.vertex(contact_).position;
+    t = pivot_world_ - r * hv(contact_).position;
     omega = y_.tail<3>();
     fixed = pivot_world_;
     ++outcome3_.vertex_impacts;
   }
-  // The closing contact set: every base point on the floor at this instant, to floor_tol_ (far
+  // The closing contact set: every hull point on the floor at this instant, to floor_tol_ (far
   // below any physical scale, above the dense output's error in the pose at the event).
-  const int n = body_.vertex_count();
   // One per thread, not per item: 3.6 KB that only a landing uses (no allocation per sample).
   static thread_local LandingContacts set;
-  static_assert(LandingContacts::kMax == kMaxBaseVertices, "a contact for every base vertex");
+  static thread_local int hull_index[LandingContacts::kMax];
+  static_assert(LandingContacts::kMax == kMaxBaseVertices, "a contact for every hull vertex");
   set.count = 0;
-  set.base_vertex_count = n;
-  for (int i = 0; i < n; ++i) {
-    Eigen::Vector3d p = r * body_.vertex(i).position + t;
-    if (!from_edge && i != touching && i != contact_ && std::abs(p.z()) > floor_tol_) continue;
+  const int nh = static_cast<int>(hull().vertices.size());
+  for (int i = 0; i < nh; ++i) {
+    Eigen::Vector3d p = r * hv(i).position + t;
+    const bool on = landing_face ? std::find(landing_face->begin(), landing_face->end(), i) != landing_face->end()
+                                 : std::abs(p.z()) <= floor_tol_ || i == touching || i == contact_;
+    if (!on) continue;
     p.z() = 0.0;
     set.point[set.count] = p;
     set.vertex[set.count] = i;
+    hull_index[set.count] = i;
     ++set.count;
+  }
+  if (!with_hull) {
+    // The base's own order (edges join vertex k and k + 1 of the base).
+    set.base_vertex_count = body_.vertex_count();
+  } else {
+    // Hull points in counter-clockwise order about their centre on the floor: consecutive ones are
+    // the contact polygon's edges (a hull edge or face on the floor).
+    Eigen::Vector3d mid = Eigen::Vector3d::Zero();
+    for (int k = 0; k < set.count; ++k) mid += set.point[k] / set.count;
+    auto angle = [&](int k) { return std::atan2(set.point[k].y() - mid.y(), set.point[k].x() - mid.x()); };
+    for (int k = 1; k < set.count; ++k)  // insertion sort: a few points, no allocation
+      for (int m = k; m > 0 && angle(m) < angle(m - 1); --m) {
+        std::swap(set.point[m], set.point[m - 1]);
+        std::swap(hull_index[m], hull_index[m - 1]);
+      }
+    for (int k = 0; k < set.count; ++k) set.vertex[k] = k;
+    set.base_vertex_count = set.count;
   }
   const bool flat = set.count >= 3;
   LandingBody lb;
@@ -94,6 +154,7 @@ void Rocking3DModel::land(int touching, double tau) {
   const double kappa = body_.restitution_factor();
   Eigen::Vector3d w = kappa * law.omega;
   Landing chosen = law;
+  const int n = set.base_vertex_count;
   if (law.mode == LandingMode::Vertex && set.count == 2 &&
       ((set.vertex[0] + 1) % n == set.vertex[1] || (set.vertex[1] + 1) % n == set.vertex[0])) {
     // The Zeno rule of a see-saw on a tilted edge: pivoting on its two ends in turn, the body loses
@@ -105,7 +166,7 @@ void Rocking3DModel::land(int touching, double tau) {
     const Eigen::Vector3d w_edge = rotation_about_line(lb, pa, (set.point[1 - a] - pa).normalized());
     const Eigen::Matrix3d j = inertia_about(lb.central_inertia, lb.centre, pa);
     if (kappa * kappa * (law.energy_after - rotation_energy(j, w_edge)) <
-        capture_energy(body_.vertex(set.vertex[chosen.first]))) {
+        capture_energy(hv(hull_index[chosen.first]))) {
       chosen.mode = LandingMode::Edge;
       chosen.first = a;
       chosen.second = 1 - a;
@@ -114,36 +175,48 @@ void Rocking3DModel::land(int touching, double tau) {
     }
   }
 
-  // The planar engine's rest capture (its Zeno rule) needs an almost flat base.
+  // The face the body lies on or over (the base without a hull).
+  const int down = with_hull ? hull().face_down(r) : 0;
+  // The planar engine's rest capture (its Zeno rule) needs an almost flat face.
   const bool near_flat =
-      flat || std::acos(std::clamp(r(2, 2), -1.0, 1.0)) < settings_.rest_capture_ratio * body_.min_alpha();
+      flat || face_tilt(r, down) < settings_.rest_capture_ratio * hull().faces[static_cast<std::size_t>(down)].body->min_alpha();
+  auto rest = [&](int k) {
+    if (hull().faces[static_cast<std::size_t>(down)].body->stands()) capture_rest(r, hull_index[k], set.point[k], down);
+    else tip_off_face(r, t, down);
+  };
   if (chosen.mode == LandingMode::Rest || kappa <= 0.0) {
-    capture_rest(r, set.vertex[0], set.point[0]);
+    rest(0);
   } else if (chosen.mode == LandingMode::Edge) {
-    const int edge = set.vertex[chosen.first];  // edge k joins vertex k and k + 1
-    const BaseEdge& e = body_.edge(edge);
-    const double w_axis = w.dot(r * e.axis);
+    const int u = hull_index[chosen.first], v = hull_index[chosen.second];
+    int face = 0, edge = u;  // without a hull: base edge k joins base vertices k and k + 1
+    if (with_hull) hull().face_with_edge(u, v, face, edge);
+    const HullFace& hf = hull().faces[static_cast<std::size_t>(face)];
+    const BaseEdge& e = hf.body->edge(edge);
+    const Eigen::Matrix3d rf = face == 0 ? r : Eigen::Matrix3d(r * hf.rotation.transpose());
+    const double w_axis = w.dot(rf * e.axis);
+    const int pivot = hf.hull_vertex[static_cast<std::size_t>(e.a)] == u ? chosen.first : chosen.second;
     // almost no energy left: w below rest_capture_ratio * p * alpha of the edge
     if (!(w_axis > 0.0) || (w_axis < settings_.rest_capture_ratio * e.pivot.p * e.pivot.alpha && near_flat)) {
-      capture_rest(r, set.vertex[chosen.first], set.point[chosen.first]);
-    } else if (from_edge) {
+      rest(chosen.first);
+    } else if (flat_edge && face == face_before) {
       mode_ = Mode3D::Edge;
       contact_ = edge;
       theta_ = 0.0;
       omega_ = w_axis;
       dopri5_.invalidate();
     } else {
-      enter_edge_from_pose(edge, r, set.point[chosen.first], set.vertex[chosen.first], w_axis);
+      enter_edge_from_pose(face, edge, r, set.point[pivot], e.a, w_axis);
     }
   } else {
-    const int vertex = set.vertex[chosen.first];
-    const BaseVertex& v = body_.vertex(vertex);
+    const int vertex = hull_index[chosen.first];
+    const BaseVertex& v = hv(vertex);
     if (rotation_energy(r * v.inertia * r.transpose(), w) < capture_energy(v) && near_flat) {
-      capture_rest(r, vertex, set.point[chosen.first]);
+      rest(chosen.first);
     } else {
       enter_vertex(vertex, set.point[chosen.first], r, w);
     }
   }
+  if (with_hull && (mode_ == Mode3D::Rest || mode_ == Mode3D::Edge) && face_ != face_before) ++outcome3_.hull_landings;
   record_impact(tau, before);
 }
 

@@ -36,14 +36,14 @@ bool Rocking3DModel::falls_if_shaking_stops(double t_now) {
 }
 
 double Rocking3DModel::rotation_ratio() const {
-  if (mode_ == Mode3D::Edge) return theta_ / body_.edge(contact_).pivot.alpha;
+  if (mode_ == Mode3D::Edge) return theta_ / fb().edge(contact_).pivot.alpha;
   if (mode_ == Mode3D::Overturned) return outcome_.max_rotation_ratio;  // as it went over (> 1)
   if (mode_ != Mode3D::Vertex) return 0.0;
   return ratio_of(y_);
 }
 
 double Rocking3DModel::ratio_of(const Vec7& y) const {
-  const BaseVertex& v = body_.vertex(contact_);
+  const BaseVertex& v = hv(contact_);
   const Eigen::Matrix3d r = vertex_rotation(y);
   const Eigen::Vector3d lever = r * v.to_centre;
   // Which side of the vertical through the vertex the centre of mass is on: the side of the base
@@ -61,7 +61,7 @@ double Rocking3DModel::ratio_of(const Vec7& y) const {
 // rotation ratio peaks where it turns from rising to falling (the planar model's omega = 0).
 double Rocking3DModel::rise_rate(const Vec7& y) const {
   const Eigen::Vector3d w = y.tail<3>();
-  return w.cross(vertex_rotation(y) * body_.vertex(contact_).to_centre).z();
+  return w.cross(vertex_rotation(y) * hv(contact_).to_centre).z();
 }
 
 OverturnMargin Rocking3DModel::margin() const {
@@ -69,23 +69,24 @@ OverturnMargin Rocking3DModel::margin() const {
     case Mode3D::Rest: return {1.0, false};
     case Mode3D::Overturned: return {-1.0, true};
     case Mode3D::Edge:
-      return overturn_margin(body_.edge(contact_).pivot, 1, ModelKind::Nonlinear, theta_, omega_);
+      return overturn_margin(fb().edge(contact_).pivot, 1, ModelKind::Nonlinear, theta_, omega_);
     case Mode3D::Vertex: break;
   }
-  const BaseVertex& v = body_.vertex(contact_);
+  const BaseVertex& v = hv(contact_);
   const double height = (vertex_rotation(y_) * v.to_centre).z();
   const double energy = kinetic_energy() + kGravity * height;
-  const double tip = kGravity * v.radius, rest = kGravity * v.to_centre.z();
+  // rest: the centre of mass's height standing on the base (= to_centre.z of a base vertex)
+  const double tip = kGravity * v.radius, rest = kGravity * body_.centre_of_mass().z();
   const double m = (tip - energy) / (tip - rest);
   return {m, m < 0.0};
 }
 
 double Rocking3DModel::kinetic_energy() const {
-  if (mode_ == Mode3D::Edge) return 0.5 * body_.edge(contact_).pivot.inertia * omega_ * omega_;
+  if (mode_ == Mode3D::Edge) return 0.5 * fb().edge(contact_).pivot.inertia * omega_ * omega_;
   if (mode_ != Mode3D::Vertex) return 0.0;
   const Eigen::Matrix3d r = vertex_rotation(y_);
   const Eigen::Vector3d w = y_.tail<3>();
-  return rotation_energy(r * body_.vertex(contact_).inertia * r.transpose(), w);
+  return rotation_energy(r * hv(contact_).inertia * r.transpose(), w);
 }
 
 void Rocking3DModel::note_ratio() {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include <Eigen/Dense>
 
@@ -45,7 +46,7 @@ Rocking3DModel::Rocking3DModel(const BaseBody& body, const SolverSettings& setti
 Rocking3DModel::Rocking3DModel(const BaseBody& body, const SolverSettings& settings, bool with_probe)
     : body_(body), settings_(checked(settings)) {
   double size = 0.0;
-  for (int i = 0; i < body_.vertex_count(); ++i) size = std::max(size, body_.vertex(i).radius);
+  for (const BaseVertex& v : hull().vertices) size = std::max(size, v.radius);
   floor_tol_ = 1e-9 * size;
   if (with_probe) probe_.reset(new Rocking3DModel(body, settings, false));
   reset(0.0);
@@ -54,6 +55,7 @@ Rocking3DModel::Rocking3DModel(const BaseBody& body, const SolverSettings& setti
 void Rocking3DModel::reset(double t, const Eigen::Vector3d& a) {
   mode_ = Mode3D::Rest;
   contact_ = -1;
+  face_ = 0;
   theta_ = omega_ = 0.0;
   y_.setZero();
   y_(0) = 1.0;
@@ -73,6 +75,7 @@ void Rocking3DModel::reset(double t, const Eigen::Vector3d& a) {
 void Rocking3DModel::save(Saved& out) const {
   out.mode = mode_;
   out.contact = contact_;
+  out.face = face_;
   out.theta = theta_;
   out.omega = omega_;
   out.y = y_;
@@ -91,8 +94,11 @@ void Rocking3DModel::save(Saved& out) const {
 }
 
 void Rocking3DModel::restore(const Saved& in) {
+  if (in.face < 0 || in.face >= static_cast<int>(hull().faces.size()))
+    throw std::invalid_argument("Rocking3DModel::restore: face " + std::to_string(in.face) + " is not a face of this body's hull");
   mode_ = in.mode;
   contact_ = in.contact;
+  face_ = in.face;
   theta_ = in.theta;
   omega_ = in.omega;
   y_ = in.y;
@@ -120,42 +126,48 @@ Eigen::Matrix3d Rocking3DModel::vertex_rotation(const Vec7& y) const {
   return Eigen::Quaterniond(y(0), y(1), y(2), y(3)).normalized().toRotationMatrix();
 }
 
+// EDGE and REST are stated in the current face's floor frame (face 0: the item frame); a point x of
+// the item frame is at rotation_face * (F x + f) + translation_face with F, f the face's frame.
 Eigen::Matrix3d Rocking3DModel::rotation() const {
+  Eigen::Matrix3d r;
   switch (mode_) {
     case Mode3D::Edge: {
-      const BaseEdge& e = body_.edge(contact_);
-      return yaw_matrix() * Eigen::AngleAxisd(theta_, e.axis).toRotationMatrix();
+      const BaseEdge& e = fb().edge(contact_);
+      r = yaw_matrix() * Eigen::AngleAxisd(theta_, e.axis).toRotationMatrix();
+      break;
     }
     case Mode3D::Vertex: return vertex_rotation(y_);
-    default: return yaw_matrix();
+    default: r = yaw_matrix();
   }
+  return face_ == 0 ? r : Eigen::Matrix3d(r * fc().rotation);
 }
 
 Eigen::Vector3d Rocking3DModel::translation() const {
   const Eigen::Vector3d shift3(shift_.x(), shift_.y(), 0.0);
   switch (mode_) {
     case Mode3D::Edge: {
-      const Eigen::Vector3d& a = body_.vertex(body_.edge(contact_).a).position;
+      const Eigen::Vector3d& a = fb().vertex(fb().edge(contact_).a).position;
       // footprint(a + R_e (x - a)): x -> Rz R_e x + Rz (a - R_e a) + shift
-      const Eigen::Matrix3d re = Eigen::AngleAxisd(theta_, body_.edge(contact_).axis).toRotationMatrix();
-      return yaw_matrix() * (a - re * a) + shift3;
+      const Eigen::Matrix3d re = Eigen::AngleAxisd(theta_, fb().edge(contact_).axis).toRotationMatrix();
+      const Eigen::Vector3d t = yaw_matrix() * (a - re * a) + shift3;
+      return face_ == 0 ? t : Eigen::Vector3d(t + yaw_matrix() * (re * fc().offset));
     }
-    case Mode3D::Vertex: return pivot_world_ - vertex_rotation(y_) * body_.vertex(contact_).position;
-    default: return shift3;
+    case Mode3D::Vertex: return pivot_world_ - vertex_rotation(y_) * hv(contact_).position;
+    default: return face_ == 0 ? shift3 : Eigen::Vector3d(shift3 + yaw_matrix() * fc().offset);
   }
 }
 
 Eigen::Vector3d Rocking3DModel::angular_velocity() const {
-  if (mode_ == Mode3D::Edge) return yaw_matrix() * (omega_ * body_.edge(contact_).axis);
+  if (mode_ == Mode3D::Edge) return yaw_matrix() * (omega_ * fb().edge(contact_).axis);
   if (mode_ == Mode3D::Vertex) return y_.tail<3>();
   return Eigen::Vector3d::Zero();
 }
 
 double Rocking3DModel::tilt() const {
-  if (mode_ == Mode3D::Edge) return theta_;
-  if (mode_ == Mode3D::Vertex) return std::acos(std::clamp(vertex_rotation(y_)(2, 2), -1.0, 1.0));
   if (mode_ == Mode3D::Overturned) return body_.overturn_angle();
-  return 0.0;
+  if (face_ == 0 && mode_ == Mode3D::Edge) return theta_;
+  if (face_ == 0 && mode_ == Mode3D::Rest) return 0.0;
+  return std::acos(std::clamp(rotation()(2, 2), -1.0, 1.0));
 }
 
 
@@ -168,7 +180,7 @@ void Rocking3DModel::go_to_rest() {
 }
 
 void Rocking3DModel::set_edge_state(int edge, double theta, double omega) {
-  if (edge < 0 || edge >= body_.vertex_count() || !std::isfinite(theta) || !std::isfinite(omega) ||
+  if (edge < 0 || edge >= fb().vertex_count() || !std::isfinite(theta) || !std::isfinite(omega) ||
       theta < 0.0)
     throw std::invalid_argument("set_edge_state: edge index, theta >= 0 and omega finite");
   mode_ = Mode3D::Edge;
@@ -180,16 +192,15 @@ void Rocking3DModel::set_edge_state(int edge, double theta, double omega) {
 
 void Rocking3DModel::set_vertex_state(int vertex, const Eigen::Quaterniond& rotation,
                                       const Eigen::Vector3d& omega) {
-  if (vertex < 0 || vertex >= body_.vertex_count() || !omega.allFinite())
-    throw std::invalid_argument("set_vertex_state: vertex index and omega finite");
+  if (vertex < 0 || vertex >= body_.vertex_count() || face_ != 0 || !omega.allFinite())
+    throw std::invalid_argument("set_vertex_state: base vertex index (from the base) and omega finite");
   const Eigen::Matrix3d r = rotation.normalized().toRotationMatrix();
-  enter_vertex(vertex, yaw_matrix() * body_.vertex(vertex).position +
-                           Eigen::Vector3d(shift_.x(), shift_.y(), 0.0),
+  enter_vertex(vertex, yaw_matrix() * hv(vertex).position + Eigen::Vector3d(shift_.x(), shift_.y(), 0.0),
                r, omega);
 }
 
 Eigen::Vector3d Rocking3DModel::edge_normal(int edge) const {
-  return yaw_ == 0.0 ? body_.edge(edge).normal : Eigen::Vector3d(yaw_matrix() * body_.edge(edge).normal);
+  return yaw_ == 0.0 ? fb().edge(edge).normal : Eigen::Vector3d(yaw_matrix() * fb().edge(edge).normal);
 }
 
 void Rocking3DModel::apply_rest_samples(double t, const Eigen::Vector3d& a, double dt, long n) {
@@ -228,13 +239,20 @@ const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
     int other = -1;
     if (mode_ == Mode3D::Edge) e = advance_edge(in, tau, dt, other);
     else if (mode_ == Mode3D::Vertex) e = advance_vertex(in, tau, dt, other);
+    // Off the base, lying on the side (the item base's tilt at the overturn angle) is OVERTURNED
+    // as on the base: checked where the motion stops (a step's end, an event, a landing).
+    auto on_side = [&] { return face_ != 0 && mode_ != Mode3D::Vertex && tilt() >= body_.overturn_angle(); };
+    if (e != Event::Overturn && on_side()) e = Event::Overturn;
     if (e == Event::None) break;
-    if (e == Event::Overturn) {
+    auto overturn = [&] {
       note_ratio();
       mode_ = Mode3D::Overturned;
       outcome_.overturned = true;
       outcome_.overturn_time = t_ + tau;
       report_.overturned = true;
+    };
+    if (e == Event::Overturn) {
+      overturn();
       break;
     }
     if (e == Event::Degenerate) {
@@ -243,10 +261,12 @@ const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
       ++outcome_.rest_captures;
     } else if (e == Event::Lift) {
       enter_vertex_from_edge(other);
-    } else if (mode_ == Mode3D::Edge) {
-      land(-1, tau);
     } else {
-      land(other, tau);
+      land(other, tau);  // EDGE: -1 back flat on the face, -2 the face across comes flat; VERTEX: the vertex
+    }
+    if (on_side()) {
+      overturn();
+      break;
     }
     if (++events >= settings_.max_events_per_sample) {
       // Bounded work per sample: the body is put down flat for the rest of the sample.
@@ -256,14 +276,19 @@ const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
       break;
     }
   }
-  if (mode_ == Mode3D::Edge && !outcome_.committed) {
-    const OverturnMargin m = overturn_margin(body_.edge(contact_).pivot, 1, ModelKind::Nonlinear, theta_, omega_);
+  // About a base edge with no hull face before the side, COMMITTED has the planar closed form; on a
+  // hull face or an edge whose face across lies flat before the side, passing the edge is a landing
+  // on that face, not an overturn: looked ahead as on a corner.
+  const bool closed_form = mode_ == Mode3D::Edge && face_ == 0 && !(fc().fold[static_cast<std::size_t>(contact_)] < body_.overturn_angle());
+  if (closed_form && !outcome_.committed) {
+    const OverturnMargin m = overturn_margin(fb().edge(contact_).pivot, 1, ModelKind::Nonlinear, theta_, omega_);
     if (m.committed) {
       outcome_.committed = true;
       outcome_.committed_time = t_ + dt;
       report_.committed_entered = true;
     }
-  } else if (mode_ == Mode3D::Vertex && !outcome_.committed && probe_ && t_ + dt - last_probe_t_ >= kProbeInterval &&
+  } else if ((mode_ == Mode3D::Vertex || mode_ == Mode3D::Edge) && !closed_form && !outcome_.committed && probe_ &&
+             t_ + dt - last_probe_t_ >= kProbeInterval &&
              margin().committed) {
     last_probe_t_ = t_ + dt;
     if (falls_if_shaking_stops(t_ + dt)) {

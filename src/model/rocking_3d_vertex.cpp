@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -19,7 +20,7 @@ using rocking_3d::rot_z;
 // ---------------------------------------------------------------- VERTEX
 
 void Rocking3DModel::vertex_rhs(const GroundInput3& in, double t, const Vec7& y, Vec7& dy) const {
-  const BaseVertex& v = body_.vertex(contact_);
+  const BaseVertex& v = hv(contact_);
   const Eigen::Quaterniond q = Eigen::Quaterniond(y(0), y(1), y(2), y(3)).normalized();
   const Eigen::Matrix3d r = q.toRotationMatrix();
   const Eigen::Vector3d w = y.tail<3>();
@@ -51,28 +52,32 @@ void Rocking3DModel::enter_vertex(int vertex, const Eigen::Vector3d& pivot_world
   // (A vertex within floor_tol_ of the floor is on it: the pose at an event is exact to the
   // integrator's tolerance only.)
   const double eps = 3.0 * floor_tol_;  // (a landing's set is within floor_tol_ of the floor, seen from any of its points within 2 floor_tol_)
-  for (int i = 0; i < body_.vertex_count(); ++i) {
-    const double z = (rotation * (body_.vertex(i).position - body_.vertex(vertex).position)).z();
+  const int n = static_cast<int>(hull().vertices.size());
+  for (int i = 0; i < n; ++i) {
+    const double z = (rotation * (hv(i).position - hv(vertex).position)).z();
     armed_[i] = i != vertex && z > eps;
   }
 }
 
 void Rocking3DModel::enter_vertex_from_edge(int vertex) {
-  const BaseEdge& e = body_.edge(contact_);
-  const Eigen::Matrix3d r = yaw_matrix() * Eigen::AngleAxisd(theta_, e.axis).toRotationMatrix();
+  const BaseEdge& e = fb().edge(contact_);
+  const Eigen::Matrix3d r = rotation();
   const Eigen::Vector3d w = yaw_matrix() * (omega_ * e.axis);
   const Eigen::Vector3d p =
-      yaw_matrix() * body_.vertex(vertex).position + Eigen::Vector3d(shift_.x(), shift_.y(), 0.0);
+      yaw_matrix() * fb().vertex(vertex).position + Eigen::Vector3d(shift_.x(), shift_.y(), 0.0);
   ++outcome3_.edge_to_vertex;
-  enter_vertex(vertex, p, r, w);
+  enter_vertex(fc().hull_vertex[static_cast<std::size_t>(vertex)], p, r, w);
 }
 
-// The body rests on edge `edge` (both ends on the floor) with pose `rotation` and angular velocity
-// omega_axis about the edge: the footprint (yaw, shift) and theta follow from the pose.
-void Rocking3DModel::enter_edge_from_pose(int edge, const Eigen::Matrix3d& rotation,
+// The body rests on edge `edge` of hull face `face` (both ends on the floor) with pose `rotation` (of
+// the item frame) and angular velocity omega_axis about the edge: the footprint (yaw, shift) and
+// theta follow from the pose. pivot_vertex: the face's vertex at pivot_world.
+void Rocking3DModel::enter_edge_from_pose(int face, int edge, const Eigen::Matrix3d& item_rotation,
                                           const Eigen::Vector3d& pivot_world, int pivot_vertex,
                                           double omega_axis) {
-  const BaseEdge& e = body_.edge(edge);
+  face_ = face;
+  const Eigen::Matrix3d rotation = face == 0 ? item_rotation : Eigen::Matrix3d(item_rotation * fc().rotation.transpose());
+  const BaseEdge& e = fb().edge(edge);
   Eigen::Vector3d axis_w = rotation * e.axis;
   axis_w.z() = 0.0;  // both ends on the floor (to the event tolerance)
   axis_w.normalize();
@@ -82,7 +87,7 @@ void Rocking3DModel::enter_edge_from_pose(int edge, const Eigen::Matrix3d& rotat
   const Eigen::Matrix3d flat = Eigen::AngleAxisd(-theta, axis_w).toRotationMatrix() * rotation;
   yaw_ = std::atan2(flat(1, 0), flat(0, 0));
   // The pivot vertex keeps its place on the floor.
-  const Eigen::Vector3d placed = yaw_matrix() * body_.vertex(pivot_vertex).position;
+  const Eigen::Vector3d placed = yaw_matrix() * fb().vertex(pivot_vertex).position;
   shift_ = Eigen::Vector2d(pivot_world.x() - placed.x(), pivot_world.y() - placed.y());
   mode_ = Mode3D::Edge;
   contact_ = edge;
@@ -98,13 +103,13 @@ Rocking3DModel::Event Rocking3DModel::advance_vertex(const GroundInput3& in, dou
   Vec7 atol;
   atol << Eigen::Vector4d::Constant(settings_.tol * alpha), Eigen::Vector3d::Constant(settings_.tol * p * alpha);
   auto f = [&](double t, const Vec7& y, Vec7& dy) { vertex_rhs(in, t, y, dy); };
-  const int n = body_.vertex_count();
-  const BaseVertex& pivot = body_.vertex(contact_);
+  const BaseVertex& pivot = hv(contact_);
+  const std::vector<int>& candidates = hull().neighbours[static_cast<std::size_t>(contact_)];
   const double eps = 3.0 * floor_tol_;  // (a landing's set is within floor_tol_ of the floor, seen from any of its points within 2 floor_tol_)
   const double sink = 10.0 * floor_tol_;  // an unarmed vertex this far below the floor touches down
   const double cos_over = std::cos(body_.overturn_angle());
   auto height = [&](const Vec7& y, int i) {
-    return (vertex_rotation(y) * (body_.vertex(i).position - pivot.position)).z();
+    return (vertex_rotation(y) * (hv(i).position - pivot.position)).z();
   };
   while (tau < tau_end) {
     report_.integrator_steps += vector_.step(f, tau, y_, tau_end, settings_.tol, atol);
@@ -122,9 +127,8 @@ Rocking3DModel::Event Rocking3DModel::advance_vertex(const GroundInput3& in, dou
       const Vec7 yk = k == 0 ? y_ : k == kProbes ? Vec7(vector_.y1()) : Vec7(vector_.eval(t0 + (t1 - t0) * k / kProbes));
       up[k] = vertex_rotation(yk).row(2).transpose();
     }
-    for (int i = 0; i < n; ++i) {
-      if (i == contact_) continue;
-      const Eigen::Vector3d offset = body_.vertex(i).position - pivot.position;
+    for (int i : candidates) {
+      const Eigen::Vector3d offset = hv(i).position - pivot.position;
       double ta = t0, za = up[0].dot(offset);
       for (int k = 1; k <= kProbes; ++k) {
         const double tb = k == kProbes ? t1 : t0 + (t1 - t0) * k / kProbes;
@@ -200,9 +204,8 @@ Rocking3DModel::Event Rocking3DModel::advance_vertex(const GroundInput3& in, dou
       y_ = vector_.y1();
       y_.head<4>().normalize();
       tau = t1;
-      for (int i = 0; i < n; ++i)
-        if (!armed_[i] && i != contact_ && up[kProbes].dot(body_.vertex(i).position - pivot.position) > eps)
-          armed_[i] = true;
+      for (int i : candidates)
+        if (!armed_[i] && up[kProbes].dot(hv(i).position - pivot.position) > eps) armed_[i] = true;
       note_ratio();
       continue;
     }

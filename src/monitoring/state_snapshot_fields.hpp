@@ -376,6 +376,7 @@ template <class V>
 void visit(V& v, Rocking3DModel::Saved& s) {
   v.enumeration("mode", s.mode, static_cast<int>(Mode3D::Overturned) + 1);
   v("contact", s.contact);
+  v("face", s.face);
   v("theta", s.theta);
   v("omega", s.omega);
   visit_matrix(v, "y", s.y);
@@ -397,6 +398,8 @@ void visit(V& v, Rocking3DModel::Saved& s) {
     v("max_friction_demand", s.outcome_3d.max_friction_demand);
     v("slipping_landings", s.outcome_3d.slipping_landings);
     v("edge_captures", s.outcome_3d.edge_captures);
+    v("hull_landings", s.outcome_3d.hull_landings);
+    v("rests_off_base", s.outcome_3d.rests_off_base);
   });
   v("last_probe_t", s.last_probe_t);
   v.group("dopri5", [&] { visit(v, s.dopri5); });

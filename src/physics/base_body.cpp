@@ -6,7 +6,11 @@
 
 #include <Eigen/Dense>
 
+#include <Eigen/Geometry>
+
 #include "rocking_monitor/constants.hpp"
+#include "rocking_monitor/physics/contact_hull.hpp"
+#include "rocking_monitor/physics/convex_polyhedron.hpp"
 
 namespace rocking_monitor::core {
 namespace {
@@ -15,9 +19,15 @@ std::string fail(const std::string& field, const std::string& problem) { return 
 
 double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
+std::string validate_body(const BaseBodyParameters& p, bool must_stand);
+
 }  // namespace
 
-std::string validate(const BaseBodyParameters& p) {
+std::string validate(const BaseBodyParameters& p) { return validate_body(p, true); }
+
+namespace {
+
+std::string validate_body(const BaseBodyParameters& p, bool must_stand) {
   if (!(p.mass > 0.0) || !std::isfinite(p.mass)) return fail("mass", "must be a finite value > 0 kg");
   if (!p.centre_of_mass.allFinite()) return fail("centre_of_mass", "must be finite (m)");
   if (!(p.centre_of_mass.z() > 0.0)) return fail("centre_of_mass", "z (height above the floor) must be > 0 m");
@@ -46,7 +56,7 @@ std::string validate(const BaseBodyParameters& p) {
                                       std::to_string((i + 1) % n + 1) + " (seen from above)");
   }
   const Eigen::Vector2d c(p.centre_of_mass.x(), p.centre_of_mass.y());
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < n && must_stand; ++i) {
     const Eigen::Vector2d& a = p.base[i];
     const Eigen::Vector2d& b = p.base[(i + 1) % n];
     if (!(cross2(b - a, c - a) > 0.0))
@@ -67,11 +77,79 @@ std::string validate(const BaseBodyParameters& p) {
   if (!(p.restitution_factor >= 0.0 && p.restitution_factor <= 1.0))
     return fail("restitution_factor", "must lie in [0, 1]");
   if (!(p.overturn_angle > 0.0 && p.overturn_angle <= kPi)) return fail("overturn_angle", "must lie in (0, pi] rad");
+  if (p.hull.size() > static_cast<std::size_t>(kMaxBaseVertices))
+    return fail("hull", "at most " + std::to_string(kMaxBaseVertices) + " points, found " +
+                            std::to_string(p.hull.size()) + " (simplify the hull)");
+  double size = 0.0;
+  for (const auto& b : p.base) size = std::max(size, (b - p.base[0]).norm());
+  for (std::size_t i = 0; i < p.hull.size(); ++i) {
+    if (!p.hull[i].allFinite()) return fail("hull", "point " + std::to_string(i + 1) + " is not finite");
+    size = std::max(size, p.hull[i].norm());
+  }
+  for (std::size_t i = 0; i < p.hull.size(); ++i)
+    if (p.hull[i].z() < -1e-9 * size) {
+      std::ostringstream m;
+      m << "point " << i + 1 << " lies below the floor (z = " << p.hull[i].z() << " m)";
+      return fail("hull", m.str());
+    }
   return {};
 }
 
-BaseBody::BaseBody(const BaseBodyParameters& parameters) : params_(parameters) {
-  if (const std::string e = validate(params_); !e.empty()) throw BodyError(e);
+// The hull's tolerance: points this close to a face's plane lie on it (far below a scan's
+// resolution, above rounding), m.
+double hull_tolerance(const BaseBodyParameters& p) {
+  double size = 0.0;
+  for (const auto& h : p.hull) size = std::max(size, (h - p.centre_of_mass).norm());
+  for (const auto& b : p.base) size = std::max(size, (Eigen::Vector3d(b.x(), b.y(), 0.0) - p.centre_of_mass).norm());
+  return 1e-9 * size;
+}
+
+BaseVertex hull_vertex(const Eigen::Vector3d& position, const Eigen::Vector3d& c, const Eigen::Matrix3d& central) {
+  BaseVertex v;
+  v.position = position;
+  v.to_centre = c - v.position;
+  // Parallel axis: I_P = I_c + m (|r|^2 1 - r r^T).
+  v.inertia = central + (v.to_centre.squaredNorm() * Eigen::Matrix3d::Identity() - v.to_centre * v.to_centre.transpose());
+  v.inertia_inverse = v.inertia.inverse();
+  v.radius = v.to_centre.norm();
+  v.alpha = std::atan2(std::hypot(v.to_centre.x(), v.to_centre.y()), v.to_centre.z());
+  return v;
+}
+
+}  // namespace
+
+int ContactHull::face_down(const Eigen::Matrix3d& rotation) const {
+  int best = 0;
+  double lowest = 2.0;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    // The face's outward normal in the item frame is rotation^T (-z) in its own frame.
+    const double nz = (rotation * (faces[f].rotation.transpose() * -Eigen::Vector3d::UnitZ())).z();
+    if (nz < lowest) { lowest = nz; best = static_cast<int>(f); }
+  }
+  return best;
+}
+
+bool ContactHull::face_with_edge(int a, int b, int& face, int& edge) const {
+  double best = -1e300;
+  face = edge = -1;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const std::vector<int>& hv = faces[f].hull_vertex;
+    const int n = static_cast<int>(hv.size());
+    for (int k = 0; k < n; ++k) {
+      const int u = hv[static_cast<std::size_t>(k)], w = hv[static_cast<std::size_t>((k + 1) % n)];
+      if (!((u == a && w == b) || (u == b && w == a))) continue;
+      const double alpha = faces[f].body->edge(k).pivot.alpha;
+      if (alpha > best) { best = alpha; face = static_cast<int>(f); edge = k; }
+    }
+  }
+  return face >= 0;
+}
+
+BaseBody BaseBody::face(const BaseBodyParameters& parameters) { return BaseBody(parameters, false); }
+BaseBody::BaseBody(const BaseBodyParameters& parameters) : BaseBody(parameters, true) {}
+
+BaseBody::BaseBody(const BaseBodyParameters& parameters, bool must_stand) : params_(parameters) {
+  if (const std::string e = validate_body(params_, must_stand); !e.empty()) throw BodyError(e);
   central_ = params_.central_inertia / params_.mass;
   const int n = static_cast<int>(params_.base.size());
   const Eigen::Vector3d& c = params_.centre_of_mass;
@@ -116,15 +194,124 @@ BaseBody::BaseBody(const BaseBodyParameters& parameters) : params_(parameters) {
     pv.gamma = r_perp.z() / inward;
     pv.nu = std::numeric_limits<double>::quiet_NaN();  // no base width along one line here
     pv.restitution = std::numeric_limits<double>::quiet_NaN();  // the 3-D impact law decides
-    min_alpha_ = std::min(min_alpha_, pv.alpha);
+    // (a hull face's edges beyond the centre of mass have alpha <= 0: not a tipping angle)
+    if (pv.alpha > 0.0) min_alpha_ = std::min(min_alpha_, pv.alpha);
+    else stands_ = false;
     max_p_ = std::max(max_p_, pv.p);
-    if (pv.alpha >= params_.overturn_angle) {
+    if (must_stand && pv.alpha >= params_.overturn_angle) {
       std::ostringstream m;
       m << "overturn_angle: must exceed the tipping angle of every edge (edge " << k + 1 << ": "
         << pv.alpha << " rad)";
       throw BodyError(m.str());
     }
   }
+  if (must_stand) build_contact_hull();
+}
+
+void BaseBody::build_contact_hull() {
+  auto hull = std::make_shared<ContactHull>();
+  const int n = vertex_count();
+  BaseBody base = *this;
+  base.params_.hull.clear();
+  if (params_.hull.empty()) {
+    hull->vertices = vertices_;
+    hull->neighbours.resize(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        if (j != i) hull->neighbours[static_cast<std::size_t>(i)].push_back(j);
+    HullFace f;
+    f.body = std::make_shared<const BaseBody>(base);
+    for (int k = 0; k < n; ++k) {
+      f.hull_vertex.push_back(k);
+      f.across.push_back(-1);
+      f.fold.push_back(std::numeric_limits<double>::infinity());
+    }
+    hull->faces.push_back(std::move(f));
+    hull_ = std::move(hull);
+    return;
+  }
+  hull->from_hull = true;
+  std::vector<Eigen::Vector3d> pts;
+  for (const auto& b : params_.base) pts.emplace_back(b.x(), b.y(), 0.0);
+  pts.insert(pts.end(), params_.hull.begin(), params_.hull.end());
+  const double tol = hull_tolerance(params_);
+  ConvexPolyhedron poly;
+  try {
+    poly = convex_polyhedron(pts, tol);
+  } catch (const std::invalid_argument& e) {
+    throw BodyError(std::string("hull: ") + e.what());
+  }
+  // The base is a face of the hull: its vertices are the hull's first n, in order, and the face on
+  // the floor has exactly them.
+  for (int i = 0; i < n; ++i)
+    if (i >= static_cast<int>(poly.source.size()) || poly.source[static_cast<std::size_t>(i)] != i)
+      throw BodyError("hull: base_polygon vertex " + std::to_string(i + 1) + " is not a corner of the hull");
+  if (static_cast<int>(poly.points.size()) > kMaxBaseVertices)
+    throw BodyError("hull: " + std::to_string(poly.points.size()) + " vertices, at most " +
+                    std::to_string(kMaxBaseVertices) + " (simplify the hull)");
+  int base_face = -1;
+  for (std::size_t f = 0; f < poly.faces.size(); ++f)
+    if (poly.faces[f].normal.z() < -1.0 + 1e-12) base_face = static_cast<int>(f);
+  if (base_face < 0 || static_cast<int>(poly.faces[static_cast<std::size_t>(base_face)].vertices.size()) != n) {
+    for (std::size_t i = 0; i < poly.points.size(); ++i)
+      if (std::abs(poly.points[i].z()) <= tol && static_cast<int>(i) >= n)
+        throw BodyError("hull: point " + std::to_string(poly.source[i] - n + 1) +
+                        " lies on the floor outside base_polygon (the base is the hull's face on the floor)");
+    throw BodyError("hull: base_polygon is not the hull's face on the floor");
+  }
+  const Eigen::Vector3d& c = params_.centre_of_mass;
+  for (const auto& f : poly.faces)
+    if (!(f.normal.dot(c) < f.offset - tol))
+      throw BodyError("hull: the centre of mass is not inside the hull");
+  for (const auto& p : poly.points) hull->vertices.push_back(hull_vertex(p, c, central_));
+  hull->neighbours = poly.neighbours;
+  // Faces: the base first, then the others in the hull's order.
+  std::vector<int> order{base_face};
+  for (int f = 0; f < static_cast<int>(poly.faces.size()); ++f)
+    if (f != base_face) order.push_back(f);
+  std::vector<int> slot(poly.faces.size());
+  for (std::size_t i = 0; i < order.size(); ++i) slot[static_cast<std::size_t>(order[i])] = static_cast<int>(i);
+  for (int f : order) {
+    const PolyhedronFace& pf = poly.faces[static_cast<std::size_t>(f)];
+    HullFace h;
+    // Counter-clockwise from outside is clockwise from above in the face's floor frame: reversed.
+    std::vector<int> verts(pf.vertices.rbegin(), pf.vertices.rend());
+    if (f == base_face) {
+      // the base's own order (vertex k of the base is hull vertex k)
+      verts.clear();
+      for (int i = 0; i < n; ++i) verts.push_back(i);
+      h.body = std::make_shared<const BaseBody>(base);
+    } else {
+      h.rotation = Eigen::Quaterniond::FromTwoVectors(pf.normal, -Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      h.offset = Eigen::Vector3d(0.0, 0.0, pf.offset);
+      BaseBodyParameters fp = params_;
+      fp.hull.clear();
+      fp.base.clear();
+      for (int v : verts) {
+        const Eigen::Vector3d x = h.rotation * poly.points[static_cast<std::size_t>(v)] + h.offset;
+        fp.base.emplace_back(x.x(), x.y());
+      }
+      fp.centre_of_mass = h.rotation * c + h.offset;
+      fp.central_inertia = h.rotation * params_.central_inertia * h.rotation.transpose();
+      fp.overturn_angle = kPi;
+      try {
+        h.body = std::make_shared<const BaseBody>(BaseBody::face(fp));
+      } catch (const BodyError& e) {
+        throw BodyError(std::string("hull: a face is degenerate (") + e.what() + ")");
+      }
+    }
+    h.hull_vertex = verts;
+    const int m = static_cast<int>(verts.size());
+    for (int k = 0; k < m; ++k) {
+      // Face edge k runs verts[k] -> verts[k+1] from above, verts[k+1] -> verts[k] from outside.
+      const int g = poly.face_across(f, verts[static_cast<std::size_t>((k + 1) % m)], verts[static_cast<std::size_t>(k)]);
+      h.across.push_back(g < 0 ? -1 : slot[static_cast<std::size_t>(g)]);
+      h.fold.push_back(g < 0 ? std::numeric_limits<double>::infinity()
+                             : std::acos(std::clamp(pf.normal.dot(poly.faces[static_cast<std::size_t>(g)].normal), -1.0, 1.0)));
+    }
+    hull->faces.push_back(std::move(h));
+  }
+  hull_ = std::move(hull);
 }
 
 BaseBodyParameters box_base_body(const BodyParameters& x, double depth, double nu_y,

@@ -1,7 +1,9 @@
 #pragma once
 
 // Rigid-body rocking in 3-D on a convex polygonal base (issue 27), beside the planar RockingModel
-// it generalises. Modes: REST; EDGE (rocking about one hull edge: the planar equation of motion
+// it generalises; with a hull (issue 40 part 3) the body rolls over its hull's faces, edges and
+// vertices: every hull face is a base it may rest or rock on (EDGE about a face's edge lands on the
+// face across it when that face comes flat), every hull vertex a pivot. Modes: REST; EDGE (rocking about one hull edge: the planar equation of motion
 // with that edge's alpha, R, p and the ground acceleration projected onto the edge's outward
 // normal, integrated by the same Dopri5Stepper and event scan as RockingModel); VERTEX (pivoting
 // on one hull vertex without slip: 3 rotational degrees of freedom, the corner wobble);
@@ -25,6 +27,7 @@
 #include "rocking_monitor/integrate/solver_settings.hpp"
 #include "rocking_monitor/model/rocking_model.hpp"
 #include "rocking_monitor/physics/base_body.hpp"
+#include "rocking_monitor/physics/contact_hull.hpp"
 
 namespace rocking_monitor::core {
 
@@ -54,6 +57,10 @@ struct Rocking3DOutcome {
   double max_friction_demand = 0.0;
   /// Landings whose friction demand exceeded the item's mu_s: the real body slid there.
   long slipping_landings = 0;
+  /// Landings onto a hull face other than the one rocked on (the body rolled over its hull).
+  long hull_landings = 0;
+  /// Rest captures on a hull face other than the base (a state the monitor reports).
+  long rests_off_base = 0;
   /// See-saws on a tilted edge put onto the edge by the Zeno rule (rocking_3d_landing.cpp).
   long edge_captures = 0;
 };
@@ -94,6 +101,7 @@ class Rocking3DModel {
   struct Saved {
     Mode3D mode = Mode3D::Rest;
     int contact = -1;
+    int face = 0;                                             ///< the hull face of EDGE and REST
     double theta = 0.0, omega = 0.0;                          ///< EDGE: rad, rad/s
     Eigen::Matrix<double, 7, 1> y = Eigen::Matrix<double, 7, 1>::Zero();  ///< VERTEX: q (w, x, y, z), omega (rad/s)
     Eigen::Vector3d pivot_world = Eigen::Vector3d::Zero();    ///< m
@@ -113,7 +121,9 @@ class Rocking3DModel {
   void restore(const Saved& in);
 
   Mode3D mode() const { return mode_; }
-  /// The active edge (EDGE) or vertex (VERTEX); -1 otherwise.
+  /// The hull face the body rests or rocks on (REST, EDGE; 0: the base), or that it left (VERTEX).
+  int face() const { return face_; }
+  /// The active edge (EDGE: of face()) or hull vertex (VERTEX; vertex k < n is base vertex k); -1 otherwise.
   int contact() const { return mode_ == Mode3D::Edge || mode_ == Mode3D::Vertex ? contact_ : -1; }
   double theta() const { return mode_ == Mode3D::Edge ? theta_ : 0.0; }  ///< EDGE: rad
   double omega() const { return mode_ == Mode3D::Edge ? omega_ : 0.0; }  ///< EDGE: rad/s
@@ -161,11 +171,17 @@ class Rocking3DModel {
   void enter_vertex_from_edge(int vertex);
   void enter_vertex(int vertex, const Eigen::Vector3d& pivot_world, const Eigen::Matrix3d& rotation,
                     const Eigen::Vector3d& omega_world);
-  void enter_edge_from_pose(int edge, const Eigen::Matrix3d& rotation, const Eigen::Vector3d& pivot_world,
+  void enter_edge_from_pose(int face, int edge, const Eigen::Matrix3d& rotation, const Eigen::Vector3d& pivot_world,
                             int pivot_vertex, double omega_axis);
   void land(int touching, double tau);
   double capture_energy(const BaseVertex& v) const;
-  void capture_rest(const Eigen::Matrix3d& rotation, int vertex, const Eigen::Vector3d& point);
+  void capture_rest(const Eigen::Matrix3d& rotation, int vertex, const Eigen::Vector3d& point, int face);
+  void tip_off_face(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& translation, int face);
+  double face_tilt(const Eigen::Matrix3d& rotation, int face) const;
+  const ContactHull& hull() const { return body_.contact_hull(); }
+  const HullFace& fc() const { return hull().faces[static_cast<std::size_t>(face_)]; }
+  const BaseBody& fb() const { return *fc().body; }  ///< the current face as a base
+  const BaseVertex& hv(int i) const { return hull().vertices[static_cast<std::size_t>(i)]; }
   double ratio_of(const Vec7& y) const;
   double rise_rate(const Vec7& y) const;
   void record_impact(double tau, double energy_before);
@@ -181,6 +197,7 @@ class Rocking3DModel {
 
   Mode3D mode_ = Mode3D::Rest;
   int contact_ = -1;
+  int face_ = 0;
   double theta_ = 0.0, omega_ = 0.0;   // EDGE
   Vec7 y_ = Vec7::Zero();              // VERTEX: q (w, x, y, z), omega (world)
   Eigen::Vector3d pivot_world_ = Eigen::Vector3d::Zero();  // VERTEX

@@ -5,6 +5,7 @@
 // about that edge); each hull vertex is a point pivot for the corner wobble.
 
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,11 @@ struct BaseBodyParameters {
   double restitution_factor = 1.0;
   /// Tilt of the base from the floor at which the body lies on its side and counts OVERTURNED, rad.
   double overturn_angle = 1.5707963267948966;
+  /// The body's convex hull (issue 40 part 3), m, item frame: points whose hull, with the base's
+  /// vertices, is the contact geometry once the body tilts beyond its base. Empty: the base polygon
+  /// alone (the body rocks on its base's edges and corners only). At most kMaxBaseVertices hull
+  /// vertices; no point below the floor or on it outside the base.
+  std::vector<Eigen::Vector3d> hull;
 };
 
 /// Empty when valid, else "<field>: <problem>" naming the field as the catalogue does.
@@ -57,10 +63,15 @@ struct BaseVertex {
   double radius = 0.0;            ///< |to_centre|, m
 };
 
+struct ContactHull;
+
 class BaseBody {
  public:
   /// Throws BodyError with validate()'s message.
   explicit BaseBody(const BaseBodyParameters& parameters);
+  /// A face of a hull as a base: the centre of mass may lie beyond its edges (then those edges'
+  /// alpha <= 0 and stands() is false); no hull of its own.
+  static BaseBody face(const BaseBodyParameters& parameters);
 
   const BaseBodyParameters& parameters() const { return params_; }
   int vertex_count() const { return static_cast<int>(vertices_.size()); }
@@ -79,9 +90,18 @@ class BaseBody {
   /// Smallest edge tipping angle and the largest p of any edge (step-size scales).
   double min_alpha() const { return min_alpha_; }
   double max_p() const { return max_p_; }
+  /// The centre of mass lies above the base (every edge's alpha > 0): the body can rest on it.
+  bool stands() const { return stands_; }
+  /// The contact geometry: the hull's vertices and faces (face 0 the base). Without a hull in the
+  /// parameters: the base's vertices and the base as the only face.
+  const ContactHull& contact_hull() const { return *hull_; }
 
  private:
+  BaseBody(const BaseBodyParameters& parameters, bool must_stand);
+  void build_contact_hull();
   BaseBodyParameters params_;
+  bool stands_ = true;
+  std::shared_ptr<const ContactHull> hull_;
   Eigen::Matrix3d central_;
   Eigen::Vector3d centroid_ = Eigen::Vector3d::Zero();
   std::vector<BaseVertex> vertices_;
