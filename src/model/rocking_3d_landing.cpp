@@ -55,7 +55,7 @@ void Rocking3DModel::tip_off_face(const Eigen::Matrix3d& rotation, const Eigen::
     if (f.body->edge(i).pivot.alpha < f.body->edge(k).pivot.alpha) k = i;
   const int a = f.hull_vertex[static_cast<std::size_t>(k)], b = f.hull_vertex[static_cast<std::size_t>((k + 1) % n)];
   int g = -1, e = -1;
-  hull().face_with_edge(a, b, g, e);
+  hull().face_with_edge(a, b, rotation, g, e);
   const HullFace& h = hull().faces[static_cast<std::size_t>(g)];
   const int pv = h.hull_vertex[static_cast<std::size_t>(e)] == a ? e : (e + 1) % h.body->vertex_count();
   enter_edge_from_pose(g, e, rotation, rotation * hv(a).position + translation, pv, 0.0);
@@ -189,7 +189,7 @@ void Rocking3DModel::land(int touching, double tau) {
   } else if (chosen.mode == LandingMode::Edge) {
     const int u = hull_index[chosen.first], v = hull_index[chosen.second];
     int face = 0, edge = u;  // without a hull: base edge k joins base vertices k and k + 1
-    if (with_hull) hull().face_with_edge(u, v, face, edge);
+    if (with_hull) hull().face_with_edge(u, v, r, face, edge);
     const HullFace& hf = hull().faces[static_cast<std::size_t>(face)];
     const BaseEdge& e = hf.body->edge(edge);
     const Eigen::Matrix3d rf = face == 0 ? r : Eigen::Matrix3d(r * hf.rotation.transpose());

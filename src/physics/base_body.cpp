@@ -129,8 +129,8 @@ int ContactHull::face_down(const Eigen::Matrix3d& rotation) const {
   return best;
 }
 
-bool ContactHull::face_with_edge(int a, int b, int& face, int& edge) const {
-  double best = -1e300;
+bool ContactHull::face_with_edge(int a, int b, const Eigen::Matrix3d& rotation, int& face, int& edge) const {
+  double best = 1e300;
   face = edge = -1;
   for (std::size_t f = 0; f < faces.size(); ++f) {
     const std::vector<int>& hv = faces[f].hull_vertex;
@@ -138,8 +138,10 @@ bool ContactHull::face_with_edge(int a, int b, int& face, int& edge) const {
     for (int k = 0; k < n; ++k) {
       const int u = hv[static_cast<std::size_t>(k)], w = hv[static_cast<std::size_t>((k + 1) % n)];
       if (!((u == a && w == b) || (u == b && w == a))) continue;
-      const double alpha = faces[f].body->edge(k).pivot.alpha;
-      if (alpha > best) { best = alpha; face = static_cast<int>(f); edge = k; }
+      if (!(faces[f].body->edge(k).pivot.alpha > 0.0)) continue;  // the centre of mass is beyond it
+      const double up = (rotation * (faces[f].rotation.transpose() * Eigen::Vector3d::UnitZ())).z();
+      const double tilt = std::acos(std::clamp(up, -1.0, 1.0));
+      if (tilt < best) { best = tilt; face = static_cast<int>(f); edge = k; }
     }
   }
   return face >= 0;
@@ -233,8 +235,16 @@ void BaseBody::build_contact_hull() {
   hull->from_hull = true;
   std::vector<Eigen::Vector3d> pts;
   for (const auto& b : params_.base) pts.emplace_back(b.x(), b.y(), 0.0);
-  pts.insert(pts.end(), params_.hull.begin(), params_.hull.end());
   const double tol = hull_tolerance(params_);
+  // (a hull point at a base vertex is that vertex: a mesh's hull lists the base's corners too)
+  std::vector<int> origin(pts.size(), -1);  // the hull point each input point is (1-based), -1: a base vertex
+  for (std::size_t i = 0; i < params_.hull.size(); ++i) {
+    const Eigen::Vector3d& h = params_.hull[i];
+    if (std::none_of(pts.begin(), pts.end(), [&](const Eigen::Vector3d& q) { return (q - h).norm() <= tol; })) {
+      pts.push_back(h);
+      origin.push_back(static_cast<int>(i) + 1);
+    }
+  }
   ConvexPolyhedron poly;
   try {
     poly = convex_polyhedron(pts, tol);
@@ -255,7 +265,7 @@ void BaseBody::build_contact_hull() {
   if (base_face < 0 || static_cast<int>(poly.faces[static_cast<std::size_t>(base_face)].vertices.size()) != n) {
     for (std::size_t i = 0; i < poly.points.size(); ++i)
       if (std::abs(poly.points[i].z()) <= tol && static_cast<int>(i) >= n)
-        throw BodyError("hull: point " + std::to_string(poly.source[i] - n + 1) +
+        throw BodyError("hull: point " + std::to_string(origin[static_cast<std::size_t>(poly.source[i])]) +
                         " lies on the floor outside base_polygon (the base is the hull's face on the floor)");
     throw BodyError("hull: base_polygon is not the hull's face on the floor");
   }

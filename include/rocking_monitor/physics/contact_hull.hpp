@@ -39,9 +39,10 @@ struct ContactHull {
   /// The face the body lies on when the hull's points within `tolerance` of the floor are those of
   /// `rotation` (item -> world); the face whose outward normal points most nearly down.
   int face_down(const Eigen::Matrix3d& rotation) const;
-  /// The face with the directed-or-reversed edge between hull vertices a and b whose edge alpha is
-  /// largest (the side the centre of mass is on), and that edge's index in it; false if none.
-  bool face_with_edge(int a, int b, int& face, int& edge) const;
+  /// Of the two faces at the hull edge between vertices a and b, the one to rock on in pose
+  /// `rotation` (item -> world): the nearer to flat of those the centre of mass lies inside of (edge
+  /// alpha > 0; one always does), and that edge's index in it. False if a, b is not a hull edge.
+  bool face_with_edge(int a, int b, const Eigen::Matrix3d& rotation, int& face, int& edge) const;
 };
 
 }  // namespace rocking_monitor::core
