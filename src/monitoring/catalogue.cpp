@@ -140,6 +140,7 @@ void parse_solid(const Entry& e, ItemSpec& s) {
   for (const char* k : keys) any = any || e.has(k);
   if (!any) {
     if (e.has("restitution_factor")) e.fail("restitution_factor", "needs the 3-D description (base_polygon, ...)");
+    if (e.has("hull")) e.fail("hull", "needs the 3-D description (base_polygon, ...)");
     return;
   }
   for (const char* k : keys)
@@ -161,11 +162,28 @@ void parse_solid(const Entry& e, ItemSpec& s) {
     const auto v = numbers(e, poly[k], "base_polygon", 2, "vertex " + std::to_string(k + 1) + " [x, y] (m)");
     b.base.emplace_back(v[0], v[1]);
   }
+  if (e.has("hull")) {
+    // The contact geometry beyond the base (issue 40 part 3): the body's convex hull points.
+    const json& hull = e.member("hull");
+    if (!hull.is_array()) e.fail("hull", "must be a list of [x, y, z] points (m)");
+    for (std::size_t k = 0; k < hull.size(); ++k) {
+      const auto v = numbers(e, hull[k], "hull", 3, "point " + std::to_string(k + 1) + " [x, y, z] (m)");
+      b.hull.emplace_back(v[0], v[1], v[2]);
+    }
+  }
   b.mu_s = s.body.mu_s;
   b.overturn_angle = s.body.overturn_angle;
   if (e.has("restitution_factor"))
     b.restitution_factor = e.number("restitution_factor", false, 1.0, "multiplies the 3-D impact law's angular velocity");
   if (const std::string err = validate(b); !err.empty()) e.fail("", err);
+  if (!b.hull.empty()) {
+    // The hull's own checks (its base face, the centre of mass inside) need the hull built.
+    try {
+      BaseBody check(b);
+    } catch (const BodyError& err) {
+      e.fail("", err.what());
+    }
+  }
   s.solid = b;
 }
 
@@ -216,7 +234,7 @@ CatalogueItem parse_item(const json& v, int i, const std::set<std::string>* sens
   e.only({"id", "description", "sensor", "frame", "shape", "width", "depth", "cg_height", "eccentricity",
           "eccentricity_y", "radius_of_gyration", "radius_of_gyration_y", "mu_s", "mu_k", "restitution",
           "restitution_shift", "overturn_angle", "pose", "ensemble_size", "mass", "centre_of_mass",
-          "central_inertia", "base_polygon", "restitution_factor"});
+          "central_inertia", "base_polygon", "restitution_factor", "hull"});
   CatalogueItem item;
   ItemSpec& s = item.spec;
   s.id = e.text("id", true);

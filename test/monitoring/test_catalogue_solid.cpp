@@ -1,5 +1,5 @@
 // The catalogue's 3-D description of an item (base_polygon, centre_of_mass, central_inertia, mass,
-// restitution_factor): read as given, and every bad value refused naming the item and the field.
+// restitution_factor, hull): read as given, and every bad value refused naming the item and the field.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -42,6 +42,33 @@ TEST(CatalogueSolid, TheThreeDimensionalDescriptionIsReadAsGiven) {
   json planar = item();
   for (const char* k : {"mass", "centre_of_mass", "central_inertia", "base_polygon", "restitution_factor"}) planar.erase(k);
   EXPECT_FALSE(parse_catalogue_items(json::array({planar}))[0].spec.solid.has_value());
+}
+
+// A hull: the base's corners and four points above them (a frustum), read as given and built.
+json with_hull() {
+  json e = item();
+  e["hull"] = json::parse("[[0, 0, 0.5], [0.2, 0, 0.5], [0.15, 0.12, 0.5], [0.0, 0.1, 0.5], [0.2, 0, 0]]");
+  return e;
+}
+
+TEST(CatalogueSolid, AHullIsReadAndChecked) {
+  const auto items = parse_catalogue_items(json::array({with_hull()}));
+  const BaseBodyParameters& b = *items[0].spec.solid;
+  ASSERT_EQ(b.hull.size(), 5u);
+  EXPECT_EQ(b.hull[2].y(), 0.12);
+  EXPECT_EQ(BaseBody(b).contact_hull().faces.size(), 6u);  // a prism over the quadrilateral
+  json e = with_hull();
+  e["hull"][1] = json::array({0.2, 0.0});
+  EXPECT_NE(error_of(e).find("'vase': hull: point 2 [x, y, z] (m): must have 3 numbers, found 2"), std::string::npos) << error_of(e);
+  e = with_hull();
+  e["hull"][0][2] = -0.1;
+  EXPECT_NE(error_of(e).find("'vase': hull: point 1 lies below the floor"), std::string::npos) << error_of(e);
+  e = with_hull();
+  e["hull"].push_back(json::array({0.3, 0.05, 0.0}));
+  EXPECT_NE(error_of(e).find("'vase': hull: point 6 lies on the floor outside base_polygon"), std::string::npos) << error_of(e);
+  json planar = with_hull();
+  for (const char* k : {"mass", "centre_of_mass", "central_inertia", "base_polygon", "restitution_factor"}) planar.erase(k);
+  EXPECT_NE(error_of(planar).find("hull: needs the 3-D description"), std::string::npos) << error_of(planar);
 }
 
 TEST(CatalogueSolid, BadValuesNameTheItemAndTheField) {
