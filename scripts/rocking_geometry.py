@@ -22,7 +22,7 @@ The planar model (docs/validation.md) assumes both pivots on one flat floor: the
 height of the centre of mass above the lowest vertex; the pivots' own heights (within the tolerance)
 are reported, with the exact per-pivot alpha they would give.
 
-  rocking_geometry.py MESH [--mass KG] [--com X Y Z] [--unit U] [--up AXIS] [--floor F] [--write-hull] ...
+  rocking_geometry.py MESH [--mass KG] [--com X Y Z] [--unit U] [--up AXIS] [--floor F] [--no-hull] ...
   rocking_geometry.py --granite DIR [--yaml OUT] [--plot-dir DIR]   (the two granite specimens)
   ... [--com-shift DX DY]: the centre of mass moved horizontally after placement (calibration)
   ... [--planar-only]: without the 3-D keys (for a catalogue reader that does not know them yet)
@@ -300,9 +300,37 @@ def rocking_geometry(vertices, faces, rotation=np.eye(3), mass=1.0, contact_tole
               "inertia": inertia.tolist(), "principal_inertia": sorted(np.linalg.eigvalsh(inertia).tolist()),
               "contact_points": int(len(contact)), "contact_tolerance": contact_tolerance,
               "settle_angle_deg": math.degrees(settle_angle), "rotation": rotation.tolist(),
-              "hull": hull.tolist(), "base_polygon": polygon, "com_shift": None if com_shift is None
+              "hull": hull.tolist(), "base_polygon": polygon,
+              "contact_hull": contact_hull(low, polygon, contact_tolerance), "com_shift": None if com_shift is None
               else [float(com_shift[0]), float(com_shift[1])], "x": px, "y": py}
     return result, placed
+
+
+MAX_HULL_VERTICES = 128  # the 3-D model's bound on hull vertices (physics/base_body.hpp), base included
+WRITE_HULL = True  # --no-hull clears it: entries without the hull key
+
+
+def contact_hull(points, base, contact_tolerance, max_vertices=MAX_HULL_VERTICES):
+    """The hull key: the convex hull's vertices above the base patch (z > contact tolerance; the patch
+    itself is base_polygon), floor frame, m. When there are more than the model takes beside the
+    base, the hull of the support points in evenly spread directions (a Fibonacci sphere), as many
+    directions as fit: an inscribed hull that touches the true one in every direction used."""
+    from scipy.spatial import ConvexHull
+    pts = np.asarray(points, dtype=float)
+    verts = pts[ConvexHull(pts).vertices]
+    verts = verts[verts[:, 2] > contact_tolerance]
+    budget = max_vertices - len(base)
+    if len(verts) <= budget:
+        return sorted(verts.tolist())
+    for k in range(4 * budget, 3, -1):
+        i = np.arange(k) + 0.5
+        z = 1.0 - 2.0 * i / k
+        phi = math.pi * (1.0 + 5.0 ** 0.5) * i
+        d = np.stack([np.sqrt(1.0 - z * z) * np.cos(phi), np.sqrt(1.0 - z * z) * np.sin(phi), z], axis=1)
+        chosen = np.unique(np.argmax(verts @ d.T, axis=0))
+        if len(chosen) <= budget:
+            return sorted(verts[chosen].tolist())
+    raise GeometryError("the hull cannot be simplified to the model's vertex bound")
 
 
 def fmt(x):
@@ -319,6 +347,9 @@ def entry_3d(g):
     return [f"    mass: {fmt(g['mass'])}   # kg",
             f"    centre_of_mass: [{fmt(c[0])}, {fmt(c[1])}, {fmt(c[2])}]   # m, floor frame{shift}",
             f"    base_polygon: [{poly}]   # m, contact hull, counter-clockwise from above",
+            *([] if not (WRITE_HULL and g.get("contact_hull")) else [
+                "    hull: [" + ", ".join("[" + ", ".join(fmt(x) for x in p) + "]" for p in g["contact_hull"]) +
+                "]   # m, the convex hull above the base (floor frame): the contact as the body tilts beyond it"]),
             f"    central_inertia: [{rows}]   # kg m^2, about the centre of mass (the homogeneous "
             "mesh's about that point)"]
 
@@ -425,6 +456,9 @@ def granite(directory, tolerance, plot_dir=None, settle_on_hull=True, homogeneou
         except GeometryError as e:
             raise GeometryError(f"{name}: {e}")
         g["open_edges"] = open_edges(v, f)
+        # No hull key: in these tests the specimens stood on a pedestal, whose top bounds the contact;
+        # the hull on an unbounded floor holds them up where they fell (docs/validation.md).
+        g.pop("contact_hull", None)
         results[name] = g
         entries.append(catalogue_entry(name, g, planar_only=planar_only))
         if plot_dir:
@@ -475,6 +509,7 @@ def granite_ensemble(directory, members, seed, tolerance, max_tilt_deg=5.0, tol_
                 refused += 1
                 print(f"rocking_geometry: {name} member {k} refused: {e}", file=sys.stderr)
                 continue
+            g.pop("contact_hull", None)  # on a pedestal, as granite() says
             entries.append(catalogue_entry(f"{name}#{k}", g, restitution_shift=shift, mu_s=mu,
                                            planar_only=planar_only))
     return entries, refused
@@ -503,8 +538,10 @@ def main(argv=None):
                          "contact tolerance, 2 %% of the height)); elsewhere the mesh is refused")
     ap.add_argument("--sensor", default="table", help="the entry's sensor (default table)")
     ap.add_argument("--write-hull", action="store_true",
-                    help="also write hull: the mesh's convex hull vertices, floor frame (for a "
-                         "catalogue reader that knows the key)")
+                    help="(the default now; kept for old command lines)")
+    ap.add_argument("--no-hull", action="store_true",
+                    help="without the hull key: the body rocks on its base polygon only (as before the "
+                         "3-D model knew the hull)")
     ap.add_argument("--mass", type=float, default=1.0, help="kg (default 1)")
     ap.add_argument("--com", nargs=3, type=float, help="measured centre of mass, mesh frame, m")
     ap.add_argument("--contact-tolerance", type=float, default=0.001,
@@ -540,6 +577,8 @@ def main(argv=None):
     ap.add_argument("--json", help="write every number here")
     ap.add_argument("--plot-dir", help="outline pictures (PNG) here")
     a = ap.parse_args(argv)
+    global WRITE_HULL
+    WRITE_HULL = not a.no_hull
     try:
         if not a.granite and (a.homogeneous or a.specimen):
             raise GeometryError("--homogeneous and --specimen need --granite DIR")
@@ -567,7 +606,7 @@ def main(argv=None):
                 a.cap_tolerance, a.quaternion, a.settle, a.com_shift)
             for n in notes + [scan_entry.describe(g)]:
                 print(f"rocking_geometry: {a.mesh}: {n}", file=sys.stderr)
-            extra = scan_entry.entry_comments(g) + ([scan_entry.hull_line(g)] if a.write_hull else [])
+            extra = scan_entry.entry_comments(g)
             results = {a.id: g}
             entries = [catalogue_entry(a.id, g, a.sensor, planar_only=a.planar_only, extra=extra)]
             if a.plot_dir:

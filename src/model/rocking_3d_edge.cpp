@@ -216,6 +216,23 @@ void Rocking3DModel::start_motion(const GroundInput3& in, double tau) {
   report_.uplift = true;
   if (std::isnan(outcome_.uplift_time)) outcome_.uplift_time = t_ + tau;
   const BaseEdge& e = fb().edge(best);
+  if (!(e.pivot.alpha > 0.0)) {
+    // Off a face the centre of mass overhangs (held there by the shaking until now): the body
+    // turns back over that edge, rocking about it from the face across at its fold.
+    const Eigen::Matrix3d r = rotation();
+    const Eigen::Vector3d pivot = r * hv(fc().hull_vertex[static_cast<std::size_t>(e.a)]).position + translation();
+    int face = -1, edge = -1;
+    if (!hull().face_with_edge(fc().hull_vertex[static_cast<std::size_t>(e.a)], fc().hull_vertex[static_cast<std::size_t>(e.b)], r, face, edge)) {
+      // (no face at this edge holds the centre of mass inside it: only at rounding of a flat fold)
+      enter_vertex(fc().hull_vertex[static_cast<std::size_t>(e.a)], pivot, r, Eigen::Vector3d::Zero());
+      return;
+    }
+    const HullFace& h = hull().faces[static_cast<std::size_t>(face)];
+    const BaseEdge& he = h.body->edge(edge);
+    const int pv = h.hull_vertex[static_cast<std::size_t>(he.a)] == fc().hull_vertex[static_cast<std::size_t>(e.a)] ? he.a : he.b;
+    enter_edge_from_pose(face, edge, r, pivot, pv, 0.0);
+    return;
+  }
   double f_a, f_b;
   endpoint_reactions(best, 0.0, 0.0, best_acc, a_fp, f_a, f_b);
   int vertex = -1;

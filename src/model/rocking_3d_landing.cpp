@@ -44,23 +44,6 @@ double Rocking3DModel::face_tilt(const Eigen::Matrix3d& rotation, int face) cons
   return std::acos(std::clamp(-down.z(), -1.0, 1.0));
 }
 
-// Flat on a hull face beyond whose edge the centre of mass lies (it cannot rest there): the body
-// tips over the edge it overhangs most, as rocking about that edge on the face across it (at the
-// fold, from rest).
-void Rocking3DModel::tip_off_face(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& translation, int face) {
-  const HullFace& f = hull().faces[static_cast<std::size_t>(face)];
-  const int n = f.body->vertex_count();
-  int k = 0;
-  for (int i = 1; i < n; ++i)
-    if (f.body->edge(i).pivot.alpha < f.body->edge(k).pivot.alpha) k = i;
-  const int a = f.hull_vertex[static_cast<std::size_t>(k)], b = f.hull_vertex[static_cast<std::size_t>((k + 1) % n)];
-  int g = -1, e = -1;
-  hull().face_with_edge(a, b, rotation, g, e);
-  const HullFace& h = hull().faces[static_cast<std::size_t>(g)];
-  const int pv = h.hull_vertex[static_cast<std::size_t>(e)] == a ? e : (e + 1) % h.body->vertex_count();
-  enter_edge_from_pose(g, e, rotation, rotation * hv(a).position + translation, pv, 0.0);
-}
-
 // The energy below which a landing puts the body at rest: that of rest_capture_ratio * p * alpha about
 // the vertex (for a planar motion exactly the planar engine's rule on omega), J/kg.
 double Rocking3DModel::capture_energy(const BaseVertex& v) const {
@@ -180,12 +163,17 @@ void Rocking3DModel::land(int touching, double tau) {
   // The planar engine's rest capture (its Zeno rule) needs an almost flat face.
   const bool near_flat =
       flat || face_tilt(r, down) < settings_.rest_capture_ratio * hull().faces[static_cast<std::size_t>(down)].body->min_alpha();
-  auto rest = [&](int k) {
-    if (hull().faces[static_cast<std::size_t>(down)].body->stands()) capture_rest(r, hull_index[k], set.point[k], down);
-    else tip_off_face(r, t, down);
-  };
+  // (on a face the centre of mass overhangs, the shaking may hold the body: REST there lifts off
+  // again as soon as the acceleration lets it, rocking_3d_edge.cpp)
+  auto rest = [&](int k) { capture_rest(r, hull_index[k], set.point[k], down); };
   if (chosen.mode == LandingMode::Rest || kappa <= 0.0) {
     rest(0);
+  } else if (chosen.mode == LandingMode::Edge && with_hull &&
+             !hull().face_with_edge(hull_index[chosen.first], hull_index[chosen.second], r, edge_face_, edge_index_)) {
+    // Two floor points joined by no hull edge (a face's diagonal within the floor tolerance): the
+    // body turns about their line, which no face's edge mode carries; it pivots on the first point
+    // with that angular velocity, and the second point's touchdown is the next landing.
+    enter_vertex(hull_index[chosen.first], set.point[chosen.first], r, w);
   } else if (chosen.mode == LandingMode::Edge) {
     const int u = hull_index[chosen.first], v = hull_index[chosen.second];
     int face = 0, edge = u;  // without a hull: base edge k joins base vertices k and k + 1

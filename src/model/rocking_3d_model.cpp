@@ -157,6 +157,12 @@ Eigen::Vector3d Rocking3DModel::translation() const {
   }
 }
 
+Eigen::Vector3d Rocking3DModel::contact_point() const {
+  if (mode_ == Mode3D::Vertex) return hv(contact_).position;
+  if (mode_ == Mode3D::Edge) return hv(fc().hull_vertex[static_cast<std::size_t>(fb().edge(contact_).a)]).position;
+  return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+}
+
 Eigen::Vector3d Rocking3DModel::angular_velocity() const {
   if (mode_ == Mode3D::Edge) return yaw_matrix() * (omega_ * fb().edge(contact_).axis);
   if (mode_ == Mode3D::Vertex) return y_.tail<3>();

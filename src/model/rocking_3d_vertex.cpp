@@ -83,7 +83,9 @@ void Rocking3DModel::enter_edge_from_pose(int face, int edge, const Eigen::Matri
   axis_w.normalize();
   const Eigen::Vector3d normal_w = axis_w.cross(Eigen::Vector3d::UnitZ());
   const Eigen::Vector3d base_normal = rotation.col(2);
-  const double theta = std::max(0.0, std::atan2(base_normal.dot(normal_w), base_normal.z()));
+  // (within the face's range: from flat to the face across lying flat; rounding may step past it)
+  const double theta = std::clamp(std::atan2(base_normal.dot(normal_w), base_normal.z()), 0.0,
+                                  std::min(fc().fold[static_cast<std::size_t>(edge)], kPi));
   const Eigen::Matrix3d flat = Eigen::AngleAxisd(-theta, axis_w).toRotationMatrix() * rotation;
   yaw_ = std::atan2(flat(1, 0), flat(0, 0));
   // The pivot vertex keeps its place on the floor.

@@ -262,12 +262,7 @@ TestPrediction predict_table_test_3d(const BaseBodyParameters& parameters, const
         h.table_accel_mps2 = a;
         // Tilt signed by where the contact lies: on the -x side of the centre of mass > 0.
         double side = 1.0;
-        if (model.contact() >= 0) {
-          const Eigen::Vector3d& where = model.mode() == Mode3D::Edge
-                                             ? body.vertex(body.edge(model.contact()).a).position
-                                             : body.vertex(model.contact()).position;
-          side = where.x() <= centre.x() ? 1.0 : -1.0;
-        }
+        if (model.contact() >= 0) side = model.contact_point().x() <= centre.x() ? 1.0 : -1.0;
         h.theta = side * model.tilt();
         h.omega = model.angular_velocity().norm();
         h.rotation_ratio = model.rotation_ratio();
@@ -276,6 +271,8 @@ TestPrediction predict_table_test_3d(const BaseBodyParameters& parameters, const
         history->push_back(h);
       });
   fill_outcome(p, model.outcome());
+  p.final_face = model.face();
+  p.rests_off_base = model.outcome_3d().rests_off_base;
   return p;
 }
 

@@ -192,7 +192,7 @@ int main(int argc, char** argv) {
       if (!table) throw std::runtime_error(out + ": cannot open for writing");
       table << "test,specimen,peak_table_accel_mps2,offset_mps2,exceeds_static_uplift,uplift,"
                "max_rotation_ratio,impacts,overturn_time_s,predicted_overturned,measured_overturned,"
-               "members,p_overturn\n";
+               "members,p_overturn,final_face,rests_off_base\n";
     }
     std::map<std::string, rm::Confusion> per;
     rm::Confusion all;
@@ -253,12 +253,12 @@ int main(int argc, char** argv) {
         }
         if (table) {
           char line[512];
-          std::snprintf(line, sizeof line, "%d,%s,%.6g,%.6g,%d,%d,%.6g,%ld,%.4f,%d,%s,%zu,%.4f\n",
+          std::snprintf(line, sizeof line, "%d,%s,%.6g,%.6g,%d,%d,%.6g,%ld,%.4f,%d,%s,%zu,%.4f,%d,%ld\n",
                         p.test, s.id.c_str(), test.peak_mps2, test.offset_mps2,
                         p.exceeds_static_uplift, p.uplift, p.max_rotation_ratio, p.impacts,
                         p.overturn_time, predicted,
                         p.measured < 0 ? "" : std::to_string(p.measured).c_str(),
-                        s.members.size(), prob);
+                        s.members.size(), prob, p.final_face, p.rests_off_base);
           table << line;
         }
       }

@@ -199,7 +199,7 @@ class ClosedForms(unittest.TestCase, Close):
             self.assertRel(got["cg_height"], 0.2, what="on its 0.9 x 1.8 m side")  # half the 0.4 m depth
             self.assertTrue(any("largest convex-hull face" in n and "1.62 m^2" in n for n in notes), notes)
 
-    def test_cli_states_unit_and_writes_hull(self):
+    def test_cli_states_unit_and_writes_the_hull_by_default(self):
         with tempfile.TemporaryDirectory() as tmp:
             v, f, bottom, m, *_ = case_cylinder()
             path = write(os.path.join(tmp, "c.stl"), v * 1000, np.delete(f, bottom, axis=0), "stl")
@@ -209,8 +209,14 @@ class ClosedForms(unittest.TestCase, Close):
             self.assertIn("unit mm (largest extent 700", r.stderr)
             self.assertIn("open: 1 hole(s), 24 boundary edges, each capped", r.stderr)
             item = yaml.safe_load(r.stdout)["items"][0]
-            self.assertEqual(len(item["hull"]), 48)
-            self.assertRel(np.max(np.array(item["hull"]), axis=0)[2], 0.7)
+            # the hull above the base: the top rim's 24 points (the bottom rim is base_polygon)
+            self.assertEqual(len(item["hull"]), 24)
+            self.assertEqual(len(item["base_polygon"]), 24)
+            for p in item["hull"]:
+                self.assertRel(p[2], 0.7)
+            r = subprocess.run([sys.executable, os.path.join(SCRIPTS, "rocking_geometry.py"), path,
+                                "--mass", str(m), "--no-hull"], capture_output=True, text=True)
+            self.assertNotIn("hull", yaml.safe_load(r.stdout)["items"][0])
 
 
 class Slab(unittest.TestCase, Close):

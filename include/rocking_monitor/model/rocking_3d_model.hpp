@@ -82,7 +82,8 @@ class Rocking3DModel {
   /// Whether step() would only count time at the current state: REST (as long as no edge lifts) or
   /// OVERTURNED with its levels latched. MonitorBatch then defers its quiet samples.
   bool rest_deferrable() const {
-    return mode_ == Mode3D::Rest || (mode_ == Mode3D::Overturned && outcome_.committed);
+    // (off the base the batch's uplift thresholds, the base's, do not hold)
+    return (mode_ == Mode3D::Rest && face_ == 0) || (mode_ == Mode3D::Overturned && outcome_.committed);
   }
   /// n samples that step() would have spent at REST without an edge lifting (or OVERTURNED), applied
   /// at once: t is the caller's sum time() + dt + dt ... (the same additions as step()), `a` and dt
@@ -125,6 +126,8 @@ class Rocking3DModel {
   int face() const { return face_; }
   /// The active edge (EDGE: of face()) or hull vertex (VERTEX; vertex k < n is base vertex k); -1 otherwise.
   int contact() const { return mode_ == Mode3D::Edge || mode_ == Mode3D::Vertex ? contact_ : -1; }
+  /// The pivot (VERTEX) or the rocking edge's start (EDGE) in the item frame, m; NaN otherwise.
+  Eigen::Vector3d contact_point() const;
   double theta() const { return mode_ == Mode3D::Edge ? theta_ : 0.0; }  ///< EDGE: rad
   double omega() const { return mode_ == Mode3D::Edge ? omega_ : 0.0; }  ///< EDGE: rad/s
   /// The body's pose: a body point x (floor frame at rest) is now at rotation() * x + translation().
@@ -176,7 +179,6 @@ class Rocking3DModel {
   void land(int touching, double tau);
   double capture_energy(const BaseVertex& v) const;
   void capture_rest(const Eigen::Matrix3d& rotation, int vertex, const Eigen::Vector3d& point, int face);
-  void tip_off_face(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& translation, int face);
   double face_tilt(const Eigen::Matrix3d& rotation, int face) const;
   const ContactHull& hull() const { return body_.contact_hull(); }
   const HullFace& fc() const { return hull().faces[static_cast<std::size_t>(face_)]; }
@@ -209,6 +211,7 @@ class Rocking3DModel {
   bool armed_[kMaxBaseVertices] = {};
   static constexpr int kMaxLiftsPerSample = 8;
   int lifts_ = 0;                      // EDGE -> VERTEX switches in the current sample
+  int edge_face_ = -1, edge_index_ = -1;  // scratch of a landing's face_with_edge
   double floor_tol_ = 0.0;             // m: a base point this close to the floor is on it
   StepReport report_;
   RockingOutcome outcome_;

@@ -57,6 +57,8 @@ struct TestPrediction {
   double overturn_time = 0.0;       ///< s, NaN when not overturned
   long impacts = 0;
   bool exceeds_static_uplift = false;  ///< the table reached g tan(alpha) toward some pivot
+  int final_face = 0;         ///< 3-D with a hull: the hull face it ends on (0: its base)
+  long rests_off_base = 0;    ///< 3-D with a hull: rests on another hull face during the test
 };
 
 /// One sample of a test's rotation history (predict_table_test with a history): the state after the
