@@ -194,6 +194,47 @@ TEST(StateSnapshot, ResumedThreeDModelEqualsTheUnbrokenRun) {
   EXPECT_GE(o.resumed_moving, 2u);
 }
 
+// A body on its hull (issue 40 part 3): an octagonal prism lying on a side rolls onto other sides
+// under Rinaldi; snapshots taken while it rocks on a side other than its base resume exactly.
+TEST(StateSnapshot, ResumedBodyOnItsHullEqualsTheUnbrokenRun) {
+  const Motion m = rinaldi(1.0);
+  const double a = 0.15, length = 0.6, half = a * std::sin(kPi / 8.0), ap = a * std::cos(kPi / 8.0);
+  ItemSpec spec = box("octagonal_log", 2.0 * half, length, ap, 0.0);
+  spec.body.mu_s = std::numeric_limits<double>::infinity();
+  BaseBodyParameters b;
+  b.centre_of_mass = {0.0, length / 2.0, ap};
+  const double ix = a * a / 4.0 * (1.0 + 2.0 * std::cos(kPi / 4.0) * std::cos(kPi / 4.0) / 3.0) ;
+  b.central_inertia = Eigen::Vector3d(ix + length * length / 12.0, 2.0 * ix, ix + length * length / 12.0).asDiagonal();
+  b.base = {{-half, 0.0}, {half, 0.0}, {half, length}, {-half, length}};
+  for (double y : {0.0, length})
+    for (int k = 0; k < 8; ++k) {
+      const double phi = -kPi / 2.0 - kPi / 8.0 + k * kPi / 4.0;  // corners of the octagon in x-z
+      b.hull.emplace_back(a * std::cos(phi), y, ap + a * std::sin(phi));
+    }
+  b.overturn_angle = kPi;
+  spec.solid = b;
+  ItemMonitor::Options opt;
+  opt.solid = SolidChoice::Solid;
+  std::vector<std::size_t> at;
+  {
+    ItemMonitor probe(spec, opt);
+    ASSERT_TRUE(probe.solid() != nullptr);
+    probe.start(0.0, m.x[0], m.y[0], m.z[0], m.dt);
+    for (std::size_t i = 1; i < m.size() && at.size() < 2; ++i) {
+      probe.step(m.x[i], m.y[i], m.z[i], m.dt);
+      if (probe.solid()->face() != 0 && probe.solid()->mode() != Mode3D::Rest &&
+          (at.empty() || i > at.back() + 20))
+        at.push_back(i);
+    }
+    ASSERT_EQ(at.size(), 2u) << "the prism never rocks on another side: the test would not test the hull";
+    for (std::size_t i = at.back() + 1; i < m.size(); ++i) probe.step(m.x[i], m.y[i], m.z[i], m.dt);
+    EXPECT_GE(probe.solid()->outcome_3d().hull_landings, 1);
+  }
+  const Outcome o = resume_equals_unbroken(spec, opt, m, at);
+  ASSERT_FALSE(HasFailure());
+  EXPECT_EQ(o.resumed_moving, 2u);
+}
+
 TEST(StateSnapshot, ResumedEnsembleEqualsTheUnbrokenRun) {
   const Motion m = rinaldi(1.0);
   std::vector<ItemSpec> members;
