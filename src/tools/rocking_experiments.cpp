@@ -86,7 +86,8 @@ int main(int argc, char** argv) {
   rm::MarginSearch search;
   app.add_option("--margins", margins, "instead of predicting: write each test's margin per specimen "
                  "member (CSV): the smallest scale of the table motion that overturns the model, searched on "
-                 "--margin-grid scales from --margin-range LO HI, then bisected (issue 41)");
+                 "--margin-grid scales from --margin-range LO HI, then bisected (issue 41); an item with distributions "
+                 "at its nominal values (its input_gain's nominal included)");
   std::vector<double> margin_range{search.lo, search.hi};
   app.add_option("--margin-range", margin_range, "the scales searched, dimensionless (default 0.25 4)")->expected(2);
   app.add_option("--margin-grid", search.grid, "scales run on the grid, log-spaced (default 9: steps of sqrt 2)");

@@ -22,6 +22,16 @@ import fragility_experiments as F  # noqa: E402
 GRID = F.grid_scales(0.25, 4.0, 9)
 
 
+def write(path, text):
+    with open(path, "w") as fh:
+        fh.write(text)
+
+
+def read(path):
+    with open(path) as fh:
+        return fh.read()
+
+
 def monotone_segments(ln_s):
     return F.Segments([[[(v, math.inf)] for v in ln_s]], len(ln_s))
 
@@ -139,13 +149,13 @@ class Pipeline(unittest.TestCase):
                 y1 = int(rng.uniform() < stats.norm.cdf(-(math.log(s1) - 0.1) / 0.3))
                 y2 = int(rng.uniform() < stats.norm.cdf(-(math.log(s2) - 0.1) / 0.3))
                 lines.append(f"{t},{y1},{y2}")
-                open(os.path.join(d, "data", "tests", f"Test{t:03d}.csv"), "w").write("time_s,table_accel_g\n")
-            open(os.path.join(d, "data", "outcomes.csv"), "w").write("\n".join(lines) + "\n")
+                write(os.path.join(d, "data", "tests", f"Test{t:03d}.csv"), "time_s,table_accel_g\n")
+            write(os.path.join(d, "data", "outcomes.csv"), "\n".join(lines) + "\n")
             stub = os.path.join(d, "stub")
-            open(stub, "w").write(STUB)
+            write(stub, STUB)
             os.chmod(stub, 0o755)
             cat = os.path.join(d, "cat.yaml")
-            open(cat, "w").write("items:\n" + "".join(
+            write(cat, "items:\n" + "".join(
                 f"  - id: {n}#{k}\n    # a comment\n    width: {w}\n    cg_height: 0.5\n"
                 for n, w, k in (("SP1", 0.2, 0), ("SP1", 0.2, 1), ("SP1", 0.2, 2), ("SP2", 0.3, 0), ("SP2", 0.31, 1))))
             env = dict(os.environ, STUB_COUNT=os.path.join(d, "count"))
@@ -154,10 +164,10 @@ class Pipeline(unittest.TestCase):
                    "--out-dir", os.path.join(d, "out"), "--write-catalogue", os.path.join(d, "frag.yaml"), "--members", "40"]
             r = subprocess.run(cmd, capture_output=True, text=True, env=env)
             self.assertEqual(r.returncode, 0, r.stderr)
-            self.assertEqual(len(open(os.path.join(d, "count")).read().split()), 3)  # SP1 once, SP2 twice
+            self.assertEqual(len(read(os.path.join(d, "count")).split()), 3)  # SP1 once, SP2 twice
             self.assertIn("members [3]", r.stdout)
             self.assertIn("members [1, 1]", r.stdout)
-            text = open(os.path.join(d, "frag.yaml")).read()
+            text = read(os.path.join(d, "frag.yaml"))
             self.assertEqual(text.count("input_gain: {lognormal: ["), 2)
             self.assertEqual(text.count("ensemble_size: 40"), 2)
             self.assertIn("  - id: SP1\n", text)
@@ -169,7 +179,7 @@ class Pipeline(unittest.TestCase):
             r = subprocess.run(cmd[:cmd.index("--catalogue") + 1] + [os.path.join(d, "frag.yaml")] +
                                cmd[cmd.index("--catalogue") + 2:-4], capture_output=True, text=True, env=env)
             self.assertEqual(r.returncode, 0, r.stderr)
-            self.assertEqual(len(open(os.path.join(d, "count")).read().split()), 3)
+            self.assertEqual(len(read(os.path.join(d, "count")).split()), 3)
             self.assertIn("(2 cached)", r.stdout)
             bad = subprocess.run(cmd[:cmd.index("--catalogue") + 1] + [os.path.join(d, "missing.yaml")] +
                                  cmd[cmd.index("--catalogue") + 2:], capture_output=True, text=True, env=env)
