@@ -4,7 +4,7 @@
 For each specimen of a calibrated catalogue (calibrate_experiments.py --write-catalogue: members SP1#0..;
 or a fragility catalogue this script wrote: its input_gain and ensemble_size are set aside) and each
 distinct member body, the margin of every test: the smallest scale s* of the test's table motion at
-which the model overturns (`rocking_experiments --margins`: 9 scales from 0.25 to 4, then 5 halvings
+which the model overturns (`rocking_experiments --margins`: 17 scales from 0.25 to 4, then 5 halvings
 of ln s; tests whose outcome is not monotone in s are counted as chaotic). Cached on disk by the
 rocking_experiments binary's bytes, the member's catalogue text, the data set and the search.
 
@@ -358,7 +358,7 @@ def main(argv=None):
     ap.add_argument("--folds", type=int, default=10)
     ap.add_argument("--seed", type=int, default=20, help="fold assignment seed (calibrate_experiments.py's default)")
     ap.add_argument("--margin-range", type=float, nargs=2, default=[0.25, 4.0], metavar=("LO", "HI"))
-    ap.add_argument("--margin-grid", type=int, default=9)
+    ap.add_argument("--margin-grid", type=int, default=17, help="scales on the grid (17: steps of 2^(1/4); 9 misses more chaotic windows, docs/validation.md)")
     ap.add_argument("--margin-bisections", type=int, default=5)
     ap.add_argument("--experiments-args", default="", metavar="'ARGS'", help="more rocking_experiments arguments "
                     "(e.g. '--model 3d'), with '='")

@@ -123,7 +123,8 @@ STUB = textwrap.dedent('''\
     col = 0 if name == "SP1" else 1
     with open(os.environ["STUB_COUNT"], "a") as fh:
         fh.write("run\\n")
-    grid = [0.25 * 16 ** (k / 8) for k in range(9)]
+    n = int(a[a.index("--margin-grid") + 1])
+    grid = [0.25 * 16 ** (k / (n - 1)) for k in range(n)]
     with open(out, "w") as fh:
         fh.write("test,specimen,member,measured_overturned,peak_table_accel_mps2,margin_scale,censored,chaotic,"
                  "grid_outcomes,bracket_lo,bracket_hi,runs\\n")
@@ -133,7 +134,7 @@ STUB = textwrap.dedent('''\
             k = pat.find("1")
             lo, hi = (grid[k - 1], grid[k]) if k > 0 else ((0.25, 0.25) if k == 0 else (4, 4))
             cen = 0 if k > 0 else (-1 if k == 0 else 1)
-            fh.write(f"{t},{name},0,{outcomes[t].split(',')[col]},1.0,{s},{cen},0,{pat},{lo},{hi},9\\n")
+            fh.write(f"{t},{name},0,{outcomes[t].split(',')[col]},1.0,{s},{cen},0,{pat},{lo},{hi},{n}\\n")
     print("stub")
 ''')
 
