@@ -379,7 +379,9 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
     for (std::size_t k = begin; k < end; ++k) {
       if (!s.in_ready[k]) continue;
       // the nominal item at its catalogue input_gain (1 unless given); ensembles scale per member
-      const Eigen::Vector3d ai = s.gains[k] * (s.rotations[k] * a);
+      // (rotated first, then scaled: Eigen would fold the scalar into the product and round otherwise)
+      const Eigen::Vector3d ri = s.rotations[k] * a;
+      const Eigen::Vector3d ai = s.gains[k] * ri;
       s.in_x[k] = ai.x();
       s.in_y[k] = ai.y();
       s.in_z[k] = ai.z();
