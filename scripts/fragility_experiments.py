@@ -322,7 +322,7 @@ def plot(path, summary, preds):
 
 def write_catalogue(path, summary, bodies, members, command):
     head = ["# fragility_experiments: the granite specimens with a calibrated P(overturn) (issue 41; docs/validation.md",
-            "# section 0). Each item: the calibrated body (the most frequent member of the catalogue below) and",
+            "# section 0). Each item: the calibrated body (the most frequent member of the --catalogue named below) and",
             "# a lognormal input_gain fitted by maximum likelihood on ALL tests (in-sample): the model at the",
             "# gain exp(eps) stands for the real rock, eps ~ N(-mu, beta), so P(overturn) = Phi(-(ln s* + mu) / beta),",
             "# s* the test's margin (the smallest overturning scale). The node and rocking_experiments run",
