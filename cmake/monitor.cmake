@@ -43,6 +43,7 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/monitor_nodelet.test DEPENDENCIES test_monitor_replay rocking_monitor_nodelet)
   add_rostest(test/ros/monitor_adaptive.test DEPENDENCIES test_monitor_replay rocking_monitor_nodelet)
   add_rostest(test/ros/monitor_ensemble.test DEPENDENCIES test_monitor_replay monitor)
+  add_rostest(test/ros/monitor_ensemble_gain.test DEPENDENCIES test_monitor_replay monitor)
   add_rostest_gtest(test_monitor_sharded test/ros/monitor_sharded.test test/ros/test_monitor_sharded.cpp
                   test/support/rostest_main.cpp)
   target_link_libraries(test_monitor_sharded ${catkin_LIBRARIES})

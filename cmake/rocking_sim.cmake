@@ -26,8 +26,9 @@ if(BUILD_TESTING)
     ROCKING_RECORDS_DIR="${ROCKING_RECORDS_DIR}"
     ROCKING_EXPERIMENTS_DIR="${ROCKING_EXPERIMENTS_DIR}"
     ROCKING_SIM_EXE="$<TARGET_FILE:rocking_sim>"
+    ROCKING_EXPERIMENTS_EXE="$<TARGET_FILE:rocking_experiments>"
     ROCKING_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
-  add_dependencies(core_tests rocking_sim)
+  add_dependencies(core_tests rocking_sim rocking_experiments)
   if(ROCKING_SANITIZE)
     target_compile_options(core_tests PRIVATE ${ROCKING_SANITIZE_FLAGS})
   endif()

@@ -43,6 +43,11 @@ if(BUILD_TESTING)
   add_test(NAME calibrate_experiments_synthetic
            COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/test_calibrate_experiments.py)
   set_tests_properties(calibrate_experiments_synthetic PROPERTIES TIMEOUT 120)
+  # fragility_experiments.py (issue 41): overturn intervals, the lognormal's closed form, a known
+  # (mu, beta) recovered, CV blind to held-out outcomes, the pipeline with a stand-in tool.
+  add_test(NAME fragility_experiments_synthetic
+           COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/test_fragility_experiments.py)
+  set_tests_properties(fragility_experiments_synthetic PROPERTIES TIMEOUT 120)
 endif()
 
 if(BUILD_TESTING)

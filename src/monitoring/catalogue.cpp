@@ -234,7 +234,7 @@ CatalogueItem parse_item(const json& v, int i, const std::set<std::string>* sens
   e.only({"id", "description", "sensor", "frame", "shape", "width", "depth", "cg_height", "eccentricity",
           "eccentricity_y", "radius_of_gyration", "radius_of_gyration_y", "mu_s", "mu_k", "restitution",
           "restitution_shift", "overturn_angle", "pose", "ensemble_size", "mass", "centre_of_mass",
-          "central_inertia", "base_polygon", "restitution_factor", "hull"});
+          "central_inertia", "base_polygon", "restitution_factor", "hull", "input_gain"});
   CatalogueItem item;
   ItemSpec& s = item.spec;
   s.id = e.text("id", true);
@@ -285,6 +285,9 @@ CatalogueItem parse_item(const json& v, int i, const std::set<std::string>* sens
     b.restitution_shift = e.number("restitution_shift", false, 0.0, "added to each pivot's angular-velocity ratio");
   if (e.has("overturn_angle")) b.overturn_angle = e.number("overturn_angle", false, 0.0, "rad");
   parse_solid(e, s);
+  // A scale of the input (issue 41: the calibrated fragility of a shaking-table rock is a lognormal
+  // input_gain): a number or a distribution, dimensionless, > 0 (validate(ItemSpec) says so).
+  s.input_gain = e.quantity("input_gain", F::InputGain, false, 1.0, "dimensionless scale of the ground acceleration", u);
   u.nominal = s;
   for (const std::string& err : {validate(s), validate(u)}) {
     // core messages read "item '<id>': <field> ..."; keep the list position too.

@@ -29,6 +29,7 @@ ItemEnsemble::ItemEnsemble(const std::vector<ItemSpec>& members, const ItemMonit
       throw std::invalid_argument("ensemble member " + std::to_string(i) + ": " + e.what());
     }
   }
+  for (const ItemSpec& m : members) gain_.push_back(m.input_gain);
   member_reached_.resize(members.size());
   times_.reserve(members.size());
 }
@@ -90,7 +91,8 @@ void ItemEnsemble::restore(const Saved& in) {
 }
 
 void ItemEnsemble::start(double t, double ax, double ay, double az, double dt_nominal) {
-  for (ItemMonitor& m : members_) m.start(t, ax, ay, az, dt_nominal);
+  for (std::size_t i = 0; i < members_.size(); ++i)
+    members_[i].start(t, gain_[i] * ax, gain_[i] * ay, gain_[i] * az, dt_nominal);
   make_batch();
   reached_.fill(0);
   crossed_.fill(false);
@@ -101,9 +103,11 @@ void ItemEnsemble::start(double t, double ax, double ay, double az, double dt_no
 const EnsembleEvents& ItemEnsemble::step(double ax, double ay, double az, double dt) {
   events_.count = 0;
   if (!batch_) throw std::logic_error("ItemEnsemble::step before start()");
-  std::fill(in_x_.begin(), in_x_.end(), ax);
-  std::fill(in_y_.begin(), in_y_.end(), ay);
-  std::fill(in_z_.begin(), in_z_.end(), az);
+  for (std::size_t i = 0; i < members_.size(); ++i) {
+    in_x_[i] = gain_[i] * ax;
+    in_y_[i] = gain_[i] * ay;
+    in_z_[i] = gain_[i] * az;
+  }
   batch_->step(0, members_.size(), in_x_.data(), in_y_.data(), in_z_.data(), dt);
   for (int l = 0; l < kLevelCount; ++l) {
     // Member times of this level in this sample, in order, to find the one that crossed.

@@ -1,6 +1,8 @@
 #include "rocking_monitor/monitoring/item_spec.hpp"
 
+#include <cmath>
 #include <exception>
+#include <string>
 
 namespace rocking_monitor::core {
 namespace {
@@ -19,6 +21,8 @@ std::string validate(const ItemSpec& spec) {
   const std::string who = "item '" + spec.id + "': ";
   if (spec.sensor.empty()) return who + "sensor: missing (name of the sensor that feeds the item)";
   if (spec.frame.empty()) return who + "frame: missing (tf frame of the item)";
+  if (!(std::isfinite(spec.input_gain) && spec.input_gain > 0.0))
+    return who + "input_gain: " + std::to_string(spec.input_gain) + " must be finite and > 0 (dimensionless scale of the ground acceleration)";
   if (const std::string e = validate(spec.body); !e.empty()) return who + without_prefix(e);
   if (const std::string e = validate(spec.depth); !e.empty()) return who + e;
   try {

@@ -62,6 +62,7 @@ const char* to_string(UncertainField field) {
     case UncertainField::Depth: return "depth";
     case UncertainField::RadiusOfGyration: return "radius_of_gyration";
     case UncertainField::RadiusOfGyrationY: return "radius_of_gyration_y";
+    case UncertainField::InputGain: return "input_gain";
   }
   return "?";
 }
@@ -87,6 +88,7 @@ double value_of(const ItemSpec& item, UncertainField field) {
     case UncertainField::Depth: return item.depth.depth;
     case UncertainField::RadiusOfGyration: return item.body.radius_of_gyration;
     case UncertainField::RadiusOfGyrationY: return item.depth.radius_of_gyration_y;
+    case UncertainField::InputGain: return item.input_gain;
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
@@ -102,6 +104,7 @@ void set_value(ItemSpec& item, UncertainField field, double value) {
     case UncertainField::Depth: item.depth.depth = value; break;
     case UncertainField::RadiusOfGyration: item.body.radius_of_gyration = value; break;
     case UncertainField::RadiusOfGyrationY: item.depth.radius_of_gyration_y = value; break;
+    case UncertainField::InputGain: item.input_gain = value; break;
   }
 }
 

@@ -416,6 +416,8 @@ void RockingMonitor::rebuild_batch(Sensor& s) {
   s.in_x.assign(s.items.size(), 0.0);
   s.in_y.assign(s.items.size(), 0.0);
   s.in_z.assign(s.items.size(), 0.0);
+  s.gains.clear();
+  for (std::size_t idx : s.items) s.gains.push_back(items_[idx].entry.spec.input_gain);
   s.in_ready.assign(s.items.size(), 0);
   s.rotations.assign(s.items.size(), Eigen::Matrix3d::Identity());
   s.all_ready = false;

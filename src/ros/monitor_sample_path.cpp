@@ -72,7 +72,8 @@ void RockingMonitor::start_items(Sensor& s, double t, const Eigen::Vector3d& a) 
     Item& it = items_[idx];
     if (!it.has_rotation && !lookup_rotation(it, s.frame)) continue;
     const Eigen::Vector3d ai = it.rotation * a;
-    it.monitor->start(t, ai.x(), ai.y(), ai.z(), s.dt_nominal);
+    const Eigen::Vector3d gi = it.entry.spec.input_gain * ai;  // the nominal item's scale; members their own
+    it.monitor->start(t, gi.x(), gi.y(), gi.z(), s.dt_nominal);
     if (it.ensemble) it.ensemble->start(t, ai.x(), ai.y(), ai.z(), s.dt_nominal);
     it.stamp = s.epoch + ::ros::Duration(t);
   }
@@ -356,7 +357,8 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
       }
       if (!it.monitor->started()) {  // its transform arrived late: start now
         const Eigen::Vector3d ai = it.rotation * a;
-        it.monitor->start(t, ai.x(), ai.y(), ai.z(), s.dt_nominal);
+        const Eigen::Vector3d gi = it.entry.spec.input_gain * ai;  // the nominal item's scale; members their own
+        it.monitor->start(t, gi.x(), gi.y(), gi.z(), s.dt_nominal);
         if (it.ensemble) it.ensemble->start(t, ai.x(), ai.y(), ai.z(), s.dt_nominal);
         it.stamp = header.stamp;
         s.batch->refresh(k);
@@ -376,7 +378,10 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
   auto step_range = [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
       if (!s.in_ready[k]) continue;
-      const Eigen::Vector3d ai = s.rotations[k] * a;
+      // the nominal item at its catalogue input_gain (1 unless given); ensembles scale per member
+      // (rotated first, then scaled: Eigen would fold the scalar into the product and round otherwise)
+      const Eigen::Vector3d ri = s.rotations[k] * a;
+      const Eigen::Vector3d ai = s.gains[k] * ri;
       s.in_x[k] = ai.x();
       s.in_y[k] = ai.y();
       s.in_z[k] = ai.z();
@@ -386,7 +391,7 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
     for (std::size_t k = begin; k < end; ++k) {
       Item& it = items_[s.items[k]];
       if (!s.in_ready[k] || !it.ensemble) continue;
-      const Eigen::Vector3d ai(s.in_x[k], s.in_y[k], s.in_z[k]);
+      const Eigen::Vector3d ai = s.rotations[k] * a;  // unscaled: each member applies its own input_gain
       const auto e0 = std::chrono::steady_clock::now();
       it.ensemble->step(ai.x(), ai.y(), ai.z(), dt);
       it.ensemble_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - e0).count();

@@ -201,7 +201,7 @@ TestPrediction predict_table_test(const BodyParameters& parameters, const std::s
   p.specimen = specimen;
   p.exceeds_static_uplift = exceeds_static_uplift(body, test, settings.direction);
   AdaptiveModel model(body, settings.adaptive);
-  const double s = settings.direction >= 0 ? 1.0 : -1.0;
+  const double s = (settings.direction >= 0 ? 1.0 : -1.0) * settings.input_gain;
   const long tail = static_cast<long>(std::ceil(settings.tail_s / test.dt));
   if (history) {
     history->clear();
@@ -236,13 +236,15 @@ TestPrediction predict_table_test_3d(const BaseBodyParameters& parameters, const
   TestPrediction p;
   p.test = test.number;
   p.specimen = specimen;
-  const double s = settings.direction >= 0 ? 1.0 : -1.0;
+  // The gain multiplies the input in the item's frame, as ItemEnsemble scales a member's input
+  // (gain * (a * axis), not (gain * a) * axis: live and offline to the bit).
+  const double s = settings.direction >= 0 ? 1.0 : -1.0, gain = settings.input_gain;
   const Eigen::Vector3d axis(std::cos(settings.table_azimuth), std::sin(settings.table_azimuth), 0.0);
   // Static uplift in 3-D: some hull edge's moment lifts it at some sample.
   for (double a : test.accel_mps2) {
     for (int k = 0; k < body.vertex_count() && !p.exceeds_static_uplift; ++k) {
       const BaseEdge& e = body.edge(k);
-      const double a_n = -(s * a) * e.normal.dot(axis);
+      const double a_n = -(gain * (s * a)) * e.normal.dot(axis);
       p.exceeds_static_uplift = uplift_function(e.pivot, 1, ModelKind::Nonlinear, a_n, 0.0) > 0.0;
     }
     if (p.exceeds_static_uplift) break;
@@ -254,12 +256,12 @@ TestPrediction predict_table_test_3d(const BaseBodyParameters& parameters, const
     history->reserve(test.accel_mps2.size() + static_cast<std::size_t>(tail));
   }
   run_test(
-      test, s, tail, history != nullptr, [&](double a) { model.reset(0.0, a * axis); },
-      [&](double a) { model.step(a * axis, test.dt); }, [&] { return model.outcome().overturned; },
+      test, s, tail, history != nullptr, [&](double a) { model.reset(0.0, gain * (a * axis)); },
+      [&](double a) { model.step(gain * (a * axis), test.dt); }, [&] { return model.outcome().overturned; },
       [&](double t, double a) {
         TableHistorySample h;
         h.t = t;
-        h.table_accel_mps2 = a;
+        h.table_accel_mps2 = gain * a;
         // Tilt signed by where the contact lies: on the -x side of the centre of mass > 0.
         double side = 1.0;
         if (model.contact() >= 0) side = model.contact_point().x() <= centre.x() ? 1.0 : -1.0;

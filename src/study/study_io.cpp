@@ -198,6 +198,10 @@ BodyFile load_catalogue_items(const std::string& path) {
   BodyFile out;
   for (const CatalogueItem& c : items) {
     const std::string where = path + ": item '" + c.spec.id + "': ";
+    // The study scales its records itself (its intensity grid): a catalogue scale would be ignored.
+    if (c.spec.input_gain != 1.0 || !c.uncertain.law(UncertainField::InputGain).is_fixed())
+      throw StudyError(where + "input_gain: not used by the study (it scales the records itself); the monitor "
+                               "and rocking_experiments apply it");
     auto laws = c.uncertain.uncertain() ? std::make_shared<const UncertainItemSpec>(c.uncertain) : nullptr;
     try {
       if (!c.spec.two_planes()) {

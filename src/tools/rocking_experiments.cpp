@@ -1,6 +1,8 @@
 // rocking_experiments: predicts the real shaking-table experiments of a data set (issue 20):
 // every tests/TestNNN.csv(.gz) for every specimen of a catalogue (rocking_geometry's output),
-// predicted overturn vs outcomes.csv; a CSV table and accuracy, precision, recall, F1.
+// predicted overturn vs outcomes.csv; a CSV table and accuracy, precision, recall, F1. Items with
+// distributions (a calibrated input_gain, issue 41) run as the node's ensemble; --margins writes each
+// test's margin (the smallest scale of its table motion that overturns the model) instead.
 // Thin command-line layer: all physics lives in the core (study/shaking_table_experiments).
 #include <algorithm>
 #include <cmath>
@@ -18,7 +20,9 @@
 
 #include "command_line.hpp"
 #include "rocking_monitor/monitoring/catalogue_file.hpp"
+#include "rocking_monitor/monitoring/uncertain_item.hpp"
 #include "rocking_monitor/study/shaking_table_experiments.hpp"
+#include "rocking_monitor/study/table_test_margin.hpp"
 
 namespace rm = rocking_monitor::core;
 namespace fs = std::filesystem;
@@ -71,6 +75,24 @@ int main(int argc, char** argv) {
                  "predictions, default), 'all', or test numbers '12,40,41'");
   app.add_option("--history-every", history_every, "keep every Nth sample in a history (the last "
                  "one always; default 1)")->check(CLI::PositiveNumber);
+  // An item with distributions (e.g. a calibrated lognormal input_gain, docs/validation.md section 0)
+  // runs as the node runs it: the same Latin hypercube members for the same size and seed.
+  int samples = 32;
+  long seed = 1;
+  app.add_option("--samples", samples, "members of an item with distributions when its catalogue gives no "
+                 "ensemble_size (default 32: the node's ~ensemble_size)")->check(CLI::Range(1, 100000));
+  app.add_option("--seed", seed, "global seed of those members (default 1: the node's ~ensemble_seed)");
+  std::string margins;
+  rm::MarginSearch search;
+  app.add_option("--margins", margins, "instead of predicting: write each test's margin per specimen "
+                 "member (CSV): the smallest scale of the table motion that overturns the model, searched on "
+                 "--margin-grid scales from --margin-range LO HI, then bisected (issue 41); an item with distributions "
+                 "at its nominal values (its input_gain's nominal included)");
+  std::vector<double> margin_range{search.lo, search.hi};
+  app.add_option("--margin-range", margin_range, "the scales searched, dimensionless (default 0.25 4)")->expected(2);
+  app.add_option("--margin-grid", search.grid, "scales run on the grid, log-spaced (default 9: steps of sqrt 2)");
+  app.add_option("--margin-bisections", search.bisections, "halvings of ln s inside the grid step where it "
+                 "first overturns (default 5)");
   if (auto status = rocking_monitor::tools::parse_command_line(app, argc, argv, "rocking_experiments"))
     return *status;
   try {
@@ -83,7 +105,10 @@ int main(int argc, char** argv) {
       solid = !items.empty() && std::all_of(items.begin(), items.end(), [](const auto& i) { return i.spec.solid.has_value(); });
     // A member's table azimuth (rad): --table-azimuth minus the item's own yaw on the table (its
     // catalogue pose), the same rotation the node applies to a sensor's input through tf.
-    struct Member { rm::BodyParameters planar; rm::BaseBodyParameters solid; double azimuth; };
+    search.lo = margin_range[0];
+    search.hi = margin_range[1];
+    if (!margins.empty()) rm::validate(search);
+    struct Member { rm::BodyParameters planar; rm::BaseBodyParameters solid; double azimuth; double gain; };
     struct Specimen { std::string id; std::vector<Member> members; int column; };
     std::vector<Specimen> specimens;
     for (const auto& item : items) {
@@ -92,12 +117,20 @@ int main(int argc, char** argv) {
       if (it == outcomes.specimens.end())
         throw std::runtime_error(catalogue + ": item '" + item.spec.id + "': no column " + name +
                                  "_overturned in outcomes.csv");
-      rm::BodyParameters b = item.spec.body;
+      // The item's members as the node draws them (ItemEnsemble: each member's input_gain scales its
+      // input); a deterministic item is its one member. For --margins the nominal item alone: the
+      // margin is the geometry's, the fragility's spread is what the script fits.
+      std::vector<rm::ItemSpec> specs{item.spec};
+      if (item.uncertain.uncertain() && margins.empty())
+        specs = rm::draw_members(item.uncertain, item.ensemble_size > 0 ? item.ensemble_size : samples,
+                                 static_cast<std::uint64_t>(seed));
+      for (const rm::ItemSpec& spec : specs) {
+      rm::BodyParameters b = spec.body;
       if (!std::isnan(restitution)) b.restitution = restitution;
       if (!std::isnan(mu_s)) b.mu_s = mu_s;
       const std::string problem = rm::validate(b);
       if (!problem.empty()) throw std::runtime_error("item '" + item.spec.id + "': " + problem);
-      Member member{b, {}, azimuth_deg * M_PI / 180.0};
+      Member member{b, {}, azimuth_deg * M_PI / 180.0, spec.input_gain};
       if (item.pose.given) {
         if (item.pose.roll != 0.0 || item.pose.pitch != 0.0)
           throw std::runtime_error(catalogue + ": item '" + item.spec.id + "': pose: a specimen stands on the "
@@ -108,11 +141,11 @@ int main(int argc, char** argv) {
         member.azimuth -= item.pose.yaw;
       }
       if (solid) {
-        if (!item.spec.solid)
+        if (!spec.solid)
           throw std::runtime_error(catalogue + ": item '" + item.spec.id + "': --model 3d needs its 3-D "
                                    "description (base_polygon, centre_of_mass, central_inertia, mass: "
                                    "scripts/rocking_geometry.py writes them)");
-        member.solid = *item.spec.solid;
+        member.solid = *spec.solid;
         if (!std::isnan(restitution_factor)) member.solid.restitution_factor = restitution_factor;
         if (!std::isnan(mu_s)) member.solid.mu_s = mu_s;
         const std::string p3 = rm::validate(member.solid);
@@ -124,6 +157,10 @@ int main(int argc, char** argv) {
         group->members.push_back(member);
         continue;
       }
+      if (item.uncertain.uncertain() && margins.empty())
+        std::printf("%s: %zu members (seed %ld; input_gain %.4f..%.4f)\n", item.spec.id.c_str(), specs.size(), seed,
+                    std::min_element(specs.begin(), specs.end(), [](const auto& x, const auto& y) { return x.input_gain < y.input_gain; })->input_gain,
+                    std::max_element(specs.begin(), specs.end(), [](const auto& x, const auto& y) { return x.input_gain < y.input_gain; })->input_gain);
       specimens.push_back({name, {member}, static_cast<int>(it - outcomes.specimens.begin())});
       const rm::Body body(b);
       for (int side : {1, -1}) {
@@ -142,6 +179,7 @@ int main(int argc, char** argv) {
                       "along the normal\n", item.spec.id.c_str(), k + 1, e.normal.x(), e.normal.y(),
                       e.pivot.alpha * 180.0 / M_PI, e.pivot.radius, e.pivot.tan_alpha);
         }
+      }
       }
     }
     std::vector<std::string> files;
@@ -183,9 +221,49 @@ int main(int argc, char** argv) {
                        std::vector<rm::TableHistorySample>* h) {
       rm::ExperimentSettings member_settings = settings;
       member_settings.table_azimuth = m.azimuth;
+      member_settings.input_gain = m.gain;
       return solid ? rm::predict_table_test_3d(m.solid, id, test, member_settings, h)
                    : rm::predict_table_test(m.planar, id, test, settings, h);
     };
+    if (!margins.empty()) {
+      // Each test's margin per specimen member (issue 41): the table motion scaled until the model
+      // overturns. A run that overturns stops there, so most of the cost is in the scales that stand.
+      std::ofstream mf(margins);
+      if (!mf) throw std::runtime_error(margins + ": cannot open for writing");
+      mf << "test,specimen,member,measured_overturned,peak_table_accel_mps2,margin_scale,censored,chaotic,"
+            "grid_outcomes,bracket_lo,bracket_hi,runs\n";
+      long chaotic = 0, below = 0, above = 0, count = 0;
+      for (const auto& file : files) {
+        const auto test = rm::read_table_test(file);
+        const auto row = outcomes.by_test.find(test.number);
+        for (const auto& sp : specimens) {
+          const int measured = row == outcomes.by_test.end() ? -1 : row->second[sp.column];
+          for (std::size_t k = 0; k < sp.members.size(); ++k) {
+            Member m = sp.members[k];
+            const double gain = m.gain;
+            const auto margin = rm::table_test_margin([&](double scale) {
+              m.gain = gain * scale;
+              return predict(m, sp.id, test, nullptr).predicted;
+            }, search);
+            chaotic += margin.chaotic;
+            below += margin.censored < 0;
+            above += margin.censored > 0;
+            ++count;
+            char line[512];
+            std::snprintf(line, sizeof line, "%d,%s,%zu,%s,%.6g,%.6g,%d,%d,%s,%.6g,%.6g,%d\n", test.number,
+                          sp.id.c_str(), k, measured < 0 ? "" : std::to_string(measured).c_str(), test.peak_mps2,
+                          margin.scale, margin.censored, margin.chaotic, margin.pattern.c_str(), margin.bracket_lo,
+                          margin.bracket_hi, margin.runs);
+            mf << line;
+          }
+        }
+      }
+      if (!mf.flush()) throw std::runtime_error(margins + ": write failed");
+      std::printf("rocking_experiments: %ld margins (%zu tests) written to %s: %ld chaotic (not monotone on the "
+                  "grid), %ld overturn at %g already, %ld stand at %g\n", count, files.size(), margins.c_str(),
+                  chaotic, below, search.lo, above, search.hi);
+      return 0;
+    }
     std::ofstream table;
     if (!out.empty()) {
       table.open(out);

@@ -195,6 +195,9 @@ Setup resolve(const CLI::App& app, CommandLine& c) {
     for (const rm::CatalogueItem& entry : rm::load_catalogue_items_file(catalogue_file))
       if (entry.spec.id == item_id) item_entry = entry;
     if (!item_entry) throw std::invalid_argument(catalogue_file + ": no item with id '" + item_id + "'");
+    if (item_entry->spec.input_gain != 1.0 || !item_entry->uncertain.law(rm::UncertainField::InputGain).is_fixed())
+      throw std::invalid_argument(catalogue_file + ": item '" + item_id + "': input_gain: rocking_sim runs the record "
+                                  "as given (scale the record instead); the monitor and rocking_experiments apply it");
     body = item_entry->spec.body;
     depth = item_entry->spec.depth;
   } else {

@@ -2,7 +2,9 @@
 // per-item ensemble_size, and errors that name the file, the item and the field.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -89,4 +91,48 @@ TEST(CatalogueFile, ErrorsNameFileItemAndField) {
   EXPECT_EQ(bad_yaml.rfind(dir.path().string() + "/catalogue.yaml:", 0), 0u) << bad_yaml;
   EXPECT_NE(bad_yaml.find(":3:"), std::string::npos) << bad_yaml;  // line of the unclosed list's end
   EXPECT_EQ(error_of((dir.path() / "missing.yaml").string()), (dir.path() / "missing.yaml").string() + ": cannot read");
+}
+
+// The standard normal's quantile by bisection on std::erfc (independent of the laws' own code).
+double normal_quantile(double u) {
+  double lo = -10.0, hi = 10.0;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (0.5 * std::erfc(-mid / std::sqrt(2.0)) < u ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+TEST(CatalogueFile, InputGainIsANumberOrALawAboveZero) {
+  // issue 41: a calibrated fragility is a lognormal scale of the input; a plain number scales it too.
+  const auto plain = rc::load_catalogue_items_file(write(std::string(kItem) + "    input_gain: 1.25\n"));
+  EXPECT_EQ(plain[0].spec.input_gain, 1.25);
+  EXPECT_FALSE(plain[0].uncertain.uncertain());
+  EXPECT_EQ(rc::load_catalogue_items_file(write(kItem))[0].spec.input_gain, 1.0);
+  const auto law = rc::load_catalogue_items_file(
+      write(std::string(kItem) + "    input_gain: {lognormal: [1.2, 0.2], nominal: 1.2}\n    ensemble_size: 40\n"));
+  EXPECT_TRUE(law[0].uncertain.uncertain());
+  EXPECT_EQ(law[0].spec.input_gain, 1.2);
+  EXPECT_EQ(law[0].ensemble_size, 40);
+  const auto members = rc::draw_members(law[0].uncertain, 40, 1);
+  // Latin hypercube: one member per stratum of the lognormal, so the k-th smallest gain lies between
+  // the law's k/40 and (k+1)/40 quantiles: exp(ln 1.2 + 0.2 z).
+  std::vector<double> g;
+  for (const auto& m : members) g.push_back(m.input_gain);
+  std::sort(g.begin(), g.end());
+  for (int k = 0; k < 40; ++k) {
+    const double zlo = k == 0 ? -INFINITY : normal_quantile(k / 40.0);
+    const double zhi = k == 39 ? INFINITY : normal_quantile((k + 1) / 40.0);
+    EXPECT_GE(g[k], 1.2 * std::exp(0.2 * zlo) * (1 - 1e-12)) << k;
+    EXPECT_LE(g[k], 1.2 * std::exp(0.2 * zhi) * (1 + 1e-12)) << k;
+  }
+  EXPECT_EQ(error_of(write(std::string(kItem) + "    input_gain: 0\n")),
+            dir.path().string() + "/catalogue.yaml: items[0] 'cart': input_gain: 0.000000 must be finite and > 0 "
+            "(dimensionless scale of the ground acceleration)");
+  EXPECT_EQ(error_of(write(std::string(kItem) + "    input_gain: strong\n")),
+            dir.path().string() + "/catalogue.yaml: items[0] 'cart': input_gain: must be a number (dimensionless "
+            "scale of the ground acceleration), found a string");
+  EXPECT_EQ(error_of(write(std::string(kItem) + "    input_gain: {lognormal: [0, 0.2]}\n")).find(
+                dir.path().string() + "/catalogue.yaml: items[0] 'cart': input_gain: lognormal"),
+            0u);
 }

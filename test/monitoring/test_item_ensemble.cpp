@@ -104,6 +104,39 @@ TEST(ItemEnsemble, ProbabilitiesAreTheShareOfMembersRunAlone) {
               e.interval(Level::Overturned).lower, e.interval(Level::Overturned).upper);
 }
 
+TEST(ItemEnsemble, EachMemberFeelsTheInputTimesItsGain) {
+  // issue 41: members that differ only by input_gain are one body under scaled records: each must
+  // do what the same body run alone under its scaled input does, alarm for alarm.
+  const Component c = read_record(kPulse).front();
+  std::vector<ItemSpec> members;
+  for (int i = 0; i < 12; ++i) {
+    members.push_back(item(0.2, 0.3));
+    members.back().input_gain = 0.5 + 0.1 * i;  // 0.5 .. 1.6
+  }
+  ItemEnsemble e(members, ItemMonitor::Options{});
+  e.start(0.0, c.accel[0], 0.2 * c.accel[0], 0.0, c.dt);
+  for (std::size_t i = 1; i < c.accel.size(); ++i) e.step(c.accel[i], 0.2 * c.accel[i], 0.0, c.dt);
+  long over = 0;
+  for (const ItemSpec& m : members) {
+    ItemSpec plain = m;
+    plain.input_gain = 1.0;
+    ItemMonitor alone(plain, ItemMonitor::Options{});
+    const double g = m.input_gain;
+    alone.start(0.0, g * c.accel[0], g * (0.2 * c.accel[0]), g * 0.0, c.dt);
+    for (std::size_t i = 1; i < c.accel.size(); ++i) alone.step(g * c.accel[i], g * (0.2 * c.accel[i]), g * 0.0, c.dt);
+    over += alone.mode() == ItemMode::Overturned;
+  }
+  EXPECT_EQ(e.reached(Level::Overturned), over);
+  EXPECT_GT(over, 0) << "the strongest members must overturn, or the test proves little";
+  EXPECT_LT(over, 12) << "the weakest must stand";
+  // monotone here: the members that overturn are the strongest ones
+  for (int i = 0; i < 12; ++i)
+    EXPECT_EQ(e.member(i).mode() == ItemMode::Overturned, i >= 12 - over) << "gain " << members[i].input_gain;
+  ItemSpec bad = item(0.2, 0.3);
+  bad.input_gain = -1.0;
+  EXPECT_THROW(ItemEnsemble({bad}, ItemMonitor::Options{}), std::invalid_argument);
+}
+
 TEST(ItemEnsemble, BadEnsemblesAreRefused) {
   EXPECT_THROW(ItemEnsemble({}, ItemMonitor::Options{}), std::invalid_argument);
   EXPECT_THROW(ItemEnsemble({item(0.15, 0.3)}, ItemMonitor::Options{}, 0.0), std::invalid_argument);

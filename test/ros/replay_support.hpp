@@ -130,7 +130,8 @@ class OfflineMonitor {
     if (have_first_) {
       for (std::size_t i = 0; i < items_.size(); ++i) {
         const Eigen::Vector3d ai = rotations_[i] * first_a_;
-        items_[i].start(0.0, ai.x(), ai.y(), ai.z(), dt);
+        const Eigen::Vector3d gi = items_[i].spec().input_gain * ai;  // the nominal item's scale (issue 41)
+        items_[i].start(0.0, gi.x(), gi.y(), gi.z(), dt);
         if (ensembles_[i]) ensembles_[i]->start(0.0, ai.x(), ai.y(), ai.z(), dt);
       }
       have_first_ = false;
@@ -138,7 +139,8 @@ class OfflineMonitor {
     std::vector<OfflineState>& row = states_[stamp_key(stamp.toSec())];
     for (std::size_t i = 0; i < items_.size(); ++i) {
       const Eigen::Vector3d ai = rotations_[i] * a;
-      const core::ItemEvents& ev = items_[i].step(ai.x(), ai.y(), ai.z(), dt);
+      const Eigen::Vector3d gi = items_[i].spec().input_gain * ai;  // members: ItemEnsemble scales its own
+      const core::ItemEvents& ev = items_[i].step(gi.x(), gi.y(), gi.z(), dt);
       for (int k = 0; k < ev.alarm_count; ++k)
         alarms_.push_back({items_[i].spec().id, static_cast<std::uint8_t>(ev.alarms[k].level), stamp.toSec(),
                            core::to_string(ev.alarms[k].plane), ev.alarms[k].time});

@@ -70,7 +70,7 @@ Catalogue select_shard(const Catalogue& catalogue, int k, int n);
 /// Parses the `sensors` and `items` lists (JSON values as converted from the parameter server or a
 /// YAML file: numbers, strings, booleans, lists, maps). Validates every field (types, units, ranges,
 /// unique ids, known sensors). The numeric keys width, depth, cg_height, eccentricity,
-/// eccentricity_y, radius_of_gyration, radius_of_gyration_y, mu_s and restitution may be distribution
+/// eccentricity_y, radius_of_gyration, radius_of_gyration_y, mu_s, restitution and input_gain may be distribution
 /// maps ({uniform: [lo, hi]}, {normal: [mean, sd]}, {lognormal: [median, beta]}, optionally nominal: x;
 /// config/catalogue_uncertain_example.yaml), and an item with one may give `ensemble_size` (members,
 /// 1..100000); errors name the item and the field: "items[2] 'cart': mu_s: uniform: lo 0.6 > hi 0.3".

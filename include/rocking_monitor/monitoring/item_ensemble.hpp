@@ -58,7 +58,8 @@ class ItemEnsemble {
   /// std::invalid_argument (naming the member) when in does not fit this ensemble: it is then to be
   /// remade. Allocates, as start() does.
   void restore(const Saved& in);
-  /// Steps every member with the same sample. No allocation.
+  /// Steps every member with the same sample, each scaled by its member's input_gain (ItemSpec). No
+  /// allocation.
   const EnsembleEvents& step(double ax, double ay, double az, double dt);
   const EnsembleEvents& events() const { return events_; }
 
@@ -85,6 +86,7 @@ class ItemEnsemble {
   // The members share every sample: stepped together, quiet member-samples deferred (made at start()).
   mutable std::unique_ptr<MonitorBatch> batch_;
   std::vector<double> in_x_, in_y_, in_z_;  // the sample, once per member (sized once)
+  std::vector<double> gain_;                // each member's input_gain (dimensionless)
   void make_batch();
   EnsembleEvents events_;
 };

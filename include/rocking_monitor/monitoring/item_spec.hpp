@@ -20,6 +20,11 @@ struct ItemSpec {
   /// The 3-D description (base polygon, centre of mass, inertia tensor): the 3-D rocking model
   /// can run this item (model/rocking_3d_model.hpp). Not given: planar only.
   std::optional<BaseBodyParameters> solid;
+  /// Dimensionless, > 0: multiplies the ground acceleration the item feels (all three components,
+  /// gravity excluded), e.g. a fragility calibrated as a lognormal spread of the input's scale
+  /// (docs/validation.md section 0, issue 41). Applied where the input is fed: the node, ItemEnsemble,
+  /// rocking_experiments; 1 = the record as measured.
+  double input_gain = 1.0;
 
   bool two_planes() const { return depth.given(); }
 };

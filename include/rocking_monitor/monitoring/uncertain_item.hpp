@@ -24,13 +24,14 @@ enum class UncertainField : std::uint8_t {
   Depth,
   RadiusOfGyration,
   RadiusOfGyrationY,
+  InputGain,
 };
-inline constexpr int kUncertainFieldCount = 9;
+inline constexpr int kUncertainFieldCount = 10;
 /// "mu_s", "restitution", "eccentricity", "eccentricity_y", "cg_height", "width", "depth",
-/// "radius_of_gyration", "radius_of_gyration_y".
+/// "radius_of_gyration", "radius_of_gyration_y", "input_gain".
 const char* to_string(UncertainField field);
 /// The field's valid values, the range every law is restricted to: mu_s [0, inf), restitution [0, 1],
-/// eccentricities (0, 1), lengths (0, inf).
+/// eccentricities (0, 1), lengths and input_gain (0, inf).
 ValueRange valid_range(UncertainField field);
 /// The field's value in an item (body, depth).
 double value_of(const ItemSpec& item, UncertainField field);

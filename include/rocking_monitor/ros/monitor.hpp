@@ -135,6 +135,7 @@ class RockingMonitor {
     // (re)started, rebuilt before the next step. Inputs in each item's frame, sized once.
     std::unique_ptr<core::MonitorBatch> batch;
     std::vector<double> in_x, in_y, in_z;   // m/s^2
+    std::vector<double> gains;              // each item's catalogue input_gain, dimensionless
     std::vector<std::uint8_t> in_ready;     // the item steps this sample
     // Each item's rotation (item <- sensor), contiguous: the per-sample rotation reads 72 B per item
     // instead of a cache miss into each Item. Filled when the item becomes ready.

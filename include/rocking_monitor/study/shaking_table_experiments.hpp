@@ -45,6 +45,9 @@ struct ExperimentSettings {
   /// 3-D model only: the table's axis turned by this angle from the floor frame's x towards y, rad
   /// (how the specimen stood on the table is itself uncertain).
   double table_azimuth = 0.0;
+  /// Dimensionless, > 0: the table acceleration is multiplied by it (a catalogue item's input_gain,
+  /// or the scale searched by table_test_margin).
+  double input_gain = 1.0;
 };
 
 struct TestPrediction {
