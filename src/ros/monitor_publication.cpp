@@ -224,9 +224,13 @@ void RockingMonitor::fill_state(const Item& it, const core::ItemSummary& sm, Roc
     out.rotation_ratio = solid->rotation_ratio();
     out.impacts = static_cast<std::uint32_t>(solid->outcome().impacts);
     out.energy_margin = solid->margin().margin;
-    const int k = solid->contact();
+    const int k = solid->contact(), face = solid->face();
+    const bool base_vertex = k < solid->body().vertex_count();
     if (solid->mode() == core::Mode3D::Edge) out.contact.append("edge ").append(std::to_string(k + 1));
-    if (solid->mode() == core::Mode3D::Vertex) out.contact.append("vertex ").append(std::to_string(k + 1));
+    if (solid->mode() == core::Mode3D::Vertex) out.contact.append(base_vertex ? "vertex " : "hull vertex ").append(std::to_string(k + 1));
+    // Off its base (a hull, docs/rocking_3d.md): which hull face it rocks or rests on.
+    if (face != 0 && solid->mode() == core::Mode3D::Edge) out.contact.append(" of hull face ").append(std::to_string(face));
+    if (face != 0 && solid->mode() == core::Mode3D::Rest) out.contact.append("hull face ").append(std::to_string(face));
   }
 }
 

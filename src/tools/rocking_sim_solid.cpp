@@ -115,6 +115,10 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
              {"slipping_landings", r3.slipping_landings},
              {"final_mode", rm::to_string(model.mode())},
              {"final_contact", model.contact()},
+             {"final_face", model.face()},
+             {"hull_faces", model.body().contact_hull().from_hull ? static_cast<long>(model.body().contact_hull().faces.size()) : 0L},
+             {"hull_landings", r3.hull_landings},
+             {"rests_off_base", r3.rests_off_base},
              {"samples", mx.size()},
              {"cpu_time_s", cpu},
              {"body", body_json(model.body())}});
@@ -134,6 +138,11 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
   L.push_back(format("landings    friction demand up to %.3f (%ld above mu_s: the real body slides there), "
                      "largest violation of the impact law %.2g m/s", r3.max_friction_demand, r3.slipping_landings,
                      r3.max_landing_violation));
+  if (model.body().contact_hull().from_hull)
+    L.push_back(format("hull        %zu faces, %zu vertices; %ld landings onto another face, %ld rests off the base; "
+                       "ends on %s", model.body().contact_hull().faces.size(), model.body().contact_hull().vertices.size(),
+                       r3.hull_landings, r3.rests_off_base,
+                       model.face() == 0 ? "its base" : ("hull face " + std::to_string(model.face())).c_str()));
   L.push_back(format("cost        %zu samples, %.4f s CPU", mx.size(), cpu));
   return run;
 }

@@ -42,7 +42,7 @@ std::map<std::string, double> offline(int test) {
   std::ifstream in(out);
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line.substr(line.rfind(",members,")), ",members,p_overturn") << line;
+  EXPECT_EQ(line.substr(line.rfind(",members,"), 20), ",members,p_overturn,") << line;  // column 12: P
   std::map<std::string, double> p;
   while (std::getline(in, line)) {
     std::stringstream row(line);
