@@ -26,7 +26,7 @@ void Rocking3DModel::record_impact(double tau, double energy_before) {
 // At rest on hull face `face` in pose `rotation` (item frame) with hull vertex `vertex` at `point` on
 // the floor: the footprint from the pose (the face lies flat, the vertex keeps its place).
 void Rocking3DModel::capture_rest(const Eigen::Matrix3d& rotation, int vertex, const Eigen::Vector3d& point, int face) {
-  face_ = face;
+  set_face(face);
   const Eigen::Matrix3d rf = face == 0 ? rotation : Eigen::Matrix3d(rotation * fc().rotation.transpose());
   yaw_ = std::atan2(rf(1, 0), rf(0, 0));
   const Eigen::Vector3d placed = face == 0 ? Eigen::Vector3d(yaw_matrix() * hv(vertex).position)

@@ -44,7 +44,7 @@ Rocking3DModel::Rocking3DModel(const BaseBody& body, const SolverSettings& setti
     : Rocking3DModel(body, settings, true) {}
 
 Rocking3DModel::Rocking3DModel(const BaseBody& body, const SolverSettings& settings, bool with_probe)
-    : body_(body), settings_(checked(settings)) {
+    : body_(body), settings_(checked(settings)), hull_(&body_.contact_hull()) {
   double size = 0.0;
   for (const BaseVertex& v : hull().vertices) size = std::max(size, v.radius);
   floor_tol_ = 1e-9 * size;
@@ -55,7 +55,7 @@ Rocking3DModel::Rocking3DModel(const BaseBody& body, const SolverSettings& setti
 void Rocking3DModel::reset(double t, const Eigen::Vector3d& a) {
   mode_ = Mode3D::Rest;
   contact_ = -1;
-  face_ = 0;
+  set_face(0);
   theta_ = omega_ = 0.0;
   y_.setZero();
   y_(0) = 1.0;
@@ -98,7 +98,7 @@ void Rocking3DModel::restore(const Saved& in) {
     throw std::invalid_argument("Rocking3DModel::restore: face " + std::to_string(in.face) + " is not a face of this body's hull");
   mode_ = in.mode;
   contact_ = in.contact;
-  face_ = in.face;
+  set_face(in.face);
   theta_ = in.theta;
   omega_ = in.omega;
   y_ = in.y;

@@ -75,7 +75,7 @@ void Rocking3DModel::enter_vertex_from_edge(int vertex) {
 void Rocking3DModel::enter_edge_from_pose(int face, int edge, const Eigen::Matrix3d& item_rotation,
                                           const Eigen::Vector3d& pivot_world, int pivot_vertex,
                                           double omega_axis) {
-  face_ = face;
+  set_face(face);
   const Eigen::Matrix3d rotation = face == 0 ? item_rotation : Eigen::Matrix3d(item_rotation * fc().rotation.transpose());
   const BaseEdge& e = fb().edge(edge);
   Eigen::Vector3d axis_w = rotation * e.axis;

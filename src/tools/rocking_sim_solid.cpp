@@ -142,7 +142,9 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
     L.push_back(format("hull        %zu faces, %zu vertices; %ld landings onto another face, %ld rests off the base; "
                        "ends on %s", model.body().contact_hull().faces.size(), model.body().contact_hull().vertices.size(),
                        r3.hull_landings, r3.rests_off_base,
-                       model.face() == 0 ? "its base" : ("hull face " + std::to_string(model.face())).c_str()));
+                       model.mode() == rm::Mode3D::Overturned ? "its side (overturned)"
+                       : model.face() == 0                     ? "its base"
+                                                               : ("hull face " + std::to_string(model.face())).c_str()));
   L.push_back(format("cost        %zu samples, %.4f s CPU", mx.size(), cpu));
   return run;
 }
