@@ -19,15 +19,7 @@ namespace {
 constexpr double kA = 0.1, kLength = 0.5;  // circumradius and length of the prism, m
 
 BaseBodyParameters hexagonal_prism(double overturn_angle) {
-  BaseBodyParameters p;
-  const double ap = kA * std::sqrt(3.0) / 2.0;
-  p.centre_of_mass = {0.0, kLength / 2.0, ap};
-  const double ix = 5.0 * kA * kA / 24.0 + kLength * kLength / 12.0;
-  p.central_inertia = Eigen::Vector3d(ix, 5.0 * kA * kA / 12.0, ix).asDiagonal();
-  p.base = {{-kA / 2, 0.0}, {kA / 2, 0.0}, {kA / 2, kLength}, {-kA / 2, kLength}};
-  const double xz[6][2] = {{-kA / 2, 0}, {kA / 2, 0}, {kA, ap}, {kA / 2, 2 * ap}, {-kA / 2, 2 * ap}, {-kA, ap}};
-  for (double y : {0.0, kLength})
-    for (const auto& v : xz) p.hull.emplace_back(v[0], y, v[1]);
+  BaseBodyParameters p = testing::hexagonal_prism(kA, kLength);
   p.overturn_angle = overturn_angle;
   return p;
 }

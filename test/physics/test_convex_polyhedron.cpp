@@ -13,6 +13,7 @@
 #include "rocking_monitor/constants.hpp"
 #include "rocking_monitor/physics/contact_hull.hpp"
 #include "rocking_monitor/physics/convex_polyhedron.hpp"
+#include "test_helpers.hpp"
 
 namespace rocking_monitor::core {
 namespace {
@@ -72,19 +73,7 @@ TEST(ConvexPolyhedron, PointsThatSpanNoVolumeAreRefused) {
   EXPECT_THROW(convex_polyhedron({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, 1e-9), std::invalid_argument);
 }
 
-// A regular hexagonal prism (circumradius a, length L along y) lying on a rectangular side.
-BaseBodyParameters hexagonal_prism(double a, double length) {
-  BaseBodyParameters p;
-  const double ap = a * std::sqrt(3.0) / 2.0;
-  p.centre_of_mass = {0.0, length / 2.0, ap};
-  const double ix = 5.0 * a * a / 24.0 + length * length / 12.0;
-  p.central_inertia = Eigen::Vector3d(ix, 5.0 * a * a / 12.0, ix).asDiagonal();
-  p.base = {{-a / 2, 0.0}, {a / 2, 0.0}, {a / 2, length}, {-a / 2, length}};
-  const double xz[6][2] = {{-a / 2, 0}, {a / 2, 0}, {a, ap}, {a / 2, 2 * ap}, {-a / 2, 2 * ap}, {-a, ap}};
-  for (double y : {0.0, length})
-    for (const auto& v : xz) p.hull.emplace_back(v[0], y, v[1]);
-  return p;
-}
+using testing::hexagonal_prism;
 
 TEST(ContactHull, APrismLyingOnASideHasItsFacesAsBasesWithSixtyDegreeFolds) {
   const BaseBody body(hexagonal_prism(0.1, 0.5));

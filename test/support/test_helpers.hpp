@@ -12,6 +12,7 @@
 
 #include <fstream>
 
+#include "rocking_monitor/physics/base_body.hpp"
 #include "rocking_monitor/physics/body.hpp"
 #include "rocking_monitor/constants.hpp"
 #include "rocking_monitor/integrate/solver_settings.hpp"
@@ -27,6 +28,21 @@ inline constexpr bool kUnderSanitizers = true;
 #else
 inline constexpr bool kUnderSanitizers = false;
 #endif
+
+/// A homogeneous regular hexagonal prism (circumradius a, length along y) lying on a rectangular
+/// side: the base is that side, the hull its 12 corners (a body whose hull rolls, issue 40).
+inline BaseBodyParameters hexagonal_prism(double a, double length) {
+  BaseBodyParameters p;
+  const double ap = a * std::sqrt(3.0) / 2.0;
+  p.centre_of_mass = {0.0, length / 2.0, ap};
+  const double ix = 5.0 * a * a / 24.0 + length * length / 12.0;
+  p.central_inertia = Eigen::Vector3d(ix, 5.0 * a * a / 12.0, ix).asDiagonal();
+  p.base = {{-a / 2, 0.0}, {a / 2, 0.0}, {a / 2, length}, {-a / 2, length}};
+  const double xz[6][2] = {{-a / 2, 0}, {a / 2, 0}, {a, ap}, {a / 2, 2 * ap}, {-a / 2, 2 * ap}, {-a, ap}};
+  for (double y : {0.0, length})
+    for (const auto& v : xz) p.hull.emplace_back(v[0], y, v[1]);
+  return p;
+}
 
 /// Homogeneous symmetric rectangle with given p (rad/s) and alpha (rad): for a rectangle
 /// I_O = (4/3) m R^2, so p^2 = 3 g / (4 R).
