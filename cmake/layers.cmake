@@ -67,8 +67,19 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(ROCKING_HWY REQUIRED IMPORTED_TARGET libhwy)
 target_link_libraries(rocking_monitor_model PUBLIC PkgConfig::ROCKING_HWY)
 target_include_directories(rocking_monitor_model PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+# Highway re-includes this file once per instruction set (HWY_TARGET_INCLUDE): never merged into a
+# unity source (scripts/run_sanitizers.sh builds with CMAKE_UNITY_BUILD).
 set_source_files_properties(${CMAKE_CURRENT_SOURCE_DIR}/src/model/batch_rocking_simd.cpp
-  PROPERTIES COMPILE_OPTIONS "-ffp-contract=off")
+  PROPERTIES COMPILE_OPTIONS "-ffp-contract=off" SKIP_UNITY_BUILD_INCLUSION ON)
+if(ROCKING_SANITIZE)
+  # Under the sanitizers this one file took 160 of the tree's CPU seconds: Highway compiles its kernels
+  # once per target (EMU128, SSSE3, SSE4, AVX2, AVX3). SSSE3 and SSE4 are 128-bit, 2 doubles a vector
+  # like EMU128 (always compiled, their fallback), so the loads and stores ASan checks keep both
+  # widths the machine can run (2 and 4, and 8 on AVX-512); the Release build keeps all five and
+  # BatchRocking.EverySimdTargetGivesTheSameBits checks each one's bits there.
+  set_property(SOURCE ${CMAKE_CURRENT_SOURCE_DIR}/src/model/batch_rocking_simd.cpp APPEND PROPERTY
+    COMPILE_DEFINITIONS "HWY_DISABLED_TARGETS=(HWY_SSSE3|HWY_SSE4)")
+endif()
 
 # miniSEED records are decoded by libmseed 2 (Debian libmseed-dev, pkg-config `mseed`).
 pkg_check_modules(ROCKING_MSEED REQUIRED IMPORTED_TARGET mseed)
