@@ -67,8 +67,26 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(ROCKING_HWY REQUIRED IMPORTED_TARGET libhwy)
 target_link_libraries(rocking_monitor_model PUBLIC PkgConfig::ROCKING_HWY)
 target_include_directories(rocking_monitor_model PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+# Highway re-includes this file once per instruction set (HWY_TARGET_INCLUDE): never merged into a
+# unity source (scripts/run_sanitizers.sh builds with CMAKE_UNITY_BUILD).
 set_source_files_properties(${CMAKE_CURRENT_SOURCE_DIR}/src/model/batch_rocking_simd.cpp
-  PROPERTIES COMPILE_OPTIONS "-ffp-contract=off")
+  PROPERTIES COMPILE_OPTIONS "-ffp-contract=off" SKIP_UNITY_BUILD_INCLUSION ON)
+if(ROCKING_SANITIZE)
+  # Under the sanitizers this one file took 160 of the tree's CPU seconds: Highway compiles its kernels
+  # once per target (SCALAR, SSSE3, SSE4, AVX2, AVX3). SSSE3 is 128-bit like SSE4, 2 doubles a vector,
+  # so the loads and stores ASan checks keep every width the machine can run (1, 2, 4, and 8 on
+  # AVX-512) without it; AVX3 only where the CPU has AVX-512 (it cannot run elsewhere). The Release
+  # build keeps all five and BatchRocking.EverySimdTargetGivesTheSameBits checks each one's bits
+  # there. PUBLIC: the test must see the same list of compiled targets as the kernels.
+  set(_hwy_off "HWY_SSSE3")
+  if(EXISTS /proc/cpuinfo)
+    file(STRINGS /proc/cpuinfo _avx512 REGEX "^flags.* avx512f" LIMIT_COUNT 1)
+    if(NOT _avx512)
+      string(APPEND _hwy_off "|HWY_AVX3")
+    endif()
+  endif()
+  target_compile_definitions(rocking_monitor_model PUBLIC "HWY_DISABLED_TARGETS=(${_hwy_off})")
+endif()
 
 # miniSEED records are decoded by libmseed 2 (Debian libmseed-dev, pkg-config `mseed`).
 pkg_check_modules(ROCKING_MSEED REQUIRED IMPORTED_TARGET mseed)

@@ -23,7 +23,7 @@ using rm::Fidelity;
 
 namespace {
 
-constexpr double kG = 9.80665;
+constexpr double kStandardG = 9.80665;
 // Located alarm times (beyond tipping, overturn) of the two models may differ by the integrators'
 // error (RockingModel dopri5 tol 1e-8 vs ContactModel RK4 16 sub-steps per sample); committed is
 // evaluated at sample ends in both. Measured differences are printed by the tests.
@@ -306,8 +306,8 @@ TEST(AdaptiveModel, BoundedWorkOneRockingPlusOneContactSampleAndNoRevisedAlarm) 
   s.hold_time_s = 0.0;
   Input alternating{"alternating"};
   for (int i = 0; i < 2000; ++i) {
-    alternating.ax.push_back((i % 2 ? 3.0 : -3.0) * kG * (i % 7 == 0 ? 0.1 : 1.0));
-    alternating.ay.push_back((i % 5 == 0) ? -2.0 * kG : (i % 3 == 0 ? kG : 0.0));
+    alternating.ax.push_back((i % 2 ? 3.0 : -3.0) * kStandardG * (i % 7 == 0 ? 0.1 : 1.0));
+    alternating.ay.push_back((i % 5 == 0) ? -2.0 * kStandardG : (i % 3 == 0 ? kStandardG : 0.0));
   }
   // ContactModel: <= substeps sub-steps per stretch between events, <= max_events + 1 stretches.
   const int contact_bound = s.contact.substeps * (s.contact.max_events_per_sample + 1);

@@ -12,22 +12,22 @@ namespace {
 
 using testing::deg;
 
-constexpr double kP = 2.5;
-const double kAlpha = deg(12);
+constexpr double kPulseP = 2.5;
+const double kPulseAlpha = deg(12);
 
 SimulationResult pulse_run(double amplitude_ratio, double wp_over_p, Method method,
                            ModelKind model, double t_after = 12.0) {
-  const double w = wp_over_p * kP;
+  const double w = wp_over_p * kPulseP;
   const double tp = 2.0 * kPi / w;
   const double dt = tp / 4000.0;
   const GroundMotion g =
-      testing::one_sine_pulse(amplitude_ratio * kAlpha * kGravity, w, dt, tp + t_after);
+      testing::one_sine_pulse(amplitude_ratio * kPulseAlpha * kGravity, w, dt, tp + t_after);
   SolverSettings s;
   s.method = method;
   s.model = model;
   s.tol = 1e-10;
   s.substeps = 2;
-  return simulate(Body(testing::rectangle_with(kP, kAlpha)), s, g);
+  return simulate(Body(testing::rectangle_with(kPulseP, kPulseAlpha)), s, g);
 }
 
 // Solves (w/p) sin(psi) - cos(psi) = -exp(-(p/w)(2 pi - psi)) for psi in (0, pi) by bisection:
@@ -84,7 +84,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(OneSinePulse, LevelsAreConsistentAndSomeBodiesComeBackFromBeyondAlpha) {
   int came_back = 0, overturned = 0, survived = 0;
   const double wp = 3.0;
-  const double tp = 2.0 * kPi / (wp * kP);
+  const double tp = 2.0 * kPi / (wp * kPulseP);
   for (double ratio = 1.2; ratio < 6.0; ratio += 0.05) {
     const SimulationResult r = pulse_run(ratio, wp, Method::Dopri5, ModelKind::Nonlinear, 8.0);
     const RockingOutcome& o = r.outcome;

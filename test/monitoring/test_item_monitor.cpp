@@ -16,7 +16,7 @@
 namespace rocking_monitor::core {
 namespace {
 
-const std::string kPulse = std::string(ROCKING_SOURCE_DIR) + "/bags/one_sine_pulse.csv";
+const std::string kPulseCsv = std::string(ROCKING_SOURCE_DIR) + "/bags/one_sine_pulse.csv";
 
 ItemSpec item(double width, double depth, double h, double nu = 0.5, double nu_y = 0.5) {
   ItemSpec s;
@@ -34,8 +34,8 @@ ItemSpec item(double width, double depth, double h, double nu = 0.5, double nu_y
   return s;
 }
 
-std::vector<double> pulse() { return read_record(kPulse).front().accel; }
-double pulse_dt() { return read_record(kPulse).front().dt; }
+std::vector<double> pulse() { return read_record(kPulseCsv).front().accel; }
+double pulse_dt() { return read_record(kPulseCsv).front().dt; }
 
 struct Track {
   std::vector<double> theta[kPlaneCount];

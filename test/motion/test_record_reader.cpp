@@ -310,14 +310,14 @@ std::vector<ManifestRow> read_manifest(const std::string& path) {
 }
 
 /// Returns the records dir, or "" when it is absent.
-std::string records_dir() {
+std::string shared_records_dir() {
   const std::string dir = ROCKING_RECORDS_DIR;
   if (!fs::is_directory(dir) || !fs::is_regular_file(fs::path(dir) / "MANIFEST.csv")) return "";
   return dir;
 }
 
 #define SKIP_WITHOUT_RECORDS(dir)                                                         \
-  const std::string dir = records_dir();                                                  \
+  const std::string dir = shared_records_dir();                                           \
   if (dir.empty()) {                                                                      \
     GTEST_SKIP() << "records directory not found: " << ROCKING_RECORDS_DIR                \
                  << " (set -DROCKING_RECORDS_DIR=...; real-data tests skipped)";          \

@@ -15,7 +15,7 @@ namespace rmc = rocking_monitor::core;
 
 namespace {
 
-constexpr double kPi = rmc::kPi;
+constexpr double kSpectrumPi = rmc::kPi;
 
 struct OscillatorCase {
   double period;   // s
@@ -42,7 +42,7 @@ TEST_P(SpectrumNigamJenningsExact, StepResponseMatchesClosedForm) {
   std::vector<double> u, v;
   rmc::oscillator_response(accel, p.dt, p.period, p.damping, u, v);
 
-  const double w = 2.0 * kPi / p.period;
+  const double w = 2.0 * kSpectrumPi / p.period;
   const double root = std::sqrt(1.0 - p.damping * p.damping);
   const double wd = w * root;
   const double u_scale = a / (w * w);
@@ -75,7 +75,7 @@ TEST_P(SpectrumNigamJenningsExact, RampResponseMatchesClosedForm) {
   rmc::oscillator_response(accel, p.dt, p.period, p.damping, u, v);
 
   const double z = p.damping;
-  const double w = 2.0 * kPi / p.period;
+  const double w = 2.0 * kSpectrumPi / p.period;
   const double wd = w * std::sqrt(1.0 - z * z);
   const double k = r / (w * w);
   // Errors relative to the size of the response: u grows to ~k t; its velocity terms are ~w u before they
@@ -123,7 +123,7 @@ TEST(SpectrumNigamJennings, LongPeriodFineStepStaysAccurate) {
   for (std::size_t i = 0; i < n; ++i) accel[i] = r * dt * static_cast<double>(i);
   std::vector<double> u, v;
   rmc::oscillator_response(accel, dt, period, z, u, v);
-  const double w = 2.0 * kPi / period;
+  const double w = 2.0 * kSpectrumPi / period;
   const double wd = w * std::sqrt(1.0 - z * z);
   const double k = r / (w * w);
   double max_err = 0.0, max_u = 0.0;
@@ -174,8 +174,8 @@ std::vector<double> sampled_sine(double a0, double W, double dt, double duration
 }
 
 TEST(SpectrumHarmonic, ResonantBuildUpAndSteadyState) {
-  const double a0 = 0.5, W = 2.0 * kPi, dt = 0.005, duration = 80.0;
-  const double period = 1.0, z = 0.05, w = 2.0 * kPi / period;
+  const double a0 = 0.5, W = 2.0 * kSpectrumPi, dt = 0.005, duration = 80.0;
+  const double period = 1.0, z = 0.05, w = 2.0 * kSpectrumPi / period;
   const std::vector<double> accel = sampled_sine(a0, W, dt, duration);
   std::vector<double> u, v;
   rmc::oscillator_response(accel, dt, period, z, u, v);
@@ -213,10 +213,10 @@ TEST(SpectrumHarmonic, ResonantBuildUpAndSteadyState) {
 }
 
 TEST(SpectrumHarmonic, OffResonanceSteadyStateAmplitude) {
-  const double a0 = 0.5, W = 2.0 * kPi, dt = 0.005, duration = 90.0, z = 0.05;
+  const double a0 = 0.5, W = 2.0 * kSpectrumPi, dt = 0.005, duration = 90.0, z = 0.05;
   const std::vector<double> accel = sampled_sine(a0, W, dt, duration);
   for (double period : {0.5, 2.0, 1.1}) {  // frequency ratios r = 0.5, 2, 1.1
-    const double w = 2.0 * kPi / period;
+    const double w = 2.0 * kSpectrumPi / period;
     std::vector<double> u, v;
     rmc::oscillator_response(accel, dt, period, z, u, v);
     const HarmonicExact exact{a0, W, w, z};
@@ -231,7 +231,7 @@ TEST(SpectrumHarmonic, OffResonanceSteadyStateAmplitude) {
 std::vector<double> ricker(double amplitude, double f, double t1, double dt, double duration) {
   const std::size_t n = static_cast<std::size_t>(std::lround(duration / dt)) + 1;
   std::vector<double> a(n);
-  const double c = kPi * kPi * f * f;
+  const double c = kSpectrumPi * kSpectrumPi * f * f;
   for (std::size_t i = 0; i < n; ++i) {
     const double s = dt * static_cast<double>(i) - t1;
     a[i] = amplitude * (1.0 - 2.0 * c * s * s) * std::exp(-c * s * s);
@@ -247,7 +247,7 @@ TEST(SpectrumOffline, ShortAndLongPeriodLimits) {
   // Rigid limit: a stiff oscillator follows the ground, so PSA -> PGA (quasi-static error ~(f T)^2).
   EXPECT_NEAR(rs.psa[0] / A, 1.0, 5e-3);
   // Flexible limit: a very soft oscillator stays put, so Sd -> PGD (error ~2 zeta w / W + content below w).
-  EXPECT_NEAR(rs.sd[1] / (A / (2.0 * kPi * kPi * f * f)), 1.0, 1e-2);
+  EXPECT_NEAR(rs.sd[1] / (A / (2.0 * kSpectrumPi * kSpectrumPi * f * f)), 1.0, 1e-2);
 }
 
 TEST(SpectrumOffline, OrdinatesAreConsistent) {
@@ -258,7 +258,7 @@ TEST(SpectrumOffline, OrdinatesAreConsistent) {
   ASSERT_EQ(rs.periods, periods);
   EXPECT_EQ(rs.damping, 0.07);
   for (std::size_t j = 0; j < periods.size(); ++j) {
-    const double w = 2.0 * kPi / periods[j];
+    const double w = 2.0 * kSpectrumPi / periods[j];
     std::vector<double> u, v;
     rmc::oscillator_response(accel, dt, periods[j], 0.07, u, v);
     double max_u = 0.0, max_v = 0.0;

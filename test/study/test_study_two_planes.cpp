@@ -28,18 +28,18 @@ namespace {
 namespace fs = std::filesystem;
 
 // Scratch files of this binary, removed when it ends.
-const rocking_monitor::core::testing::TempRoot& kTemp = rocking_monitor::core::testing::TempRoot::registered("rocking_two_planes_test_");
-const fs::path& temp_root() { return kTemp.path(); }
+const rocking_monitor::core::testing::TempRoot& kTwoPlanesTemp = rocking_monitor::core::testing::TempRoot::registered("rocking_two_planes_test_");
+const fs::path& two_planes_root() { return kTwoPlanesTemp.path(); }
 
-fs::path write_yaml(const std::string& tag, const std::string& text) {
-  const fs::path d = temp_root() / tag;
+fs::path write_items_yaml(const std::string& tag, const std::string& text) {
+  const fs::path d = two_planes_root() / tag;
   fs::create_directories(d);
   const fs::path p = d / "items.yaml";
   std::ofstream(p) << text;
   return p;
 }
 
-bool same_double(double a, double b) { return (std::isnan(a) && std::isnan(b)) || a == b; }
+bool same_or_both_nan(double a, double b) { return (std::isnan(a) && std::isnan(b)) || a == b; }
 
 // A one-sine pulse (Zhang & Makris) of `amplitude` m/s^2 at `hz`, starting after `delay` s, 6 s long.
 Component pulse(const std::string& label, double amplitude, double hz, double delay = 0.0, bool vertical = false,
@@ -95,12 +95,12 @@ void expect_same(const CaseResult& a, const CaseResult& b, const std::string& wh
   EXPECT_EQ(p.integrator_steps, q.integrator_steps) << what;
   EXPECT_EQ(p.samples, q.samples) << what;
   EXPECT_EQ(p.max_rotation_side, mirror ? -q.max_rotation_side : q.max_rotation_side) << what;
-  EXPECT_TRUE(same_double(p.max_rotation_ratio, q.max_rotation_ratio)) << what << ": " << p.max_rotation_ratio
+  EXPECT_TRUE(same_or_both_nan(p.max_rotation_ratio, q.max_rotation_ratio)) << what << ": " << p.max_rotation_ratio
                                                                        << " vs " << q.max_rotation_ratio;
-  EXPECT_TRUE(same_double(p.uplift_time, q.uplift_time)) << what;
-  EXPECT_TRUE(same_double(p.beyond_tipping_time, q.beyond_tipping_time)) << what;
-  EXPECT_TRUE(same_double(p.committed_time, q.committed_time)) << what;
-  EXPECT_TRUE(same_double(p.overturn_time, q.overturn_time)) << what;
+  EXPECT_TRUE(same_or_both_nan(p.uplift_time, q.uplift_time)) << what;
+  EXPECT_TRUE(same_or_both_nan(p.beyond_tipping_time, q.beyond_tipping_time)) << what;
+  EXPECT_TRUE(same_or_both_nan(p.committed_time, q.committed_time)) << what;
+  EXPECT_TRUE(same_or_both_nan(p.overturn_time, q.overturn_time)) << what;
   EXPECT_EQ(a.vertical, b.vertical) << what;
 }
 
@@ -127,7 +127,7 @@ ItemStudyOptions options(std::vector<double> azimuths, int threads = 2) {
 // ------------------------------------------------------------------ loader
 
 TEST(TwoPlaneItemsYaml, ReadsAMonitorCatalogueIgnoringTheNodesKeys) {
-  const fs::path p = write_yaml("catalogue",
+  const fs::path p = write_items_yaml("catalogue",
                                 "sensors:\n"
                                 "  - {name: ground, topic: /ground/imu, type: imu}\n"
                                 "items:\n"
@@ -173,7 +173,7 @@ TEST(TwoPlaneItemsYaml, ReadsAMonitorCatalogueIgnoringTheNodesKeys) {
   EXPECT_THROW(load_bodies_yaml(p.string()), StudyError);
   // A study body with a depth is an item too.
   const BodyFile g = load_body_file(
-      write_yaml("bodies_depth", "bodies:\n  - {name: shelf, width: 0.3, depth: 0.6, cg_height: 0.9, nu1: [0.5, 0.3]}\n")
+      write_items_yaml("bodies_depth", "bodies:\n  - {name: shelf, width: 0.3, depth: 0.6, cg_height: 0.9, nu1: [0.5, 0.3]}\n")
           .string());
   ASSERT_EQ(g.items.size(), 2u);
   EXPECT_EQ(g.items[1].name, "shelf_nu0.3");
@@ -204,7 +204,7 @@ TEST(TwoPlaneItemsYaml, ErrorsNameTheFileItemAndField) {
       {"sensors: []\nbodies:\n  - {width: 0.5, cg_height: 1}\n", {"unknown top-level key 'sensors'"}},
   };
   for (std::size_t i = 0; i < cases.size(); ++i) {
-    const fs::path p = write_yaml("bad" + std::to_string(i), cases[i].text);
+    const fs::path p = write_items_yaml("bad" + std::to_string(i), cases[i].text);
     try {
       load_body_file(p.string());
       ADD_FAILURE() << "no error for: " << cases[i].text;
@@ -359,7 +359,7 @@ TEST(TwoPlaneItems, ItemVerdictIsCombineOfThePlanes) {
     const LevelTimes x = level_times(c.planes[0].outcome), y = level_times(c.planes[1].outcome);
     const ItemVerdict v = combine(x, &y);
     for (int l = 0; l < kLevelCount; ++l) {
-      EXPECT_TRUE(same_double(v.levels.time[l], c.verdict.levels.time[l])) << describe(c);
+      EXPECT_TRUE(same_or_both_nan(v.levels.time[l], c.verdict.levels.time[l])) << describe(c);
       EXPECT_EQ(v.plane[l], c.verdict.plane[l]) << describe(c);
     }
     const RockingOutcome &ox = c.planes[0].outcome, &oy = c.planes[1].outcome;
