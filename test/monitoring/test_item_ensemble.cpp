@@ -12,7 +12,7 @@
 namespace rocking_monitor::core {
 namespace {
 
-const std::string kPulse = std::string(ROCKING_SOURCE_DIR) + "/bags/one_sine_pulse.csv";
+const std::string kEnsemblePulse = std::string(ROCKING_SOURCE_DIR) + "/bags/one_sine_pulse.csv";
 
 ItemSpec item(double width, double depth) {
   ItemSpec s;
@@ -41,7 +41,7 @@ TEST(Wilson, ClosedFormsAndATableValue) {
 }
 
 TEST(ItemEnsemble, IdenticalMembersGiveTheDeterministicAnswer) {
-  const Component c = read_record(kPulse).front();
+  const Component c = read_record(kEnsemblePulse).front();
   const ItemSpec s = item(0.15, 0.3);
   ItemEnsemble e(std::vector<ItemSpec>(8, s), ItemMonitor::Options{});
   ItemMonitor single(s, ItemMonitor::Options{});
@@ -66,7 +66,7 @@ TEST(ItemEnsemble, IdenticalMembersGiveTheDeterministicAnswer) {
 }
 
 TEST(ItemEnsemble, ProbabilitiesAreTheShareOfMembersRunAlone) {
-  const Component c = read_record(kPulse).front();
+  const Component c = read_record(kEnsemblePulse).front();
   std::vector<ItemSpec> members;
   for (int i = 0; i < 24; ++i) members.push_back(item(0.13 + 0.01 * i, 0.10 + 0.015 * i));  // B 0.13-0.36 m
   ItemEnsemble e(members, ItemMonitor::Options{}, 0.25);
@@ -107,7 +107,7 @@ TEST(ItemEnsemble, ProbabilitiesAreTheShareOfMembersRunAlone) {
 TEST(ItemEnsemble, EachMemberFeelsTheInputTimesItsGain) {
   // issue 41: members that differ only by input_gain are one body under scaled records: each must
   // do what the same body run alone under its scaled input does, alarm for alarm.
-  const Component c = read_record(kPulse).front();
+  const Component c = read_record(kEnsemblePulse).front();
   std::vector<ItemSpec> members;
   for (int i = 0; i < 12; ++i) {
     members.push_back(item(0.2, 0.3));

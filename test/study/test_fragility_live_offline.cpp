@@ -23,7 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kGranite = fs::path(ROCKING_EXPERIMENTS_DIR) / "granite_pbr";
+const fs::path kGraniteData = fs::path(ROCKING_EXPERIMENTS_DIR) / "granite_pbr";
 const std::string kCatalogue = std::string(ROCKING_SOURCE_DIR) + "/config/granite_specimens_calibrated_3d.yaml";
 
 // rocking_experiments --out: specimen -> p_overturn (one test).
@@ -33,8 +33,8 @@ std::map<std::string, double> offline(int test) {
   fs::create_directories(dir / "tests");
   char name[32];
   std::snprintf(name, sizeof name, "Test%03d.csv.gz", test);
-  fs::copy_file(kGranite / "tests" / name, dir / "tests" / name, fs::copy_options::overwrite_existing);
-  fs::copy_file(kGranite / "outcomes.csv", dir / "outcomes.csv", fs::copy_options::overwrite_existing);
+  fs::copy_file(kGraniteData / "tests" / name, dir / "tests" / name, fs::copy_options::overwrite_existing);
+  fs::copy_file(kGraniteData / "outcomes.csv", dir / "outcomes.csv", fs::copy_options::overwrite_existing);
   const std::string out = (dir / "out.csv").string();
   const std::string cmd = std::string(ROCKING_EXPERIMENTS_EXE) + " " + dir.string() + " --catalogue " + kCatalogue +
                           " --out " + out + " > " + (dir / "log.txt").string() + " 2>&1";
@@ -78,8 +78,8 @@ std::pair<double, int> live(const CatalogueItem& item, const TableTest& test) {
 }
 
 TEST(FragilityLiveOffline, TheGraniteItemsGiveTheSamePLiveAndOffline) {
-  if (!fs::exists(kGranite / "outcomes.csv"))
-    GTEST_SKIP() << "shaking-table data not found: " << kGranite.string();
+  if (!fs::exists(kGraniteData / "outcomes.csv"))
+    GTEST_SKIP() << "shaking-table data not found: " << kGraniteData.string();
   const auto items = load_catalogue_items_file(kCatalogue);
   ASSERT_EQ(items.size(), 2u);
   int graded = 0;
@@ -88,7 +88,7 @@ TEST(FragilityLiveOffline, TheGraniteItemsGiveTheSamePLiveAndOffline) {
     const std::map<std::string, double> p_off = offline(number);
     char name[32];
     std::snprintf(name, sizeof name, "Test%03d.csv.gz", number);
-    const TableTest test = read_table_test((kGranite / "tests" / name).string());
+    const TableTest test = read_table_test((kGraniteData / "tests" / name).string());
     for (const CatalogueItem& item : items) {
       ASSERT_TRUE(item.uncertain.law(UncertainField::InputGain).kind() == Distribution::Kind::Lognormal) << item.spec.id;
       const auto [p_live, n] = live(item, test);
