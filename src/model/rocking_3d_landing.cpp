@@ -166,18 +166,20 @@ void Rocking3DModel::land(int touching, double tau) {
   // (on a face the centre of mass overhangs, the shaking may hold the body: REST there lifts off
   // again as soon as the acceleration lets it, rocking_3d_edge.cpp)
   auto rest = [&](int k) { capture_rest(r, hull_index[k], set.point[k], down); };
+  // An edge: the face it is rocked on and its index there (without a hull: base edge k joins base
+  // vertices k and k + 1).
+  int face = 0, edge = chosen.mode == LandingMode::Edge ? hull_index[chosen.first] : -1;
+  const bool on_hull_edge = chosen.mode != LandingMode::Edge || !with_hull ||
+                            hull().face_with_edge(hull_index[chosen.first], hull_index[chosen.second], r, face, edge);
   if (chosen.mode == LandingMode::Rest || kappa <= 0.0) {
     rest(0);
-  } else if (chosen.mode == LandingMode::Edge && with_hull &&
-             !hull().face_with_edge(hull_index[chosen.first], hull_index[chosen.second], r, edge_face_, edge_index_)) {
+  } else if (!on_hull_edge) {
     // Two floor points joined by no hull edge (a face's diagonal within the floor tolerance): the
     // body turns about their line, which no face's edge mode carries; it pivots on the first point
     // with that angular velocity, and the second point's touchdown is the next landing.
     enter_vertex(hull_index[chosen.first], set.point[chosen.first], r, w);
   } else if (chosen.mode == LandingMode::Edge) {
-    const int u = hull_index[chosen.first], v = hull_index[chosen.second];
-    int face = 0, edge = u;  // without a hull: base edge k joins base vertices k and k + 1
-    if (with_hull) hull().face_with_edge(u, v, r, face, edge);
+    const int u = hull_index[chosen.first];
     const HullFace& hf = hull().faces[static_cast<std::size_t>(face)];
     const BaseEdge& e = hf.body->edge(edge);
     const Eigen::Matrix3d rf = face == 0 ? r : Eigen::Matrix3d(r * hf.rotation.transpose());

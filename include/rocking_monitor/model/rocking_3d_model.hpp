@@ -221,7 +221,6 @@ class Rocking3DModel {
   bool armed_[kMaxBaseVertices] = {};
   static constexpr int kMaxLiftsPerSample = 8;
   int lifts_ = 0;                      // EDGE -> VERTEX switches in the current sample
-  int edge_face_ = -1, edge_index_ = -1;  // scratch of a landing's face_with_edge
   double floor_tol_ = 0.0;             // m: a base point this close to the floor is on it
   StepReport report_;
   RockingOutcome outcome_;
