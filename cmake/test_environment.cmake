@@ -33,3 +33,19 @@ if(CATKIN_ENABLE_TESTING OR BUILD_TESTING)
     endif()
   endforeach()
 endif()
+
+# catkin builds its test executables (catkin_add_gtest, add_rostest_gtest) only with the `tests`
+# target, after `all`: two builds one after the other, each with its serial tail, and a plain
+# `cmake --build` that leaves the rostests' nodes missing. In `all` they build beside the rest
+# (issue 42 part 4); `tests` then has nothing left to do.
+if(TARGET tests)
+  get_property(_test_targets TARGET tests PROPERTY MANUALLY_ADDED_DEPENDENCIES)
+  foreach(_target IN LISTS _test_targets)
+    if(TARGET ${_target})
+      get_target_property(_type ${_target} TYPE)
+      if(_type STREQUAL "EXECUTABLE")
+        set_target_properties(${_target} PROPERTIES EXCLUDE_FROM_ALL FALSE)
+      endif()
+    endif()
+  endforeach()
+endif()
