@@ -35,6 +35,9 @@ import sys
 
 import numpy as np
 
+# the modules beside this file, also when run through catkin's devel-space relay (which execs it from
+# build/devel/lib, where they are not)
+sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 from mesh_input import GeometryError  # noqa: E402  (beside this script)
 # the mesh math (re-exported: rg.mass_properties, rg.base_polygon, ... are used by callers and tests)
 from rocking_geometry_solid import (  # noqa: E402,F401
