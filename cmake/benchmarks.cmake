@@ -103,7 +103,8 @@ if(BUILD_TESTING)
     find_package(GTest REQUIRED)
     find_package(ZLIB REQUIRED)
     include(GoogleTest)
-    add_executable(reference_3d_tests test/reference/test_bullet_reference.cpp test/reference/bullet_rocking.cpp)
+    add_executable(reference_3d_tests test/reference/test_bullet_reference.cpp test/reference/test_bullet_granite.cpp
+                   test/reference/bullet_rocking.cpp)
     target_include_directories(reference_3d_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/reference)
     target_link_libraries(reference_3d_tests PRIVATE rocking_monitor_core GTest::gtest_main
                           PkgConfig::ROCKING_BULLET ZLIB::ZLIB nlohmann_json::nlohmann_json)
