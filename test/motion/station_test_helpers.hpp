@@ -1,15 +1,32 @@
 #pragma once
-// Helpers shared by the station tests (test_station*.cpp): a negated copy of a signal and the message
-// of the StationError a call throws.
-
-#include <functional>
-#include <stdexcept>
-#include <string>
-#include <vector>
+// What the station tests (test_station*.cpp) share: their includes, the records directory, a negated
+// copy of a signal and the message of the StationError a call throws.
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "rocking_monitor/constants.hpp"
+#include "rocking_monitor/motion/record_reader.hpp"
+#include "rocking_monitor/motion/sensor_frame.hpp"
 #include "rocking_monitor/motion/station.hpp"
+#include "rocking_monitor/motion/synthetic_motion.hpp"
+
+#ifndef ROCKING_RECORDS_DIR
+#define ROCKING_RECORDS_DIR "/work/shared/records"
+#endif
 
 namespace rocking_monitor::core {
 namespace {

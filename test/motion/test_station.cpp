@@ -3,38 +3,13 @@
 // StationLabels / StationManifestParsing / StationFileNamesSynthetic / StationRotateSynthetic /
 // StationSensorFrame / SyntheticMotion. The real records: test_station_real_records.cpp.
 
-#include <gtest/gtest.h>
-
-#include <unistd.h>
-
-#include <algorithm>
-#include <atomic>
-#include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <functional>
-#include <iostream>
-#include <map>
-#include <set>
-#include <string>
-#include <vector>
-
-#include "rocking_monitor/constants.hpp"
-#include "rocking_monitor/motion/record_reader.hpp"
-#include "rocking_monitor/motion/sensor_frame.hpp"
-#include "rocking_monitor/motion/station.hpp"
-#include "rocking_monitor/motion/synthetic_motion.hpp"
-
-#ifndef ROCKING_RECORDS_DIR
-#define ROCKING_RECORDS_DIR "/work/shared/records"
-#endif
-
 #include "station_test_helpers.hpp"
 
 namespace rocking_monitor::core {
 namespace {
 
 namespace fs = std::filesystem;
+
 class StationTempDir {
  public:
   StationTempDir() {

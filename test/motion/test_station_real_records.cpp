@@ -3,38 +3,13 @@
 // the records README, file-name grouping against the manifest, rotations of real pairs). Skipped with a
 // notice when the records directory is absent.
 
-#include <gtest/gtest.h>
-
-#include <unistd.h>
-
-#include <algorithm>
-#include <atomic>
-#include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <functional>
-#include <iostream>
-#include <map>
-#include <set>
-#include <string>
-#include <vector>
-
-#include "rocking_monitor/constants.hpp"
-#include "rocking_monitor/motion/record_reader.hpp"
-#include "rocking_monitor/motion/sensor_frame.hpp"
-#include "rocking_monitor/motion/station.hpp"
-#include "rocking_monitor/motion/synthetic_motion.hpp"
-
-#ifndef ROCKING_RECORDS_DIR
-#define ROCKING_RECORDS_DIR "/work/shared/records"
-#endif
-
 #include "station_test_helpers.hpp"
 
 namespace rocking_monitor::core {
 namespace {
 
 namespace fs = std::filesystem;
+
 bool records_available() {
   return fs::exists(fs::path(ROCKING_RECORDS_DIR) / "MANIFEST.csv");
 }
