@@ -15,7 +15,9 @@ if(CMAKE_BUILD_TYPE AND NOT CMAKE_BUILD_TYPE MATCHES "^(Release|RelWithDebInfo)$
 endif()
 
 # ---------------------------------------------------------------- accuracy / stability driver
-add_executable(rocking_accuracy bench/rocking_accuracy.cpp)
+add_executable(rocking_accuracy bench/rocking_accuracy.cpp  # the CLI; one file per part in bench/accuracy/
+               bench/accuracy/work_precision.cpp bench/accuracy/overturn_agreement.cpp
+               bench/accuracy/stability_maps.cpp bench/accuracy/planar_vs_3d.cpp bench/accuracy/accuracy_policy.cpp)
 target_include_directories(rocking_accuracy PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/bench ${CMAKE_CURRENT_SOURCE_DIR}/test/support
                            ${CMAKE_CURRENT_SOURCE_DIR}/src/tools)
 target_link_libraries(rocking_accuracy PRIVATE rocking_monitor_core CLI11::CLI11)
@@ -101,7 +103,8 @@ if(BUILD_TESTING)
     find_package(GTest REQUIRED)
     find_package(ZLIB REQUIRED)
     include(GoogleTest)
-    add_executable(reference_3d_tests test/reference/test_bullet_reference.cpp test/reference/bullet_rocking.cpp)
+    add_executable(reference_3d_tests test/reference/test_bullet_reference.cpp test/reference/test_bullet_granite.cpp
+                   test/reference/bullet_rocking.cpp)
     target_include_directories(reference_3d_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/reference)
     target_link_libraries(reference_3d_tests PRIVATE rocking_monitor_core GTest::gtest_main
                           PkgConfig::ROCKING_BULLET ZLIB::ZLIB nlohmann_json::nlohmann_json)

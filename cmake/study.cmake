@@ -9,7 +9,7 @@ target_compile_options(rocking_study PRIVATE -Wall -Wextra -Wpedantic)
 set_target_properties(rocking_study PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_TOOL_DIR})
 
 if(BUILD_TESTING)
-  # test/study/test_study.cpp is globbed into core_tests; it also exercises the YAML/JSON part.
+  # test/study/test_study*.cpp are globbed into core_tests; they also exercise the YAML/JSON part.
   # The command-line tests need the rocking_study binary: a separate target with its path.
   find_package(GTest REQUIRED)
   include(GoogleTest)

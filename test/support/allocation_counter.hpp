@@ -3,14 +3,10 @@
 // translation units: it replaces the global operator new/delete). Tests and benchmarks read
 // allocation_count() around a loop that must not allocate.
 
-#include <atomic>
 #include <cstdlib>
 #include <new>
 
-namespace rocking_monitor::testing {
-inline std::atomic<long> g_allocation_count{0};
-inline long allocation_count() { return g_allocation_count.load(std::memory_order_relaxed); }
-}  // namespace rocking_monitor::testing
+#include "allocation_count.hpp"  // the counter (other files of the program may include it alone)
 
 void* operator new(std::size_t n) {
   rocking_monitor::testing::g_allocation_count.fetch_add(1, std::memory_order_relaxed);
