@@ -9,7 +9,13 @@
 #    the same file for every registration of one .test file with other ARGS, and deletes it when a
 #    run starts; two such runs at once under ctest -j delete each other's results ("did not generate
 #    test results", seen in CI on monitor_catch_up).
+#  - A base for the UDP/TCP ports the rostests bind (bridges, the SeedLink test server), from the
+#    build directory's path: two checkouts testing on one machine at once must not share a port.
+#    20000-31990, below Linux's ephemeral ports (32768-60999); the tests use base + 1 .. base + 9.
 if(CATKIN_ENABLE_TESTING OR BUILD_TESTING)
+  string(MD5 _dir_hash "${CMAKE_BINARY_DIR}")
+  string(SUBSTRING "${_dir_hash}" 0 4 _dir_hash)
+  math(EXPR ROCKING_TEST_PORT_BASE "20000 + (0x${_dir_hash} % 1200) * 10")
   add_test(NAME test_ros_home.clean COMMAND ${CMAKE_COMMAND} -E rm -rf ${CMAKE_BINARY_DIR}/test_ros_home)
   set_tests_properties(test_ros_home.clean PROPERTIES FIXTURES_SETUP test_ros_home)
   get_property(_all_tests DIRECTORY PROPERTY TESTS)
@@ -26,7 +32,8 @@ if(CATKIN_ENABLE_TESTING OR BUILD_TESTING)
     set_property(TEST ${_test} APPEND PROPERTY ENVIRONMENT
                  "ROCKING_RECORDS_DIR=${ROCKING_RECORDS_DIR}" "ROCKING_TOOL_DIR=${ROCKING_TOOL_DIR}"
                  "ROCKING_PYTHON_PATH=${CATKIN_DEVEL_PREFIX}/${PYTHON_INSTALL_DIR}"
-                 "ROCKING_TEST_OUTPUT_DIR=${CMAKE_BINARY_DIR}/test_results")
+                 "ROCKING_TEST_OUTPUT_DIR=${CMAKE_BINARY_DIR}/test_results"
+                 "ROCKING_TEST_PORT_BASE=${ROCKING_TEST_PORT_BASE}")
     # catkin names a rostest _ctest_<pkg>_rostest_test_ros_<file>.test, or with ARGS <file>__<args>
     if(_test MATCHES "^_ctest_${PROJECT_NAME}_rostest_(test_ros_)?([A-Za-z0-9]+(_[A-Za-z0-9]+)*)(\\.test|__)")
       set_property(TEST ${_test} PROPERTY RESOURCE_LOCK "rostest_${CMAKE_MATCH_2}")

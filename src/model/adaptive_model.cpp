@@ -59,8 +59,6 @@ const char* to_string(SwitchReason r) {
 
 namespace {
 
-bool pivoting(ContactMode m) { return m == ContactMode::Rock || m == ContactMode::SlideRock; }
-
 void latch_min(double& slot, double value) {
   if (std::isnan(slot) && !std::isnan(value)) slot = value;
 }

@@ -14,7 +14,6 @@ namespace rocking_monitor::core {
 namespace {
 inline int sgn(double v) { return v > 0.0 ? 1 : (v < 0.0 ? -1 : 0); }
 inline bool slipping(ContactMode m) { return m == ContactMode::Slide || m == ContactMode::SlideRock; }
-inline bool pivoting(ContactMode m) { return m == ContactMode::Rock || m == ContactMode::SlideRock; }
 }  // namespace
 
 void ContactModel::set_mode(ContactMode m, int side, int sigma, double tau) {

@@ -31,7 +31,7 @@ const char* to_string(Mode3D mode) {
 
 namespace {
 
-const SolverSettings& checked(const SolverSettings& s) {
+const SolverSettings& checked_3d(const SolverSettings& s) {
   if (const std::string e = validate(s); !e.empty()) throw std::invalid_argument(e);
   if (s.method != Method::Dopri5 || s.model != ModelKind::Nonlinear)
     throw std::invalid_argument("Rocking3DModel: only the nonlinear model with dopri5 is available in 3-D");
@@ -44,7 +44,7 @@ Rocking3DModel::Rocking3DModel(const BaseBody& body, const SolverSettings& setti
     : Rocking3DModel(body, settings, true) {}
 
 Rocking3DModel::Rocking3DModel(const BaseBody& body, const SolverSettings& settings, bool with_probe)
-    : body_(body), settings_(checked(settings)), hull_(&body_.contact_hull()) {
+    : body_(body), settings_(checked_3d(settings)), hull_(&body_.contact_hull()) {
   double size = 0.0;
   for (const BaseVertex& v : hull().vertices) size = std::max(size, v.radius);
   floor_tol_ = 1e-9 * size;

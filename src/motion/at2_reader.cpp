@@ -130,7 +130,7 @@ std::vector<Component> read_at2(const std::string& path, std::string_view data) 
   if (l3.find("UNITS OF G") == std::string::npos || l3.find("ACCEL") == std::string::npos ||
       l3.find("VELOCITY") != std::string::npos || l3.find("DISPLACEMENT") != std::string::npos) {
     fail(path, 3,
-         "bad header: expected 'ACCELERATION ... IN UNITS OF G', found " + quoted(trim(lines[2].text)));
+         "bad header: expected 'ACCELERATION ... IN UNITS OF G', found " + in_quotes(trim(lines[2].text)));
   }
 
   // line 4: NPTS and DT (three "KEY=" variants or "<npts> <dt> NPTS, DT")
@@ -145,8 +145,8 @@ std::vector<Component> read_at2(const std::string& path, std::string_view data) 
   const bool has_npts = find_key_value(up4, "NPTS", raw4, npts_tok, npts_key);
   const bool has_dt = find_key_value(up4, "DT", raw4, dt_tok, dt_key);
   if (has_npts || has_dt) {
-    if (!has_npts) fail(path, 4, "bad header: missing NPTS in " + quoted(trim(raw4)));
-    if (!has_dt) fail(path, 4, "bad header: missing DT in " + quoted(trim(raw4)));
+    if (!has_npts) fail(path, 4, "bad header: missing NPTS in " + in_quotes(trim(raw4)));
+    if (!has_dt) fail(path, 4, "bad header: missing DT in " + in_quotes(trim(raw4)));
   } else {
     // old NGA header: "5996    0.0050    NPTS, DT"
     std::string compact;
@@ -155,25 +155,25 @@ std::vector<Component> read_at2(const std::string& path, std::string_view data) 
     }
     const std::string tail = "NPTS,DT";
     if (compact.size() < tail.size() || compact.compare(compact.size() - tail.size(), tail.size(), tail) != 0) {
-      fail(path, 4, "bad header: missing NPTS/DT in " + quoted(trim(raw4)));
+      fail(path, 4, "bad header: missing NPTS/DT in " + in_quotes(trim(raw4)));
     }
     const std::vector<std::string_view> toks = ws_tokens(raw4);
-    if (toks.size() < 2) fail(path, 4, "bad header: missing NPTS/DT values in " + quoted(trim(raw4)));
+    if (toks.size() < 2) fail(path, 4, "bad header: missing NPTS/DT values in " + in_quotes(trim(raw4)));
     npts_tok = toks[0];
     dt_tok = toks[1];
     if (!dt_tok.empty() && dt_tok.back() == ',') dt_tok.remove_suffix(1);
   }
-  if (!parse_integer(npts_tok, npts)) fail(path, 4, "bad header: cannot parse NPTS " + quoted(npts_tok));
+  if (!parse_integer(npts_tok, npts)) fail(path, 4, "bad header: cannot parse NPTS " + in_quotes(npts_tok));
   // DT may be followed directly by its unit ("DT= .0050SEC")
   std::string_view dt_num = dt_tok;
   {
     const std::string u = upper(dt_num);
     if (u.size() > 3 && u.compare(u.size() - 3, 3, "SEC") == 0) dt_num.remove_suffix(3);
   }
-  if (parse_number(dt_num, dt) != NumStatus::Ok) fail(path, 4, "bad header: cannot parse DT " + quoted(dt_tok));
+  if (parse_number(dt_num, dt) != NumStatus::Ok) fail(path, 4, "bad header: cannot parse DT " + in_quotes(dt_tok));
   if (npts < 0) fail(path, 4, "bad header: negative NPTS " + std::to_string(npts));
   if (npts == 0) fail(path, 4, "empty data: NPTS = 0");
-  if (!(dt > 0.0)) fail(path, 4, "non-positive DT " + quoted(dt_tok));
+  if (!(dt > 0.0)) fail(path, 4, "non-positive DT " + in_quotes(dt_tok));
 
   Component c;
   c.file = path;

@@ -34,7 +34,7 @@ std::vector<Component> read_bbp(const std::string& path, std::string_view data) 
       if (lb.compare(0, prefix.size(), prefix) == 0) event = std::string(trim(body.substr(prefix.size())));
       if (lb.find("velocity") != std::string::npos || lb.find("displacement") != std::string::npos ||
           lb.find("(cm/s)") != std::string::npos || lb.find("(cm)") != std::string::npos) {
-        fail(path, ln.number, "not an acceleration file (header says " + quoted(body) + ")");
+        fail(path, ln.number, "not an acceleration file (header says " + in_quotes(body) + ")");
       }
       continue;
     }
@@ -42,7 +42,7 @@ std::vector<Component> read_bbp(const std::string& path, std::string_view data) 
     for_each_ws_token(t, [&](std::string_view tok) { toks.push_back(tok); });
     if (toks.size() != 4) {
       fail(path, ln.number,
-           "expected 4 columns (time N-S E-W U-D), found " + std::to_string(toks.size()) + " in " + quoted(t));
+           "expected 4 columns (time N-S E-W U-D), found " + std::to_string(toks.size()) + " in " + in_quotes(t));
     }
     const double time = number_or_fail(toks[0], path, ln.number);
     ts.push_back({time, printed_resolution(toks[0]), ln.number});

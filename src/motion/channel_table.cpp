@@ -68,13 +68,13 @@ ChannelTable read_channel_table(const std::string& path) {
     const std::string az = field("azimuth_deg");
     if (!az.empty()) {
       double v = number_or_fail(az, path, row.line);
-      if (v < 0.0 || v > 360.0) fail(path, row.line, "azimuth_deg " + record_io::quoted(az) + " is not in [0, 360]");
+      if (v < 0.0 || v > 360.0) fail(path, row.line, "azimuth_deg " + record_io::in_quotes(az) + " is not in [0, 360]");
       r.azimuth_deg = v;
     }
     const std::string gain = field("gain_counts_per_mps2");
     if (!gain.empty()) {
       double v = number_or_fail(gain, path, row.line);
-      if (!(v > 0.0)) fail(path, row.line, "gain_counts_per_mps2 " + record_io::quoted(gain) + " is not positive");
+      if (!(v > 0.0)) fail(path, row.line, "gain_counts_per_mps2 " + record_io::in_quotes(gain) + " is not positive");
       r.gain_counts_per_mps2 = v;
     }
     if (table.find(r.network, r.station, r.location, r.channel) != nullptr) {

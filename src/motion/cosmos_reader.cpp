@@ -90,13 +90,13 @@ std::vector<Component> read_cosmos(const std::string& path, std::string_view dat
     if (!is_text_header_start(first.text)) {
       fail(path, first.number,
            "expected a COSMOS text header line ('... (Format v01.20 with 13 text lines) ...'), found " +
-               quoted(trim(first.text)));
+               in_quotes(trim(first.text)));
     }
     const std::string kind = std::string(trim(std::string_view(up1).substr(0, std::min<std::size_t>(25, up1.size()))));
     if (kind.find("CORRECTED ACCELERATION") == std::string::npos || kind.find("UNCORRECTED") != std::string::npos) {
       fail(path, first.number,
            "not a COSMOS V2 corrected acceleration record: data type " +
-               quoted(trim(first.text.substr(0, std::min<std::size_t>(25, first.text.size())))));
+               in_quotes(trim(first.text.substr(0, std::min<std::size_t>(25, first.text.size())))));
     }
     const long long n_text = number_before(up1, "TEXT LINES");
     if (n_text < 1) fail(path, first.number, "bad header: cannot read the number of text lines");
@@ -120,11 +120,11 @@ std::vector<Component> read_cosmos(const std::string& path, std::string_view dat
       if (!split_block_header(h.text, n, words, ftext) || words.find(key) == std::string::npos) {
         fail(path, h.number,
              std::string("expected '<n> ") + what + "-header values follow on <l> lines, Format= (...)', found " +
-                 quoted(trim(h.text)));
+                 in_quotes(trim(h.text)));
       }
       if (!parse_fortran_format(ftext, ff) || (want_kind == 'I') != (ff.kind == 'I')) {
         fail(path, h.number,
-             "bad header: format " + quoted(ftext) + " is not a Fortran " + (want_kind == 'I' ? "integer" : "real") +
+             "bad header: format " + in_quotes(ftext) + " is not a Fortran " + (want_kind == 'I' ? "integer" : "real") +
                  " format");
       }
       values.clear();
@@ -163,7 +163,7 @@ std::vector<Component> read_cosmos(const std::string& path, std::string_view dat
       const Line& h = lines[li];
       const std::string up = upper(h.text);
       const long long n = number_before(up, "COMMENT LINE");
-      if (n < 0) fail(path, h.number, "expected '<n> Comment line(s) follow ...', found " + quoted(trim(h.text)));
+      if (n < 0) fail(path, h.number, "expected '<n> Comment line(s) follow ...', found " + in_quotes(trim(h.text)));
       li += 1 + static_cast<std::size_t>(n);
       if (li > lines.size()) fail(path, lines.back().number, "file ends inside the comment lines");
     }
@@ -188,10 +188,10 @@ std::vector<Component> read_cosmos(const std::string& path, std::string_view dat
       if (!split_block_header(h.text, npts, words, ftext) || words.find("PTS") == std::string::npos) {
         fail(path, h.number,
              "expected a data header '<npts> acceleration pts, ..., units=..., Format=(...)', found " +
-                 quoted(trim(h.text)));
+                 in_quotes(trim(h.text)));
       }
       if (!parse_fortran_format(ftext, ff) || ff.kind == 'I') {
-        fail(path, h.number, "bad data header: format " + quoted(ftext) + " is not a Fortran real format");
+        fail(path, h.number, "bad data header: format " + in_quotes(ftext) + " is not a Fortran real format");
       }
       if (npts <= 0) fail(path, h.number, "empty data: " + std::to_string(npts) + " points");
       const bool accel = words.find("ACCEL") != std::string::npos;
@@ -207,7 +207,7 @@ std::vector<Component> read_cosmos(const std::string& path, std::string_view dat
         const double scale = units_scale(units);
         if (scale == 0.0) {
           fail(path, h.number,
-               "unknown acceleration units " + quoted(units) + " (cm/sec2, cm/s/s, m/sec2, mm/sec2, g)");
+               "unknown acceleration units " + in_quotes(units) + " (cm/sec2, cm/s/s, m/sec2, mm/sec2, g)");
         }
         const double sign = label_is_positive_down(c.label) ? -1.0 : 1.0;
         c.accel.reserve(values.size());

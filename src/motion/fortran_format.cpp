@@ -92,7 +92,7 @@ std::size_t read_fortran_values(const std::vector<Line>& lines, std::size_t firs
       if (format.kind == 'I') {
         long long iv = 0;
         if (!parse_integer(field, iv))
-          fail(path, ln.number, "field " + std::to_string(k + 1) + " is not an integer: " + quoted(field));
+          fail(path, ln.number, "field " + std::to_string(k + 1) + " is not an integer: " + in_quotes(field));
         v = static_cast<double>(iv);
       } else {
         v = number_or_fail(field, path, ln.number);

@@ -47,7 +47,7 @@ std::string_view header_value(const Line& ln, const HeaderKey& key, const std::s
     if (ln.text.substr(0, n.size()) == n) return trim(ln.text.substr(n.size()));
   }
   fail(path, ln.number,
-       std::string("bad K-NET header: expected '") + key.names[0] + "', found " + quoted(trim(ln.text)));
+       std::string("bad K-NET header: expected '") + key.names[0] + "', found " + in_quotes(trim(ln.text)));
 }
 
 }  // namespace
@@ -70,7 +70,7 @@ std::vector<Component> read_knet(const std::string& path, std::string_view data)
   if (f.size() > 2 && upper(f.substr(f.size() - 2)) == "HZ") f.remove_suffix(2);
   double rate = 0.0;
   if (parse_number(trim(f), rate) != NumStatus::Ok || !(rate > 0.0)) {
-    fail(path, lines[10].number, "bad sampling frequency " + quoted(v[10]));
+    fail(path, lines[10].number, "bad sampling frequency " + in_quotes(v[10]));
   }
   c.dt = 1.0 / rate;
   // Dir.
@@ -82,7 +82,7 @@ std::vector<Component> read_knet(const std::string& path, std::string_view data)
   else if (dir == "U-D" || dir == "3" || dir == "6")
     c.label = "UP";
   else
-    fail(path, lines[12].number, "unknown direction " + quoted(v[12]) + " (N-S, E-W, U-D or a KiK-net channel 1-6)");
+    fail(path, lines[12].number, "unknown direction " + in_quotes(v[12]) + " (N-S, E-W, U-D or a KiK-net channel 1-6)");
   c.vertical = c.label == "UP";
   // Scale Factor: "<a>(gal)/<b>"
   const std::string_view sf = v[13];
@@ -94,12 +94,12 @@ std::vector<Component> read_knet(const std::string& path, std::string_view data)
       close < open || upper(sf.substr(open, close - open + 1)) != "(GAL)" ||
       parse_number(trim(sf.substr(0, open)), num) != NumStatus::Ok ||
       parse_number(trim(sf.substr(slash + 1)), den) != NumStatus::Ok || !(num > 0.0) || !(den > 0.0)) {
-    fail(path, lines[13].number, "bad scale factor " + quoted(sf) + " (expected '<a>(gal)/<b>' with a, b > 0)");
+    fail(path, lines[13].number, "bad scale factor " + in_quotes(sf) + " (expected '<a>(gal)/<b>' with a, b > 0)");
   }
   const double gal_per_count = num / den;
   double max_acc = 0.0;
   if (parse_number(v[14], max_acc) != NumStatus::Ok || max_acc < 0.0) {
-    fail(path, lines[14].number, "bad maximum acceleration " + quoted(v[14]));
+    fail(path, lines[14].number, "bad maximum acceleration " + in_quotes(v[14]));
   }
 
   // Counts: integers, 8 per line (the last line may hold fewer).
@@ -114,7 +114,7 @@ std::vector<Component> read_knet(const std::string& path, std::string_view data)
     std::size_t n = 0;
     for_each_ws_token(ln.text, [&](std::string_view tok) {
       long long x = 0;
-      if (!parse_integer(tok, x)) fail(path, ln.number, "not an integer count: " + quoted(tok));
+      if (!parse_integer(tok, x)) fail(path, ln.number, "not an integer count: " + in_quotes(tok));
       counts.push_back(x);
       ++n;
     });

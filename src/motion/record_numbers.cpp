@@ -80,11 +80,11 @@ double number_or_fail(std::string_view tok, const std::string& path, std::size_t
     case NumStatus::Ok:
       return v;
     case NumStatus::NonFinite:
-      fail(path, line, "non-finite value " + quoted(tok));
+      fail(path, line, "non-finite value " + in_quotes(tok));
     case NumStatus::NonNumeric:
       break;
   }
-  fail(path, line, "non-numeric value " + quoted(tok));
+  fail(path, line, "non-numeric value " + in_quotes(tok));
 }
 
 double scaled_or_fail(double value, double scale, const std::string& path, std::size_t line) {

@@ -96,7 +96,7 @@ std::vector<Component> read_record(const std::string& path, const ReadOptions& o
   const std::string ext = file_extension_lower(path);
   fail(path, 0,
        "unknown record format (not PEER AT2, SCEC BBP, USGS SMC V2, miniSEED, COSMOS V2, K-NET or CSV by content, and extension " +
-           (ext.empty() ? std::string("none") : quoted(ext)) + " does not tell)");
+           (ext.empty() ? std::string("none") : in_quotes(ext)) + " does not tell)");
 }
 
 const char* to_string(RecordFormat format) {

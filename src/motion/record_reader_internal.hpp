@@ -19,7 +19,7 @@ namespace rocking_monitor::core::record_io {
 /// text shortened).
 std::string printable(std::string_view s, std::size_t max_len = 60);
 /// printable(s) in single quotes.
-std::string quoted(std::string_view s);
+std::string in_quotes(std::string_view s);
 /// Throws RecordError "<path>:<line>: <problem>" (line == 0: "<path>: <problem>").
 [[noreturn]] void fail(const std::string& path, std::size_t line, const std::string& problem);
 

@@ -34,7 +34,7 @@ std::string printable(std::string_view s, std::size_t max_len) {
   return out;
 }
 
-std::string quoted(std::string_view s) { return "'" + printable(s) + "'"; }
+std::string in_quotes(std::string_view s) { return "'" + printable(s) + "'"; }
 
 /// Throws RecordError "<path>:<line>: <problem>" (line == 0: "<path>: <problem>").
 [[noreturn]] void fail(const std::string& path, std::size_t line, const std::string& problem) {

@@ -7,7 +7,7 @@ namespace rocking_monitor::core::record_io {
 
 SeedChannel classify_seed_channel(const std::string& channel, const std::string& where) {
   const std::string c = upper(trim(channel));
-  if (c.size() != 3) fail(where, 0, "channel code " + quoted(channel) + " is not a 3-character SEED code");
+  if (c.size() != 3) fail(where, 0, "channel code " + in_quotes(channel) + " is not a 3-character SEED code");
   // N: accelerometer. L and G: older strong-motion networks (e.g. SCSN HL?, HG?) used them for
   // accelerometers; the gain given must then be counts per m/s^2 like any other.
   const char instrument = c[1];

@@ -36,7 +36,7 @@ std::vector<Component> read_smc(const std::string& path, std::string_view data) 
   if (l1.empty() || l1[0] != '2' || l1.find("CORRECTED ACCELEROGRAM") == std::string::npos ||
       l1.find("UNCORRECTED") != std::string::npos) {
     fail(path, 1,
-         "unsupported SMC file type " + quoted(trim(lines[0].text)) + " (only '2 CORRECTED ACCELEROGRAM' is supported)");
+         "unsupported SMC file type " + in_quotes(trim(lines[0].text)) + " (only '2 CORRECTED ACCELEROGRAM' is supported)");
   }
   constexpr std::size_t kText = 11, kIntLines = 6, kRealLines = 10;
   constexpr std::size_t kHeader = kText + kIntLines + kRealLines;
@@ -51,12 +51,12 @@ std::vector<Component> read_smc(const std::string& path, std::string_view data) 
   for (std::size_t k = 0; k < kIntLines; ++k) {
     const Line& ln = lines[kText + k];
     if (!fixed_fields(ln.text, 10, 8, f) || f.size() != 8) {
-      fail(path, ln.number, "bad header: expected 8 integers in 10-character fields, found " + quoted(trim(ln.text)));
+      fail(path, ln.number, "bad header: expected 8 integers in 10-character fields, found " + in_quotes(trim(ln.text)));
     }
     for (std::size_t j = 0; j < 8; ++j) {
       long long v = 0;
       if (!parse_integer(f[j], v)) {
-        fail(path, ln.number, "bad header: integer field " + std::to_string(k * 8 + j + 1) + " is " + quoted(f[j]));
+        fail(path, ln.number, "bad header: integer field " + std::to_string(k * 8 + j + 1) + " is " + in_quotes(f[j]));
       }
       ints.push_back(v);
     }
@@ -65,12 +65,12 @@ std::vector<Component> read_smc(const std::string& path, std::string_view data) 
   for (std::size_t k = 0; k < kRealLines; ++k) {
     const Line& ln = lines[kText + kIntLines + k];
     if (!fixed_fields(ln.text, 15, 5, f) || f.size() != 5) {
-      fail(path, ln.number, "bad header: expected 5 reals in 15-character fields, found " + quoted(trim(ln.text)));
+      fail(path, ln.number, "bad header: expected 5 reals in 15-character fields, found " + in_quotes(trim(ln.text)));
     }
     for (std::size_t j = 0; j < 5; ++j) {
       double v = 0.0;
       if (parse_number(f[j], v) != NumStatus::Ok) {
-        fail(path, ln.number, "bad header: real field " + std::to_string(k * 5 + j + 1) + " is " + quoted(f[j]));
+        fail(path, ln.number, "bad header: real field " + std::to_string(k * 5 + j + 1) + " is " + in_quotes(f[j]));
       }
       reals.push_back(v);
     }
@@ -136,7 +136,7 @@ std::vector<Component> read_smc(const std::string& path, std::string_view data) 
     if (t.empty() || t[0] != '|') {
       fail(path, lines[li].number,
            "expected comment line " + std::to_string(k + 1) + " of " + std::to_string(n_comments) +
-               " starting with '|', found " + quoted(trim(t)));
+               " starting with '|', found " + in_quotes(trim(t)));
     }
   }
 
@@ -150,7 +150,7 @@ std::vector<Component> read_smc(const std::string& path, std::string_view data) 
   for (; li < lines.size() && c.accel.size() < want; ++li) {
     const Line& ln = lines[li];
     if (!fixed_fields(ln.text, 10, 8, f)) {
-      fail(path, ln.number, "data line longer than 8 fields of 10 characters: " + quoted(trim(ln.text)));
+      fail(path, ln.number, "data line longer than 8 fields of 10 characters: " + in_quotes(trim(ln.text)));
     }
     if (f.empty()) {  // blank line: fine only at the end of the file
       if (short_line == 0) {

@@ -90,11 +90,11 @@ class UdpAccelBridgeTest(unittest.TestCase):
         for count, i in enumerate(order):
             t = T0 + i * DT
             sock.sendto(struct.pack('<4sHHQdddd', b'RMAC', 1, 0, 5000 + i, t, self.x[i], self.y[i], self.z[i]),
-                        ('127.0.0.1', 15611))
-            sock.sendto(('%r,%r,%r,%r\n' % (t, self.x[i], self.y[i], self.z[i])).encode(), ('127.0.0.1', 15612))
+                        ('127.0.0.1', PORT_BIN))
+            sock.sendto(('%r,%r,%r,%r\n' % (t, self.x[i], self.y[i], self.z[i])).encode(), ('127.0.0.1', PORT_TXT))
             if count == 100:  # one malformed datagram each: counted, not published
-                sock.sendto(b'RMAC' + bytes(40), ('127.0.0.1', 15611))
-                sock.sendto(b'12.0,1,2\n', ('127.0.0.1', 15612))
+                sock.sendto(b'RMAC' + bytes(40), ('127.0.0.1', PORT_BIN))
+                sock.sendto(b'12.0,1,2\n', ('127.0.0.1', PORT_TXT))
             time.sleep(0.0005)  # well below loopback capacity: the only losses are the injected ones
         want = sorted(order)
         deadline = time.time() + 20
@@ -183,9 +183,9 @@ class UdpAccelBridgeTest(unittest.TestCase):
         code, out = self.run_bridge('_rate_hz:=100.0', '_clock:=gps', '_port:=15699')
         self.assertEqual(code, 2, out)
         self.assertIn("~clock must be first_arrival or controller, not 'gps'", out)
-        code, out = self.run_bridge('_rate_hz:=100.0', '_port:=15611', '_bind_address:=127.0.0.1')  # the test's bridge has it
+        code, out = self.run_bridge('_rate_hz:=100.0', '_port:=%d' % PORT_BIN, '_bind_address:=127.0.0.1')  # the test's bridge has it
         self.assertEqual(code, 2, out)
-        self.assertIn('cannot bind 127.0.0.1:15611', out)
+        self.assertIn('cannot bind 127.0.0.1:%d' % PORT_BIN, out)
         code, out = self.run_bridge('_rate_hz:=100.0', '_port:=15699', '_history_length:=-5')
         self.assertEqual(code, 2, out)
         self.assertIn('~history_length: -5.000000 s must be in [0, 86400] (0 = no history)', out)
@@ -196,4 +196,7 @@ class UdpAccelBridgeTest(unittest.TestCase):
 
 if __name__ == '__main__':
     rospy.init_node('udp_accel_bridge_test')
+    # The bridges' ports, from the launch file: each build directory has its own (test_environment.cmake).
+    PORT_BIN = int(rospy.get_param('~port_bin'))
+    PORT_TXT = int(rospy.get_param('~port_txt'))
     rostest.rosrun('rocking_monitor', 'udp_accel_bridge', UdpAccelBridgeTest)

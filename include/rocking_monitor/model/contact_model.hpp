@@ -20,6 +20,8 @@ enum class ContactMode : std::uint8_t {
   Overturned,  ///< |theta| reached the overturn angle; final
 };
 const char* to_string(ContactMode mode);
+/// The body turns about a corner (sticking or slipping).
+constexpr bool pivoting(ContactMode m) { return m == ContactMode::Rock || m == ContactMode::SlideRock; }
 
 struct ContactSettings {
   /// Classical RK4 sub-steps per input sample (events located on the re-stepped RK4 solution).
