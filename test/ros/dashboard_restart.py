@@ -18,7 +18,7 @@ NS = '/restart_mon'
 
 
 def snapshot(url):
-    with urllib.request.urlopen(url + 'api/snapshot', timeout=5) as r:
+    with urllib.request.urlopen(url + 'api/snapshot', timeout=30) as r:
         return json.load(r)
 
 
@@ -90,7 +90,7 @@ class DashboardRestart(unittest.TestCase):
         ids = [i['id'] for i in s['items']]
         self.assertEqual(ids, ['item00000', 'item00001', 'item00002'])  # the old items gone with the old catalogue
         self.assertGreaterEqual(len(s['alarms']), first_alarms)  # the log keeps the first event
-        with urllib.request.urlopen(url, timeout=5) as r:
+        with urllib.request.urlopen(url, timeout=30) as r:
             self.assertEqual(r.status, 200)
 
 

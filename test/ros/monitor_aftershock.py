@@ -65,8 +65,8 @@ class Aftershock(unittest.TestCase):
                 send(quiet, t)
                 t = t + dt
             if play == 0:
-                wait_for('the end of the first event', lambda: 'ended: shaking stopped' in mon.text(), timeout=10.0)
-                rospy.wait_for_service('/aftershock_mon/set_upright', timeout=10)
+                wait_for('the end of the first event', lambda: 'ended: shaking stopped' in mon.text(), timeout=30.0)
+                rospy.wait_for_service('/aftershock_mon/set_upright', timeout=30)
                 self.assertTrue(rospy.ServiceProxy('/aftershock_mon/set_upright', Trigger)().success)
         time.sleep(1.0)
         alarms = list(mon.alarms)

@@ -76,7 +76,7 @@ class CatchUp(unittest.TestCase):
             victim = runs[-1]
             os.kill(victim.proc.pid, signal.SIGKILL)
             killed_wall = time.time()
-            victim.proc.wait(timeout=10)
+            victim.proc.wait(timeout=30)
             self.assertEqual(victim.proc.returncode, -signal.SIGKILL)
             # Every run publishes on the same topics: from now on what arrives is the next run's.
             victim.sub_a.unregister()
@@ -93,7 +93,7 @@ class CatchUp(unittest.TestCase):
             wait_for('the restarted monitor to rejoin the live stream',
                      lambda: nxt.acked > 0.0 and nxt.acked >= control.acked - 0.02, timeout=30.0)
             rejoin = time.time() - killed_wall
-            wait_for('the catch-up line in the log', lambda: 'caught up from' in nxt.text(), timeout=5.0)
+            wait_for('the catch-up line in the log', lambda: 'caught up from' in nxt.text(), timeout=30.0)
             log = nxt.text()
             m = re.search(r'caught up from /player/history: ([0-9]+) missed samples \(([0-9.]+) s of input after the '
                           r'snapshot\'s last\) stepped in ([0-9.]+) s \(([0-9]+) samples/s', log)
@@ -114,9 +114,9 @@ class CatchUp(unittest.TestCase):
                 if st.level == DiagnosticStatus.OK and st.message.startswith('caught up') and int(dropped) >= 1:
                     return True
             return False
-        wait_for('the catch-up in /diagnostics', caught_up_in_diagnostics, timeout=10.0)
+        wait_for('the catch-up in /diagnostics', caught_up_in_diagnostics, timeout=30.0)
         wait_for('the end of the record', lambda: bool(finished), timeout=60.0)
-        wait_for('both monitors to step the last sample', lambda: runs[-1].acked >= control.acked > 0.0, timeout=10.0)
+        wait_for('both monitors to step the last sample', lambda: runs[-1].acked >= control.acked > 0.0, timeout=30.0)
         time.sleep(1.0)
 
         # Every run of the monitor together against the control.

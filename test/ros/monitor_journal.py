@@ -159,7 +159,7 @@ class Journal(unittest.TestCase):
         wait_for('the first monitor', lambda: imu.get_num_connections() > 0 and first.sub_s.get_num_connections() > 0)
         stop = stream([first], 0, len(samples), on_each=lambda i: killed.is_set())
         self.assertTrue(killed.is_set(), 'no OVERTURNED alarm in the whole record: ' + first.text()[-2000:])
-        first.proc.wait(timeout=10)
+        first.proc.wait(timeout=30)
         self.assertEqual(first.proc.returncode, -signal.SIGKILL)
         time.sleep(0.3)
         before = list(first.alarms)
@@ -187,7 +187,7 @@ class Journal(unittest.TestCase):
         control = Monitor('journal_ctl', os.path.join(scratch, 'control.log'))
         wait_for('both monitors', lambda: imu.get_num_connections() >= 2 and second.sub_s.get_num_connections() > 0
                  and control.sub_s.get_num_connections() > 0)
-        wait_for('the alarms read back from the journal', lambda: len(second.alarms) >= len(before), timeout=10.0)
+        wait_for('the alarms read back from the journal', lambda: len(second.alarms) >= len(before), timeout=30.0)
         time.sleep(0.5)
         resent = list(second.alarms)
         self.assertIn('%s:%d: last line cut in the middle' % (journal, len(lines) + 1), second.text())
@@ -201,11 +201,11 @@ class Journal(unittest.TestCase):
         ctl = list(control.alarms)
         rospy.loginfo('after the restart: control %d alarms, restarted monitor %d new ones', len(ctl), len(after))
         # ~reset closes the event: journaled, and a new subscriber is sent nothing of it.
-        rospy.wait_for_service('/journal_mon/reset', timeout=10)
+        rospy.wait_for_service('/journal_mon/reset', timeout=30)
         self.assertTrue(rospy.ServiceProxy('/journal_mon/reset', Trigger)().success)
         late = []
         late_sub = rospy.Subscriber('/journal_mon/alarms', OverturnAlarm, late.append, queue_size=100)
-        wait_for('a new subscriber', lambda: late_sub.get_num_connections() > 0, timeout=10.0)
+        wait_for('a new subscriber', lambda: late_sub.get_num_connections() > 0, timeout=30.0)
         time.sleep(1.0)
         late_sub.unregister()
         self.assertEqual(late, [], 'alarms of an event closed by ~reset sent to a new subscriber')

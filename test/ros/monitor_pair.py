@@ -233,7 +233,7 @@ class Pair(unittest.TestCase):
         print(report)
 
         # The dashboard's alarm log (core::AlarmDedup): the same alarms, each once.
-        with urllib.request.urlopen(dash_url.rstrip('/') + '/api/snapshot', timeout=10) as r:
+        with urllib.request.urlopen(dash_url.rstrip('/') + '/api/snapshot', timeout=30) as r:
             snap = json.loads(r.read().decode())
         names = {v: k for k, v in LEVELS.items()}
         dash_rows = sorted((a['item'], names[a['level']], a['event_time'], a['plane']) for a in snap['alarms'])

@@ -43,6 +43,7 @@ class Restart(unittest.TestCase):
         kill_after = rospy.get_param('~kill_after')
         catch_up = rospy.get_param('~catch_up')
         back = 0.5  # s sent again after the restart (catch_up)
+        lost = 0.3  # s sent to the control alone while the monitor restarts (no catch_up)
         scratch = tempfile.mkdtemp(prefix='rocking_restart_')
         samples = record_samples(self, path, scratch)
         t0 = samples[0].header.stamp
@@ -85,10 +86,20 @@ class Restart(unittest.TestCase):
                 os.kill(first.proc.pid, signal.SIGKILL)
                 state['killed_at'] = i
                 live = [control]
-                first.proc.wait(timeout=10)
+                first.proc.wait(timeout=30)
+                # A plain topic loses what is sent while the monitor restarts. The loss is the test's to set,
+                # not the machine's: `lost` s of samples go to the control alone, then the stream waits for
+                # the restarted monitor (at load 10 its start took 1.6 s of wall clock, beyond ~max_bridge,
+                # issue 42). The stamps then run behind the wall clock until caught up: lag, not a gap.
+                state['start_second_at'] = i if catch_up else i + int(round(lost / dt))
+            if state.get('start_second_at') == i:
+                state['start_second_at'] = None  # once (catch_up sends samples again from before i)
                 second = Monitor('restart_mon', os.path.join(scratch, 'monitor2.log'))
                 self.addCleanup(second.close)  # also when an assertion fails
                 state['second'] = second
+                if not catch_up:
+                    wait_for('the restarted monitor', lambda: imu.get_num_connections() >= 2 and
+                             second.sub_s.get_num_connections() > 0)
                 if catch_up:
                     # As a bridge's history would: the restarted monitor is sent the last `back` s again (more
                     # than a snapshot period), then the stream goes on, faster than real time until caught up.

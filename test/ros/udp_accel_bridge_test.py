@@ -129,7 +129,7 @@ class UdpAccelBridgeTest(unittest.TestCase):
     def check_history(self):
         """~history against the messages this test received from each bridge."""
         def served(key, after, topic=None):
-            rospy.wait_for_service('/table_%s/history' % key, timeout=10)
+            rospy.wait_for_service('/table_%s/history' % key, timeout=30)
             call = rospy.ServiceProxy('/table_%s/history' % key, SampleHistory)
             return call(topic or '/table_%s/imu' % key, after)
 
