@@ -7,8 +7,8 @@ root="$1"
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
 html=$(bash "$root/scripts/report_from_record.sh" --catalogue "$root/config/catalogue_example.yaml" --out "$out" \
-       --rate 2 -- --file "$root/bags/one_sine_pulse.csv" 2>/dev/null | tail -1)
-[ -f "$html" ] || { echo "FAIL: no report written ($html)"; exit 1; }
+       --rate 2 -- --file "$root/bags/one_sine_pulse.csv" 2>"$out/stderr.txt" | tail -1)
+[ -f "$html" ] || { echo "FAIL: no report written ($html); the script said:"; cat "$out/stderr.txt"; exit 1; }
 banner=$(grep -o 'Overturned: [a-z_, ]*' "$html" | head -1)
 [ "$banner" = "Overturned: shelving_unit, museum_vase" ] || { echo "FAIL: banner '$banner'"; exit 1; }
 for item in medicine_cabinet monitor_cart shelving_unit incubator server_rack museum_vase; do
