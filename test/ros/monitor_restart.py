@@ -97,14 +97,11 @@ class Restart(unittest.TestCase):
                 second = Monitor('restart_mon', os.path.join(scratch, 'monitor2.log'))
                 self.addCleanup(second.close)  # also when an assertion fails
                 state['second'] = second
-                if not catch_up:
-                    wait_for('the restarted monitor', lambda: imu.get_num_connections() >= 2 and
-                             second.sub_s.get_num_connections() > 0)
+                wait_for('the restarted monitor', lambda: imu.get_num_connections() >= 2 and
+                         second.sub_s.get_num_connections() > 0)
                 if catch_up:
                     # As a bridge's history would: the restarted monitor is sent the last `back` s again (more
                     # than a snapshot period), then the stream goes on, faster than real time until caught up.
-                    wait_for('the restarted monitor', lambda: imu.get_num_connections() >= 2 and
-                             second.sub_s.get_num_connections() > 0)
                     state['joined_at'] = i + 1
                     live = [control, second]
                     i = max(1, i - int(round(back / dt)))
