@@ -32,6 +32,7 @@
 
 #include "rocking_monitor/OverturnAlarm.h"
 #include "rocking_monitor/RockingStateArray.h"
+#include "diagnostics_connected.hpp"
 #include "test_helpers.hpp"
 
 namespace fs = std::filesystem;
@@ -108,6 +109,12 @@ class Faults : public ::testing::Test {
       ros::WallDuration(0.05).sleep();
     ASSERT_GT(imu_pub_.getNumSubscribers(), 0u);
     base0_ = record_.front().header.stamp.toSec();
+    // set_clock_and_wait holds the clock at a case's start and waits for the one publication the jump
+    // brings: proven receivable first, on a clock far before the first case.
+    ASSERT_TRUE(rocking_monitor::test::step_clock_until_diagnostics(
+        [this](const ros::Time& t) { set_clock(t); }, [this] { return !diag_stamp_.isZero(); },
+        record_.front().header.stamp - ros::Duration(1000.0)))
+        << "no /diagnostics from the monitor";
   }
 
   void set_clock(const ros::Time& t) {

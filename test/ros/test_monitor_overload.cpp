@@ -23,6 +23,8 @@
 #include <sensor_msgs/Imu.h>
 #include <std_msgs/Bool.h>
 
+#include "diagnostics_connected.hpp"
+
 namespace {
 
 constexpr double kMaxLag = 1.0;                    // s, ~max_lag (monitor_overload.yaml)
@@ -113,6 +115,11 @@ TEST(Overload, IsVisibleShedsLoadCountsEverySampleAndRecovers) {
     return imu_pub.getNumSubscribers() > 0 && clock_pub.getNumSubscribers() > 0 && sub_o.getNumPublishers() > 0 &&
            sub_d.getNumPublishers() > 0 && sub_s.getNumPublishers() > 0;
   })) << "the monitor did not connect";
+  // set_clock holds the clock and waits for the one publication a jump brings: proven receivable first,
+  // on a clock that ends at most 67 s, before T0.
+  ASSERT_TRUE(rocking_monitor::test::step_clock_until_diagnostics(
+      publish_clock, [&] { return !o.diag_stamp.isZero(); }, ros::Time(1.0)))
+      << "no /diagnostics from the monitor";
   ASSERT_TRUE(set_clock(kT0)) << "the monitor never published diagnostics on the test's /clock";
   ASSERT_TRUE(wait_for([&] { return o.overload_msgs > 0; })) << "~overload is not latched";
   EXPECT_FALSE(o.overload) << "~overload latched false at start";
