@@ -66,7 +66,8 @@ double Rocking3DModel::rise_rate(const Vec7& y) const {
 
 OverturnMargin Rocking3DModel::margin() const {
   switch (mode_) {
-    case Mode3D::Rest: return {1.0, false};
+    case Mode3D::Rest:
+    case Mode3D::Slide: return {1.0, false};  // flat on its face: the whole way to tipping
     case Mode3D::Overturned: return {-1.0, true};
     case Mode3D::Edge:
       return overturn_margin(fb().edge(contact_).pivot, 1, ModelKind::Nonlinear, theta_, omega_);
@@ -83,6 +84,8 @@ OverturnMargin Rocking3DModel::margin() const {
 
 double Rocking3DModel::kinetic_energy() const {
   if (mode_ == Mode3D::Edge) return 0.5 * fb().edge(contact_).pivot.inertia * omega_ * omega_;
+  if (mode_ == Mode3D::Slide)
+    return 0.5 * slide_.head<2>().squaredNorm() + 0.5 * fb().central_inertia_per_mass()(2, 2) * slide_(2) * slide_(2);
   if (mode_ != Mode3D::Vertex) return 0.0;
   const Eigen::Matrix3d r = vertex_rotation(y_);
   const Eigen::Vector3d w = y_.tail<3>();

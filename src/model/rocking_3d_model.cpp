@@ -24,6 +24,7 @@ const char* to_string(Mode3D mode) {
     case Mode3D::Edge: return "EDGE";
     case Mode3D::Vertex: return "VERTEX";
     case Mode3D::Overturned: return "OVERTURNED";
+    case Mode3D::Slide: return "SLIDE";
   }
   return "UNKNOWN";
 }
@@ -48,6 +49,11 @@ Rocking3DModel::Rocking3DModel(const BaseBody& body, const SolverSettings& setti
   double size = 0.0;
   for (const BaseVertex& v : hull().vertices) size = std::max(size, v.radius);
   floor_tol_ = 1e-9 * size;
+  for (const HullFace& f : hull().faces) {
+    std::vector<Eigen::Vector2d> polygon;
+    for (int k = 0; k < f.body->vertex_count(); ++k) polygon.push_back(f.body->vertex(k).position.head<2>());
+    friction_.emplace_back(polygon);
+  }
   if (with_probe) probe_.reset(new Rocking3DModel(body, settings, false));
   reset(0.0);
 }
@@ -70,6 +76,8 @@ void Rocking3DModel::reset(double t, const Eigen::Vector3d& a) {
   last_probe_t_ = -1e300;
   dopri5_.reset(0.05 / body_.max_p());
   vector_.reset(0.05 / body_.max_p());
+  slide_stepper_.reset(0.05 / body_.max_p());
+  slide_.setZero();
 }
 
 void Rocking3DModel::save(Saved& out) const {
@@ -91,6 +99,8 @@ void Rocking3DModel::save(Saved& out) const {
   dopri5_.save(out.dopri5);
   vector_.save(out.vector);
   out.last_probe_t = last_probe_t_;
+  out.slide = slide_;
+  slide_stepper_.save(out.slide_stepper);
 }
 
 void Rocking3DModel::restore(const Saved& in) {
@@ -114,6 +124,8 @@ void Rocking3DModel::restore(const Saved& in) {
   dopri5_.restore(in.dopri5);
   vector_.restore(in.vector);
   last_probe_t_ = in.last_probe_t;
+  slide_ = in.slide;
+  slide_stepper_.restore(in.slide_stepper);
 }
 
 Eigen::Matrix3d Rocking3DModel::yaw_matrix() const { return rot_z(yaw_); }
@@ -172,7 +184,7 @@ Eigen::Vector3d Rocking3DModel::angular_velocity() const {
 double Rocking3DModel::tilt() const {
   if (mode_ == Mode3D::Overturned) return body_.overturn_angle();
   if (face_ == 0 && mode_ == Mode3D::Edge) return theta_;
-  if (face_ == 0 && mode_ == Mode3D::Rest) return 0.0;
+  if (face_ == 0 && (mode_ == Mode3D::Rest || mode_ == Mode3D::Slide)) return 0.0;
   return std::acos(std::clamp(rotation()(2, 2), -1.0, 1.0));
 }
 
@@ -183,6 +195,7 @@ void Rocking3DModel::go_to_rest() {
   theta_ = omega_ = 0.0;
   dopri5_.invalidate();
   vector_.invalidate();
+  slide_stepper_.invalidate();
 }
 
 void Rocking3DModel::set_edge_state(int edge, double theta, double omega) {
@@ -235,16 +248,23 @@ const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
   int events = 0;
   while (tau < dt && mode_ != Mode3D::Overturned) {
     if (mode_ == Mode3D::Rest) {
-      const double when = find_uplift(in, tau, dt);
-      if (!std::isfinite(when)) break;
-      tau = when;
-      start_motion(in, tau);
+      // Whichever the input brings first: an edge lifting, or the demand leaving the friction cone.
+      const double lift = find_uplift(in, tau, dt), slip = find_slip(in, tau, dt);
+      if (!std::isfinite(lift) && !std::isfinite(slip)) break;
+      if (slip < lift) {
+        tau = slip;
+        start_slide(in, tau);
+      } else {
+        tau = lift;
+        start_motion(in, tau);
+      }
       ++events;
     }
     Event e = Event::None;
     int other = -1;
     if (mode_ == Mode3D::Edge) e = advance_edge(in, tau, dt, other);
     else if (mode_ == Mode3D::Vertex) e = advance_vertex(in, tau, dt, other);
+    else if (mode_ == Mode3D::Slide) e = advance_slide(in, tau, dt);
     // Off the base, lying on the side (the item base's tilt at the overturn angle) is OVERTURNED
     // as on the base: checked where the motion stops (a step's end, an event, a landing).
     auto on_side = [&] { return face_ != 0 && mode_ != Mode3D::Vertex && tilt() >= body_.overturn_angle(); };
@@ -261,7 +281,12 @@ const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
       overturn();
       break;
     }
-    if (e == Event::Degenerate) {
+    if (e == Event::Stick) {
+      go_to_rest();  // the slip stopped and the static law holds: at rest where it slid to
+      ++outcome3_.sticks;
+    } else if (e == Event::Lift && mode_ == Mode3D::Slide) {
+      slide_to_edge(in, tau);
+    } else if (e == Event::Degenerate) {
       go_to_rest();
       report_.rest_capture = true;
       ++outcome_.rest_captures;

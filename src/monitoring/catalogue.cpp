@@ -172,6 +172,7 @@ void parse_solid(const Entry& e, ItemSpec& s) {
     }
   }
   b.mu_s = s.body.mu_s;
+  b.mu_k = s.body.mu_k;
   b.overturn_angle = s.body.overturn_angle;
   if (e.has("restitution_factor"))
     b.restitution_factor = e.number("restitution_factor", false, 1.0, "multiplies the 3-D impact law's angular velocity");

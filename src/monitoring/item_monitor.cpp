@@ -227,7 +227,8 @@ bool ItemMonitor::alarmed(ItemMode level) const {
 ItemMode ItemMonitor::mode() const {
   if (solid_active_) {
     switch (solid_->mode()) {
-      case Mode3D::Rest: return ItemMode::Rest;
+      case Mode3D::Rest:
+      case Mode3D::Slide: return ItemMode::Rest;  // flat on its base: sliding is not a tipping level
       case Mode3D::Overturned: return ItemMode::Overturned;
       default: break;
     }

@@ -29,6 +29,7 @@ MonitorBatch::MonitorBatch(std::vector<ItemMonitor*> items) : items_(std::move(i
       lanes_[k].solid = static_cast<int>(solids_.size());
       solids_.emplace_back();
       solids_.back().edges.resize(static_cast<std::size_t>(solid->body().vertex_count()));
+      solids_.back().mu_s = solid->body().parameters().mu_s;
     }
     refresh(k);
   }
@@ -208,6 +209,11 @@ bool MonitorBatch::quiet_solid(Lane& lane, double ax, double ay, double az, doub
       if (!(-(x0 * e.nx + y0 * e.ny) * e.cs - (z0 + kGravity) * e.sn < -m)) return false;
       if (!(-(ax * e.nx + ay * e.ny) * e.cs - (az + kGravity) * e.sn < -m)) return false;
     }
+    // Rocking3DModel::find_slip: the demand inside the friction cone at both ends (a convex cone:
+    // then all through the sample).
+    if (std::isfinite(sl.mu_s) && (!(std::hypot(x0, y0) < sl.mu_s * (z0 + kGravity) - m) ||
+                                   !(std::hypot(ax, ay) < sl.mu_s * (az + kGravity) - m)))
+      return false;
   }
   StreamingIntensity::Lane next[kPlaneCount];
   for (int p = 0; p < lane.planes; ++p)

@@ -374,7 +374,7 @@ void visit(V& v, PlaneMonitor::Saved& s) {
 
 template <class V>
 void visit(V& v, Rocking3DModel::Saved& s) {
-  v.enumeration("mode", s.mode, static_cast<int>(Mode3D::Overturned) + 1);
+  v.enumeration("mode", s.mode, static_cast<int>(Mode3D::Slide) + 1);
   v("contact", s.contact);
   v("face", s.face);
   v("theta", s.theta);
@@ -400,6 +400,14 @@ void visit(V& v, Rocking3DModel::Saved& s) {
     v("edge_captures", s.outcome_3d.edge_captures);
     v("hull_landings", s.outcome_3d.hull_landings);
     v("rests_off_base", s.outcome_3d.rests_off_base);
+    v("slides", s.outcome_3d.slides);
+    v("sticks", s.outcome_3d.sticks);
+    v("slide_to_rock", s.outcome_3d.slide_to_rock);
+    v("first_slip_time", s.outcome_3d.first_slip_time);
+    v("max_slip", s.outcome_3d.max_slip);
+    v("max_slip_speed", s.outcome_3d.max_slip_speed);
+    v("max_twist", s.outcome_3d.max_twist);
+    v("slip_time", s.outcome_3d.slip_time);
   });
   v("last_probe_t", s.last_probe_t);
   v.group("dopri5", [&] { visit(v, s.dopri5); });
@@ -407,6 +415,12 @@ void visit(V& v, Rocking3DModel::Saved& s) {
     v("h", s.vector.h);
     v("fsal_valid", s.vector.fsal_valid);
     visit_matrix(v, "k1", s.vector.k1);
+  });
+  visit_matrix(v, "slide", s.slide);
+  v.group("slide_stepper", [&] {
+    v("h", s.slide_stepper.h);
+    v("fsal_valid", s.slide_stepper.fsal_valid);
+    visit_matrix(v, "k1", s.slide_stepper.k1);
   });
 }
 

@@ -74,6 +74,8 @@ std::string validate_body(const BaseBodyParameters& p, bool must_stand) {
   if (ev(2) > ev(0) + ev(1) + 1e-9 * scale)
     return fail("central_inertia", "principal moments violate I3 <= I1 + I2 (no rigid body has them)");
   if (!(p.mu_s >= 0.0)) return fail("mu_s", "must be >= 0 (or .inf: not given)");
+  if (!std::isnan(p.mu_k) && !(p.mu_k >= 0.0 && std::isfinite(p.mu_k)))
+    return fail("mu_k", "must be a finite value >= 0 (or not given: mu_s)");
   if (!(p.restitution_factor >= 0.0 && p.restitution_factor <= 1.0))
     return fail("restitution_factor", "must lie in [0, 1]");
   if (!(p.overturn_angle > 0.0 && p.overturn_angle <= kPi)) return fail("overturn_angle", "must lie in (0, pi] rad");
@@ -342,6 +344,7 @@ BaseBodyParameters box_base_body(const BodyParameters& x, double depth, double n
   p.base = {Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(b, 0.0), Eigen::Vector2d(b, d),
             Eigen::Vector2d(0.0, d)};
   p.mu_s = x.mu_s;
+  p.mu_k = x.mu_k;
   p.overturn_angle = x.overturn_angle;
   return p;
 }

@@ -231,6 +231,12 @@ void RockingMonitor::fill_state(const Item& it, const core::ItemSummary& sm, Roc
     // Off its base (a hull, docs/rocking_3d.md): which hull face it rocks or rests on.
     if (face != 0 && solid->mode() == core::Mode3D::Edge) out.contact.append(" of hull face ").append(std::to_string(face));
     if (face != 0 && solid->mode() == core::Mode3D::Rest) out.contact.append("hull face ").append(std::to_string(face));
+    // Sliding flat on its face (issue 51): the contact mode and the slip as for the planar contact model.
+    if (solid->mode() == core::Mode3D::Slide) {
+      out.contact.append(face != 0 ? "sliding on hull face " + std::to_string(face) : std::string("sliding"));
+      out.contact_mode = RockingState::CONTACT_SLIDE;
+    }
+    out.slip = solid->slip().norm();
   }
 }
 

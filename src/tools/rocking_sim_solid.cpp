@@ -119,6 +119,15 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
              {"hull_faces", model.body().contact_hull().from_hull ? static_cast<long>(model.body().contact_hull().faces.size()) : 0L},
              {"hull_landings", r3.hull_landings},
              {"rests_off_base", r3.rests_off_base},
+             {"slides", r3.slides},
+             {"sticks", r3.sticks},
+             {"slide_to_rock", r3.slide_to_rock},
+             {"first_slip_time_s", nullable(r3.first_slip_time)},
+             {"max_slip_m", r3.max_slip},
+             {"final_slip_m", model.slip().norm()},
+             {"max_slip_speed_m_s", r3.max_slip_speed},
+             {"max_twist_rad", r3.max_twist},
+             {"slip_time_s", r3.slip_time},
              {"samples", mx.size()},
              {"cpu_time_s", cpu},
              {"body", body_json(model.body())}});
@@ -138,6 +147,11 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
   L.push_back(format("landings    friction demand up to %.3f (%ld above mu_s: the real body slides there), "
                      "largest violation of the impact law %.2g m/s", r3.max_friction_demand, r3.slipping_landings,
                      r3.max_landing_violation));
+  L.push_back(format("sliding     %ld slip onsets (first at %s), %ld sticks; max slip %.4f m, final %.4f m, "
+                     "max slip speed %.3f m/s, max twist %.4f rad, %.3f s sliding; %ld slides ended by an edge lifting",
+                     r3.slides, std::isnan(r3.first_slip_time) ? "-" : format("%.4f s", r3.first_slip_time).c_str(),
+                     r3.sticks, r3.max_slip, model.slip().norm(), r3.max_slip_speed, r3.max_twist, r3.slip_time,
+                     r3.slide_to_rock));
   if (model.body().contact_hull().from_hull)
     L.push_back(format("hull        %zu faces, %zu vertices; %ld landings onto another face, %ld rests off the base; "
                        "ends on %s", model.body().contact_hull().faces.size(), model.body().contact_hull().vertices.size(),

@@ -21,15 +21,15 @@
 namespace rocking_monitor::core {
 namespace {
 
-struct Catalogue {
+struct BatchCatalogue {
   std::vector<ItemSpec> specs;
   std::vector<ItemMonitor::Options> options;
 };
 
-Catalogue random_catalogue(std::size_t n, unsigned seed) {
+BatchCatalogue random_catalogue(std::size_t n, unsigned seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  Catalogue c;
+  BatchCatalogue c;
   for (std::size_t i = 0; i < n; ++i) {
     ItemSpec s;
     s.id = "item" + std::to_string(i);
@@ -169,7 +169,7 @@ struct BatchRun {
 // first y_start of the record.
 // Summaries are read every `summary_every` samples (1: every sample, as the node's changed-items topic
 // at its fastest; more: deferred rocking samples accumulate between reads).
-BatchRun compare(const Catalogue& cat, const Component& rec, double scale, double active_share, std::size_t range,
+BatchRun compare(const BatchCatalogue& cat, const Component& rec, double scale, double active_share, std::size_t range,
             unsigned seed, double y_start = 0.0, std::size_t summary_every = 1) {
   const std::size_t n = cat.specs.size();
   std::vector<std::unique_ptr<ItemMonitor>> batched, alone;
@@ -270,8 +270,8 @@ BatchRun compare(const Catalogue& cat, const Component& rec, double scale, doubl
 
 // Items with a 3-D description (ItemSpec::solid): boxes on their four corners and irregular
 // four-sided bases, the 3-D model taking over once the shaking is bidirectional (auto) or always.
-Catalogue solid_catalogue(std::size_t n, unsigned seed) {
-  Catalogue c = random_catalogue(n, seed);
+BatchCatalogue solid_catalogue(std::size_t n, unsigned seed) {
+  BatchCatalogue c = random_catalogue(n, seed);
   std::mt19937_64 rng(seed + 1);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (std::size_t i = 0; i < n; ++i) {
@@ -293,7 +293,7 @@ Catalogue solid_catalogue(std::size_t n, unsigned seed) {
 Component record(const std::string& file) { return read_record(std::string(ROCKING_RECORDS_DIR) + "/" + file).front(); }
 
 TEST(MonitorBatch, EveryItemEqualsItselfSteppedAloneOnRealRecords) {
-  const Catalogue cat = random_catalogue(60, 7);
+  const BatchCatalogue cat = random_catalogue(60, 7);
   const Component rinaldi = record("northridge_1994/Rinaldi228.AT2");
   std::size_t deferred = 0, samples = 0, overturned = 0, rocked = 0, plane_deferred = 0;
   for (double scale : {0.05, 0.3, 1.0}) {
@@ -319,7 +319,7 @@ TEST(MonitorBatch, EveryItemEqualsItselfSteppedAloneOnRealRecords) {
 // the samples accumulate there until the item is read (here every 13 samples, and in full every 97).
 // Bit for bit as stepped alone: the model's clock, integrator state, counters and maxima.
 TEST(MonitorBatch, RockingLanesCatchUpExactlyWhenRead) {
-  Catalogue cat = random_catalogue(80, 11);
+  BatchCatalogue cat = random_catalogue(80, 11);
   for (std::size_t i = 0; i < cat.options.size(); ++i)
     if (i % 2 == 0) cat.options[i].fidelity = Fidelity::Adaptive;  // more rocking lanes
   const Component rinaldi = record("northridge_1994/Rinaldi228.AT2");
@@ -339,7 +339,7 @@ TEST(MonitorBatch, RockingLanesCatchUpExactlyWhenRead) {
 // edge lifting (or on its side), or, before it takes over, no running peak of the bidirectional test
 // growing. Bit for bit as stepped alone, the 3-D model's clock and sample count included.
 TEST(MonitorBatch, ItemsWithA3DModelEqualThemselvesSteppedAlone) {
-  const Catalogue cat = solid_catalogue(45, 23);
+  const BatchCatalogue cat = solid_catalogue(45, 23);
   const Component rec = record("kobe_1995/RSN1120_KOBE_TAK090.AT2");
   std::size_t deferred = 0, samples = 0, rocked = 0, solid_rocked = 0, solid_overturned = 0;
   for (double scale : {0.05, 0.4, 1.0}) {
@@ -365,7 +365,7 @@ TEST(MonitorBatch, ItemsWithA3DModelEqualThemselvesSteppedAlone) {
 // The summaries change only for items that move: at rest or overturned an item's summary stays put
 // (what makes a changed-items publication small), while rocking items change every sample.
 TEST(MonitorBatch, SummariesChangeOnlyWhenItemsMove) {
-  const Catalogue cat = random_catalogue(40, 17);
+  const BatchCatalogue cat = random_catalogue(40, 17);
   const Component rinaldi = record("northridge_1994/Rinaldi228.AT2");
   const BatchRun quiet = compare(cat, rinaldi, 0.02, 1.0, 64, 3);
   ASSERT_FALSE(HasFailure());
@@ -377,7 +377,7 @@ TEST(MonitorBatch, SummariesChangeOnlyWhenItemsMove) {
 }
 
 TEST(MonitorBatch, SubsetsAndRangesDoNotMatter) {
-  const Catalogue cat = random_catalogue(23, 11);
+  const BatchCatalogue cat = random_catalogue(23, 11);
   const Component rec = record("kobe_1995/RSN1120_KOBE_TAK090.AT2");
   for (std::size_t range : {1u, 7u, 8u, 9u, 23u}) {
     const BatchRun r = compare(cat, rec, 0.4, 0.8, range, static_cast<unsigned>(range));
@@ -389,7 +389,7 @@ TEST(MonitorBatch, SubsetsAndRangesDoNotMatter) {
 // The step loop works in blocks of 64 items (quiet test, then the others with their objects
 // prefetched ahead): ranges across and inside block boundaries give the same bits.
 TEST(MonitorBatch, BlocksOfTheStepLoopDoNotMatter) {
-  const Catalogue cat = random_catalogue(150, 13);
+  const BatchCatalogue cat = random_catalogue(150, 13);
   const Component rec = record("kobe_1995/RSN1120_KOBE_TAK090.AT2");
   for (std::size_t range : {150u, 65u, 63u}) {
     const BatchRun r = compare(cat, rec, 0.5, 0.9, range, static_cast<unsigned>(range));
@@ -401,7 +401,7 @@ TEST(MonitorBatch, BlocksOfTheStepLoopDoNotMatter) {
 }
 
 TEST(MonitorBatch, InvalidSamplesAreRejectedAsByTheItem) {
-  const Catalogue cat = random_catalogue(3, 5);
+  const BatchCatalogue cat = random_catalogue(3, 5);
   std::vector<std::unique_ptr<ItemMonitor>> items;
   std::vector<ItemMonitor*> ptrs;
   for (std::size_t k = 0; k < 3; ++k) {

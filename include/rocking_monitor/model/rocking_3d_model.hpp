@@ -11,13 +11,20 @@
 // base; EDGE -> VERTEX when one end of the edge would be pulled off the floor (its reaction turns
 // negative); landings (physics/impact_3d.hpp: the plastic impact over every base point on the floor
 // at that instant) when the base comes back flat (EDGE, theta -> 0) or a vertex touches down (VERTEX). The ground frame is non-inertial: gravity plus the ground's
-// acceleration act at the centre of mass. Sliding and flight are not modelled (flagged only).
+// acceleration act at the centre of mass. SLIDE (issue 51): flat on a face, sliding in any horizontal
+// direction and turning about the vertical under one isotropic Coulomb law over the face's contact
+// polygon (physics/base_friction.hpp); slip onset and stick are located exactly in the sample.
+// Rocking on a slipping pivot and friction at landings are not modelled yet (counted: slide_to_rock,
+// slipping_landings).
 //
 // Frames: the item's floor frame at rest (x, y horizontal, z up); the body keeps a footprint
 // (yaw and shift on the floor) that changes only when it turns while pivoting on a vertex.
 
 #include <cstdint>
+#include <limits>
+#include <cmath>
 #include <memory>
+#include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -27,11 +34,12 @@
 #include "rocking_monitor/integrate/solver_settings.hpp"
 #include "rocking_monitor/model/rocking_model.hpp"
 #include "rocking_monitor/physics/base_body.hpp"
+#include "rocking_monitor/physics/base_friction.hpp"
 #include "rocking_monitor/physics/contact_hull.hpp"
 
 namespace rocking_monitor::core {
 
-enum class Mode3D : std::uint8_t { Rest, Edge, Vertex, Overturned };
+enum class Mode3D : std::uint8_t { Rest, Edge, Vertex, Overturned, Slide };
 const char* to_string(Mode3D mode);
 
 /// Ground acceleration over one sample, linear in the local time (first-order hold), m/s^2.
@@ -63,6 +71,17 @@ struct Rocking3DOutcome {
   long rests_off_base = 0;
   /// See-saws on a tilted edge put onto the edge by the Zeno rule (rocking_3d_landing.cpp).
   long edge_captures = 0;
+  // Sliding (issue 51): flat on a face, slipping and turning under Coulomb friction.
+  long slides = 0;                ///< slip onsets (REST -> SLIDE)
+  long sticks = 0;                ///< slips that came to rest under the static law (SLIDE -> REST)
+  /// Sliding ended by an edge lifting (the centre of pressure reached the edge): rocking begins with
+  /// the pivot sticking (the sticking impact of issue 40); rocking on a slipping pivot is not modelled.
+  long slide_to_rock = 0;
+  double first_slip_time = std::numeric_limits<double>::quiet_NaN();  ///< s
+  double max_slip = 0.0;          ///< largest horizontal displacement of the centre of mass while sliding, m
+  double max_slip_speed = 0.0;    ///< largest slip speed of the centre of mass, m/s (at step ends)
+  double max_twist = 0.0;         ///< largest |yaw| of the footprint, rad
+  double slip_time = 0.0;         ///< time spent sliding, s
 };
 
 class Rocking3DModel {
@@ -117,6 +136,8 @@ class Rocking3DModel {
     Dopri5Stepper::Saved dopri5;
     Dopri5Vector<7>::Saved vector;
     double last_probe_t = -1e300;  ///< s: when COMMITTED on a corner was last looked ahead for
+    Eigen::Matrix<double, 6, 1> slide = Eigen::Matrix<double, 6, 1>::Zero();  ///< SLIDE: u (m/s), spin (rad/s), shift (m), yaw (rad)
+    Dopri5Vector<6>::Saved slide_stepper;
   };
   void save(Saved& out) const;
   void restore(const Saved& in);
@@ -130,6 +151,17 @@ class Rocking3DModel {
   Eigen::Vector3d contact_point() const;
   double theta() const { return mode_ == Mode3D::Edge ? theta_ : 0.0; }  ///< EDGE: rad
   double omega() const { return mode_ == Mode3D::Edge ? omega_ : 0.0; }  ///< EDGE: rad/s
+  /// SLIDE: the centre of mass's horizontal velocity relative to the floor (world frame), m/s.
+  Eigen::Vector2d slip_velocity() const {
+    return mode_ == Mode3D::Slide ? Eigen::Vector2d(slide_.head<2>()) : Eigen::Vector2d::Zero();
+  }
+  /// SLIDE: the turning rate about the vertical, rad/s.
+  double spin() const { return mode_ == Mode3D::Slide ? slide_(2) : 0.0; }
+  /// Horizontal displacement of the centre of mass from where it stood at reset() while flat on the
+  /// base (REST, SLIDE; the footprint's shift and yaw applied), m.
+  Eigen::Vector2d slip() const;
+  /// Puts the body flat on its base sliding with `u` (m/s, world) and `spin` (rad/s) (tests).
+  void set_slide_state(const Eigen::Vector2d& u, double spin);
   /// The body's pose: a body point x (floor frame at rest) is now at rotation() * x + translation().
   Eigen::Matrix3d rotation() const;
   Eigen::Vector3d translation() const;
@@ -158,7 +190,8 @@ class Rocking3DModel {
  private:
   using Vec7 = Eigen::Matrix<double, 7, 1>;
   Rocking3DModel(const BaseBody& body, const SolverSettings& settings, bool with_probe);
-  enum class Event { None, Impact, Overturn, Lift, Degenerate };
+  enum class Event { None, Impact, Overturn, Lift, Degenerate, Stick };
+  using Vec6 = Eigen::Matrix<double, 6, 1>;
 
   Eigen::Matrix3d yaw_matrix() const;
   Eigen::Vector3d to_footprint(const Eigen::Vector3d& world) const;  ///< rotate a world vector
@@ -198,11 +231,25 @@ class Rocking3DModel {
   void note_ratio();
   void vertex_rhs(const GroundInput3& in, double t, const Vec7& y, Vec7& dy) const;
   Eigen::Matrix3d vertex_rotation(const Vec7& y) const;
+  // SLIDE (rocking_3d_slide.cpp).
+  double find_slip(const GroundInput3& in, double tau, double tau_end) const;
+  void start_slide(const GroundInput3& in, double tau);
+  Event advance_slide(const GroundInput3& in, double& tau, double tau_end);
+  void slide_rhs(const GroundInput3& in, double t, const Vec6& y, Vec6& dy) const;
+  Eigen::Vector2d slide_friction(const GroundInput3& in, double t, const Vec6& y, double& torque) const;
+  double slide_lift(const GroundInput3& in, double t, const Vec6& y) const;
+  void slide_to_edge(const GroundInput3& in, double tau);
+  void note_slide();
+  double mu_k() const { return std::isnan(body_.parameters().mu_k) ? body_.parameters().mu_s : body_.parameters().mu_k; }
 
   BaseBody body_;
   SolverSettings settings_;
   Dopri5Stepper dopri5_;     // EDGE: the planar stepper
   Dopri5Vector<7> vector_;   // VERTEX: quaternion + angular velocity
+  Dopri5Vector<6> slide_stepper_;  // SLIDE: slip velocity, spin, shift, yaw
+  std::vector<BaseFriction> friction_;  // per hull face, its contact polygon (made once)
+  Vec6 slide_ = Vec6::Zero();      // SLIDE: u (world, m/s), spin (rad/s), shift (m), yaw (rad)
+  Eigen::Vector3d slide_ref_ = Eigen::Vector3d::Zero();  // SLIDE: the generalised velocity at the step start (stick event)
 
   Mode3D mode_ = Mode3D::Rest;
   int contact_ = -1;

@@ -147,6 +147,7 @@ class MonitorBatch {
     // model starts from when it takes over); the last sample's interval, s; samples not yet applied.
     double t_item = 0.0, last_a[3] = {0.0, 0.0, 0.0}, dt = 0.0;
     long deferred = 0;
+    double mu_s = 0.0;           // the body's static friction (+inf: not given): the slip test
     std::vector<SolidEdge> edges;  // sized once (the base's edges), refilled without allocation
   };
   // Whether the sample is quiet for the plane (x1, y1: its horizontal and vertical input). next: the

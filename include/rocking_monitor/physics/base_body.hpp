@@ -29,6 +29,8 @@ struct BaseBodyParameters {
   std::vector<Eigen::Vector2d> base;
   /// Static friction coefficient; +inf = not given (sliding not checked).
   double mu_s = std::numeric_limits<double>::infinity();
+  /// Kinetic friction coefficient while sliding (issue 51); NaN = mu_s.
+  double mu_k = std::numeric_limits<double>::quiet_NaN();
   /// Multiplies the angular velocity after each impact of the 3-D law (angular momentum about the
   /// new contact conserved), in [0, 1]: 1 = the law itself (the 3-D form of eq. 34).
   double restitution_factor = 1.0;

@@ -1,0 +1,271 @@
+// The 3-D model sliding flat on a face (issue 51): slip onset from rest, sliding and turning under one
+// isotropic Coulomb law over the face's contact polygon, stick, and the lift that ends a slide.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Dense>
+
+#include "rocking_3d_internal.hpp"
+#include "rocking_monitor/integrate/event_location.hpp"
+#include "rocking_monitor/model/rocking_3d_model.hpp"
+#include "rocking_monitor/physics/criteria.hpp"
+
+namespace rocking_monitor::core {
+
+namespace {
+
+Eigen::Matrix2d rot2(double yaw) {
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  Eigen::Matrix2d r;
+  r << c, -s, s, c;
+  return r;
+}
+
+Eigen::Vector2d perp2(const Eigen::Vector2d& a) { return Eigen::Vector2d(-a.y(), a.x()); }  // z x a
+
+// How far the demand of the static law lies outside the friction cone: |a_h| - mu (g + a_z), m/s^2
+// (> 0: the floor cannot hold the body). Convex in the input, so along a sample's linear input it
+// turns positive at most once.
+double cone_excess(const Eigen::Vector3d& a, double mu) {
+  return std::hypot(a.x(), a.y()) - mu * (kGravity + a.z());
+}
+
+constexpr int kMaxSlideRestarts = 8;  // per sample: slips that reverse through zero speed
+
+}  // namespace
+
+Eigen::Vector2d Rocking3DModel::slip() const {
+  const Eigen::Vector3d c = body_.centre_of_mass();
+  return (rotation() * c + translation() - c).head<2>();
+}
+
+void Rocking3DModel::set_slide_state(const Eigen::Vector2d& u, double spin) {
+  if (!u.allFinite() || !std::isfinite(spin) || face_ != 0 || (mode_ != Mode3D::Rest && mode_ != Mode3D::Slide))
+    throw std::invalid_argument("set_slide_state: flat on the base, finite velocity and spin");
+  mode_ = Mode3D::Slide;
+  contact_ = -1;
+  slide_ << u.x(), u.y(), spin, shift_.x(), shift_.y(), yaw_;
+  slide_stepper_.invalidate();
+}
+
+// REST -> SLIDE: the first instant the static law's demand leaves the cone |a_h| <= mu_s (g + a_z).
+double Rocking3DModel::find_slip(const GroundInput3& in, double tau, double tau_end) const {
+  const double mu = body_.parameters().mu_s;
+  const double inf = std::numeric_limits<double>::infinity();
+  if (!std::isfinite(mu)) return inf;
+  const double f0 = cone_excess(in.at(tau), mu);
+  if (f0 > 0.0) return tau;
+  const double f1 = cone_excess(in.at(tau_end), mu);
+  if (!(f1 > 0.0)) return inf;  // convex, <= 0 at both ends: inside all through the sample
+  auto f = [&](double t) { return cone_excess(in.at(t), mu); };
+  return bracketed_root(f, tau, tau_end, f0, f1, 1e-15 * std::max(tau_end, 1e-9), 200);
+}
+
+void Rocking3DModel::start_slide(const GroundInput3& in, double tau) {
+  (void)in;
+  mode_ = Mode3D::Slide;
+  contact_ = -1;
+  slide_ << 0.0, 0.0, 0.0, shift_.x(), shift_.y(), yaw_;
+  slide_stepper_.invalidate();
+  ++outcome3_.slides;
+  if (std::isnan(outcome3_.first_slip_time)) outcome3_.first_slip_time = t_ + tau;
+}
+
+// Friction per unit mass on the body (world frame, m/s^2) and its torque about the vertical through
+// the centre of mass (per unit mass, m^2/s^2), for the state y at local time t.
+Eigen::Vector2d Rocking3DModel::slide_friction(const GroundInput3& in, double t, const Vec6& y,
+                                               double& torque) const {
+  torque = 0.0;
+  const Eigen::Vector3d a = in.at(t);
+  const double normal = std::max(kGravity + a.z(), 0.0);  // N / m; 0: the floor drops away (flight)
+  if (normal == 0.0) return Eigen::Vector2d::Zero();
+  const double mu = mu_k(), cap = mu * normal;
+  Eigen::Vector2d u = y.head<2>();
+  double spin = y(2);
+  // Past the stop inside a step (the slip turned against its direction at the step's start, or is
+  // still zero), the law keeps that direction: the right-hand side stays smooth up to the stop, so
+  // the stepper's dense output locates it exactly (polynomial motion under linear input is exact).
+  const double rho = std::sqrt(fb().central_inertia_per_mass()(2, 2));
+  if (slide_ref_.squaredNorm() > 0.0 && slide_ref_.dot(Eigen::Vector3d(u.x(), u.y(), rho * spin)) <= 0.0) {
+    u = slide_ref_.head<2>();
+    spin = slide_ref_.z() / rho;
+  }
+  if (spin == 0.0) {
+    const double speed = u.norm();
+    if (speed > 0.0) return -cap * u / speed;  // at the centre of pressure: no torque (see the docs)
+    // At zero slip the body starts to slip where the ground pulls away from it; friction follows
+    // the ground, at most mu_k N (it is more only when mu_k > mu_s and the body then moves with it).
+    const Eigen::Vector2d ah = a.head<2>();
+    const double n = ah.norm();
+    return n > 0.0 ? Eigen::Vector2d(ah * std::min(1.0, cap / n)) : Eigen::Vector2d::Zero();
+  }
+  // Turning: the centre of pressure d (from the centre of mass, footprint frame) solves the moment
+  // equations about the centre of mass (friction acts at the floor, h below it; the turning body's
+  // gyroscopic moment), which depend on d through the pressure: Newton's method on the 2-D residual,
+  // its Jacobian by differences, to 1e-10 of the base (a fixed-point iteration does not contract for
+  // every body). The first guess is continuous in (u, spin), the pure slide's mu h u / |u| scaled by
+  // how much of the motion is slip: a guess that jumped with the slip's direction would make the law
+  // jump with it wherever the iteration stops short.
+  const Eigen::Matrix2d r = rot2(y(5));
+  const Eigen::Vector2d u_fp = r.transpose() * u;
+  const Eigen::Vector3d& c = fb().centre_of_mass();
+  const Eigen::Vector2d cxy = c.head<2>();
+  const double h = c.z();
+  const Eigen::Matrix3d& j = fb().central_inertia_per_mass();
+  const BaseFriction& fr = friction_[static_cast<std::size_t>(face_)];
+  Eigen::Vector2d f = Eigen::Vector2d::Zero();
+  auto residual = [&](const Eigen::Vector2d& d) {
+    const FrictionLoad l = fr.load(u_fp, spin, cxy, cxy + d);
+    f = cap * l.force;
+    torque = cap * l.torque;
+    const Eigen::Vector3d m = torque / j(2, 2) * j.col(2) + spin * spin * Eigen::Vector3d::UnitZ().cross(j.col(2));
+    return Eigen::Vector2d(Eigen::Vector2d(-(m.y() + h * f.x()), m.x() - h * f.y()) / normal - d);
+  };
+  const double scale = std::sqrt(fr.area()), eps = 1e-7 * scale;
+  Eigen::Vector2d d = mu * h * u_fp / std::hypot(u_fp.norm(), rho * spin);
+  for (int iteration = 0; iteration < 8; ++iteration) {
+    const Eigen::Vector2d r0 = residual(d);
+    if (r0.norm() < 1e-10 * scale) break;
+    Eigen::Matrix2d jac;
+    jac.col(0) = (residual(d + Eigen::Vector2d(eps, 0.0)) - r0) / eps;
+    jac.col(1) = (residual(d + Eigen::Vector2d(0.0, eps)) - r0) / eps;
+    d -= jac.partialPivLu().solve(r0);
+  }
+  residual(d);  // f and torque at the solution
+  return r * f;
+}
+
+void Rocking3DModel::slide_rhs(const GroundInput3& in, double t, const Vec6& y, Vec6& dy) const {
+  double torque;
+  const Eigen::Vector2d f = slide_friction(in, t, y, torque);
+  const Eigen::Vector3d a = in.at(t);
+  const double spin = y(2);
+  dy.head<2>() = f - a.head<2>();  // relative to the floor: the body's acceleration minus the ground's
+  dy(2) = torque / fb().central_inertia_per_mass()(2, 2);
+  // The centre of mass is at R c + shift: shift' = u - spin z x (R c).
+  dy.segment<2>(3) = y.head<2>() - spin * perp2(rot2(y(5)) * fb().centre_of_mass().head<2>());
+  dy(5) = spin;
+}
+
+// > 0 when an edge lifts: the uplift test with the body's own acceleration (the friction) in place
+// of the ground's (the planar eq. 19 about each edge of the face).
+double Rocking3DModel::slide_lift(const GroundInput3& in, double t, const Vec6& y) const {
+  double torque;
+  const Eigen::Vector2d f = slide_friction(in, t, y, torque);
+  const Eigen::Matrix2d r = rot2(y(5));
+  const double az = in.at(t).z();
+  double best = -std::numeric_limits<double>::infinity();
+  for (int k = 0; k < fb().vertex_count(); ++k) {
+    const BaseEdge& e = fb().edge(k);
+    const Eigen::Vector2d n = r * e.normal.head<2>();
+    best = std::max(best, uplift_function(e.pivot, 1, ModelKind::Nonlinear, -f.dot(n), az));
+  }
+  return best;
+}
+
+void Rocking3DModel::note_slide() {
+  yaw_ = slide_(5);
+  shift_ = slide_.segment<2>(3);
+  outcome3_.max_slip = std::max(outcome3_.max_slip, slip().norm());
+  outcome3_.max_slip_speed = std::max(outcome3_.max_slip_speed, slide_.head<2>().norm());
+  outcome3_.max_twist = std::max(outcome3_.max_twist, std::abs(yaw_));
+}
+
+// The slide ends on an edge: the body pivots on it, the pivot sticking (issue 40's plastic impact
+// onto the edge: angular momentum about the edge kept, the rest of the slip stopped).
+void Rocking3DModel::slide_to_edge(const GroundInput3& in, double tau) {
+  int best = 0;
+  double best_u = -std::numeric_limits<double>::infinity();
+  double torque;
+  const Eigen::Vector2d f = slide_friction(in, tau, slide_, torque);
+  const Eigen::Matrix2d r = rot2(slide_(5));
+  for (int k = 0; k < fb().vertex_count(); ++k) {
+    const BaseEdge& e = fb().edge(k);
+    const double u = uplift_function(e.pivot, 1, ModelKind::Nonlinear, -f.dot(r * e.normal.head<2>()), in.at(tau).z());
+    if (u > best_u) { best_u = u; best = k; }
+  }
+  const BaseEdge& e = fb().edge(best);
+  const Eigen::Vector2d u_fp = r.transpose() * slide_.head<2>();
+  const Eigen::Vector3d lever = fb().centre_of_mass() - fb().vertex(e.a).position;
+  const Eigen::Vector3d h = fb().central_inertia_per_mass() * Eigen::Vector3d(0.0, 0.0, slide_(2)) +
+                            lever.cross(Eigen::Vector3d(u_fp.x(), u_fp.y(), 0.0));
+  note_slide();
+  mode_ = Mode3D::Edge;
+  contact_ = best;
+  theta_ = 0.0;
+  omega_ = std::max(0.0, e.axis.dot(h) / e.pivot.inertia);
+  dopri5_.invalidate();
+  ++outcome3_.slide_to_rock;
+  report_.uplift = true;
+  if (std::isnan(outcome_.uplift_time)) outcome_.uplift_time = t_ + tau;
+}
+
+Rocking3DModel::Event Rocking3DModel::advance_slide(const GroundInput3& in, double& tau, double tau_end) {
+  auto f = [&](double t, const Vec6& y, Vec6& dy) { slide_rhs(in, t, y, dy); };
+  const double size = std::max(fb().edge(0).length, fb().centre_of_mass().z());
+  const double rho = std::sqrt(fb().central_inertia_per_mass()(2, 2));
+  Vec6 atol;
+  const double v_scale = kGravity / body_.max_p();
+  atol << v_scale, v_scale, v_scale / rho, size, size, 1.0;
+  atol *= settings_.tol;
+  int restarts = 0;
+  while (tau < tau_end) {
+    if (slide_lift(in, tau, slide_) > 0.0) return Event::Lift;
+    // The stick event: the generalised slip velocity (u, rho spin) turns against its direction at
+    // the step's start (from zero: against the direction it starts to move in).
+    slide_ref_ = Eigen::Vector3d(slide_(0), slide_(1), rho * slide_(2));
+    if (slide_ref_.squaredNorm() == 0.0) {
+      // From zero slip the body starts to move against the ground's acceleration (at the onset its
+      // relative acceleration is still zero when mu_k = mu_s: the direction is the ground's).
+      const Eigen::Vector3d a = in.at(tau);
+      slide_ref_ = Eigen::Vector3d(-a.x(), -a.y(), 0.0);
+      slide_stepper_.invalidate();
+    }
+    const Eigen::Vector3d ref = slide_ref_;
+    const double t_start = tau;
+    report_.integrator_steps += slide_stepper_.step(f, tau, slide_, tau_end, settings_.tol, atol);
+    const double t0 = slide_stepper_.t0(), t1 = slide_stepper_.t1();
+    auto along = [&](const Vec6& y) { return ref.dot(Eigen::Vector3d(y(0), y(1), rho * y(2))); };
+    constexpr int kProbes = 4;
+    double t_prev = t0, s_prev = 1.0, l_prev = slide_lift(in, t0, slide_);
+    for (int k = 1; k <= kProbes; ++k) {
+      const double tk = k == kProbes ? t1 : t0 + (t1 - t0) * k / kProbes;
+      const Vec6 yk = k == kProbes ? Vec6(slide_stepper_.y1()) : Vec6(slide_stepper_.eval(tk));
+      const double s = along(yk), l = slide_lift(in, tk, yk);
+      const bool stops = s <= 0.0 && restarts < kMaxSlideRestarts, lifts = l > 0.0 && !(l_prev > 0.0);
+      if (stops || lifts) {
+        const double ts = stops ? bracketed_root([&](double t) { return along(Vec6(slide_stepper_.eval(t))); },
+                                                 t_prev, tk, s_prev, s, 1e-13 * std::max(sample_dt_, 1e-6))
+                                : tk;
+        const double tl = lifts ? bracketed_root([&](double t) { return slide_lift(in, t, Vec6(slide_stepper_.eval(t))); },
+                                                 t_prev, tk, l_prev, l, 1e-13 * std::max(sample_dt_, 1e-6))
+                                : tk;
+        const bool stick_first = stops && (!lifts || ts <= tl);
+        tau = stick_first ? ts : tl;
+        slide_ = slide_stepper_.eval(tau);
+        slide_stepper_.invalidate();
+        outcome3_.slip_time += tau - t_start;
+        if (!stick_first) return Event::Lift;
+        slide_(0) = slide_(1) = slide_(2) = 0.0;
+        note_slide();
+        // Zero slip: the static law decides; where it cannot hold the body slips on (reversing).
+        if (!(cone_excess(in.at(tau), body_.parameters().mu_s) > 0.0)) return Event::Stick;
+        ++restarts;
+        break;
+      }
+      t_prev = tk;
+      s_prev = s;
+      l_prev = l;
+      if (k == kProbes) {
+        slide_ = slide_stepper_.y1();
+        outcome3_.slip_time += t1 - t_start;
+        tau = t1;
+        note_slide();
+      }
+    }
+  }
+  return Event::None;
+}
+
+}  // namespace rocking_monitor::core
