@@ -113,9 +113,13 @@ void BM_Item(benchmark::State& state, const Scenario* sc, rb::MethodSetting ms) 
 // ------------------------------------------------------------------ one item in 3-D
 // The same scenario with the 3-D model: the item as a box of depth = width on its four corners,
 // the horizontal input along x (the planar case: every sample comparable with BM_Item) or along
-// the base's diagonal (both components at 1/sqrt 2: the corner wobble).
-void BM_Item3D(benchmark::State& state, const Scenario* sc, rb::MethodSetting ms, bool diagonal) {
-  const BaseBody body(box_base_body(sc->body, sc->body.width, 0.5, std::nan("")));
+// the base's diagonal (both components at 1/sqrt 2: the corner wobble). mu_s > 0: the box's friction
+// (issue 51), low enough that it slides before it rocks; a sliding sample counts as a moving one
+// (ns_per_rocking: the cost of a sample in motion, sliding or rocking).
+void BM_Item3D(benchmark::State& state, const Scenario* sc, rb::MethodSetting ms, bool diagonal, double mu_s) {
+  BaseBodyParameters params = box_base_body(sc->body, sc->body.width, 0.5, std::nan(""));
+  if (mu_s > 0.0) params.mu_s = mu_s;
+  const BaseBody body(params);
   Rocking3DModel m(body, ms.settings);
   const std::vector<double>& a = sc->motion.horizontal;
   const std::size_t n = a.size();
@@ -129,9 +133,11 @@ void BM_Item3D(benchmark::State& state, const Scenario* sc, rb::MethodSetting ms
     const long allocs0 = rocking_monitor::testing::allocation_count();
     const double start = rb::thread_cpu_seconds();
     for (std::size_t i = 1; i < n; ++i) {
-      const bool before = m.mode() == Mode3D::Edge || m.mode() == Mode3D::Vertex;
+      auto moving = [&] { return m.mode() == Mode3D::Edge || m.mode() == Mode3D::Vertex || m.mode() == Mode3D::Slide; };
+      const bool before = moving();
+      const long slides = m.outcome_3d().slides;
       const StepReport& r = m.step(Eigen::Vector3d(cx * a[i], cy * a[i], sc->motion.ay(i)), dt);
-      rocking += before || r.uplift || m.mode() == Mode3D::Edge || m.mode() == Mode3D::Vertex;
+      rocking += before || r.uplift || moving() || m.outcome_3d().slides != slides;
     }
     const double stop = rb::thread_cpu_seconds();
     t.allocations += static_cast<double>(rocking_monitor::testing::allocation_count() - allocs0);
@@ -287,7 +293,13 @@ void register_item(const Scenario* sc) {
   for (bool diagonal : {false, true}) {
     const std::string name = "item3d/" + sc->name + (diagonal ? "/diagonal" : "/along_x") + "/dopri5" +
                              rb::setting_suffix(ms);
-    benchmark::RegisterBenchmark(name.c_str(), BM_Item3D, sc, ms, diagonal)
+    benchmark::RegisterBenchmark(name.c_str(), BM_Item3D, sc, ms, diagonal, 0.0)
+        ->Unit(benchmark::kMicrosecond)
+        ->MinTime(0.2);
+    // The same box sliding (mu_s well below its b / h): the cost of a sliding sample beside a rocking one.
+    const double mu = 0.25 * sc->body.width / sc->body.cg_height;
+    benchmark::RegisterBenchmark((name + "/slide_mu" + std::to_string(mu).substr(0, 5)).c_str(), BM_Item3D, sc, ms,
+                                 diagonal, mu)
         ->Unit(benchmark::kMicrosecond)
         ->MinTime(0.2);
   }

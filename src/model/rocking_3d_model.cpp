@@ -53,6 +53,9 @@ Rocking3DModel::Rocking3DModel(const BaseBody& body, const SolverSettings& setti
     std::vector<Eigen::Vector2d> polygon;
     for (int k = 0; k < f.body->vertex_count(); ++k) polygon.push_back(f.body->vertex(k).position.head<2>());
     friction_.emplace_back(polygon);
+    double tan_min = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < f.body->vertex_count(); ++k) tan_min = std::min(tan_min, f.body->edge(k).pivot.tan_alpha);
+    slide_first_.push_back(tan_min);
   }
   if (with_probe) probe_.reset(new Rocking3DModel(body, settings, false));
   reset(0.0);

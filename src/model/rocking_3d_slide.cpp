@@ -86,7 +86,7 @@ Eigen::Vector2d Rocking3DModel::slide_friction(const GroundInput3& in, double t,
   // Past the stop inside a step (the slip turned against its direction at the step's start, or is
   // still zero), the law keeps that direction: the right-hand side stays smooth up to the stop, so
   // the stepper's dense output locates it exactly (polynomial motion under linear input is exact).
-  const double rho = std::sqrt(fb().central_inertia_per_mass()(2, 2));
+  const double rho = spin != 0.0 || slide_ref_.z() != 0.0 ? std::sqrt(fb().central_inertia_per_mass()(2, 2)) : 1.0;
   if (slide_ref_.squaredNorm() > 0.0 && slide_ref_.dot(Eigen::Vector3d(u.x(), u.y(), rho * spin)) <= 0.0) {
     u = slide_ref_.head<2>();
     spin = slide_ref_.z() / rho;
@@ -144,13 +144,20 @@ void Rocking3DModel::slide_rhs(const GroundInput3& in, double t, const Vec6& y, 
   dy.head<2>() = f - a.head<2>();  // relative to the floor: the body's acceleration minus the ground's
   dy(2) = torque / fb().central_inertia_per_mass()(2, 2);
   // The centre of mass is at R c + shift: shift' = u - spin z x (R c).
-  dy.segment<2>(3) = y.head<2>() - spin * perp2(rot2(y(5)) * fb().centre_of_mass().head<2>());
+  if (spin == 0.0) dy.segment<2>(3) = y.head<2>();
+  else dy.segment<2>(3) = y.head<2>() - spin * perp2(rot2(y(5)) * fb().centre_of_mass().head<2>());
   dy(5) = spin;
 }
 
 // > 0 when an edge lifts: the uplift test with the body's own acceleration (the friction) in place
 // of the ground's (the planar eq. 19 about each edge of the face).
 double Rocking3DModel::slide_lift(const GroundInput3& in, double t, const Vec6& y) const {
+  // A pure slide (no spin, slip not held past a stop) pulls with mu_k N against the slip: no edge
+  // lifts while mu_k stays below every edge's tan(alpha), the planar slide-first rule (saves the
+  // edge loop at every probe).
+  if (y(2) == 0.0 && y.head<2>().squaredNorm() > 0.0 && mu_k() < slide_first_[static_cast<std::size_t>(face_)] * (1.0 - 1e-9) &&
+      kGravity + in.at(t).z() > 0.0)
+    return -1.0;
   double torque;
   const Eigen::Vector2d f = slide_friction(in, t, y, torque);
   const Eigen::Matrix2d r = rot2(y(5));

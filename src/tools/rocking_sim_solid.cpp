@@ -60,7 +60,7 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
     history.open(history_path);
     if (!history) throw std::runtime_error(history_path + ": cannot open for writing");
     history << "time_s,ax_mps2,ay_mps2,az_mps2,model,mode,contact,tilt_rad,rotation_ratio,"
-               "qw,qx,qy,qz,wx_radps,wy_radps,wz_radps\n";
+               "qw,qx,qy,qz,wx_radps,wy_radps,wz_radps,slip_x_m,slip_y_m\n";
     row.emplace(history);
   }
   auto write_row = [&](double t, std::size_t i) {
@@ -72,6 +72,8 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
     row->value(std::to_string(model.contact())).number("%.12g", model.tilt()).number("%.9g", model.rotation_ratio());
     row->number("%.12g", q.w()).number("%.12g", q.x()).number("%.12g", q.y()).number("%.12g", q.z());
     row->number("%.12g", w.x()).number("%.12g", w.y()).number("%.12g", w.z());
+    const Eigen::Vector2d slip = model.slip();  // the centre of mass's horizontal displacement (issue 51)
+    row->number("%.12g", slip.x()).number("%.12g", slip.y());
     row->end_row();
   };
 

@@ -432,13 +432,13 @@ TEST(RockingSim3D, ABoxUnderOneHorizontalIsItsXPlane) {
     const auto rows = read_lines(hist);
     ASSERT_EQ(rows.size(), 1u + s["samples"].get<std::size_t>());
     EXPECT_EQ(rows[0], "time_s,ax_mps2,ay_mps2,az_mps2,model,mode,contact,tilt_rad,rotation_ratio,"
-                       "qw,qx,qy,qz,wx_radps,wy_radps,wz_radps");
+                       "qw,qx,qy,qz,wx_radps,wy_radps,wz_radps,slip_x_m,slip_y_m");
     double peak = 0.0;
     for (std::size_t k = 1; k < rows.size(); ++k) {
       std::vector<std::string> f;
       std::stringstream ss(rows[k]);
       for (std::string cell; std::getline(ss, cell, ',');) f.push_back(cell);
-      ASSERT_EQ(f.size(), 16u) << rows[k];
+      ASSERT_EQ(f.size(), 18u) << rows[k];
       if (k == 1) EXPECT_EQ(f[5], "REST");
       const double qw = std::stod(f[9]), qx = std::stod(f[10]), qy = std::stod(f[11]), qz = std::stod(f[12]);
       EXPECT_NEAR(qw * qw + qx * qx + qy * qy + qz * qz, 1.0, 1e-9) << rows[k];

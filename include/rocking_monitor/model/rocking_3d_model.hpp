@@ -248,6 +248,7 @@ class Rocking3DModel {
   Dopri5Vector<7> vector_;   // VERTEX: quaternion + angular velocity
   Dopri5Vector<6> slide_stepper_;  // SLIDE: slip velocity, spin, shift, yaw
   std::vector<BaseFriction> friction_;  // per hull face, its contact polygon (made once)
+  std::vector<double> slide_first_;     // per hull face, the smallest tan(alpha) of its edges: no lift below it
   Vec6 slide_ = Vec6::Zero();      // SLIDE: u (world, m/s), spin (rad/s), shift (m), yaw (rad)
   Eigen::Vector3d slide_ref_ = Eigen::Vector3d::Zero();  // SLIDE: the generalised velocity at the step start (stick event)
 
