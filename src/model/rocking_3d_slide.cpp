@@ -10,6 +10,7 @@
 #include "rocking_monitor/integrate/event_location.hpp"
 #include "rocking_monitor/model/rocking_3d_model.hpp"
 #include "rocking_monitor/physics/criteria.hpp"
+#include "rocking_monitor/physics/support_polygon.hpp"
 
 namespace rocking_monitor::core {
 
@@ -38,6 +39,18 @@ constexpr int kMaxSlideRestarts = 8;  // per sample: slips that reverse through 
 Eigen::Vector2d Rocking3DModel::slip() const {
   const Eigen::Vector3d c = body_.centre_of_mass();
   return (rotation() * c + translation() - c).head<2>();
+}
+
+double Rocking3DModel::support_margin_of(const Vec6& y) const {
+  const std::vector<Eigen::Vector2d>& support = body_.parameters().support;
+  if (support.empty()) return std::numeric_limits<double>::infinity();
+  // (a support excludes a hull: the body slides on its base, face 0, whose frame is the item's)
+  return inside_margin(support, rot2(y(5)) * fb().centre_of_mass().head<2>() + y.segment<2>(3));
+}
+
+double Rocking3DModel::support_margin() const {
+  if (body_.parameters().support.empty()) return std::numeric_limits<double>::infinity();
+  return inside_margin(body_.parameters().support, (rotation() * body_.centre_of_mass() + translation()).head<2>());
 }
 
 void Rocking3DModel::set_slide_state(const Eigen::Vector2d& u, double spin) {
@@ -236,10 +249,32 @@ Rocking3DModel::Event Rocking3DModel::advance_slide(const GroundInput3& in, doub
     auto along = [&](const Vec6& y) { return ref.dot(Eigen::Vector3d(y(0), y(1), rho * y(2))); };
     constexpr int kProbes = 4;
     double t_prev = t0, s_prev = 1.0, l_prev = slide_lift(in, t0, slide_);
+    // The support's edge (issue 51): the centre of mass passing it ends the slide off the support.
+    const bool supported = !body_.parameters().support.empty();
+    double m_prev = supported ? support_margin_of(slide_) : 1.0;
     for (int k = 1; k <= kProbes; ++k) {
       const double tk = k == kProbes ? t1 : t0 + (t1 - t0) * k / kProbes;
       const Vec6 yk = k == kProbes ? Vec6(slide_stepper_.y1()) : Vec6(slide_stepper_.eval(tk));
-      const double s = along(yk), l = slide_lift(in, tk, yk);
+      const double s = along(yk), l = slide_lift(in, tk, yk), mk = supported ? support_margin_of(yk) : 1.0;
+      if (mk <= 0.0 && m_prev > 0.0) {
+        // Located before the stop and lift tests of this interval: falling off comes first when it is
+        // in it (a stop or lift after it would be located on a body no longer on the support).
+        const double tf = bracketed_root([&](double t) { return support_margin_of(Vec6(slide_stepper_.eval(t))); },
+                                         t_prev, tk, m_prev, mk, 1e-13 * std::max(sample_dt_, 1e-6));
+        const double ts = s <= 0.0 ? bracketed_root([&](double t) { return along(Vec6(slide_stepper_.eval(t))); },
+                                                    t_prev, tk, s_prev, s, 1e-13 * std::max(sample_dt_, 1e-6))
+                                   : tk;
+        if (!(ts < tf)) {
+          tau = tf;
+          slide_ = slide_stepper_.eval(tau);
+          slide_stepper_.invalidate();
+          outcome3_.slip_time += tau - t_start;
+          note_slide();
+          outcome3_.fell_off_support = true;
+          outcome3_.fell_off_time = t_ + tau;
+          return Event::Overturn;
+        }
+      }
       const bool stops = s <= 0.0 && restarts < kMaxSlideRestarts, lifts = l > 0.0 && !(l_prev > 0.0);
       if (stops || lifts) {
         const double ts = stops ? bracketed_root([&](double t) { return along(Vec6(slide_stepper_.eval(t))); },
@@ -264,6 +299,7 @@ Rocking3DModel::Event Rocking3DModel::advance_slide(const GroundInput3& in, doub
       t_prev = tk;
       s_prev = s;
       l_prev = l;
+      m_prev = mk;
       if (k == kProbes) {
         slide_ = slide_stepper_.y1();
         outcome3_.slip_time += t1 - t_start;

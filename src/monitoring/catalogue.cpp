@@ -141,6 +141,7 @@ void parse_solid(const Entry& e, ItemSpec& s) {
   if (!any) {
     if (e.has("restitution_factor")) e.fail("restitution_factor", "needs the 3-D description (base_polygon, ...)");
     if (e.has("hull")) e.fail("hull", "needs the 3-D description (base_polygon, ...)");
+    if (e.has("support")) e.fail("support", "needs the 3-D description (base_polygon, ...)");
     return;
   }
   for (const char* k : keys)
@@ -169,6 +170,15 @@ void parse_solid(const Entry& e, ItemSpec& s) {
     for (std::size_t k = 0; k < hull.size(); ++k) {
       const auto v = numbers(e, hull[k], "hull", 3, "point " + std::to_string(k + 1) + " [x, y, z] (m)");
       b.hull.emplace_back(v[0], v[1], v[2]);
+    }
+  }
+  if (e.has("support")) {
+    // What it stands on (issue 51): a plinth's, shelf's or pedestal's top, in the item frame.
+    const json& support = e.member("support");
+    if (!support.is_array()) e.fail("support", "must be a list of [x, y] vertices (m): the top of the plinth, shelf or pedestal");
+    for (std::size_t k = 0; k < support.size(); ++k) {
+      const auto v = numbers(e, support[k], "support", 2, "vertex " + std::to_string(k + 1) + " [x, y] (m)");
+      b.support.emplace_back(v[0], v[1]);
     }
   }
   b.mu_s = s.body.mu_s;
@@ -235,7 +245,7 @@ CatalogueItem parse_item(const json& v, int i, const std::set<std::string>* sens
   e.only({"id", "description", "sensor", "frame", "shape", "width", "depth", "cg_height", "eccentricity",
           "eccentricity_y", "radius_of_gyration", "radius_of_gyration_y", "mu_s", "mu_k", "restitution",
           "restitution_shift", "overturn_angle", "pose", "ensemble_size", "mass", "centre_of_mass",
-          "central_inertia", "base_polygon", "restitution_factor", "hull", "input_gain"});
+          "central_inertia", "base_polygon", "restitution_factor", "hull", "support", "input_gain"});
   CatalogueItem item;
   ItemSpec& s = item.spec;
   s.id = e.text("id", true);

@@ -408,6 +408,8 @@ void visit(V& v, Rocking3DModel::Saved& s) {
     v("max_slip_speed", s.outcome_3d.max_slip_speed);
     v("max_twist", s.outcome_3d.max_twist);
     v("slip_time", s.outcome_3d.slip_time);
+    v("fell_off_support", s.outcome_3d.fell_off_support);
+    v("fell_off_time", s.outcome_3d.fell_off_time);
   });
   v("last_probe_t", s.last_probe_t);
   v.group("dopri5", [&] { visit(v, s.dopri5); });

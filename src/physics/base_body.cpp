@@ -11,6 +11,7 @@
 #include "rocking_monitor/constants.hpp"
 #include "rocking_monitor/physics/contact_hull.hpp"
 #include "rocking_monitor/physics/convex_polyhedron.hpp"
+#include "rocking_monitor/physics/support_polygon.hpp"
 
 namespace rocking_monitor::core {
 namespace {
@@ -20,6 +21,19 @@ std::string fail(const std::string& field, const std::string& problem) { return 
 double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 std::string validate_body(const BaseBodyParameters& p, bool must_stand);
+
+// The support (issue 51): a valid polygon under the centre of mass, overlapping the base.
+std::string support_problem(const BaseBodyParameters& p) {
+  if (p.support.empty()) return {};
+  if (p.support.size() > static_cast<std::size_t>(kMaxBaseVertices))
+    return "at most " + std::to_string(kMaxBaseVertices) + " vertices, found " + std::to_string(p.support.size());
+  if (const std::string problem = polygon_problem(p.support); !problem.empty()) return problem;
+  if (!p.hull.empty()) return "a support under a body with a hull is not modelled yet: give one or the other";
+  if (!(inside_margin(p.support, p.centre_of_mass.head<2>()) > 0.0))
+    return "the centre of mass's plan position lies off the support: the item would fall at once";
+  if (clip_convex(p.base, p.support).empty()) return "does not overlap the base polygon";
+  return {};
+}
 
 }  // namespace
 
@@ -36,25 +50,7 @@ std::string validate_body(const BaseBodyParameters& p, bool must_stand) {
   if (n > static_cast<std::size_t>(kMaxBaseVertices))
     return fail("base_polygon", "at most " + std::to_string(kMaxBaseVertices) + " vertices, found " +
                                     std::to_string(n) + " (simplify the hull)");
-  double extent = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!p.base[i].allFinite()) return fail("base_polygon", "vertex " + std::to_string(i + 1) + " is not finite");
-    extent = std::max(extent, (p.base[i] - p.base[0]).norm());
-  }
-  if (!(extent > 0.0)) return fail("base_polygon", "all vertices coincide");
-  for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector2d& a = p.base[i];
-    const Eigen::Vector2d& b = p.base[(i + 1) % n];
-    const Eigen::Vector2d& c = p.base[(i + 2) % n];
-    if ((b - a).norm() <= 1e-9 * extent)
-      return fail("base_polygon", "vertices " + std::to_string(i + 1) + " and " +
-                                      std::to_string((i + 1) % n + 1) + " coincide");
-    // Strictly convex and counter-clockwise: every turn to the left (a collinear vertex would make
-    // an edge of zero length in the hull's sense: rocking about it is rocking about its neighbours).
-    if (cross2(b - a, c - b) <= 1e-12 * extent * extent)
-      return fail("base_polygon", "not strictly convex and counter-clockwise at vertex " +
-                                      std::to_string((i + 1) % n + 1) + " (seen from above)");
-  }
+  if (const std::string problem = polygon_problem(p.base); !problem.empty()) return fail("base_polygon", problem);
   const Eigen::Vector2d c(p.centre_of_mass.x(), p.centre_of_mass.y());
   for (std::size_t i = 0; i < n && must_stand; ++i) {
     const Eigen::Vector2d& a = p.base[i];
@@ -63,6 +59,7 @@ std::string validate_body(const BaseBodyParameters& p, bool must_stand) {
       return fail("centre_of_mass", "its plan position lies outside the base polygon (beyond edge " +
                                         std::to_string(i + 1) + "): the item cannot stand");
   }
+  if (const std::string e = support_problem(p); !e.empty()) return fail("support", e);
   const Eigen::Matrix3d& I = p.central_inertia;
   if (!I.allFinite()) return fail("central_inertia", "must be finite (kg m^2)");
   const double scale = I.diagonal().cwiseAbs().maxCoeff();
@@ -154,6 +151,12 @@ BaseBody::BaseBody(const BaseBodyParameters& parameters) : BaseBody(parameters, 
 
 BaseBody::BaseBody(const BaseBodyParameters& parameters, bool must_stand) : params_(parameters) {
   if (const std::string e = validate_body(params_, must_stand); !e.empty()) throw BodyError(e);
+  if (!params_.support.empty()) {
+    // The contact is the base where it lies on the support (a pedestal smaller than the base bounds it).
+    params_.base = clip_convex(params_.base, params_.support);
+    if (const std::string e = validate_body(params_, must_stand); !e.empty())
+      throw BodyError("support: the base's contact with it: " + e);
+  }
   central_ = params_.central_inertia / params_.mass;
   const int n = static_cast<int>(params_.base.size());
   const Eigen::Vector3d& c = params_.centre_of_mass;

@@ -130,6 +130,9 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
              {"max_slip_speed_m_s", r3.max_slip_speed},
              {"max_twist_rad", r3.max_twist},
              {"slip_time_s", r3.slip_time},
+             {"fell_off_support", r3.fell_off_support},
+             {"fell_off_time_s", nullable(r3.fell_off_time)},
+             {"support_margin_m", nullable(model.support_margin())},
              {"samples", mx.size()},
              {"cpu_time_s", cpu},
              {"body", body_json(model.body())}});
@@ -154,6 +157,11 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
                      r3.slides, std::isnan(r3.first_slip_time) ? "-" : format("%.4f s", r3.first_slip_time).c_str(),
                      r3.sticks, r3.max_slip, model.slip().norm(), r3.max_slip_speed, r3.max_twist, r3.slip_time,
                      r3.slide_to_rock));
+  if (!model.body().parameters().support.empty())
+    L.push_back(r3.fell_off_support
+                    ? format("support     FELL OFF its support at %.4f s (the centre of mass passed its edge)", r3.fell_off_time)
+                    : format("support     stayed on its support: the centre of mass %.4f m inside its edge at the end",
+                             model.support_margin()));
   if (model.body().contact_hull().from_hull)
     L.push_back(format("hull        %zu faces, %zu vertices; %ld landings onto another face, %ld rests off the base; "
                        "ends on %s", model.body().contact_hull().faces.size(), model.body().contact_hull().vertices.size(),

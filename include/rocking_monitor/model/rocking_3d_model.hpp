@@ -82,6 +82,10 @@ struct Rocking3DOutcome {
   double max_slip_speed = 0.0;    ///< largest slip speed of the centre of mass, m/s (at step ends)
   double max_twist = 0.0;         ///< largest |yaw| of the footprint, rad
   double slip_time = 0.0;         ///< time spent sliding, s
+  /// The centre of mass passed the support's edge while sliding: the item fell off its plinth, shelf or
+  /// pedestal (it counts OVERTURNED, at that instant).
+  bool fell_off_support = false;
+  double fell_off_time = std::numeric_limits<double>::quiet_NaN();  ///< s
 };
 
 class Rocking3DModel {
@@ -160,6 +164,9 @@ class Rocking3DModel {
   /// Horizontal displacement of the centre of mass from where it stood at reset() while flat on the
   /// base (REST, SLIDE; the footprint's shift and yaw applied), m.
   Eigen::Vector2d slip() const;
+  /// How far the centre of mass's plan position lies inside the support's edge, m (the live margin to
+  /// falling off; < 0 beyond it); +inf without a support.
+  double support_margin() const;
   /// Puts the body flat on its base sliding with `u` (m/s, world) and `spin` (rad/s) (tests).
   void set_slide_state(const Eigen::Vector2d& u, double spin);
   /// The body's pose: a body point x (floor frame at rest) is now at rotation() * x + translation().
@@ -238,6 +245,7 @@ class Rocking3DModel {
   void slide_rhs(const GroundInput3& in, double t, const Vec6& y, Vec6& dy) const;
   Eigen::Vector2d slide_friction(const GroundInput3& in, double t, const Vec6& y, double& torque) const;
   double slide_lift(const GroundInput3& in, double t, const Vec6& y) const;
+  double support_margin_of(const Vec6& y) const;
   void slide_to_edge(const GroundInput3& in, double tau);
   void note_slide();
   double mu_k() const { return std::isnan(body_.parameters().mu_k) ? body_.parameters().mu_s : body_.parameters().mu_k; }

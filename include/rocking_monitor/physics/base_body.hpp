@@ -41,6 +41,11 @@ struct BaseBodyParameters {
   /// alone (the body rocks on its base's edges and corners only). At most kMaxBaseVertices hull
   /// vertices; no point below the floor or on it outside the base.
   std::vector<Eigen::Vector3d> hull;
+  /// What the item stands on when not the floor (issue 51): the top of its plinth, shelf or pedestal, m,
+  /// item frame, convex, counter-clockwise; empty: the floor, unbounded. The contact polygon is the base
+  /// where it lies on the support (BaseBody clips `base` to it), and the item falls off when its centre
+  /// of mass passes the support's edge. Not with a hull (yet).
+  std::vector<Eigen::Vector2d> support;
 };
 
 /// Empty when valid, else "<field>: <problem>" naming the field as the catalogue does.

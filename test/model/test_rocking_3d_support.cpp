@@ -1,0 +1,221 @@
+// Supports that end (issue 51): a box on a plinth falls off exactly when its slip carries its centre
+// of mass past the plinth's edge (an exact 1-D slider locates the instant); a pedestal smaller than
+// the base bounds the contact, and the body rocks about the pedestal's edge as the planar body of the
+// pedestal's width; bad supports are refused naming the item and the field.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "rocking_monitor/model/rocking_3d_model.hpp"
+#include "rocking_monitor/model/rocking_model.hpp"
+#include "rocking_monitor/monitoring/catalogue.hpp"
+#include "rocking_monitor/physics/support_polygon.hpp"
+
+namespace rocking_monitor::core {
+namespace {
+
+SolverSettings support_settings() {
+  SolverSettings s;
+  s.tol = 1e-10;
+  return s;
+}
+
+// Exact sliding of a block under a(t) linear in each sample (one component, mu_k = mu_s = mu): the
+// slip velocity is quadratic in time between onsets and stops (roots of linear and quadratic
+// functions); the first time the displacement reaches `edge` or -`edge_neg`, s (NaN: never).
+double plinth_fall_time(const std::vector<double>& ax, double dt, double mu, double edge, double edge_neg) {
+  const double n = mu * kGravity;
+  double u = 0.0, x = 0.0;
+  int s = 0;
+  for (std::size_t i = 1; i < ax.size(); ++i) {
+    const double a0 = ax[i - 1], sa = (ax[i] - a0) / dt;
+    double tau = 0.0;
+    for (int guard = 0; guard < 50 && tau < dt; ++guard) {
+      if (s == 0) {
+        double best = INFINITY;
+        for (int sg : {1, -1}) {
+          const double f0 = sg * (a0 + sa * tau) - n, f1 = sg * (a0 + sa * dt) - n;
+          const double when = f0 > 0.0 ? tau : f1 > 0.0 ? tau + (dt - tau) * (-f0) / (f1 - f0) : INFINITY;
+          if (when < best) { best = when; s = -sg; }
+        }
+        if (!std::isfinite(best)) { s = 0; break; }
+        tau = best;
+      }
+      // from tau: u(tau + d) = u + B d + A d^2, x(tau + d) = x + u d + B d^2 / 2 + A d^3 / 3
+      const double B = -(a0 + sa * tau) - s * n, A = -0.5 * sa;
+      double end = dt;
+      const double disc = B * B - 4 * A * u;
+      if (disc >= 0.0)
+        for (double d : {A == 0.0 ? -u / B : (-B - std::sqrt(disc)) / (2 * A), A == 0.0 ? -1.0 : (-B + std::sqrt(disc)) / (2 * A)})
+          if (d > 1e-15 && tau + d < end) end = tau + d;
+      auto pos = [&](double q) { const double d = q - tau; return x + u * d + 0.5 * B * d * d + A * d * d * d / 3.0; };
+      // the edge inside [tau, end]: scan, then bisect
+      double q0 = tau;
+      for (int k = 1; k <= 64; ++k) {
+        double lo = q0, hi = tau + (end - tau) * k / 64;
+        if (pos(hi) >= edge || pos(hi) <= -edge_neg) {
+          const double target = pos(hi) >= edge ? edge : -edge_neg;
+          const double side = pos(hi) - target;
+          for (int it = 0; it < 100; ++it) {
+            const double mid = 0.5 * (lo + hi);
+            ((pos(mid) - target) * side > 0.0 ? hi : lo) = mid;
+          }
+          return (i - 1) * dt + 0.5 * (lo + hi);
+        }
+        q0 = hi;
+      }
+      const double d = end - tau;
+      x = pos(end);
+      u = end < dt ? 0.0 : u + B * d + A * d * d;
+      tau = end;
+      if (end < dt) {
+        const double a = a0 + sa * tau;
+        s = std::abs(a) <= n ? 0 : (a > 0.0 ? -1 : 1);
+      }
+    }
+  }
+  return NAN;
+}
+
+BaseBodyParameters plinth_box(double mu) {
+  BaseBodyParameters p;
+  p.centre_of_mass = {0.0, 0.0, 0.35};
+  p.base = {{-0.3, -0.25}, {0.3, -0.25}, {0.3, 0.25}, {-0.3, 0.25}};
+  p.central_inertia = Eigen::Vector3d((0.25 + 4 * 0.1225) / 12, (0.36 + 4 * 0.1225) / 12, (0.36 + 0.25) / 12).asDiagonal();
+  p.mu_s = mu;
+  return p;
+}
+
+TEST(Rocking3DSupport, ABoxOnAPlinthFallsOffWhenItsSlipReachesTheEdge) {
+  // A plinth 0.4 m beyond the centre of mass towards +x, 0.5 m towards -x (larger than the base).
+  int fell = 0, stayed = 0;
+  for (double amp : {0.4, 0.6, 0.8})
+    for (double f : {0.5, 1.0}) {
+      std::vector<double> ax;
+      const double dt = 0.01;
+      for (double t = 0.0; t < 1.0 / f; t += dt) ax.push_back(-amp * kGravity * std::sin(2 * kPi * f * t));
+      ax.resize(ax.size() + 300, 0.0);
+      BaseBodyParameters p = plinth_box(0.3);
+      p.support = {{-0.5, -0.4}, {0.4, -0.4}, {0.4, 0.4}, {-0.5, 0.4}};
+      Rocking3DModel m(BaseBody(p), support_settings());
+      m.reset(0.0);
+      for (std::size_t i = 1; i < ax.size(); ++i) m.step(Eigen::Vector3d(ax[i], 0.0, 0.0), dt);
+      const double expected = plinth_fall_time(ax, dt, 0.3, 0.4, 0.5);
+      const std::string label = std::to_string(amp) + " g " + std::to_string(f) + " Hz";
+      ASSERT_EQ(m.outcome_3d().fell_off_support, !std::isnan(expected)) << label;
+      if (std::isnan(expected)) {
+        ++stayed;
+        EXPECT_GT(m.support_margin(), 0.0) << label;
+        continue;
+      }
+      ++fell;
+      EXPECT_EQ(m.mode(), Mode3D::Overturned) << label;
+      EXPECT_TRUE(m.outcome().overturned) << label;
+      EXPECT_NEAR(m.outcome_3d().fell_off_time, expected, 1e-9) << label;
+      EXPECT_NEAR(m.outcome().overturn_time, expected, 1e-9) << label;
+      EXPECT_NEAR(m.support_margin(), 0.0, 1e-9) << label;
+    }
+  EXPECT_GE(fell, 2);
+  EXPECT_GE(stayed, 1);
+}
+
+TEST(Rocking3DSupport, APedestalSmallerThanTheBaseRocksItAsThePlanarBodyOfThePedestalsWidth) {
+  // A box 0.6 m wide on a pedestal 0.4 m wide under its centre (wider than its depth): the contact is
+  // the pedestal's width, the inertia the box's. The planar body: width 0.4, the box's i_g.
+  const double b = 0.6, d = 0.3, h = 0.6;
+  BaseBodyParameters p;
+  p.centre_of_mass = {0.0, 0.0, h};
+  p.base = {{-b / 2, -d / 2}, {b / 2, -d / 2}, {b / 2, d / 2}, {-b / 2, d / 2}};
+  const double ig2 = (b * b + 4 * h * h) / 12;
+  p.central_inertia = Eigen::Vector3d((d * d + 4 * h * h) / 12, ig2, (b * b + d * d) / 12).asDiagonal();
+  p.support = {{-0.2, -0.4}, {0.2, -0.4}, {0.2, 0.4}, {-0.2, 0.4}};
+  const BaseBody body(p);
+  ASSERT_EQ(body.vertex_count(), 4);
+  EXPECT_NEAR(body.min_alpha(), std::atan(0.15 / h), 1e-12);  // the depth's edges: 0.15 / h
+  BodyParameters planar;
+  planar.width = 0.4;
+  planar.cg_height = h;
+  planar.nu1 = 0.5;
+  planar.radius_of_gyration = std::sqrt(ig2);
+  int overturned = 0, impacts = 0;
+  for (double amp : {0.3, 0.45, 0.6})
+    for (double f : {1.0, 2.0}) {
+      RockingModel ref(planar, support_settings());
+      Rocking3DModel solid(body, support_settings());
+      for (double t = 0.01; t < 8.0; t += 0.01) {
+        const double a = t < 1.0 / f ? amp * kGravity * std::sin(2 * kPi * f * t) : 0.0;
+        ref.step(a, 0.0, 0.01);
+        solid.step(Eigen::Vector3d(a, 0.0, 0.0), 0.01);
+        ASSERT_NEAR(solid.tilt(), ref.mode() == Mode::Overturned ? solid.tilt() : std::abs(ref.theta()), 1e-8) << t;
+      }
+      EXPECT_EQ(ref.outcome().overturned, solid.outcome().overturned);
+      EXPECT_EQ(ref.outcome().impacts, solid.outcome().impacts);
+      EXPECT_EQ(std::isnan(ref.outcome().uplift_time), std::isnan(solid.outcome().uplift_time));
+      if (!std::isnan(ref.outcome().uplift_time)) EXPECT_NEAR(ref.outcome().uplift_time, solid.outcome().uplift_time, 1e-9);
+      if (ref.outcome().overturned) EXPECT_NEAR(ref.outcome().overturn_time, solid.outcome().overturn_time, 1e-8);
+      overturned += ref.outcome().overturned;
+      impacts += static_cast<int>(ref.outcome().impacts);
+    }
+  EXPECT_GE(overturned, 1);
+  EXPECT_GT(impacts, 5);
+}
+
+TEST(Rocking3DSupport, ClippingAndMarginsAreExact) {
+  const std::vector<Eigen::Vector2d> base = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  // a support turned 45 degrees through the square's centre: their intersection is an octagon
+  const double r = 0.6;
+  std::vector<Eigen::Vector2d> diamond;
+  for (int k = 0; k < 4; ++k) diamond.emplace_back(0.5 + r * std::cos(kPi / 2 * k), 0.5 + r * std::sin(kPi / 2 * k));
+  const auto oct = clip_convex(base, diamond);
+  EXPECT_EQ(oct.size(), 8u);
+  EXPECT_TRUE(polygon_problem(oct).empty());
+  // a support sharing the base's edge x = 0 leaves no repeated or collinear vertex
+  const auto half = clip_convex(base, {{0, -1}, {0.5, -1}, {0.5, 2}, {0, 2}});
+  ASSERT_EQ(half.size(), 4u);
+  EXPECT_TRUE(polygon_problem(half).empty());
+  EXPECT_NEAR(inside_margin(base, {0.3, 0.6}), 0.3, 1e-15);
+  EXPECT_NEAR(inside_margin(base, {1.2, 0.6}), -0.2, 1e-15);
+  EXPECT_TRUE(clip_convex(base, {{2, 2}, {3, 2}, {3, 3}}).empty());
+}
+
+std::string support_error(nlohmann::json entry) {
+  try {
+    parse_catalogue_items(nlohmann::json::array({entry}));
+  } catch (const CatalogueError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Rocking3DSupport, BadSupportsAreRefusedNamingTheItemAndField) {
+  auto item = [] {
+    return nlohmann::json::parse(R"({"id": "statue", "width": 0.2, "cg_height": 0.3, "mass": 12.0,
+      "centre_of_mass": [0.1, 0.05, 0.3], "central_inertia": [[0.5, 0, 0], [0, 0.6, 0], [0, 0, 0.2]],
+      "base_polygon": [[0, 0], [0.2, 0], [0.2, 0.1], [0.0, 0.1]], "support": [[-0.1, -0.1], [0.3, -0.1], [0.3, 0.2], [-0.1, 0.2]]})");
+  };
+  const auto items = parse_catalogue_items(nlohmann::json::array({item()}));
+  ASSERT_EQ(items[0].spec.solid->support.size(), 4u);
+  EXPECT_EQ(items[0].spec.solid->support[1].x(), 0.3);
+  struct Bad { const char* support; const char* says; };
+  for (const Bad& c : {Bad{R"([[0, 0], [0.3, 0.2], [0.3, 0], [0, 0.2]])", "not strictly convex"},
+                       Bad{R"([[0.15, -0.1], [0.3, -0.1], [0.3, 0.2], [0.15, 0.2]])", "lies off the support"},
+                       Bad{R"([[0, 0], [1, 0]])", "at least 3 vertices"},
+                       Bad{R"("plinth")", "must be a list"}}) {
+    nlohmann::json e = item();
+    e["support"] = nlohmann::json::parse(c.support);
+    const std::string err = support_error(e);
+    EXPECT_NE(err.find("statue"), std::string::npos) << err;
+    EXPECT_NE(err.find("support"), std::string::npos) << err;
+    EXPECT_NE(err.find(c.says), std::string::npos) << err;
+  }
+  nlohmann::json planar = item();
+  for (const char* k : {"mass", "centre_of_mass", "central_inertia", "base_polygon"}) planar.erase(k);
+  EXPECT_NE(support_error(planar).find("needs the 3-D description"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace rocking_monitor::core
