@@ -231,6 +231,7 @@ void Rocking3DModel::apply_rest_samples(double t, const Eigen::Vector3d& a, doub
   report_ = StepReport{};
   sample_dt_ = dt;
   lifts_ = 0;
+  slide_lifts_ = 0;
   t_ = t;
   a_prev_ = a;
   outcome_.samples += n;
@@ -244,6 +245,7 @@ const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
   report_ = StepReport{};
   sample_dt_ = dt;
   lifts_ = 0;
+  slide_lifts_ = 0;
   GroundInput3 in;
   in.a0 = a_prev_;
   in.slope = (a - a_prev_) / dt;

@@ -33,6 +33,7 @@ double cone_excess(const Eigen::Vector3d& a, double mu) {
 }
 
 constexpr int kMaxSlideRestarts = 8;  // per sample: slips that reverse through zero speed
+constexpr double kSlipFloorPerTol = 100.0;  // m/s per unit tol: the slip velocity error resolved (advance_slide)
 
 }  // namespace
 
@@ -66,7 +67,7 @@ void Rocking3DModel::set_slide_state(const Eigen::Vector2d& u, double spin) {
 double Rocking3DModel::find_slip(const GroundInput3& in, double tau, double tau_end) const {
   const double mu = body_.parameters().mu_s;
   const double inf = std::numeric_limits<double>::infinity();
-  if (!std::isfinite(mu)) return inf;
+  if (!std::isfinite(mu) || slide_lifts_ > 0) return inf;
   const double f0 = cone_excess(in.at(tau), mu);
   if (f0 > 0.0) return tau;
   const double f1 = cone_excess(in.at(tau_end), mu);
@@ -80,7 +81,7 @@ void Rocking3DModel::start_slide(const GroundInput3& in, double tau) {
   mode_ = Mode3D::Slide;
   contact_ = -1;
   slide_ << 0.0, 0.0, 0.0, shift_.x(), shift_.y(), yaw_;
-  slide_stepper_.invalidate();
+  slide_stepper_.reset(sample_dt_);  // (a step size left from an event's bracket would start it crawling)
   ++outcome3_.slides;
   if (std::isnan(outcome3_.first_slip_time)) outcome3_.first_slip_time = t_ + tau;
 }
@@ -217,6 +218,7 @@ void Rocking3DModel::slide_to_edge(const GroundInput3& in, double tau) {
   omega_ = std::max(0.0, e.axis.dot(h) / e.pivot.inertia);
   dopri5_.invalidate();
   ++outcome3_.slide_to_rock;
+  ++slide_lifts_;
   report_.uplift = true;
   if (std::isnan(outcome_.uplift_time)) outcome_.uplift_time = t_ + tau;
 }
@@ -229,6 +231,13 @@ Rocking3DModel::Event Rocking3DModel::advance_slide(const GroundInput3& in, doub
   const double v_scale = kGravity / body_.max_p();
   atol << v_scale, v_scale, v_scale / rho, size, size, 1.0;
   atol *= settings_.tol;
+  // Near zero slip the slip's direction turns on the time scale |u| / |a|: resolving a slip of
+  // micrometres per second to the tolerance would crawl (steps of microseconds) for displacements of
+  // nanometres. A floor of 100 tol m/s on the slip's error (1 um/s at the default 1e-8) keeps the
+  // step at the shaking's scale; the slip still converges as tol falls (docs/rocking_3d.md).
+  const double floor = kSlipFloorPerTol * settings_.tol;
+  atol.head<2>() = atol.head<2>().cwiseMax(floor);
+  atol(2) = std::max(atol(2), floor / rho);
   int restarts = 0;
   while (tau < tau_end) {
     if (slide_lift(in, tau, slide_) > 0.0) return Event::Lift;
@@ -294,6 +303,7 @@ Rocking3DModel::Event Rocking3DModel::advance_slide(const GroundInput3& in, doub
         // Zero slip: the static law decides; where it cannot hold the body slips on (reversing).
         if (!(cone_excess(in.at(tau), body_.parameters().mu_s) > 0.0)) return Event::Stick;
         ++restarts;
+        slide_stepper_.reset(sample_dt_);
         break;
       }
       t_prev = tk;

@@ -277,6 +277,10 @@ class Rocking3DModel {
   bool armed_[kMaxBaseVertices] = {};
   static constexpr int kMaxLiftsPerSample = 8;
   int lifts_ = 0;                      // EDGE -> VERTEX switches in the current sample
+  // Slides ended by an edge lifting in the current sample: where friction can tip the body (mu_k above
+  // an edge's tan alpha) the real motion is slide-rock, not modelled; after one such end the sample
+  // keeps the body from slipping again (rest and rocking as before issue 51), which bounds the work.
+  int slide_lifts_ = 0;
   double floor_tol_ = 0.0;             // m: a base point this close to the floor is on it
   StepReport report_;
   RockingOutcome outcome_;
