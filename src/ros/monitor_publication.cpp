@@ -6,7 +6,9 @@
 
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include <Eigen/Geometry>
 
@@ -215,6 +217,7 @@ void RockingMonitor::fill_state(const Item& it, const core::ItemSummary& sm, Roc
   out.model = w.model;
   out.tilt = 0.0;
   out.contact.clear();
+  out.support_margin = std::numeric_limits<double>::quiet_NaN();
   if (const core::Rocking3DModel* solid = it.monitor->solid(); solid && sm.solid_active) {
     out.model = "rocking_3d";
     out.pivot = 0;
@@ -237,6 +240,9 @@ void RockingMonitor::fill_state(const Item& it, const core::ItemSummary& sm, Roc
       out.contact_mode = RockingState::CONTACT_SLIDE;
     }
     out.slip = solid->slip().norm();
+    if (solid->outcome_3d().fell_off_support) out.contact = "fell off its support";
+    const double margin = solid->support_margin();
+    out.support_margin = std::isfinite(margin) ? margin : std::numeric_limits<double>::quiet_NaN();
   }
 }
 

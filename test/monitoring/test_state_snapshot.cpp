@@ -194,6 +194,27 @@ TEST(StateSnapshot, ResumedThreeDModelEqualsTheUnbrokenRun) {
   EXPECT_GE(o.resumed_moving, 2u);
 }
 
+// A 3-D item that slides (issue 51, snapshot format 4): snapshots taken while it slides resume exactly.
+TEST(StateSnapshot, ResumedSlidingThreeDItemEqualsTheUnbrokenRun) {
+  const Motion m = rinaldi(0.8);
+  ItemSpec spec = box("crate_3d", 0.60, 0.50, 0.35, 0.2);
+  spec.solid = box_base_body(spec.body, spec.depth.depth, 0.5, std::nan(""));
+  ItemMonitor::Options opt;
+  opt.solid = SolidChoice::Solid;
+  std::vector<std::size_t> at;
+  {
+    ItemMonitor probe(spec, opt);
+    probe.start(0.0, m.x[0], m.y[0], m.z[0], m.dt);
+    for (std::size_t i = 1; i < m.size() && at.size() < 3; ++i) {
+      probe.step(m.x[i], m.y[i], m.z[i], m.dt);
+      if (probe.solid()->mode() == Mode3D::Slide && (at.empty() || i > at.back() + 50)) at.push_back(i);
+    }
+  }
+  ASSERT_EQ(at.size(), 3u) << "the crate never slid: the test would not test a sliding item";
+  resume_equals_unbroken(spec, opt, m, at);
+  ASSERT_FALSE(HasFailure());
+}
+
 // A body on its hull (issue 40 part 3): an octagonal prism lying on a side rolls onto other sides
 // under Rinaldi; snapshots taken while it rocks on a side other than its base resume exactly.
 TEST(StateSnapshot, ResumedBodyOnItsHullEqualsTheUnbrokenRun) {
