@@ -345,7 +345,8 @@ def runtime_keys(runtime, where):
     return keys, rest
 
 
-def main(argv=None):
+def parser():
+    """The command line (apart from main, which stays within a screen)."""
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--granite", required=True, metavar="DIR", help="the granite_pbr data set")
     ap.add_argument("--experiments", required=True, metavar="BIN", help="the rocking_experiments executable")
@@ -374,7 +375,11 @@ def main(argv=None):
     ap.add_argument("--members", type=int, default=20, help="members per specimen in --write-catalogue")
     ap.add_argument("--python", default=sys.executable, help="interpreter for rocking_geometry.py")
     add_quiet_flag(ap)
-    a = ap.parse_args(argv)
+    return ap
+
+
+def main(argv=None):
+    a = parser().parse_args(argv)
     command = " ".join(["calibrate_experiments.py"] + [shlex.quote(x) for x in (sys.argv[1:] if argv is None else argv)])
     try:
         grid = parse_grid(load_grid_file(a.grid), a.grid) if a.grid else parse_grid(grid_from_flags(a), "flags")

@@ -345,7 +345,8 @@ def write_catalogue(path, summary, bodies, members, command):
 
 # ================================================================ main
 
-def main(argv=None):
+def parser():
+    """The command line (apart from main, which stays within a screen)."""
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--granite", required=True, metavar="DIR", help="the data set: tests/TestNNN.csv(.gz), outcomes.csv")
     ap.add_argument("--experiments", required=True, metavar="BIN", help="the rocking_experiments executable")
@@ -368,7 +369,11 @@ def main(argv=None):
     ap.add_argument("--members", type=int, default=20, help="ensemble_size in --write-catalogue")
     ap.add_argument("--plot", metavar="PNG", help="reliability diagram")
     add_quiet_flag(ap)
-    a = ap.parse_args(argv)
+    return ap
+
+
+def main(argv=None):
+    a = parser().parse_args(argv)
     command = " ".join(["fragility_experiments.py"] + [shlex.quote(x) for x in (sys.argv[1:] if argv is None else argv)])
     t0 = time.time()
     try:
