@@ -1,5 +1,5 @@
-# Tests of the package as a whole: the core's layering, package.xml's dependencies, the documentation's
-# links and every executable's voice on a bad flag.
+# Tests of the package as a whole: the core's layering and the scripts' imports, package.xml's
+# dependencies, the documentation's links and every executable's voice on a bad flag.
 if(NOT BUILD_TESTING)
   return()
 endif()
@@ -8,6 +8,12 @@ add_test(NAME layers.core_keeps_its_layering
          COMMAND ${CMAKE_COMMAND} -DROOT=${CMAKE_CURRENT_SOURCE_DIR} -P ${CMAKE_CURRENT_SOURCE_DIR}/cmake/check_layers.cmake)
 add_test(NAME layers.check_names_wrong_way_includes
          COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/check_layers_detects.sh ${CMAKE_CURRENT_SOURCE_DIR})
+# The same for scripts/ (issue 53): no Python script imports one that imports it back.
+add_test(NAME layers.scripts_have_no_import_circle
+         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/check_script_imports.py ${CMAKE_CURRENT_SOURCE_DIR}/scripts)
+add_test(NAME layers.import_check_names_a_circle
+         COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/check_script_imports_detects.sh ${CMAKE_CURRENT_SOURCE_DIR})
+set_tests_properties(layers.scripts_have_no_import_circle layers.import_check_names_a_circle PROPERTIES TIMEOUT 60)
 
 # package.xml declares what scripts/install_deps.sh installs, and no more (rosdep users get the same).
 add_test(NAME package.deps_match_install_deps

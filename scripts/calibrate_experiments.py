@@ -47,6 +47,9 @@ import time
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)  # progress_bar.py beside this script, also through a catkin relay
+from progress_bar import add_quiet_flag, progress_bar  # noqa: E402
+
 # Runtime flags with an equivalent catalogue key: a calibrated catalogue's members carry them as keys
 # (rocking_experiments applies a flag to every member, so members that differ need the key).
 RUNTIME_TO_KEY = {"--restitution": "restitution", "--mu-s": "mu_s",
@@ -214,8 +217,12 @@ def build_matrices(grid, a):
         done["cached" if cached else "run"] += 1
         return read_table(out, name)
 
-    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, min(2, a.jobs))) as ex:
-        tables = list(ex.map(one, jobs))
+    tables = []
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, min(2, a.jobs))) as ex, \
+            progress_bar(len(jobs), "calibrate_experiments: grid points", a.quiet) as bar:
+        for table in ex.map(one, jobs):  # in job order, as the loop before: the outputs do not change
+            tables.append(table)
+            bar.update()
     print(f"calibrate_experiments: {len(jobs)} grid points ({done['run']} run, {done['cached']} cached) "
           f"in {time.time() - t0:.0f} s; {len(refused)} geometries refused", file=sys.stderr)
     out = {}
@@ -338,7 +345,8 @@ def runtime_keys(runtime, where):
     return keys, rest
 
 
-def main(argv=None):
+def parser():
+    """The command line (apart from main, which stays within a screen)."""
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--granite", required=True, metavar="DIR", help="the granite_pbr data set")
     ap.add_argument("--experiments", required=True, metavar="BIN", help="the rocking_experiments executable")
@@ -366,7 +374,12 @@ def main(argv=None):
     ap.add_argument("--write-catalogue", metavar="FILE")
     ap.add_argument("--members", type=int, default=20, help="members per specimen in --write-catalogue")
     ap.add_argument("--python", default=sys.executable, help="interpreter for rocking_geometry.py")
-    a = ap.parse_args(argv)
+    add_quiet_flag(ap)
+    return ap
+
+
+def main(argv=None):
+    a = parser().parse_args(argv)
     command = " ".join(["calibrate_experiments.py"] + [shlex.quote(x) for x in (sys.argv[1:] if argv is None else argv)])
     try:
         grid = parse_grid(load_grid_file(a.grid), a.grid) if a.grid else parse_grid(grid_from_flags(a), "flags")

@@ -44,6 +44,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from calibrate_experiments import (CalibrationError, data_digest, digest, scores, sha256_file,  # noqa: E402
                                    stratified_folds, write_atomic)
+from progress_bar import add_quiet_flag, progress_bar  # noqa: E402
 
 P_CLIP = 1e-3  # log score: probabilities clipped to [P_CLIP, 1 - P_CLIP] (a certain miss would be infinite)
 BETA_MIN, BETA_MAX = 0.01, 5.0
@@ -344,7 +345,8 @@ def write_catalogue(path, summary, bodies, members, command):
 
 # ================================================================ main
 
-def main(argv=None):
+def parser():
+    """The command line (apart from main, which stays within a screen)."""
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--granite", required=True, metavar="DIR", help="the data set: tests/TestNNN.csv(.gz), outcomes.csv")
     ap.add_argument("--experiments", required=True, metavar="BIN", help="the rocking_experiments executable")
@@ -366,7 +368,12 @@ def main(argv=None):
     ap.add_argument("--write-catalogue", metavar="FILE")
     ap.add_argument("--members", type=int, default=20, help="ensemble_size in --write-catalogue")
     ap.add_argument("--plot", metavar="PNG", help="reliability diagram")
-    a = ap.parse_args(argv)
+    add_quiet_flag(ap)
+    return ap
+
+
+def main(argv=None):
+    a = parser().parse_args(argv)
     command = " ".join(["fragility_experiments.py"] + [shlex.quote(x) for x in (sys.argv[1:] if argv is None else argv)])
     t0 = time.time()
     try:
@@ -380,6 +387,7 @@ def main(argv=None):
                    "p_clip_log_score": P_CLIP, "specimens": {}, "margin_runs": 0, "margins_cached": 0,
                    "shipped": "mixture" if a.mixture else "most frequent member"}
         preds, bodies, all_p = {}, {}, {}
+        bar = progress_bar(sum(len(m) for m in specimens.values()), "fragility_experiments: members", a.quiet)
         for name, members in specimens.items():
             runs = []
             for body, count in members:
@@ -387,6 +395,7 @@ def main(argv=None):
                 summary["margin_runs"] += 1
                 summary["margins_cached"] += cached
                 runs.append(rows)
+                bar.update()
             tests = [r["test"] for r in runs[0]]
             if any([r["test"] for r in rr] != tests for rr in runs):
                 raise CalibrationError(f"{name}: the members' margins cover different tests")
@@ -452,6 +461,7 @@ def main(argv=None):
                     fh.write(f"{t},{y[j]},{folds[j]},{p_cv[j]:.6f},{p_in[j]:.6f}," +
                              ",".join(f"{math.exp(v):.6g}" for v in ln_s[:, j]) +
                              f",{kept[j]['chaotic']},{kept[j]['pattern']}\n")
+        bar.close()  # the last member is done: the summary below is not drawn over
         if len(all_p) > 1:
             y = np.concatenate([v[0] for v in all_p.values()])
             both = all_scores(np.concatenate([v[1] for v in all_p.values()]), y)

@@ -8,7 +8,7 @@ packages=(
   libeigen3-dev libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libtbb-dev libcsv-dev libmseed-dev
   libgtest-dev libgmock-dev libbenchmark-dev libsundials-dev libhwy-dev
   python3-matplotlib python3-numpy python3-yaml python3-scipy parallel
-  python3-meshio assimp-utils
+  python3-meshio assimp-utils python3-tqdm
   catkin ros-core-dev libroscpp-dev librosbag-dev librostest-dev python3-rostest
   python3-roslaunch python3-rosmaster python3-rosbag python3-rostopic python3-diagnostic-msgs rosbash ros-message-generation ros-message-runtime
   ros-std-msgs ros-std-srvs libstd-srvs-dev ros-geometry-msgs ros-sensor-msgs

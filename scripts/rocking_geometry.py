@@ -39,72 +39,16 @@ import numpy as np
 # build/devel/lib, where they are not)
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 from mesh_input import GeometryError  # noqa: E402  (beside this script)
-# the mesh math (re-exported: rg.mass_properties, rg.base_polygon, ... are used by callers and tests)
+# the mesh math and the placed body's quantities, in rocking_geometry_solid so that scan_entry.py can
+# use them without importing this module back (re-exported: rg.mass_properties, rg.rocking_geometry,
+# rg.fmt, ... are used by callers and tests)
 from rocking_geometry_solid import (  # noqa: E402,F401
     MAX_BASE_VERTICES, MAX_HULL_VERTICES, POLYGON_TOLERANCE, base_polygon, central_inertia, contact_hull,
-    convex_hull_2d, mass_properties, open_edges, plane, point_in_convex, quaternion_matrix, read_obj,
-    rotation_between, settle, sig9)
-
-
-def rocking_geometry(vertices, faces, rotation=np.eye(3), mass=1.0, contact_tolerance=1e-3,
-                     com=None, settle_on_hull=False, com_shift=None):
-    """All the quantities of the module docstring; `com` (mesh frame) overrides the homogeneous
-    centre of mass (a specimen's measured one); the inertia stays the mesh's about that point.
-    `com_shift` (dx, dy), m, floor frame: moves the centre of mass horizontally after placement and
-    settling (the settled face stays the one found for the unshifted centre); the inertia again the
-    mesh's about the moved point."""
-    if not mass > 0:
-        raise GeometryError(f"mass must be > 0 kg, got {mass}")
-    if not contact_tolerance >= 0:
-        raise GeometryError(f"contact tolerance must be >= 0 m, got {contact_tolerance}")
-    volume, com_mesh, second = mass_properties(vertices, faces)
-    inertia_mesh = central_inertia(volume, com_mesh, second, mass)
-    if com is not None:
-        d = np.asarray(com, dtype=float) - com_mesh
-        inertia_mesh = inertia_mesh + mass * (np.dot(d, d) * np.eye(3) - np.outer(d, d))
-        com_mesh = np.asarray(com, dtype=float)
-    settle_angle = 0.0
-    if settle_on_hull:
-        used0 = np.unique(faces)
-        r, settle_angle = settle(vertices[used0] @ rotation.T, rotation @ com_mesh, contact_tolerance)
-        rotation = r @ rotation
-    placed = vertices @ rotation.T
-    floor = placed[:, 2].min()
-    placed = placed - np.array([0.0, 0.0, floor])  # floor at z = 0
-    c = rotation @ com_mesh - np.array([0.0, 0.0, floor])
-    inertia = rotation @ inertia_mesh @ rotation.T
-    if com_shift is not None:
-        d = np.array([com_shift[0], com_shift[1], 0.0], dtype=float)
-        if not np.all(np.isfinite(d)):
-            raise GeometryError(f"com shift must be finite, got {list(com_shift)}")
-        inertia = inertia + mass * (np.dot(d, d) * np.eye(3) - np.outer(d, d))
-        c = c + d
-    inertia = 0.5 * (inertia + inertia.T)  # exactly symmetric: the entry writes Ixy once for both
-    used = np.unique(faces)
-    low = placed[used]
-    contact = low[low[:, 2] <= contact_tolerance]
-    hull = convex_hull_2d(contact[:, :2])
-    px, py = plane(contact, c, inertia, mass, 0), plane(contact, c, inertia, mass, 1)
-    polygon = base_polygon(hull)
-    # over both pivot pairs is not enough in 3-D: an oblique base can leave the centre outside
-    if not point_in_convex(np.asarray(polygon), c[:2]):
-        raise GeometryError(f"centre of mass (x, y = {c[0]:.6g}, {c[1]:.6g} m) is not over the base "
-                            f"polygon: the placement is not at rest")
-    result = {"volume": volume, "mass": mass, "density": mass / volume, "com": c.tolist(),
-              "inertia": inertia.tolist(), "principal_inertia": sorted(np.linalg.eigvalsh(inertia).tolist()),
-              "contact_points": int(len(contact)), "contact_tolerance": contact_tolerance,
-              "settle_angle_deg": math.degrees(settle_angle), "rotation": rotation.tolist(),
-              "hull": hull.tolist(), "base_polygon": polygon,
-              "contact_hull": contact_hull(low, polygon, contact_tolerance), "com_shift": None if com_shift is None
-              else [float(com_shift[0]), float(com_shift[1])], "x": px, "y": py}
-    return result, placed
+    convex_hull_2d, fmt, mass_properties, open_edges, plane, point_in_convex, quaternion_matrix, read_obj,
+    rocking_geometry, rotation_between, settle, sig9)
 
 
 WRITE_HULL = True  # --no-hull clears it: entries without the hull key
-
-
-def fmt(x):
-    return f"{x:.9g}"
 
 
 def entry_3d(g):
@@ -370,7 +314,7 @@ def main(argv=None):
                 results, entries = granite(a.granite, a.contact_tolerance, a.plot_dir, not a.no_settle,
                                            a.homogeneous, a.com_shift, a.specimen, a.planar_only)
         elif a.mesh:
-            import scan_entry  # noqa: E402  (beside this script; it imports this module)
+            import scan_entry  # noqa: E402  (beside this script)
             g, placed, notes = scan_entry.scan_geometry(
                 a.mesh, a.mass, a.contact_tolerance, a.com, a.unit, a.up, a.floor, a.keep_slab,
                 a.cap_tolerance, a.quaternion, a.settle, a.com_shift)

@@ -2,8 +2,9 @@
 
 A mesh's mass properties (signed tetrahedra), its placement (settling onto a convex-hull face), the
 base contact's convex hull and the per-plane pivots, and the hull above the base, all in the floor
-frame rocking_geometry.py's docstring defines. rocking_geometry.py imports every name here and
-re-exports it (rg.mass_properties etc. keep working).
+frame rocking_geometry.py's docstring defines; rocking_geometry() gathers them for one placed mesh.
+rocking_geometry.py imports every name here and re-exports it (rg.mass_properties etc. keep working);
+scan_entry.py imports this module, not rocking_geometry.py, which imports scan_entry (no circle).
 """
 import math
 
@@ -251,3 +252,61 @@ def contact_hull(points, base, contact_tolerance, max_vertices=MAX_HULL_VERTICES
             return sorted(verts[chosen].tolist())
     raise GeometryError("the hull cannot be simplified to the model's vertex bound")
 
+
+# ---------------------------------------------------------------- one placed body
+def fmt(x):
+    return f"{x:.9g}"
+
+
+def rocking_geometry(vertices, faces, rotation=np.eye(3), mass=1.0, contact_tolerance=1e-3,
+                     com=None, settle_on_hull=False, com_shift=None):
+    """All the quantities of the module docstring; `com` (mesh frame) overrides the homogeneous
+    centre of mass (a specimen's measured one); the inertia stays the mesh's about that point.
+    `com_shift` (dx, dy), m, floor frame: moves the centre of mass horizontally after placement and
+    settling (the settled face stays the one found for the unshifted centre); the inertia again the
+    mesh's about the moved point."""
+    if not mass > 0:
+        raise GeometryError(f"mass must be > 0 kg, got {mass}")
+    if not contact_tolerance >= 0:
+        raise GeometryError(f"contact tolerance must be >= 0 m, got {contact_tolerance}")
+    volume, com_mesh, second = mass_properties(vertices, faces)
+    inertia_mesh = central_inertia(volume, com_mesh, second, mass)
+    if com is not None:
+        d = np.asarray(com, dtype=float) - com_mesh
+        inertia_mesh = inertia_mesh + mass * (np.dot(d, d) * np.eye(3) - np.outer(d, d))
+        com_mesh = np.asarray(com, dtype=float)
+    settle_angle = 0.0
+    if settle_on_hull:
+        used0 = np.unique(faces)
+        r, settle_angle = settle(vertices[used0] @ rotation.T, rotation @ com_mesh, contact_tolerance)
+        rotation = r @ rotation
+    placed = vertices @ rotation.T
+    floor = placed[:, 2].min()
+    placed = placed - np.array([0.0, 0.0, floor])  # floor at z = 0
+    c = rotation @ com_mesh - np.array([0.0, 0.0, floor])
+    inertia = rotation @ inertia_mesh @ rotation.T
+    if com_shift is not None:
+        d = np.array([com_shift[0], com_shift[1], 0.0], dtype=float)
+        if not np.all(np.isfinite(d)):
+            raise GeometryError(f"com shift must be finite, got {list(com_shift)}")
+        inertia = inertia + mass * (np.dot(d, d) * np.eye(3) - np.outer(d, d))
+        c = c + d
+    inertia = 0.5 * (inertia + inertia.T)  # exactly symmetric: the entry writes Ixy once for both
+    used = np.unique(faces)
+    low = placed[used]
+    contact = low[low[:, 2] <= contact_tolerance]
+    hull = convex_hull_2d(contact[:, :2])
+    px, py = plane(contact, c, inertia, mass, 0), plane(contact, c, inertia, mass, 1)
+    polygon = base_polygon(hull)
+    # over both pivot pairs is not enough in 3-D: an oblique base can leave the centre outside
+    if not point_in_convex(np.asarray(polygon), c[:2]):
+        raise GeometryError(f"centre of mass (x, y = {c[0]:.6g}, {c[1]:.6g} m) is not over the base "
+                            f"polygon: the placement is not at rest")
+    result = {"volume": volume, "mass": mass, "density": mass / volume, "com": c.tolist(),
+              "inertia": inertia.tolist(), "principal_inertia": sorted(np.linalg.eigvalsh(inertia).tolist()),
+              "contact_points": int(len(contact)), "contact_tolerance": contact_tolerance,
+              "settle_angle_deg": math.degrees(settle_angle), "rotation": rotation.tolist(),
+              "hull": hull.tolist(), "base_polygon": polygon,
+              "contact_hull": contact_hull(low, polygon, contact_tolerance), "com_shift": None if com_shift is None
+              else [float(com_shift[0]), float(com_shift[1])], "x": px, "y": py}
+    return result, placed

@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 import mesh_input as mi
-import rocking_geometry as rg
+import rocking_geometry_solid as rg  # not rocking_geometry.py: it imports this module
 
 AXES = {"x": (1, 0, 0), "y": (0, 1, 0), "z": (0, 0, 1), "-x": (-1, 0, 0), "-y": (0, -1, 0), "-z": (0, 0, -1)}
 DOWN = np.array([0.0, 0.0, -1.0])
