@@ -118,4 +118,29 @@ bool SenderFilter::allows(std::uint32_t address, std::uint16_t port) const {
   return false;
 }
 
+bool SenderTally::admit(const SenderFilter& filter, std::uint32_t address, std::uint16_t port) {
+  const bool ok = filter.allows(address, port);
+  if (!ok) ++dropped_total_;
+  auto& listed = ok ? admitted_ : dropped_;
+  const Key key = (static_cast<Key>(address) << 16) | port;
+  const auto it = listed.find(key);
+  if (it != listed.end())
+    ++it->second;
+  else if (listed.size() < kMaxListed)
+    listed.emplace(key, 1);
+  else
+    ++(ok ? unlisted_admitted_ : unlisted_dropped_);
+  return ok;
+}
+
+std::string SenderTally::describe(const std::map<Key, std::uint64_t>& sources) {
+  std::string text;
+  for (const auto& [key, count] : sources) {
+    if (!text.empty()) text += ", ";
+    text += format_endpoint(static_cast<std::uint32_t>(key >> 16), static_cast<std::uint16_t>(key & 0xFFFF)) +
+            " (" + std::to_string(count) + ")";
+  }
+  return text.empty() ? "none" : text;
+}
+
 }  // namespace rocking_monitor::feeds

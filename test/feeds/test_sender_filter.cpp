@@ -115,3 +115,39 @@ TEST(SenderFilter, OneBadEntryRefusesTheListAndKeepsTheOldRules) {
   EXPECT_TRUE(f.allows(sender_ip(127, 0, 0, 1), 1));
   EXPECT_FALSE(f.allows(sender_ip(10, 0, 0, 1), 1));
 }
+
+TEST(SenderTally, CountsAdmittedAndDroppedPerSource) {
+  const auto f = sender_filter({"127.0.0.1:15601"});
+  fd::SenderTally tally;
+  EXPECT_TRUE(tally.admit(f, sender_ip(127, 0, 0, 1), 15601));
+  EXPECT_TRUE(tally.admit(f, sender_ip(127, 0, 0, 1), 15601));
+  EXPECT_FALSE(tally.admit(f, sender_ip(127, 0, 0, 1), 15602));
+  EXPECT_FALSE(tally.admit(f, sender_ip(127, 0, 0, 2), 15601));
+  EXPECT_FALSE(tally.admit(f, sender_ip(127, 0, 0, 2), 15601));
+  EXPECT_EQ(tally.dropped_total(), 3u);
+  EXPECT_EQ(tally.admitted_sources(), 1u);
+  EXPECT_EQ(fd::SenderTally::describe(tally.admitted()), "127.0.0.1:15601 (2)");
+  EXPECT_EQ(fd::SenderTally::describe(tally.dropped()), "127.0.0.1:15602 (1), 127.0.0.2:15601 (2)");
+  EXPECT_EQ(fd::SenderTally::describe({}), "none");
+}
+
+TEST(SenderTally, ManySourcesAreStillCountedBeyondTheList) {
+  const auto f = sender_filter({"10.0.0.1"});
+  fd::SenderTally tally;
+  const std::size_t n = fd::SenderTally::kMaxListed + 5;
+  for (std::size_t k = 0; k < n; ++k)
+    EXPECT_FALSE(tally.admit(f, sender_ip(10, 0, 1, 0) + static_cast<std::uint32_t>(k), 7));
+  EXPECT_EQ(tally.dropped_total(), n);
+  EXPECT_EQ(tally.dropped().size(), fd::SenderTally::kMaxListed);
+  EXPECT_EQ(tally.unlisted_dropped(), 5u);
+}
+
+TEST(SenderTally, UnpinnedCountsDistinctSenders) {
+  const auto f = sender_filter({});
+  fd::SenderTally tally;
+  EXPECT_TRUE(tally.admit(f, sender_ip(127, 0, 0, 1), 5000));
+  EXPECT_EQ(tally.admitted_sources(), 1u);
+  EXPECT_TRUE(tally.admit(f, sender_ip(127, 0, 0, 2), 5000));
+  EXPECT_EQ(tally.admitted_sources(), 2u);
+  EXPECT_EQ(tally.dropped_total(), 0u);
+}

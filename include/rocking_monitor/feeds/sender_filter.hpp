@@ -11,7 +11,9 @@
 // Parsing refuses a bad entry with a message naming it; nothing is guessed. ROS-free, no sockets:
 // addresses are host-order uint32 (a.b.c.d = a<<24 | b<<16 | c<<8 | d).
 
+#include <cstddef>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -51,6 +53,34 @@ class SenderFilter {
 
  private:
   std::vector<SenderRule> rules_;
+};
+
+/// Who sent the datagrams, per source address:port: those admitted and those dropped by the
+/// filter, each with a count, so that nothing is dropped uncounted and /diagnostics can name them.
+/// A flood from many spoofed sources must not grow memory without bound: beyond kMaxListed
+/// distinct sources per kind the datagrams are still counted, in `unlisted`.
+class SenderTally {
+ public:
+  static constexpr std::size_t kMaxListed = 32;
+  using Key = std::uint64_t;  ///< address << 16 | port
+
+  /// Counts the datagram; true when the filter admits it. Allocates only for a new source.
+  bool admit(const SenderFilter& filter, std::uint32_t address, std::uint16_t port);
+
+  const std::map<Key, std::uint64_t>& admitted() const { return admitted_; }
+  const std::map<Key, std::uint64_t>& dropped() const { return dropped_; }
+  std::uint64_t dropped_total() const { return dropped_total_; }
+  std::uint64_t unlisted_admitted() const { return unlisted_admitted_; }
+  std::uint64_t unlisted_dropped() const { return unlisted_dropped_; }
+  /// Distinct admitted sources (listed, plus 1 if any went unlisted: at least that many).
+  std::size_t admitted_sources() const { return admitted_.size() + (unlisted_admitted_ > 0 ? 1 : 0); }
+
+  /// "a.b.c.d:port (n), ..." of a map, for /diagnostics.
+  static std::string describe(const std::map<Key, std::uint64_t>& sources);
+
+ private:
+  std::map<Key, std::uint64_t> admitted_, dropped_;
+  std::uint64_t dropped_total_ = 0, unlisted_admitted_ = 0, unlisted_dropped_ = 0;
 };
 
 }  // namespace rocking_monitor::feeds
