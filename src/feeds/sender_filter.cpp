@@ -54,6 +54,20 @@ std::string format_endpoint(std::uint32_t address, std::uint16_t port) {
   return format_ipv4(address) + ":" + std::to_string(port);
 }
 
+std::vector<std::string> split_sender_list(const std::string& text) {
+  std::vector<std::string> entries;
+  std::string piece;
+  for (char c : text + ",") {
+    if (c == ',' || std::isspace(static_cast<unsigned char>(c))) {
+      if (!piece.empty()) entries.push_back(piece);
+      piece.clear();
+    } else {
+      piece += c;
+    }
+  }
+  return entries;
+}
+
 std::optional<SenderRule> parse_sender_rule(const std::string& entry, std::string& error) {
   const std::string quoted = "allowed_senders entry '" + entry + "'";
   const std::size_t colon = entry.find(':');

@@ -151,3 +151,10 @@ TEST(SenderTally, UnpinnedCountsDistinctSenders) {
   EXPECT_EQ(tally.admitted_sources(), 2u);
   EXPECT_EQ(tally.dropped_total(), 0u);
 }
+
+TEST(SenderFilter, OneStringListSplitsOnCommasAndSpaces) {
+  EXPECT_EQ(fd::split_sender_list("10.0.0.1, 10.0.0.0/24  127.0.0.1:5,"),
+            (std::vector<std::string>{"10.0.0.1", "10.0.0.0/24", "127.0.0.1:5"}));
+  EXPECT_TRUE(fd::split_sender_list("").empty());
+  EXPECT_TRUE(fd::split_sender_list(" , ").empty());
+}

@@ -37,6 +37,10 @@ std::string format_ipv4(std::uint32_t address);
 /// "a.b.c.d:port".
 std::string format_endpoint(std::uint32_t address, std::uint16_t port);
 
+/// A list given as one string (a launch argument): entries separated by commas and/or spaces;
+/// empty pieces are skipped, so "" is no list.
+std::vector<std::string> split_sender_list(const std::string& text);
+
 /// One entry of `~allowed_senders`; on failure returns nullopt and sets `error` to a sentence that
 /// names the entry and what is wrong with it.
 std::optional<SenderRule> parse_sender_rule(const std::string& entry, std::string& error);
