@@ -253,6 +253,9 @@ void UdpAccelBridge::diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st
     st.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, "no datagrams yet");
   else if (mixed_forms_)
     st.mergeSummary(diagnostic_msgs::DiagnosticStatus::ERROR, "text and binary datagrams mixed on one port");
+  else if (c.conflicts > 0)  // issue 52: never silent, two sources or a broken controller
+    st.mergeSummary(diagnostic_msgs::DiagnosticStatus::ERROR,
+                    std::to_string(c.conflicts) + " sequence numbers sent twice with different values (first kept)");
   else if (c.lost + c.late + c.duplicates + malformed_ + off_grid_ > 0)
     st.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, "samples lost, late, duplicated or malformed");
   st.add("port", port_);
@@ -273,6 +276,7 @@ void UdpAccelBridge::diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st
   st.add("reordered (published in order)", c.reordered);
   st.add("late (dropped)", c.late);
   st.add("duplicates (dropped)", c.duplicates);
+  st.add("conflicts (same sequence, other values: dropped, first kept)", c.conflicts);
   st.add("resyncs (counter restarted)", c.resyncs);
   st.add("held in the reorder window", sequencer_->held());
   st.add("reorder window (samples)", window_);

@@ -103,6 +103,15 @@ class AllowedSendersTest(unittest.TestCase):
         self.assertIn('several senders feed one stream', msg())
         self.assertIn(a + ' (1)', msg())
         self.assertIn(b + ' (1)', msg())
+        # Issue 52 part 2: sequence 1 again with another value is a conflict: the first is kept.
+        first.sendto(datagram(1, 0.01, 5.0), dest)
+        conflicts = lambda: self.diag['open'][2].get('conflicts (same sequence, other values: dropped, first kept)')
+        self.wait_for('one conflict in /diagnostics', lambda: conflicts() == '1')
+        self.assertEqual(self.diag['open'][0], DiagnosticStatus.ERROR)
+        self.assertIn('1 sequence numbers sent twice with different values (first kept)', msg())
+        self.wait_for('two published samples', lambda: len(self.imu['open']) >= 2)
+        with self.cond:
+            self.assertEqual(self.imu['open'], [1.0, 2.0])
         first.close()
         second.close()
 
