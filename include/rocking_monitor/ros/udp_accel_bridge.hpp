@@ -55,7 +55,8 @@ class UdpAccelBridge {
   ros::Timer diag_timer_;
 
   // parameters
-  std::string bind_address_ = "0.0.0.0";
+  // Loopback unless told otherwise (issue 52): a deployment names the controller-facing interface.
+  std::string bind_address_ = "127.0.0.1";
   int port_ = 15600;
   double rate_hz_ = 0.0;
   int window_ = 4;
