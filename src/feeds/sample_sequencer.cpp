@@ -1,14 +1,24 @@
 // The reorder window and the loss accounting of a datagram stream (sample_sequencer.hpp).
 #include "rocking_monitor/feeds/sample_sequencer.hpp"
 
+#include <cstring>
+
 namespace rocking_monitor::feeds {
 
 SampleSequencer::SampleSequencer(std::size_t window) : slots_(window + 1), history_(kResyncSpan), ready_(window + 2) {}
 
-void SampleSequencer::remember(std::uint64_t sequence, Fate fate) {
+void SampleSequencer::remember(std::uint64_t sequence, Fate fate, const AccelSample* sample) {
   History& h = history_[sequence % history_.size()];
   h.sequence = sequence;
   h.fate = fate;
+  if (sample) h.sample = *sample;
+}
+
+// Bit for bit: a resent datagram is the same bytes; any difference means another source.
+void SampleSequencer::count_repeat(const AccelSample& first, const AccelSample& again) {
+  const bool same = std::memcmp(&first.time_s, &again.time_s, sizeof first.time_s) == 0 &&
+                    std::memcmp(first.accel, again.accel, sizeof first.accel) == 0;
+  ++(same ? counts_.duplicates : counts_.conflicts);
 }
 
 void SampleSequencer::release_next() {
@@ -18,7 +28,7 @@ void SampleSequencer::release_next() {
     slot.filled = false;
     --held_;
     ++counts_.released;
-    remember(next_, Fate::Released);
+    remember(next_, Fate::Released, &slot.sample);
   } else {
     ++counts_.lost;
     remember(next_, Fate::Lost);
@@ -63,7 +73,7 @@ void SampleSequencer::push(const AccelSample& sample) {
       --counts_.lost;
       h.fate = Fate::Unknown;
     } else if (h.sequence == s && h.fate == Fate::Released) {
-      ++counts_.duplicates;
+      count_repeat(h.sample, sample);
     } else {
       ++counts_.late;
     }
@@ -73,7 +83,7 @@ void SampleSequencer::push(const AccelSample& sample) {
   while (s >= next_ + cap) release_next();
   Slot& slot = slots_[s % cap];
   if (slot.filled) {
-    ++counts_.duplicates;
+    count_repeat(slot.sample, sample);
   } else {
     if (s < max_seen_) ++counts_.reordered;
     slot.filled = true;

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include <vector>
 
 #include "rocking_monitor/constants.hpp"
 
@@ -55,6 +56,7 @@ bool UdpAccelBridge::init() {
   else
     return bad("~clock must be first_arrival or controller, not '" + clock + "'");
   if (!(accel_variance_ >= 0.0)) return bad("~linear_acceleration_variance must be >= 0 (m/s^2)^2");
+  if (!read_allowed_senders()) return false;
 
   sequencer_ = std::make_unique<feeds::SampleSequencer>(static_cast<std::size_t>(window_));
   grid_ = std::make_unique<feeds::TimeGrid>(rate_hz_);
@@ -126,6 +128,8 @@ void UdpAccelBridge::receive_loop() {
     }
     last_datagram = ros::WallTime::now();
     std::lock_guard<std::mutex> lock(mutex_);
+    // Pinned senders (issue 52): anyone else's datagram is counted per source, never parsed.
+    if (!tally_.admit(senders_, ntohl(from.sin_addr.s_addr), ntohs(from.sin_port))) continue;
     if (last_sender_.empty()) {
       char ip[INET_ADDRSTRLEN] = "?";
       ::inet_ntop(AF_INET, &from.sin_addr, ip, sizeof ip);
@@ -133,6 +137,38 @@ void UdpAccelBridge::receive_loop() {
     }
     on_datagram(buf, static_cast<std::size_t>(n), arrival);
   }
+}
+
+bool UdpAccelBridge::read_allowed_senders() {
+  // A list of strings, or one string of entries separated by commas or spaces (a launch argument).
+  std::vector<std::string> entries;
+  if (pnh_.hasParam("allowed_senders")) {
+    XmlRpc::XmlRpcValue value;
+    pnh_.getParam("allowed_senders", value);
+    if (value.getType() == XmlRpc::XmlRpcValue::TypeString) {
+      entries = feeds::split_sender_list(static_cast<std::string>(value));
+    } else if (value.getType() == XmlRpc::XmlRpcValue::TypeArray) {
+      for (int k = 0; k < value.size(); ++k) {
+        if (value[k].getType() != XmlRpc::XmlRpcValue::TypeString) {
+          ROS_FATAL_STREAM("udp_accel_bridge: ~allowed_senders entry " << k << " is not a string");
+          return false;
+        }
+        for (auto& piece : feeds::split_sender_list(static_cast<std::string>(value[k]))) entries.push_back(piece);
+      }
+    } else {
+      ROS_FATAL("udp_accel_bridge: ~allowed_senders must be a list of strings (a.b.c.d, a.b.c.d:port, a.b.c.d/nn)");
+      return false;
+    }
+  }
+  // A launch argument left blank ("") is no list: the bridge accepts anyone and warns.
+  std::string error;
+  if (!senders_.configure(entries, error)) {
+    ROS_FATAL_STREAM("udp_accel_bridge: ~" << error);
+    return false;
+  }
+  if (!senders_.pinned())
+    ROS_WARN("udp_accel_bridge: no ~allowed_senders: any host on the network can feed ground motion");
+  return true;
 }
 
 void UdpAccelBridge::on_datagram(const char* data, std::size_t size, const ros::Time& arrival) {
@@ -193,19 +229,42 @@ void UdpAccelBridge::publish_ready(const ros::Time& arrival) {
   }
 }
 
+// The senders' part of the summary, which outranks the stream's own: a second source on an
+// unpinned port is ERROR (two streams interleaved are not ground motion), no list is WARN.
+void UdpAccelBridge::sender_summary(diagnostic_updater::DiagnosticStatusWrapper& st) const {
+  using diagnostic_msgs::DiagnosticStatus;
+  if (!senders_.pinned() && tally_.admitted_sources() >= 2)
+    st.summary(DiagnosticStatus::ERROR,
+               "several senders feed one stream: " + feeds::SenderTally::describe(tally_.admitted()));
+  else if (!senders_.pinned())
+    st.summary(DiagnosticStatus::WARN, "no allowed_senders: any host on the network can feed ground motion");
+  else if (tally_.dropped_total() > 0)
+    st.summary(DiagnosticStatus::WARN,
+               "datagrams from senders not allowed dropped: " + feeds::SenderTally::describe(tally_.dropped()));
+}
+
 void UdpAccelBridge::diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st) {
   std::lock_guard<std::mutex> lock(mutex_);
   const feeds::SequenceCounts& c = sequencer_->counts();
+  st.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
+  sender_summary(st);
+  // mergeSummary keeps the worse level and joins the messages of the same level.
   if (datagrams_ == 0)
-    st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no datagrams yet");
+    st.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, "no datagrams yet");
   else if (mixed_forms_)
-    st.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "text and binary datagrams mixed on one port");
+    st.mergeSummary(diagnostic_msgs::DiagnosticStatus::ERROR, "text and binary datagrams mixed on one port");
+  else if (c.conflicts > 0)  // issue 52: never silent, two sources or a broken controller
+    st.mergeSummary(diagnostic_msgs::DiagnosticStatus::ERROR,
+                    std::to_string(c.conflicts) + " sequence numbers sent twice with different values (first kept)");
   else if (c.lost + c.late + c.duplicates + malformed_ + off_grid_ > 0)
-    st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "samples lost, late, duplicated or malformed");
-  else
-    st.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
+    st.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, "samples lost, late, duplicated or malformed");
   st.add("port", port_);
   st.add("sender", last_sender_);
+  st.add("allowed senders", senders_.pinned() ? std::to_string(senders_.rules().size()) + " entries" : "any (none set)");
+  st.add("senders admitted", feeds::SenderTally::describe(tally_.admitted()));
+  st.add("senders dropped", feeds::SenderTally::describe(tally_.dropped()));
+  st.add("dropped (sender not allowed)", tally_.dropped_total());
+  st.add("dropped, sources beyond the list", tally_.unlisted_dropped());
   st.add("form", form_ == 0 ? "none yet" : form_ == 1 ? "text" : "binary");
   st.add("datagrams", datagrams_);
   st.add("malformed", malformed_);
@@ -217,6 +276,7 @@ void UdpAccelBridge::diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st
   st.add("reordered (published in order)", c.reordered);
   st.add("late (dropped)", c.late);
   st.add("duplicates (dropped)", c.duplicates);
+  st.add("conflicts (same sequence, other values: dropped, first kept)", c.conflicts);
   st.add("resyncs (counter restarted)", c.resyncs);
   st.add("held in the reorder window", sequencer_->held());
   st.add("reorder window (samples)", window_);

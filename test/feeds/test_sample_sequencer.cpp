@@ -157,3 +157,30 @@ TEST(SampleSequencer, PerSamplePathAllocatesNothing) {
   std::vector<int> v(3);
   EXPECT_GT(rocking_monitor::testing::g_allocation_count.load(), before);
 }
+
+// Issue 52: the same sequence number with another payload is a conflict, not a duplicate; the
+// first one is kept whether it was still held or already released.
+TEST(SampleSequencer, ConflictingPayloadKeepsTheFirstAndIsCounted) {
+  fd::SampleSequencer q(4);
+  q.push(sample(10));  // released at once
+  ASSERT_EQ(q.ready_count(), 1u);
+  fd::AccelSample other = sample(10);
+  other.accel[0] = -3.5;
+  q.push(other);  // after release: compared with the remembered payload
+  EXPECT_EQ(q.ready_count(), 0u);
+  q.push(sample(12));  // held: 11 is missing
+  fd::AccelSample other12 = sample(12);
+  other12.time_s += 1e-9;
+  q.push(other12);  // held: compared with the held sample
+  q.push(sample(12));  // the same bytes again: a duplicate
+  q.push(sample(10));  // the released one again, same bytes: a duplicate
+  EXPECT_EQ(q.counts().conflicts, 2u);
+  EXPECT_EQ(q.counts().duplicates, 2u);
+  q.flush();
+  ASSERT_EQ(q.ready_count(), 1u);
+  EXPECT_EQ(q.ready()[0].sequence, 12u);
+  EXPECT_EQ(q.ready()[0].time_s, sample(12).time_s);
+  EXPECT_EQ(q.ready()[0].accel[0], 12.0);
+  EXPECT_EQ(q.counts().lost, 1u);
+  EXPECT_EQ(q.counts().released, 2u);
+}

@@ -9,7 +9,12 @@
 //  * when a sample arrives more than `window` ahead of a missing one, the missing one is given up:
 //    counted `lost` (the samples after it are released). A lost sample that turns up afterwards is
 //    counted `late` instead of lost, and dropped (its place has been published);
-//  * the same sequence number twice: `duplicates`, dropped;
+//  * the same sequence number twice with the same payload (time and accelerations, bit for bit):
+//    `duplicates`, dropped;
+//  * the same sequence number with a different payload: `conflicts` (issue 52): the first one is
+//    kept (it may already be published), the second dropped; the bridge reports it as an ERROR,
+//    since two sources or a broken controller feed one stream. Released samples are compared
+//    within the last kResyncSpan sequence numbers, held ones always;
 //  * a jump of more than kResyncSpan (the controller restarted, or its counter was reset):
 //    everything held is released, counted `resyncs`, and the stream continues from there.
 // A lost sample delays the samples after it by at most `window` samples (or until flush(), which
@@ -29,7 +34,8 @@ struct SequenceCounts {
   std::uint64_t lost = 0;        ///< sequence numbers given up (never arrived, or not yet)
   std::uint64_t reordered = 0;   ///< arrived after a later sample, released in order
   std::uint64_t late = 0;        ///< arrived after their place was given up: dropped
-  std::uint64_t duplicates = 0;  ///< a sequence number seen twice: dropped
+  std::uint64_t duplicates = 0;  ///< a sequence number seen twice, same payload: dropped
+  std::uint64_t conflicts = 0;   ///< a sequence number seen twice, different payload: first kept
   std::uint64_t resyncs = 0;     ///< jumps of more than kResyncSpan: the stream restarted
 };
 
@@ -66,10 +72,12 @@ class SampleSequencer {
   struct History {
     std::uint64_t sequence = 0;
     Fate fate = Fate::Unknown;
+    AccelSample sample;  // what was released, to tell a duplicate from a conflict
   };
 
   void release_next();  // releases or gives up next_, then advances
-  void remember(std::uint64_t sequence, Fate fate);
+  void remember(std::uint64_t sequence, Fate fate, const AccelSample* sample = nullptr);
+  void count_repeat(const AccelSample& first, const AccelSample& again);
 
   std::vector<Slot> slots_;       // window + 1, indexed by sequence % size
   std::vector<History> history_;  // kResyncSpan, indexed by sequence % size

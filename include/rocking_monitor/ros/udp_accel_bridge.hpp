@@ -20,6 +20,7 @@
 #include <thread>
 
 #include "rocking_monitor/feeds/sample_sequencer.hpp"
+#include "rocking_monitor/feeds/sender_filter.hpp"
 #include "rocking_monitor/feeds/time_grid.hpp"
 #include "rocking_monitor/feeds/udp_datagram.hpp"
 #include "rocking_monitor/ros/sample_history_server.hpp"
@@ -44,6 +45,8 @@ class UdpAccelBridge {
   void on_datagram(const char* data, std::size_t size, const ros::Time& arrival);
   void publish_ready(const ros::Time& arrival);
   void diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st);
+  bool read_allowed_senders();
+  void sender_summary(diagnostic_updater::DiagnosticStatusWrapper& st) const;
 
   ros::NodeHandle nh_, pnh_;
   ros::Publisher imu_pub_;
@@ -52,7 +55,8 @@ class UdpAccelBridge {
   ros::Timer diag_timer_;
 
   // parameters
-  std::string bind_address_ = "0.0.0.0";
+  // Loopback unless told otherwise (issue 52): a deployment names the controller-facing interface.
+  std::string bind_address_ = "127.0.0.1";
   int port_ = 15600;
   double rate_hz_ = 0.0;
   int window_ = 4;
@@ -61,6 +65,9 @@ class UdpAccelBridge {
   bool add_gravity_ = true;
   double accel_variance_ = 0.0;
   std::string frame_id_ = "accelerometer";  // the example catalogue poses its items in this frame
+
+  // ~allowed_senders (issue 52): empty means anyone, which /diagnostics warns about.
+  feeds::SenderFilter senders_;
 
   int socket_ = -1;
   std::thread thread_;
@@ -76,6 +83,7 @@ class UdpAccelBridge {
   // the controller's to the nanosecond (an epoch-sized double would round it to 0.24 us).
   std::optional<ros::Time> first_arrival_;
   double first_time_s_ = 0.0;
+  feeds::SenderTally tally_;  // per source: admitted and dropped datagrams
   std::uint64_t datagrams_ = 0;
   std::uint64_t malformed_ = 0;
   std::uint64_t off_grid_ = 0;
