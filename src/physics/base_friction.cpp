@@ -8,8 +8,8 @@
 namespace rocking_monitor::core {
 namespace {
 
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-Eigen::Vector2d perp(const Eigen::Vector2d& a) { return Eigen::Vector2d(-a.y(), a.x()); }  // z x a
+double friction_cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+Eigen::Vector2d friction_perp(const Eigen::Vector2d& a) { return Eigen::Vector2d(-a.y(), a.x()); }  // z x a
 
 // Gauss-Legendre on [0, 1], 6 points (exact to degree 11).
 constexpr double kGx[6] = {0.033765242898423975, 0.16939530676686776, 0.38069040695840156,
@@ -32,7 +32,7 @@ BaseFriction::BaseFriction(const std::vector<Eigen::Vector2d>& polygon)
   for (int i = 0; i < n_; ++i) {
     const Eigen::Vector2d& p = v_[static_cast<std::size_t>(i)];
     const Eigen::Vector2d& q = v_[static_cast<std::size_t>((i + 1) % n_)];
-    const double w = cross2(p, q);
+    const double w = friction_cross(p, q);
     a2 += w;
     c += w * (p + q);
   }
@@ -42,7 +42,7 @@ BaseFriction::BaseFriction(const std::vector<Eigen::Vector2d>& polygon)
   for (int i = 0; i < n_; ++i) {
     const Eigen::Vector2d p = v_[static_cast<std::size_t>(i)] - centroid_;
     const Eigen::Vector2d q = v_[static_cast<std::size_t>((i + 1) % n_)] - centroid_;
-    const double w = cross2(p, q);
+    const double w = friction_cross(p, q);
     s(0, 0) += w * (p.x() * p.x() + p.x() * q.x() + q.x() * q.x()) / 12.0;
     s(1, 1) += w * (p.y() * p.y() + p.y() * q.y() + q.y() * q.y()) / 12.0;
     s(0, 1) += w * (2.0 * p.x() * p.y() + p.x() * q.y() + q.x() * p.y() + 2.0 * q.x() * q.y()) / 24.0;
@@ -69,11 +69,11 @@ FrictionLoad BaseFriction::load(const Eigen::Vector2d& v, double spin, const Eig
     // Pure translation: every point slips along v; the force acts at the centre of pressure.
     if (speed == 0.0) return out;
     out.force = -v / speed;
-    out.torque = cross2(pressure_centre - ref, out.force);
+    out.torque = friction_cross(pressure_centre - ref, out.force);
     return out;
   }
   // Turning about the instantaneous centre O: ref's velocity spin z x (ref - O) = v.
-  const Eigen::Vector2d centre = ref + perp(v) / spin;
+  const Eigen::Vector2d centre = ref + friction_perp(v) / spin;
   const Eigen::Vector2d k = gradient(pressure_centre);
   if ((centre - centroid_).norm() > kFarCentre * size_) return by_quadrature(centre, spin, ref, k);
   return from_centre(centre, spin, ref, k, 1.0 / area_ + k.dot(centre - centroid_));
@@ -89,7 +89,7 @@ FrictionLoad BaseFriction::from_centre(const Eigen::Vector2d& o, double spin, co
     const Eigen::Vector2d& pa = v_[static_cast<std::size_t>(i)];
     const Eigen::Vector2d& pb = v_[static_cast<std::size_t>((i + 1) % n_)];
     const double len = (pb - pa).norm();
-    const Eigen::Vector2d e = (pb - pa) / len, n = perp(e);
+    const Eigen::Vector2d e = (pb - pa) / len, n = friction_perp(e);
     const double d = (pa - o).dot(n);
     if (std::abs(d) <= 1e-14 * len) continue;  // O on the edge's line: a triangle of zero area
     const double x0 = (pa - o).dot(e), x1 = x0 + len, ad = std::abs(d);
@@ -125,15 +125,15 @@ FrictionLoad BaseFriction::by_quadrature(const Eigen::Vector2d& o, double spin, 
   for (int i = 0; i < n_; ++i) {
     const Eigen::Vector2d a = v_[static_cast<std::size_t>(i)] - centroid_;
     const Eigen::Vector2d e = v_[static_cast<std::size_t>((i + 1) % n_)] - v_[static_cast<std::size_t>(i)];
-    const double jac = cross2(a, e);
+    const double jac = friction_cross(a, e);
     for (int q = 0; q < 6; ++q) {
       const Eigen::Vector2d w = a + kGx[q] * e;
       for (int r = 0; r < 6; ++r) {
         const Eigen::Vector2d x = centroid_ + kGx[r] * w;
-        const Eigen::Vector2d dir = s * perp(x - o).normalized();
+        const Eigen::Vector2d dir = s * friction_perp(x - o).normalized();
         const double weight = kGw[q] * kGw[r] * kGx[r] * jac * (1.0 / area_ + k.dot(x - centroid_));
         out.force -= weight * dir;
-        out.torque -= weight * cross2(x - ref, dir);
+        out.torque -= weight * friction_cross(x - ref, dir);
       }
     }
   }

@@ -7,7 +7,7 @@
 namespace rocking_monitor::core {
 namespace {
 
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+double support_cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 double extent_of(const std::vector<Eigen::Vector2d>& p) {
   double e = 0.0;
@@ -32,7 +32,7 @@ std::string polygon_problem(const std::vector<Eigen::Vector2d>& p) {
       return "vertices " + std::to_string(i + 1) + " and " + std::to_string((i + 1) % n + 1) + " coincide";
     // Strictly convex and counter-clockwise: every turn to the left (a collinear vertex would make
     // an edge of zero length in the hull's sense: rocking about it is rocking about its neighbours).
-    if (cross2(b - a, c - b) <= 1e-12 * extent * extent)
+    if (support_cross(b - a, c - b) <= 1e-12 * extent * extent)
       return "not strictly convex and counter-clockwise at vertex " + std::to_string((i + 1) % n + 1) +
              " (seen from above)";
   }
@@ -44,7 +44,7 @@ std::vector<Eigen::Vector2d> clip_convex(const std::vector<Eigen::Vector2d>& sub
   std::vector<Eigen::Vector2d> out = subject, in;
   for (std::size_t k = 0; k < clip.size() && !out.empty(); ++k) {
     const Eigen::Vector2d a = clip[k], e = clip[(k + 1) % clip.size()] - a;
-    auto side = [&](const Eigen::Vector2d& x) { return cross2(e, x - a); };  // >= 0: inside (left)
+    auto side = [&](const Eigen::Vector2d& x) { return support_cross(e, x - a); };  // >= 0: inside (left)
     in.swap(out);
     out.clear();
     for (std::size_t i = 0; i < in.size(); ++i) {
@@ -63,7 +63,7 @@ std::vector<Eigen::Vector2d> clip_convex(const std::vector<Eigen::Vector2d>& sub
       const Eigen::Vector2d& a = out[(i + out.size() - 1) % out.size()];
       const Eigen::Vector2d& b = out[i];
       const Eigen::Vector2d& c = out[(i + 1) % out.size()];
-      if ((b - a).norm() <= tol || std::abs(cross2(b - a, c - b)) <= tol * std::max((c - a).norm(), tol)) {
+      if ((b - a).norm() <= tol || std::abs(support_cross(b - a, c - b)) <= tol * std::max((c - a).norm(), tol)) {
         out.erase(out.begin() + static_cast<std::ptrdiff_t>(i));
         changed = true;
       }
@@ -77,7 +77,7 @@ double inside_margin(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2
   double m = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < p.size(); ++k) {
     const Eigen::Vector2d e = p[(k + 1) % p.size()] - p[k];
-    m = std::min(m, cross2(e, x - p[k]) / e.norm());
+    m = std::min(m, support_cross(e, x - p[k]) / e.norm());
   }
   return m;
 }

@@ -159,6 +159,9 @@ class CatchUp(unittest.TestCase):
         self.addCleanup(sub.unregister)
         service = rospy.get_param('~catch_up_service')
         wait_for('the fallback in the log', lambda: 'not caught up from ' + service in restarted.text(), timeout=30.0)
+        # The resumption's line comes after the fallback's: wait for it too (reading the log at once
+        # raced it on a loaded machine).
+        wait_for('the resumption in the log', lambda: 'continue from the state snapshot' in restarted.text(), timeout=30.0)
         log = restarted.text()
         if service == '/player/history':
             self.assertIn("not caught up from /player/history: its history does not reach back to the snapshot's last "
