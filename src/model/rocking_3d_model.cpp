@@ -258,7 +258,7 @@ const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
       if (!std::isfinite(lift) && !std::isfinite(slip)) break;
       if (slip < lift) {
         tau = slip;
-        start_slide(in, tau);
+        start_slide(tau);
       } else {
         tau = lift;
         start_motion(in, tau);

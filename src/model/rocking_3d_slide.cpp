@@ -76,8 +76,7 @@ double Rocking3DModel::find_slip(const GroundInput3& in, double tau, double tau_
   return bracketed_root(f, tau, tau_end, f0, f1, 1e-15 * std::max(tau_end, 1e-9), 200);
 }
 
-void Rocking3DModel::start_slide(const GroundInput3& in, double tau) {
-  (void)in;
+void Rocking3DModel::start_slide(double tau) {
   mode_ = Mode3D::Slide;
   contact_ = -1;
   slide_ << 0.0, 0.0, 0.0, shift_.x(), shift_.y(), yaw_;
@@ -223,12 +222,12 @@ void Rocking3DModel::slide_to_edge(const GroundInput3& in, double tau) {
   if (std::isnan(outcome_.uplift_time)) outcome_.uplift_time = t_ + tau;
 }
 
-Rocking3DModel::Event Rocking3DModel::advance_slide(const GroundInput3& in, double& tau, double tau_end) {
-  auto f = [&](double t, const Vec6& y, Vec6& dy) { slide_rhs(in, t, y, dy); };
+// Absolute error scales of the slide's state (u, spin, shift, yaw).
+Rocking3DModel::Vec6 Rocking3DModel::slide_atol() const {
   const double size = std::max(fb().edge(0).length, fb().centre_of_mass().z());
   const double rho = std::sqrt(fb().central_inertia_per_mass()(2, 2));
-  Vec6 atol;
   const double v_scale = kGravity / body_.max_p();
+  Vec6 atol;
   atol << v_scale, v_scale, v_scale / rho, size, size, 1.0;
   atol *= settings_.tol;
   // Near zero slip the slip's direction turns on the time scale |u| / |a|: resolving a slip of
@@ -238,46 +237,63 @@ Rocking3DModel::Event Rocking3DModel::advance_slide(const GroundInput3& in, doub
   const double floor = kSlipFloorPerTol * settings_.tol;
   atol.head<2>() = atol.head<2>().cwiseMax(floor);
   atol(2) = std::max(atol(2), floor / rho);
+  return atol;
+}
+
+// The stick event's reference: the generalised slip velocity (u, rho spin) at the step's start; from
+// zero slip the body starts to move against the ground's acceleration (at the onset its relative
+// acceleration is still zero when mu_k = mu_s: the direction is the ground's).
+void Rocking3DModel::aim_slide_ref(const GroundInput3& in, double tau, double rho) {
+  slide_ref_ = Eigen::Vector3d(slide_(0), slide_(1), rho * slide_(2));
+  if (slide_ref_.squaredNorm() > 0.0) return;
+  const Eigen::Vector3d a = in.at(tau);
+  slide_ref_ = Eigen::Vector3d(-a.x(), -a.y(), 0.0);
+  slide_stepper_.invalidate();
+}
+
+// The slide's state at an event inside the last step (the stepper restarts from it).
+void Rocking3DModel::slide_to_event(double tau, double t_start) {
+  slide_ = slide_stepper_.eval(tau);
+  slide_stepper_.invalidate();
+  outcome3_.slip_time += tau - t_start;
+}
+
+Rocking3DModel::Event Rocking3DModel::advance_slide(const GroundInput3& in, double& tau, double tau_end) {
+  auto f = [&](double t, const Vec6& y, Vec6& dy) { slide_rhs(in, t, y, dy); };
+  const double rho = std::sqrt(fb().central_inertia_per_mass()(2, 2));
+  const Vec6 atol = slide_atol();
+  const bool supported = !body_.parameters().support.empty();
+  const double t_tol = 1e-13 * std::max(sample_dt_, 1e-6);
   int restarts = 0;
   while (tau < tau_end) {
     if (slide_lift(in, tau, slide_) > 0.0) return Event::Lift;
-    // The stick event: the generalised slip velocity (u, rho spin) turns against its direction at
-    // the step's start (from zero: against the direction it starts to move in).
-    slide_ref_ = Eigen::Vector3d(slide_(0), slide_(1), rho * slide_(2));
-    if (slide_ref_.squaredNorm() == 0.0) {
-      // From zero slip the body starts to move against the ground's acceleration (at the onset its
-      // relative acceleration is still zero when mu_k = mu_s: the direction is the ground's).
-      const Eigen::Vector3d a = in.at(tau);
-      slide_ref_ = Eigen::Vector3d(-a.x(), -a.y(), 0.0);
-      slide_stepper_.invalidate();
-    }
+    aim_slide_ref(in, tau, rho);
     const Eigen::Vector3d ref = slide_ref_;
     const double t_start = tau;
     report_.integrator_steps += slide_stepper_.step(f, tau, slide_, tau_end, settings_.tol, atol);
     const double t0 = slide_stepper_.t0(), t1 = slide_stepper_.t1();
+    // Event functions: the stop (along <= 0), an edge lifting (> 0), the support's edge (margin <= 0).
     auto along = [&](const Vec6& y) { return ref.dot(Eigen::Vector3d(y(0), y(1), rho * y(2))); };
+    auto lift = [&](const Vec6& y, double t) { return slide_lift(in, t, y); };
+    auto margin = [&](const Vec6& y) { return supported ? support_margin_of(y) : 1.0; };
     constexpr int kProbes = 4;
-    double t_prev = t0, s_prev = 1.0, l_prev = slide_lift(in, t0, slide_);
-    // The support's edge (issue 51): the centre of mass passing it ends the slide off the support.
-    const bool supported = !body_.parameters().support.empty();
-    double m_prev = supported ? support_margin_of(slide_) : 1.0;
+    double t_prev = t0, s_prev = 1.0, l_prev = lift(slide_, t0), m_prev = margin(slide_);
     for (int k = 1; k <= kProbes; ++k) {
       const double tk = k == kProbes ? t1 : t0 + (t1 - t0) * k / kProbes;
       const Vec6 yk = k == kProbes ? Vec6(slide_stepper_.y1()) : Vec6(slide_stepper_.eval(tk));
-      const double s = along(yk), l = slide_lift(in, tk, yk), mk = supported ? support_margin_of(yk) : 1.0;
+      const double s = along(yk), l = lift(yk, tk), mk = margin(yk);
+      auto root = [&](auto g, double ga, double gb) {
+        return bracketed_root([&](double t) { return g(Vec6(slide_stepper_.eval(t)), t); }, t_prev, tk, ga, gb, t_tol);
+      };
+      auto along_t = [&](const Vec6& y, double) { return along(y); };
       if (mk <= 0.0 && m_prev > 0.0) {
-        // Located before the stop and lift tests of this interval: falling off comes first when it is
-        // in it (a stop or lift after it would be located on a body no longer on the support).
-        const double tf = bracketed_root([&](double t) { return support_margin_of(Vec6(slide_stepper_.eval(t))); },
-                                         t_prev, tk, m_prev, mk, 1e-13 * std::max(sample_dt_, 1e-6));
-        const double ts = s <= 0.0 ? bracketed_root([&](double t) { return along(Vec6(slide_stepper_.eval(t))); },
-                                                    t_prev, tk, s_prev, s, 1e-13 * std::max(sample_dt_, 1e-6))
-                                   : tk;
+        // Falling off the support comes first when it is in this interval (a stop or lift after it
+        // would be located on a body no longer on the support).
+        const double tf = root([&](const Vec6& y, double) { return margin(y); }, m_prev, mk);
+        const double ts = s <= 0.0 ? root(along_t, s_prev, s) : tk;
         if (!(ts < tf)) {
           tau = tf;
-          slide_ = slide_stepper_.eval(tau);
-          slide_stepper_.invalidate();
-          outcome3_.slip_time += tau - t_start;
+          slide_to_event(tau, t_start);
           note_slide();
           outcome3_.fell_off_support = true;
           outcome3_.fell_off_time = t_ + tau;
@@ -286,17 +302,11 @@ Rocking3DModel::Event Rocking3DModel::advance_slide(const GroundInput3& in, doub
       }
       const bool stops = s <= 0.0 && restarts < kMaxSlideRestarts, lifts = l > 0.0 && !(l_prev > 0.0);
       if (stops || lifts) {
-        const double ts = stops ? bracketed_root([&](double t) { return along(Vec6(slide_stepper_.eval(t))); },
-                                                 t_prev, tk, s_prev, s, 1e-13 * std::max(sample_dt_, 1e-6))
-                                : tk;
-        const double tl = lifts ? bracketed_root([&](double t) { return slide_lift(in, t, Vec6(slide_stepper_.eval(t))); },
-                                                 t_prev, tk, l_prev, l, 1e-13 * std::max(sample_dt_, 1e-6))
-                                : tk;
+        const double ts = stops ? root(along_t, s_prev, s) : tk;
+        const double tl = lifts ? root(lift, l_prev, l) : tk;
         const bool stick_first = stops && (!lifts || ts <= tl);
         tau = stick_first ? ts : tl;
-        slide_ = slide_stepper_.eval(tau);
-        slide_stepper_.invalidate();
-        outcome3_.slip_time += tau - t_start;
+        slide_to_event(tau, t_start);
         if (!stick_first) return Event::Lift;
         slide_(0) = slide_(1) = slide_(2) = 0.0;
         note_slide();

@@ -240,8 +240,11 @@ class Rocking3DModel {
   Eigen::Matrix3d vertex_rotation(const Vec7& y) const;
   // SLIDE (rocking_3d_slide.cpp).
   double find_slip(const GroundInput3& in, double tau, double tau_end) const;
-  void start_slide(const GroundInput3& in, double tau);
+  void start_slide(double tau);
   Event advance_slide(const GroundInput3& in, double& tau, double tau_end);
+  Vec6 slide_atol() const;
+  void aim_slide_ref(const GroundInput3& in, double tau, double rho);
+  void slide_to_event(double tau, double t_start);
   void slide_rhs(const GroundInput3& in, double t, const Vec6& y, Vec6& dy) const;
   Eigen::Vector2d slide_friction(const GroundInput3& in, double t, const Vec6& y, double& torque) const;
   double slide_lift(const GroundInput3& in, double t, const Vec6& y) const;
