@@ -17,7 +17,7 @@ packages=(
   topic-tools
   libcpp-httplib-dev chromium
   zlib1g-dev
-  libbullet-dev
+  libbullet-dev libsiconos-numerics-dev
   libcurl4-openssl-dev libmosquitto-dev mosquitto python3-aiosmtpd
 )
 
