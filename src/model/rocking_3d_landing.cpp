@@ -10,6 +10,7 @@
 
 #include "rocking_3d_internal.hpp"
 #include "rocking_monitor/model/rocking_3d_model.hpp"
+#include "rocking_monitor/physics/frictional_impact.hpp"
 #include "rocking_monitor/physics/impact_3d.hpp"
 
 namespace rocking_monitor::core {
@@ -26,16 +27,52 @@ void Rocking3DModel::record_impact(double tau, double energy_before) {
 // At rest on hull face `face` in pose `rotation` (item frame) with hull vertex `vertex` at `point` on
 // the floor: the footprint from the pose (the face lies flat, the vertex keeps its place).
 void Rocking3DModel::capture_rest(const Eigen::Matrix3d& rotation, int vertex, const Eigen::Vector3d& point, int face) {
+  place_flat(rotation, vertex, point, face);
+  go_to_rest();
+  report_.rest_capture = true;
+  ++outcome_.rest_captures;
+  if (face != 0) ++outcome3_.rests_off_base;
+}
+
+// Flat on hull face `face`: the footprint (yaw, shift) from the pose, the vertex keeping its place.
+void Rocking3DModel::place_flat(const Eigen::Matrix3d& rotation, int vertex, const Eigen::Vector3d& point, int face) {
   set_face(face);
   const Eigen::Matrix3d rf = face == 0 ? rotation : Eigen::Matrix3d(rotation * fc().rotation.transpose());
   yaw_ = std::atan2(rf(1, 0), rf(0, 0));
   const Eigen::Vector3d placed = face == 0 ? Eigen::Vector3d(yaw_matrix() * hv(vertex).position)
                                            : Eigen::Vector3d(yaw_matrix() * (fc().rotation * hv(vertex).position + fc().offset));
   shift_ = Eigen::Vector2d(point.x() - placed.x(), point.y() - placed.y());
-  go_to_rest();
-  report_.rest_capture = true;
-  ++outcome_.rest_captures;
-  if (face != 0) ++outcome3_.rests_off_base;
+}
+
+// The landing leaves the body flat on `face` with the horizontal velocity u of its centre of mass and
+// the spin (friction at the landing could not stop them): SLIDE from here (REST if nothing moves).
+void Rocking3DModel::slide_after_landing(const Eigen::Matrix3d& rotation, int vertex, const Eigen::Vector3d& point,
+                                         int face, const Eigen::Vector2d& u, double spin, double tau) {
+  place_flat(rotation, vertex, point, face);
+  if (u.squaredNorm() == 0.0 && spin == 0.0) {
+    go_to_rest();
+    return;
+  }
+  mode_ = Mode3D::Slide;
+  contact_ = -1;
+  theta_ = omega_ = 0.0;
+  slide_ << u.x(), u.y(), spin, shift_.x(), shift_.y(), yaw_;
+  slide_stepper_.reset(sample_dt_);
+  ++outcome3_.landing_slides;
+  if (std::isnan(outcome3_.first_slip_time)) outcome3_.first_slip_time = t_ + tau;
+}
+
+// Friction decides the landing (issue 51 part 3) where the sticking law needs more than mu_s or has
+// no solution: the frictional plastic impact (physics/frictional_impact.hpp). Returns whether its
+// answer is the one to follow (converged); `law` keeps the sticking answer otherwise.
+bool Rocking3DModel::frictional_answer(const Landing& law, double demand, const LandingBody& lb,
+                                       const LandingContacts& set, FrictionalLanding& out) {
+  const double mu_s = body_.parameters().mu_s;
+  if (!std::isfinite(mu_s) || (law.violation == 0.0 && !(demand > mu_s))) return false;
+  out = frictional_landing(lb, set, ImpactFriction{mu_s, mu_k()});
+  ++outcome3_.frictional_landings;
+  if (!out.converged) ++outcome3_.unresolved_landings;
+  return out.converged;
 }
 
 // Angle of hull face `face` from the floor in pose `rotation` (item frame), rad.
@@ -51,45 +88,37 @@ double Rocking3DModel::capture_energy(const BaseVertex& v) const {
   return 0.5 * r * r * kGravity * v.radius * v.alpha * v.alpha;
 }
 
-// `touching`: the hull vertex whose touchdown was located (VERTEX); EDGE: -1 back flat on the face,
-// -2 the face across the edge comes flat (a hull).
-void Rocking3DModel::land(int touching, double tau) {
-  const double before = kinetic_energy();
-  const bool from_edge = mode_ == Mode3D::Edge;
-  const bool flat_edge = from_edge && touching == -1;
-  const bool with_hull = hull().from_hull;
-  const int face_before = face_;
-  // The pose (item frame), the motion before and a point that does not move (on the edge's axis or
-  // the pivot).
-  Eigen::Matrix3d r;
-  Eigen::Vector3d t, omega, fixed;
-  const std::vector<int>* landing_face = nullptr;  // EDGE: the face that comes flat
-  if (from_edge) {
-    // Back to flat: the pose is the footprint exactly (theta = 0 is the event), every face vertex
-    // on the floor. Onto the face across: the pose at the event.
-    // (The event is located on theta to the integrator's tolerance: the pose is put exactly there.)
-    const int across = fc().across[static_cast<std::size_t>(contact_)];
-    if (flat_edge) theta_ = 0.0;
-    else theta_ = fc().fold[static_cast<std::size_t>(contact_)];
-    landing_face = flat_edge ? &fc().hull_vertex : &hull().faces[static_cast<std::size_t>(across)].hull_vertex;
-    r = rotation();
-    t = translation();
-    omega = angular_velocity();
-    fixed = r * hv(fc().hull_vertex[static_cast<std::size_t>(fb().edge(contact_).a)]).position + t;
-    ++outcome3_.flat_impacts;
-  } else {
+// The pose at a landing, the motion before and a point that does not move (on the edge's axis or the
+// pivot); EDGE: the face that comes flat (else null). `touching` as for land().
+const std::vector<int>* Rocking3DModel::landing_pose(int touching, Eigen::Matrix3d& r, Eigen::Vector3d& t,
+                                                     Eigen::Vector3d& omega, Eigen::Vector3d& fixed) {
+  if (mode_ != Mode3D::Edge) {
     r = vertex_rotation(y_);
     t = pivot_world_ - r * hv(contact_).position;
     omega = y_.tail<3>();
     fixed = pivot_world_;
     ++outcome3_.vertex_impacts;
+    return nullptr;
   }
-  // The closing contact set: every hull point on the floor at this instant, to floor_tol_ (far
-  // below any physical scale, above the dense output's error in the pose at the event).
-  // One per thread, not per item: 3.6 KB that only a landing uses (no allocation per sample).
-  static thread_local LandingContacts set;
-  static thread_local int hull_index[LandingContacts::kMax];
-  static_assert(LandingContacts::kMax == kMaxBaseVertices, "a contact for every hull vertex");
+  // Back to flat: the pose is the footprint exactly (theta = 0 is the event), every face vertex on
+  // the floor. Onto the face across: the pose at the event. (The event is located on theta to the
+  // integrator's tolerance: the pose is put exactly there.)
+  const bool flat_edge = touching == -1;
+  const int across = fc().across[static_cast<std::size_t>(contact_)];
+  theta_ = flat_edge ? 0.0 : fc().fold[static_cast<std::size_t>(contact_)];
+  r = rotation();
+  t = translation();
+  omega = angular_velocity();
+  fixed = r * hv(fc().hull_vertex[static_cast<std::size_t>(fb().edge(contact_).a)]).position + t;
+  ++outcome3_.flat_impacts;
+  return flat_edge ? &fc().hull_vertex : &hull().faces[static_cast<std::size_t>(across)].hull_vertex;
+}
+
+// The closing contact set: every hull point on the floor at this instant, to floor_tol_ (far below
+// any physical scale, above the dense output's error in the pose at the event), in the order whose
+// consecutive points are the contact polygon's edges; hull_index[k]: contact k's hull vertex.
+void Rocking3DModel::closing_contacts(int touching, const Eigen::Matrix3d& r, const Eigen::Vector3d& t,
+                                      const std::vector<int>* landing_face, LandingContacts& set, int* hull_index) const {
   set.count = 0;
   const int nh = static_cast<int>(hull().vertices.size());
   for (int i = 0; i < nh; ++i) {
@@ -103,24 +132,62 @@ void Rocking3DModel::land(int touching, double tau) {
     hull_index[set.count] = i;
     ++set.count;
   }
-  if (!with_hull) {
-    // The base's own order (edges join vertex k and k + 1 of the base).
-    set.base_vertex_count = body_.vertex_count();
-  } else {
-    // Hull points in counter-clockwise order about their centre on the floor: consecutive ones are
-    // the contact polygon's edges (a hull edge or face on the floor).
-    Eigen::Vector3d mid = Eigen::Vector3d::Zero();
-    for (int k = 0; k < set.count; ++k) mid += set.point[k] / set.count;
-    auto angle = [&](int k) { return std::atan2(set.point[k].y() - mid.y(), set.point[k].x() - mid.x()); };
-    for (int k = 1; k < set.count; ++k)  // insertion sort: a few points, no allocation
-      for (int m = k; m > 0 && angle(m) < angle(m - 1); --m) {
-        std::swap(set.point[m], set.point[m - 1]);
-        std::swap(hull_index[m], hull_index[m - 1]);
-      }
-    for (int k = 0; k < set.count; ++k) set.vertex[k] = k;
-    set.base_vertex_count = set.count;
+  if (!hull().from_hull) {
+    set.base_vertex_count = body_.vertex_count();  // the base's own order (edge k joins k and k + 1)
+    return;
   }
-  const bool flat = set.count >= 3;
+  // Hull points in counter-clockwise order about their centre on the floor: consecutive ones are the
+  // contact polygon's edges (a hull edge or face on the floor).
+  Eigen::Vector3d mid = Eigen::Vector3d::Zero();
+  for (int k = 0; k < set.count; ++k) mid += set.point[k] / set.count;
+  auto angle = [&](int k) { return std::atan2(set.point[k].y() - mid.y(), set.point[k].x() - mid.x()); };
+  for (int k = 1; k < set.count; ++k)  // insertion sort: a few points, no allocation
+    for (int m = k; m > 0 && angle(m) < angle(m - 1); --m) {
+      std::swap(set.point[m], set.point[m - 1]);
+      std::swap(hull_index[m], hull_index[m - 1]);
+    }
+  for (int k = 0; k < set.count; ++k) set.vertex[k] = k;
+  set.base_vertex_count = set.count;
+}
+
+// The Zeno rule of a see-saw on a tilted edge: pivoting on its two ends in turn, the body loses a
+// fixed fraction of the wobble across the edge at each landing, infinitely often in finite time,
+// converging to rocking about the edge. Once the wobble's energy is below the rest capture's energy
+// (rest_capture_ratio * p * alpha, as for rest), it rocks about the edge (chosen, w updated).
+void Rocking3DModel::see_saw_rule(const LandingBody& lb, const LandingContacts& set, const int* hull_index,
+                                  double kappa, Landing& chosen, Eigen::Vector3d& w) {
+  const int n = set.base_vertex_count;
+  if (chosen.mode != LandingMode::Vertex || set.count != 2 ||
+      !((set.vertex[0] + 1) % n == set.vertex[1] || (set.vertex[1] + 1) % n == set.vertex[0]))
+    return;
+  const int a = (set.vertex[0] + 1) % n == set.vertex[1] ? 0 : 1;
+  const Eigen::Vector3d& pa = set.point[a];
+  const Eigen::Vector3d w_edge = rotation_about_line(lb, pa, (set.point[1 - a] - pa).normalized());
+  const Eigen::Matrix3d j = inertia_about(lb.central_inertia, lb.centre, pa);
+  if (kappa * kappa * (chosen.energy_after - rotation_energy(j, w_edge)) <
+      capture_energy(hv(hull_index[chosen.first]))) {
+    chosen.mode = LandingMode::Edge;
+    chosen.first = a;
+    chosen.second = 1 - a;
+    w = kappa * w_edge;
+    ++outcome3_.edge_captures;
+  }
+}
+
+// `touching`: the hull vertex whose touchdown was located (VERTEX); EDGE: -1 back flat on the face,
+// -2 the face across the edge comes flat (a hull).
+void Rocking3DModel::land(int touching, double tau) {
+  const double before = kinetic_energy();
+  const bool flat_edge = mode_ == Mode3D::Edge && touching == -1;
+  const int face_before = face_;
+  Eigen::Matrix3d r;
+  Eigen::Vector3d t, omega, fixed;
+  const std::vector<int>* landing_face = landing_pose(touching, r, t, omega, fixed);
+  // One per thread, not per item: 3.6 KB that only a landing uses (no allocation per sample).
+  static thread_local LandingContacts set;
+  static thread_local int hull_index[LandingContacts::kMax];
+  static_assert(LandingContacts::kMax == kMaxBaseVertices, "a contact for every hull vertex");
+  closing_contacts(touching, r, t, landing_face, set, hull_index);
   LandingBody lb;
   lb.central_inertia = r * body_.central_inertia_per_mass() * r.transpose();
   lb.centre = r * body_.centre_of_mass() + t;
@@ -128,58 +195,67 @@ void Rocking3DModel::land(int touching, double tau) {
   lb.velocity = omega.cross(lb.centre - fixed);
   const Landing law = plastic_landing(lb, set);
   outcome3_.max_landing_violation = std::max(outcome3_.max_landing_violation, law.violation);
+  double demand = 0.0;
   if (law.normal_impulse > 0.0) {
-    const double demand = law.tangential_impulse / law.normal_impulse;
+    demand = law.tangential_impulse / law.normal_impulse;
     outcome3_.max_friction_demand = std::max(outcome3_.max_friction_demand, demand);
     // (mu_s = +inf when the item does not give it: never counted)
     if (demand > body_.parameters().mu_s) ++outcome3_.slipping_landings;
   }
-  const double kappa = body_.restitution_factor();
-  Eigen::Vector3d w = kappa * law.omega;
-  Landing chosen = law;
-  const int n = set.base_vertex_count;
-  if (law.mode == LandingMode::Vertex && set.count == 2 &&
-      ((set.vertex[0] + 1) % n == set.vertex[1] || (set.vertex[1] + 1) % n == set.vertex[0])) {
-    // The Zeno rule of a see-saw on a tilted edge: pivoting on its two ends in turn, the body loses
-    // a fixed fraction of the wobble across the edge at each landing, infinitely often in finite
-    // time, converging to rocking about the edge. Once the wobble's energy is below the rest
-    // capture's energy (rest_capture_ratio * p * alpha, as for rest), it rocks about the edge.
-    const int a = (set.vertex[0] + 1) % n == set.vertex[1] ? 0 : 1;
-    const Eigen::Vector3d& pa = set.point[a];
-    const Eigen::Vector3d w_edge = rotation_about_line(lb, pa, (set.point[1 - a] - pa).normalized());
-    const Eigen::Matrix3d j = inertia_about(lb.central_inertia, lb.centre, pa);
-    if (kappa * kappa * (law.energy_after - rotation_energy(j, w_edge)) <
-        capture_energy(hv(hull_index[chosen.first]))) {
-      chosen.mode = LandingMode::Edge;
-      chosen.first = a;
-      chosen.second = 1 - a;
-      w = kappa * w_edge;
-      ++outcome3_.edge_captures;
-    }
+  LandingScene scene{r, set, hull_index, hull().from_hull ? hull().face_down(r) : 0, flat_edge, face_before, tau};
+  scene.frictional = frictional_answer(law, demand, lb, set, scene.friction);
+  if (scene.frictional && scene.friction.stay >= 3) {
+    // The base stays on the floor: friction could not stop it; it slides on (exactly).
+    slide_after_landing(r, hull_index[0], set.point[0], scene.down, scene.friction.velocity.head<2>(),
+                        scene.friction.omega.z(), tau);
+  } else {
+    const double kappa = body_.restitution_factor();
+    Eigen::Vector3d w = kappa * law.omega;
+    Landing chosen = law;
+    see_saw_rule(lb, set, hull_index, kappa, chosen, w);
+    continue_after_landing(scene, chosen, w, kappa);
   }
+  if (hull().from_hull && (mode_ == Mode3D::Rest || mode_ == Mode3D::Edge || mode_ == Mode3D::Slide) && face_ != face_before)
+    ++outcome3_.hull_landings;
+  record_impact(tau, before);
+}
 
-  // The face the body lies on or over (the base without a hull).
-  const int down = with_hull ? hull().face_down(r) : 0;
+// The mode after a landing whose contacts stick (issue 40's law, restitution and the Zeno rules).
+// Where friction decided the landing and its pivot slips (slide-rock in 3-D, not modelled), the
+// sticking answer is followed and counted; a rest capture there keeps the slip (the planar rule).
+void Rocking3DModel::continue_after_landing(const LandingScene& sc, const Landing& chosen, const Eigen::Vector3d& w,
+                                            double kappa) {
+  const Eigen::Matrix3d& r = sc.r;
+  const LandingContacts& set = sc.set;
+  const bool slips = sc.frictional && sc.friction.slipping > 0;
   // The planar engine's rest capture (its Zeno rule) needs an almost flat face.
-  const bool near_flat =
-      flat || face_tilt(r, down) < settings_.rest_capture_ratio * hull().faces[static_cast<std::size_t>(down)].body->min_alpha();
+  const bool near_flat = set.count >= 3 ||
+                         face_tilt(r, sc.down) < settings_.rest_capture_ratio *
+                                                     hull().faces[static_cast<std::size_t>(sc.down)].body->min_alpha();
   // (on a face the centre of mass overhangs, the shaking may hold the body: REST there lifts off
   // again as soon as the acceleration lets it, rocking_3d_edge.cpp)
-  auto rest = [&](int k) { capture_rest(r, hull_index[k], set.point[k], down); };
+  auto rest = [&](int k) {
+    if (slips) {
+      slide_after_landing(r, sc.hull_index[k], set.point[k], sc.down, sc.friction.velocity.head<2>(),
+                          sc.friction.omega.z(), sc.tau);
+    } else {
+      capture_rest(r, sc.hull_index[k], set.point[k], sc.down);
+    }
+  };
   // An edge: the face it is rocked on and its index there (without a hull: base edge k joins base
   // vertices k and k + 1).
-  int face = 0, edge = chosen.mode == LandingMode::Edge ? hull_index[chosen.first] : -1;
-  const bool on_hull_edge = chosen.mode != LandingMode::Edge || !with_hull ||
-                            hull().face_with_edge(hull_index[chosen.first], hull_index[chosen.second], r, face, edge);
+  int face = 0, edge = chosen.mode == LandingMode::Edge ? sc.hull_index[chosen.first] : -1;
+  const bool on_hull_edge = chosen.mode != LandingMode::Edge || !hull().from_hull ||
+                            hull().face_with_edge(sc.hull_index[chosen.first], sc.hull_index[chosen.second], r, face, edge);
   if (chosen.mode == LandingMode::Rest || kappa <= 0.0) {
     rest(0);
   } else if (!on_hull_edge) {
     // Two floor points joined by no hull edge (a face's diagonal within the floor tolerance): the
     // body turns about their line, which no face's edge mode carries; it pivots on the first point
     // with that angular velocity, and the second point's touchdown is the next landing.
-    enter_vertex(hull_index[chosen.first], set.point[chosen.first], r, w);
+    enter_vertex(sc.hull_index[chosen.first], set.point[chosen.first], r, w);
   } else if (chosen.mode == LandingMode::Edge) {
-    const int u = hull_index[chosen.first];
+    const int u = sc.hull_index[chosen.first];
     const HullFace& hf = hull().faces[static_cast<std::size_t>(face)];
     const BaseEdge& e = hf.body->edge(edge);
     const Eigen::Matrix3d rf = face == 0 ? r : Eigen::Matrix3d(r * hf.rotation.transpose());
@@ -188,7 +264,7 @@ void Rocking3DModel::land(int touching, double tau) {
     // almost no energy left: w below rest_capture_ratio * p * alpha of the edge
     if (!(w_axis > 0.0) || (w_axis < settings_.rest_capture_ratio * e.pivot.p * e.pivot.alpha && near_flat)) {
       rest(chosen.first);
-    } else if (flat_edge && face == face_before) {
+    } else if (sc.flat_edge && face == sc.face_before) {
       mode_ = Mode3D::Edge;
       contact_ = edge;
       theta_ = 0.0;
@@ -198,7 +274,7 @@ void Rocking3DModel::land(int touching, double tau) {
       enter_edge_from_pose(face, edge, r, set.point[pivot], e.a, w_axis);
     }
   } else {
-    const int vertex = hull_index[chosen.first];
+    const int vertex = sc.hull_index[chosen.first];
     const BaseVertex& v = hv(vertex);
     if (rotation_energy(r * v.inertia * r.transpose(), w) < capture_energy(v) && near_flat) {
       rest(chosen.first);
@@ -206,8 +282,9 @@ void Rocking3DModel::land(int touching, double tau) {
       enter_vertex(vertex, set.point[chosen.first], r, w);
     }
   }
-  if (with_hull && (mode_ == Mode3D::Rest || mode_ == Mode3D::Edge) && face_ != face_before) ++outcome3_.hull_landings;
-  record_impact(tau, before);
+  if (sc.frictional && (mode_ == Mode3D::Edge || mode_ == Mode3D::Vertex) &&
+      (sc.friction.slipping > 0 || sc.friction.stay == 0))
+    ++outcome3_.pivot_slip_landings;
 }
 
 }  // namespace rocking_monitor::core

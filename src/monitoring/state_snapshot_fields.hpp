@@ -397,6 +397,10 @@ void visit(V& v, Rocking3DModel::Saved& s) {
     v("max_landing_violation", s.outcome_3d.max_landing_violation);
     v("max_friction_demand", s.outcome_3d.max_friction_demand);
     v("slipping_landings", s.outcome_3d.slipping_landings);
+    v("frictional_landings", s.outcome_3d.frictional_landings);
+    v("landing_slides", s.outcome_3d.landing_slides);
+    v("pivot_slip_landings", s.outcome_3d.pivot_slip_landings);
+    v("unresolved_landings", s.outcome_3d.unresolved_landings);
     v("edge_captures", s.outcome_3d.edge_captures);
     v("hull_landings", s.outcome_3d.hull_landings);
     v("rests_off_base", s.outcome_3d.rests_off_base);

@@ -115,6 +115,10 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
              {"max_landing_violation_m_s", r3.max_landing_violation},
              {"max_friction_demand", r3.max_friction_demand},
              {"slipping_landings", r3.slipping_landings},
+             {"frictional_landings", r3.frictional_landings},
+             {"landing_slides", r3.landing_slides},
+             {"pivot_slip_landings", r3.pivot_slip_landings},
+             {"unresolved_landings", r3.unresolved_landings},
              {"final_mode", rm::to_string(model.mode())},
              {"final_contact", model.contact()},
              {"final_face", model.face()},
@@ -149,9 +153,11 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
                      r.max_rotation_ratio));
   L.push_back(format("impacts     %ld (flat %ld, on a vertex %ld), edge-to-vertex lifts %ld", r.impacts,
                      r3.flat_impacts, r3.vertex_impacts, r3.edge_to_vertex));
-  L.push_back(format("landings    friction demand up to %.3f (%ld above mu_s: the real body slides there), "
-                     "largest violation of the impact law %.2g m/s", r3.max_friction_demand, r3.slipping_landings,
-                     r3.max_landing_violation));
+  L.push_back(format("landings    friction demand up to %.3f (%ld above mu_s), largest violation of the sticking "
+                     "law %.2g m/s; friction decided %ld: %ld slid on flat, %ld with a slipping pivot (slide-rock, "
+                     "followed as sticking), %ld unresolved", r3.max_friction_demand, r3.slipping_landings,
+                     r3.max_landing_violation, r3.frictional_landings, r3.landing_slides, r3.pivot_slip_landings,
+                     r3.unresolved_landings));
   L.push_back(format("sliding     %ld slip onsets (first at %s), %ld sticks; max slip %.4f m, final %.4f m, "
                      "max slip speed %.3f m/s, max twist %.4f rad, %.3f s sliding; %ld slides ended by an edge lifting",
                      r3.slides, std::isnan(r3.first_slip_time) ? "-" : format("%.4f s", r3.first_slip_time).c_str(),

@@ -14,8 +14,9 @@
 // acceleration act at the centre of mass. SLIDE (issue 51): flat on a face, sliding in any horizontal
 // direction and turning about the vertical under one isotropic Coulomb law over the face's contact
 // polygon (physics/base_friction.hpp); slip onset and stick are located exactly in the sample.
-// Rocking on a slipping pivot and friction at landings are not modelled yet (counted: slide_to_rock,
-// slipping_landings).
+// Landings where the sticking impact needs more friction than mu_s are decided by the frictional
+// impact (physics/frictional_impact.hpp). Rocking on a slipping pivot is not modelled yet (counted:
+// slide_to_rock, pivot_slip_landings).
 //
 // Frames: the item's floor frame at rest (x, y horizontal, z up); the body keeps a footprint
 // (yaw and shift on the floor) that changes only when it turns while pivoting on a vertex.
@@ -36,6 +37,8 @@
 #include "rocking_monitor/physics/base_body.hpp"
 #include "rocking_monitor/physics/base_friction.hpp"
 #include "rocking_monitor/physics/contact_hull.hpp"
+#include "rocking_monitor/physics/frictional_impact.hpp"
+#include "rocking_monitor/physics/impact_3d.hpp"
 
 namespace rocking_monitor::core {
 
@@ -61,10 +64,18 @@ struct Rocking3DOutcome {
   /// had an admissible solution; > 0 only where rounding or a degenerate contact set left none).
   double max_landing_violation = 0.0;
   /// Largest horizontal / normal impulse of any landing: the friction coefficient the sticking
-  /// impact needs. Above the item's mu_s the real body slides at that landing (not modelled).
+  /// impact needs. Above the item's mu_s friction decides the landing (frictional_landings).
   double max_friction_demand = 0.0;
   /// Landings whose friction demand exceeded the item's mu_s: the real body slid there.
   long slipping_landings = 0;
+  // Friction at landings (issue 51 part 3): where the sticking law needs more than mu_s or has no
+  // solution, the frictional plastic impact (physics/frictional_impact.hpp) decides.
+  long frictional_landings = 0;   ///< landings friction decided
+  long landing_slides = 0;        ///< of those, the ones after which the base slides on flat (SLIDE)
+  /// Of those, the ones after which a pivot slips (or the body leaves the floor): slide-rock in 3-D is
+  /// not modelled, the sticking answer is followed there.
+  long pivot_slip_landings = 0;
+  long unresolved_landings = 0;   ///< the frictional law did not converge: the sticking answer followed
   /// Landings onto a hull face other than the one rocked on (the body rolled over its hull).
   long hull_landings = 0;
   /// Rest captures on a hull face other than the base (a state the monitor reports).
@@ -217,6 +228,30 @@ class Rocking3DModel {
   void enter_edge_from_pose(int face, int edge, const Eigen::Matrix3d& rotation, const Eigen::Vector3d& pivot_world,
                             int pivot_vertex, double omega_axis);
   void land(int touching, double tau);
+  // A landing's pose, contact set and body, and what decides it (rocking_3d_landing.cpp).
+  struct LandingScene {
+    const Eigen::Matrix3d& r;        // the pose (item frame)
+    const LandingContacts& set;      // the closing contact set
+    const int* hull_index;           // contact k's hull vertex
+    int down;                        // the face the body lies on or over
+    bool flat_edge;                  // EDGE back flat on its face
+    int face_before;
+    double tau;
+    bool frictional = false;         // friction decided (its answer in `friction`)
+    FrictionalLanding friction;
+  };
+  const std::vector<int>* landing_pose(int touching, Eigen::Matrix3d& r, Eigen::Vector3d& t, Eigen::Vector3d& omega,
+                                       Eigen::Vector3d& fixed);
+  void closing_contacts(int touching, const Eigen::Matrix3d& r, const Eigen::Vector3d& t,
+                        const std::vector<int>* landing_face, LandingContacts& set, int* hull_index) const;
+  void see_saw_rule(const LandingBody& lb, const LandingContacts& set, const int* hull_index, double kappa,
+                    Landing& chosen, Eigen::Vector3d& w);
+  bool frictional_answer(const Landing& law, double demand, const LandingBody& lb, const LandingContacts& set,
+                         FrictionalLanding& out);
+  void continue_after_landing(const LandingScene& scene, const Landing& chosen, const Eigen::Vector3d& w, double kappa);
+  void place_flat(const Eigen::Matrix3d& rotation, int vertex, const Eigen::Vector3d& point, int face);
+  void slide_after_landing(const Eigen::Matrix3d& rotation, int vertex, const Eigen::Vector3d& point, int face,
+                           const Eigen::Vector2d& u, double spin, double tau);
   double capture_energy(const BaseVertex& v) const;
   void capture_rest(const Eigen::Matrix3d& rotation, int vertex, const Eigen::Vector3d& point, int face);
   double face_tilt(const Eigen::Matrix3d& rotation, int face) const;
