@@ -29,6 +29,7 @@ void Rocking3DModel::record_impact(double tau, double energy_before) {
 void Rocking3DModel::capture_rest(const Eigen::Matrix3d& rotation, int vertex, const Eigen::Vector3d& point, int face) {
   place_flat(rotation, vertex, point, face);
   go_to_rest();
+  landing_reason_ = Transition3D::RestCapture;
   report_.rest_capture = true;
   ++outcome_.rest_captures;
   if (face != 0) ++outcome3_.rests_off_base;
@@ -59,6 +60,7 @@ void Rocking3DModel::slide_after_landing(const Eigen::Matrix3d& rotation, int ve
   slide_ << u.x(), u.y(), spin, shift_.x(), shift_.y(), yaw_;
   slide_stepper_.reset(sample_dt_);
   ++outcome3_.landing_slides;
+  landing_reason_ = Transition3D::LandingSlides;
   if (std::isnan(outcome3_.first_slip_time)) outcome3_.first_slip_time = t_ + tau;
 }
 
@@ -178,6 +180,7 @@ void Rocking3DModel::see_saw_rule(const LandingBody& lb, const LandingContacts& 
 // -2 the face across the edge comes flat (a hull).
 void Rocking3DModel::land(int touching, double tau) {
   const double before = kinetic_energy();
+  landing_reason_ = Transition3D::Landing;
   const bool flat_edge = mode_ == Mode3D::Edge && touching == -1;
   const int face_before = face_;
   Eigen::Matrix3d r;
@@ -283,8 +286,10 @@ void Rocking3DModel::continue_after_landing(const LandingScene& sc, const Landin
     }
   }
   if (sc.frictional && (mode_ == Mode3D::Edge || mode_ == Mode3D::Vertex) &&
-      (sc.friction.slipping > 0 || sc.friction.stay == 0))
+      (sc.friction.slipping > 0 || sc.friction.stay == 0)) {
     ++outcome3_.pivot_slip_landings;
+    landing_reason_ = Transition3D::LandingPivotSlips;
+  }
 }
 
 }  // namespace rocking_monitor::core

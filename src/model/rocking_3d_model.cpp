@@ -81,6 +81,7 @@ void Rocking3DModel::reset(double t, const Eigen::Vector3d& a) {
   vector_.reset(0.05 / body_.max_p());
   slide_stepper_.reset(0.05 / body_.max_p());
   slide_.setZero();
+  transition_count_ = 0;
 }
 
 void Rocking3DModel::save(Saved& out) const {
@@ -251,6 +252,7 @@ const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
   in.slope = (a - a_prev_) / dt;
   double tau = 0.0;
   int events = 0;
+  auto on_side = [&] { return face_ != 0 && mode_ != Mode3D::Vertex && tilt() >= body_.overturn_angle(); };
   while (tau < dt && mode_ != Mode3D::Overturned) {
     if (mode_ == Mode3D::Rest) {
       // Whichever the input brings first: an edge lifting, or the demand leaving the friction cone.
@@ -259,9 +261,11 @@ const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
       if (slip < lift) {
         tau = slip;
         start_slide(tau);
+        note_transition(Mode3D::Rest, Transition3D::SlipOnset, tau);
       } else {
         tau = lift;
         start_motion(in, tau);
+        note_transition(Mode3D::Rest, Transition3D::Uplift, tau);
       }
       ++events;
     }
@@ -272,43 +276,23 @@ const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
     else if (mode_ == Mode3D::Slide) e = advance_slide(in, tau, dt);
     // Off the base, lying on the side (the item base's tilt at the overturn angle) is OVERTURNED
     // as on the base: checked where the motion stops (a step's end, an event, a landing).
-    auto on_side = [&] { return face_ != 0 && mode_ != Mode3D::Vertex && tilt() >= body_.overturn_angle(); };
     if (e != Event::Overturn && on_side()) e = Event::Overturn;
     if (e == Event::None) break;
-    auto overturn = [&] {
-      note_ratio();
-      mode_ = Mode3D::Overturned;
-      outcome_.overturned = true;
-      outcome_.overturn_time = t_ + tau;
-      report_.overturned = true;
-    };
-    if (e == Event::Overturn) {
-      overturn();
-      break;
-    }
-    if (e == Event::Stick) {
-      go_to_rest();  // the slip stopped and the static law holds: at rest where it slid to
-      ++outcome3_.sticks;
-    } else if (e == Event::Lift && mode_ == Mode3D::Slide) {
-      slide_to_edge(in, tau);
-    } else if (e == Event::Degenerate) {
-      go_to_rest();
-      report_.rest_capture = true;
-      ++outcome_.rest_captures;
-    } else if (e == Event::Lift) {
-      enter_vertex_from_edge(other);
-    } else {
-      land(other, tau);  // EDGE: -1 back flat on the face, -2 the face across comes flat; VERTEX: the vertex
-    }
+    handle_event(e, other, in, tau);
+    if (mode_ == Mode3D::Overturned) break;
     if (on_side()) {
-      overturn();
+      const Mode3D from = mode_;
+      overturn_at(tau);
+      note_transition(from, Transition3D::Overturn, tau);
       break;
     }
     if (++events >= settings_.max_events_per_sample) {
       // Bounded work per sample: the body is put down flat for the rest of the sample.
+      const Mode3D from = mode_;
       go_to_rest();
       report_.forced_rest = true;
       ++outcome_.forced_rest_captures;
+      note_transition(from, Transition3D::ForcedRest, tau);
       break;
     }
   }

@@ -414,6 +414,7 @@ void visit(V& v, Rocking3DModel::Saved& s) {
     v("slip_time", s.outcome_3d.slip_time);
     v("fell_off_support", s.outcome_3d.fell_off_support);
     v("fell_off_time", s.outcome_3d.fell_off_time);
+    v("transitions", s.outcome_3d.transitions);
   });
   v("last_probe_t", s.last_probe_t);
   v.group("dopri5", [&] { visit(v, s.dopri5); });

@@ -1,5 +1,6 @@
 #include "rocking_sim_solid.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <ctime>
 #include <fstream>
@@ -26,6 +27,28 @@ json body_json(const rm::BaseBody& b) {
 }
 
 }  // namespace
+
+// Every mode change of the 3-D model, located and named (the first Rocking3DModel::kMaxTransitionRecords).
+json transitions_json(const rm::Rocking3DModel& m) {
+  json out = json::array();
+  for (int i = 0; i < m.transition_records(); ++i) {
+    const rm::Transition3DRecord& r = m.transition(i);
+    out.push_back({{"t_s", r.time}, {"from", rm::to_string(r.from)}, {"to", rm::to_string(r.to)},
+                   {"reason", rm::to_string(r.reason)}, {"contact", r.contact}});
+  }
+  return out;
+}
+
+void transition_lines(const rm::Rocking3DModel& m, std::vector<std::string>& lines) {
+  constexpr int kListed = 10;
+  lines.push_back(format("transitions %ld (%d in the JSON's \"transitions\")%s", m.outcome_3d().transitions,
+                         m.transition_records(), m.transition_records() > kListed ? "; the first 10:" : ":"));
+  for (int i = 0; i < std::min(m.transition_records(), kListed); ++i) {
+    const rm::Transition3DRecord& r = m.transition(i);
+    lines.push_back(format("  %10.4f s  %s -> %s  %s", r.time, rm::to_string(r.from), rm::to_string(r.to),
+                           rm::to_string(r.reason)));
+  }
+}
 
 rm::ItemMonitor::Options monitor_options(const RunOptions& opt, const rm::GroundMotion& mx,
                                          const rm::GroundMotion* my) {
@@ -137,6 +160,8 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
              {"fell_off_support", r3.fell_off_support},
              {"fell_off_time_s", nullable(r3.fell_off_time)},
              {"support_margin_m", nullable(model.support_margin())},
+             {"transitions_total", r3.transitions},
+             {"transitions", transitions_json(model)},
              {"samples", mx.size()},
              {"cpu_time_s", cpu},
              {"body", body_json(model.body())}});
@@ -175,6 +200,7 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
                        model.mode() == rm::Mode3D::Overturned ? "its side (overturned)"
                        : model.face() == 0                     ? "its base"
                                                                : ("hull face " + std::to_string(model.face())).c_str()));
+  transition_lines(model, L);
   L.push_back(format("cost        %zu samples, %.4f s CPU", mx.size(), cpu));
   return run;
 }

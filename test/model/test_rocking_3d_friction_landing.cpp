@@ -79,6 +79,18 @@ TEST(FrictionLanding, ASquatBoxThatFrictionCannotTurnSlidesOnAsTheSimultaneousLa
     EXPECT_NEAR(solid.slip().y(), 0.0, 1e-12);
     EXPECT_LE(solid.outcome_3d().max_slip_speed, v_after) << omega0;  // (at step ends: after the first)
     EXPECT_LE(o.max_impact_energy_ratio, 1.0);
+    // The two transitions, located and named: the landing (at once) and the stick, v / (mu g) later.
+    ASSERT_EQ(solid.transition_records(), 2);
+    const Transition3DRecord& land = solid.transition(0);
+    const Transition3DRecord& stick = solid.transition(1);
+    EXPECT_EQ(land.from, Mode3D::Edge);
+    EXPECT_EQ(land.to, Mode3D::Slide);
+    EXPECT_EQ(land.reason, Transition3D::LandingSlides);
+    EXPECT_LT(land.time, 1e-8);
+    EXPECT_EQ(stick.from, Mode3D::Slide);
+    EXPECT_EQ(stick.to, Mode3D::Rest);
+    EXPECT_EQ(stick.reason, Transition3D::Stick);
+    EXPECT_NEAR(stick.time - land.time, v_after / (mu * kGravity), 1e-7) << omega0;  // (measured 2e-8 s)
   }
 }
 
@@ -123,6 +135,61 @@ TEST(FrictionLanding, BidirectionalTakatoriOnEccentricCabinets) {
   EXPECT_GT(frictional, 50);
   EXPECT_GT(slides, 0);
   EXPECT_LE(unresolved, frictional / 20);
+}
+
+// Every mode change of a 3-D run is recorded, in order, each from the mode the previous one went to,
+// and the records add up to the outcome's counters: a centred and an eccentric cabinet with friction
+// under a one-sine pulse along a diagonal (rocking, corner wobble, landings, slides, overturn).
+TEST(FrictionLanding, EveryTransitionIsRecordedInOrderWithItsReason) {
+  int runs_with_slip = 0, runs_with_wobble = 0, complete = 0;
+  for (double ecc : {0.0, 0.1}) {
+    for (double ap : {0.35, 0.5, 0.8}) {
+      BaseBodyParameters p = friction_box(0.5, 0.4, 0.7, 0.4);
+      p.centre_of_mass = {ecc, 0.3 * ecc, 0.7};
+      Rocking3DModel m(BaseBody(p), landing_settings());
+      m.reset(0.0);
+      const GroundMotion g = testing::one_sine_pulse(ap * kGravity, 2 * kPi * 2.0, 0.005, 3.0);
+      for (double a : g.horizontal) {
+        m.step(Eigen::Vector3d(a * 0.8, a * 0.6, 0.0), g.dt);
+        if (m.mode() == Mode3D::Overturned) break;
+      }
+      const Rocking3DOutcome& o = m.outcome_3d();
+      const bool all_kept = o.transitions <= Rocking3DModel::kMaxTransitionRecords;
+      ASSERT_EQ(m.transition_records(), std::min<long>(o.transitions, Rocking3DModel::kMaxTransitionRecords));
+      long counts[13] = {};
+      Mode3D mode = Mode3D::Rest;
+      double t = 0.0;
+      for (int i = 0; i < m.transition_records(); ++i) {
+        const Transition3DRecord& r = m.transition(i);
+        EXPECT_EQ(r.from, mode) << i;
+        EXPECT_GE(r.time, t) << i;
+        mode = r.to;
+        t = r.time;
+        ++counts[static_cast<int>(r.reason)];
+      }
+      std::printf("[ measure ] ecc %.1f, %.2f g: %ld transitions, %s\n", ecc, ap, o.transitions,
+                  m.outcome().overturned ? "overturned" : "survived");
+      if (!all_kept) continue;  // (the first 64 kept: their order checked above)
+      ++complete;
+      EXPECT_EQ(mode, m.mode());
+      auto n = [&](Transition3D r) { return counts[static_cast<int>(r)]; };
+      EXPECT_EQ(n(Transition3D::SlipOnset), o.slides);
+      EXPECT_EQ(n(Transition3D::Stick), o.sticks);
+      EXPECT_EQ(n(Transition3D::EdgeToVertex), o.edge_to_vertex);
+      EXPECT_EQ(n(Transition3D::LandingSlides), o.landing_slides);
+      EXPECT_EQ(n(Transition3D::LandingPivotSlips), o.pivot_slip_landings);
+      EXPECT_EQ(n(Transition3D::Landing) + n(Transition3D::LandingSlides) + n(Transition3D::LandingPivotSlips) +
+                    n(Transition3D::RestCapture),
+                m.outcome().impacts);
+      EXPECT_EQ(n(Transition3D::Overturn) + n(Transition3D::FellOffSupport), m.outcome().overturned ? 1 : 0);
+      if (m.outcome().overturned) EXPECT_EQ(t, m.outcome().overturn_time);
+      runs_with_slip += o.slides > 0;
+      runs_with_wobble += o.edge_to_vertex > 0;
+    }
+  }
+  EXPECT_GE(complete, 4);
+  EXPECT_GT(runs_with_slip, 0);
+  EXPECT_GT(runs_with_wobble, 0);
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 // Frames: the item's floor frame at rest (x, y horizontal, z up); the body keeps a footprint
 // (yaw and shift on the floor) that changes only when it turns while pivoting on a vertex.
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <cmath>
@@ -44,6 +45,35 @@ namespace rocking_monitor::core {
 
 enum class Mode3D : std::uint8_t { Rest, Edge, Vertex, Overturned, Slide };
 const char* to_string(Mode3D mode);
+
+/// Why the 3-D model changed mode: every transition is located (its instant inside the sample), named
+/// and recorded with its reason, as the planar adaptive model's switches are (SwitchReason).
+enum class Transition3D : std::uint8_t {
+  Uplift,             ///< REST -> EDGE or VERTEX: an edge's uplift condition (eq. 19 about it) met
+  SlipOnset,          ///< REST -> SLIDE: the demand left the friction cone |a_h| <= mu_s (g + a_z)
+  Stick,              ///< SLIDE -> REST: the slip stopped and the static law holds
+  SlideToEdge,        ///< SLIDE -> EDGE: the centre of pressure reached an edge (the pivot sticks)
+  EdgeToVertex,       ///< EDGE -> VERTEX: an end of the rocking edge lifted (corner wobble)
+  Landing,            ///< a landing under issue 40's sticking impact (-> EDGE, VERTEX or REST)
+  LandingSlides,      ///< a landing whose friction could not stop the base: SLIDE on
+  LandingPivotSlips,  ///< a landing friction decided with a slipping pivot (followed as sticking)
+  RestCapture,        ///< a landing with almost no energy left: REST (the Zeno rule)
+  Degenerate,         ///< -> REST: a degenerate pivot motion (rocking_3d_vertex.cpp)
+  ForcedRest,         ///< -> REST: the bound on events per sample
+  FellOffSupport,     ///< SLIDE -> OVERTURNED: the centre of mass passed the support's edge
+  Overturn,           ///< -> OVERTURNED: lying on its side, or over the tipping point
+};
+const char* to_string(Transition3D reason);
+
+/// One transition: when (s), from and to which mode, why, and the contact after (edge or hull vertex
+/// index; -1 at rest, sliding or overturned).
+struct Transition3DRecord {
+  double time = 0.0;
+  Mode3D from = Mode3D::Rest;
+  Mode3D to = Mode3D::Rest;
+  Transition3D reason = Transition3D::Uplift;
+  int contact = -1;
+};
 
 /// Ground acceleration over one sample, linear in the local time (first-order hold), m/s^2.
 struct GroundInput3 {
@@ -97,6 +127,7 @@ struct Rocking3DOutcome {
   /// pedestal (it counts OVERTURNED, at that instant).
   bool fell_off_support = false;
   double fell_off_time = std::numeric_limits<double>::quiet_NaN();  ///< s
+  long transitions = 0;           ///< mode transitions (the first kMaxTransitionRecords are kept: transitions())
 };
 
 class Rocking3DModel {
@@ -203,6 +234,11 @@ class Rocking3DModel {
   const StepReport& last_report() const { return report_; }
   const RockingOutcome& outcome() const { return outcome_; }
   const Rocking3DOutcome& outcome_3d() const { return outcome3_; }
+  /// The first kMaxTransitionRecords transitions since reset(), in order (not carried by save()/restore():
+  /// a resumed model lists the transitions after the resumption).
+  static constexpr int kMaxTransitionRecords = 64;
+  int transition_records() const { return transition_count_; }
+  const Transition3DRecord& transition(int i) const { return transitions_[static_cast<std::size_t>(i)]; }
   const BaseBody& body() const { return body_; }
 
  private:
@@ -228,6 +264,10 @@ class Rocking3DModel {
   void enter_edge_from_pose(int face, int edge, const Eigen::Matrix3d& rotation, const Eigen::Vector3d& pivot_world,
                             int pivot_vertex, double omega_axis);
   void land(int touching, double tau);
+  // Transitions (rocking_3d_transitions.cpp): the event's consequence and its record.
+  void handle_event(Event e, int other, const GroundInput3& in, double tau);
+  void note_transition(Mode3D from, Transition3D reason, double tau);
+  void overturn_at(double tau);
   // A landing's pose, contact set and body, and what decides it (rocking_3d_landing.cpp).
   struct LandingScene {
     const Eigen::Matrix3d& r;        // the pose (item frame)
@@ -323,6 +363,9 @@ class Rocking3DModel {
   StepReport report_;
   RockingOutcome outcome_;
   Rocking3DOutcome outcome3_;
+  std::array<Transition3DRecord, kMaxTransitionRecords> transitions_{};
+  int transition_count_ = 0;
+  Transition3D landing_reason_ = Transition3D::Landing;  // set by land(): how the landing ended
   // VERTEX: COMMITTED (it would overturn if the shaking stopped now) has no closed form on a corner
   // as it has about an edge: once the energy could carry the centre of mass over the corner, the free
   // motion is stepped ahead on this copy of the model (made with it, so no allocation per sample),
