@@ -30,6 +30,8 @@
 #include <string>
 #include <vector>
 
+#include "rocking_monitor/physics/frictional_impact.hpp"
+#include "rocking_monitor/physics/impact_3d.hpp"
 #include "bench_common.hpp"
 #include "rocking_monitor/model/batch_rocking.hpp"
 #include "rocking_monitor/model/rocking_3d_model.hpp"
@@ -275,6 +277,54 @@ void BM_SinCosLanes(benchmark::State& state, bool exact) {
   state.SetLabel(BatchRocking::simd_target());
 }
 
+// ------------------------------------------------------------------ landings
+// One landing's impact law on random landings of irregular bases (as test_frictional_impact.cpp):
+// issue 40's sticking law, and the frictional law (issue 51) that decides where the sticking one needs
+// more than mu_s. Counters: ns per landing (mean) and the slowest landing's ns.
+void BM_Landing(benchmark::State& state, bool frictional) {
+  using namespace rocking_monitor::core;
+  constexpr int kLandings = 400;
+  std::vector<LandingBody> bodies;
+  std::vector<LandingContacts> sets;
+  std::vector<double> mus;
+  rb::SplitMix64 rng(51);
+  for (int trial = 0; trial < kLandings; ++trial) {
+    const int n = 3 + trial % 6;
+    const double ry = 0.3 * (1.0 + 0.5 * rng.uniform(-1, 1));
+    LandingContacts c;
+    c.base_vertex_count = n;
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * kPi * (i + 0.4 * rng.uniform(-1, 1)) / n;
+      c.point[c.count] = Eigen::Vector3d(0.3 * std::cos(a), ry * std::sin(a), 0.0);
+      c.vertex[c.count] = c.count;
+      ++c.count;
+    }
+    const Eigen::Vector3d centre(0.05 * rng.uniform(-1, 1), 0.05 * rng.uniform(-1, 1), 0.08 + 0.6 * (1 + rng.uniform(-1, 1)));
+    Eigen::Matrix3d a;
+    for (int i = 0; i < 9; ++i) a(i / 3, i % 3) = 0.1 * rng.uniform(-1, 1);
+    const Eigen::Matrix3d jc = a * a.transpose() + 0.02 * Eigen::Matrix3d::Identity();
+    const Eigen::Vector3d omega(rng.uniform(-1, 1), rng.uniform(-1, 1), 0.3 * rng.uniform(-1, 1));
+    bodies.push_back({jc, centre, omega, omega.cross(centre - c.point[trial % n])});
+    sets.push_back(c);
+    mus.push_back(0.1 + 0.9 * (1 + rng.uniform(-1, 1)) / 2);
+  }
+  double seconds = 0.0, slowest = 0.0;
+  long calls = 0;
+  for (auto _ : state) {
+    for (int i = 0; i < kLandings; ++i) {
+      const double start = rb::thread_cpu_seconds();
+      if (frictional) benchmark::DoNotOptimize(frictional_landing(bodies[i], sets[i], {mus[i], mus[i]}));
+      else benchmark::DoNotOptimize(plastic_landing(bodies[i], sets[i]));
+      const double took = rb::thread_cpu_seconds() - start;
+      seconds += took;
+      slowest = std::max(slowest, took);
+      ++calls;
+    }
+  }
+  state.counters["ns_per_landing"] = 1e9 * seconds / static_cast<double>(calls);
+  state.counters["slowest_ns"] = 1e9 * slowest;
+}
+
 // ------------------------------------------------------------------ registration
 std::vector<std::unique_ptr<Scenario>> g_scenarios;
 std::vector<std::unique_ptr<CatalogueCase>> g_catalogues;
@@ -325,6 +375,8 @@ void register_catalogue(const CatalogueCase* cc, const std::vector<rb::MethodSet
 }
 
 void register_all() {
+  benchmark::RegisterBenchmark("landing/sticking", BM_Landing, false)->Unit(benchmark::kMicrosecond)->Iterations(3);
+  benchmark::RegisterBenchmark("landing/frictional", BM_Landing, true)->Unit(benchmark::kMicrosecond)->Iterations(3);
   const double dt = rb::kFeedDt;
   // 1. Free rocking (NOTES.md example): p = 2 rad/s, alpha = 15 deg, released at alpha/2; the
   //    first 8 s (rest capture comes at 9.2 s), so the item rocks in every sample, impacts
