@@ -65,16 +65,31 @@ void Rocking3DModel::slide_after_landing(const Eigen::Matrix3d& rotation, int ve
 }
 
 // Friction decides the landing (issue 51 part 3) where the sticking law needs more than mu_s or has
-// no solution: the frictional plastic impact (physics/frictional_impact.hpp). Returns whether its
-// answer is the one to follow (converged); `law` keeps the sticking answer otherwise.
-bool Rocking3DModel::frictional_answer(const Landing& law, double demand, const LandingBody& lb,
-                                       const LandingContacts& set, FrictionalLanding& out) {
+// no solution: the frictional plastic impact (physics/frictional_impact.hpp), solved by
+// solve_friction() where its answer can change what follows.
+bool Rocking3DModel::friction_decides(const Landing& law, double demand) const {
   const double mu_s = body_.parameters().mu_s;
-  if (!std::isfinite(mu_s) || (law.violation == 0.0 && !(demand > mu_s))) return false;
-  out = frictional_landing(lb, set, ImpactFriction{mu_s, mu_k()});
-  ++outcome3_.frictional_landings;
-  if (!out.converged) ++outcome3_.unresolved_landings;
-  return out.converged;
+  return std::isfinite(mu_s) && (law.violation > 0.0 || demand > mu_s);
+}
+
+bool Rocking3DModel::keeps_loaded_pivot(const LandingScene& sc) const {
+  const Landing& law = *sc.law;
+  const int pivot[2] = {law.first, law.second};
+  const int count = law.mode == LandingMode::Vertex ? 1 : law.mode == LandingMode::Edge ? 2 : 0;
+  return count > 0 && law.violation == 0.0 && keeps_pivot(*sc.body, sc.set, pivot, count);
+}
+
+// Solves the frictional impact of the scene; its answer is followed where it converged.
+void Rocking3DModel::solve_friction(LandingScene& sc) {
+  // (tried first on the contacts the sticking answer loads: most landings keep them, and the whole
+  // set's redundant contacts converge slowly)
+  const Landing& law = *sc.law;
+  const int first[2] = {law.first, law.second};
+  const int first_count = law.mode == LandingMode::Vertex ? 1 : law.mode == LandingMode::Edge ? 2 : 0;
+  sc.friction = frictional_landing(*sc.body, sc.set, ImpactFriction{body_.parameters().mu_s, mu_k()}, first, first_count);
+  sc.solved = true;
+  sc.frictional = sc.friction.converged;
+  if (!sc.friction.converged) ++outcome3_.unresolved_landings;
 }
 
 // Angle of hull face `face` from the floor in pose `rotation` (item frame), rad.
@@ -205,8 +220,17 @@ void Rocking3DModel::land(int touching, double tau) {
     // (mu_s = +inf when the item does not give it: never counted)
     if (demand > body_.parameters().mu_s) ++outcome3_.slipping_landings;
   }
-  LandingScene scene{r, set, hull_index, hull().from_hull ? hull().face_down(r) : 0, flat_edge, face_before, tau};
-  scene.frictional = frictional_answer(law, demand, lb, set, scene.friction);
+  LandingScene scene{r, set, hull_index, hull().from_hull ? hull().face_down(r) : 0, flat_edge, face_before, tau, &law, &lb};
+  scene.needs_friction = friction_decides(law, demand);
+  if (scene.needs_friction) ++outcome3_.frictional_landings;
+  // Only three or more contacts can keep the base on the floor: the answer is needed now there; on a
+  // corner or an edge only where the landing ends in a rest capture (continue_after_landing).
+  // A pivot that both ends of the friction range keep, the rest of the base leaving (the sticking
+  // answer and the frictionless one), is taken as a slipping pivot: not solved (the sticking answer
+  // is followed there anyway; rocking_benchmarks and monitor_benchmarks: the solve would cost 20 us).
+  // Where the sticking law stops the body (a rest capture's landing) the capture's rule decides.
+  if (scene.needs_friction && set.count >= 3 && law.mode != LandingMode::Rest && !keeps_loaded_pivot(scene))
+    solve_friction(scene);
   if (scene.frictional && scene.friction.stay >= 3) {
     // The base stays on the floor: friction could not stop it; it slides on (exactly).
     slide_after_landing(r, hull_index[0], set.point[0], scene.down, scene.friction.velocity.head<2>(),
@@ -226,24 +250,33 @@ void Rocking3DModel::land(int touching, double tau) {
 // The mode after a landing whose contacts stick (issue 40's law, restitution and the Zeno rules).
 // Where friction decided the landing and its pivot slips (slide-rock in 3-D, not modelled), the
 // sticking answer is followed and counted; a rest capture there keeps the slip (the planar rule).
-void Rocking3DModel::continue_after_landing(const LandingScene& sc, const Landing& chosen, const Eigen::Vector3d& w,
+void Rocking3DModel::continue_after_landing(LandingScene& sc, const Landing& chosen, const Eigen::Vector3d& w,
                                             double kappa) {
   const Eigen::Matrix3d& r = sc.r;
   const LandingContacts& set = sc.set;
-  const bool slips = sc.frictional && sc.friction.slipping > 0;
   // The planar engine's rest capture (its Zeno rule) needs an almost flat face.
   const bool near_flat = set.count >= 3 ||
                          face_tilt(r, sc.down) < settings_.rest_capture_ratio *
                                                      hull().faces[static_cast<std::size_t>(sc.down)].body->min_alpha();
   // (on a face the centre of mass overhangs, the shaking may hold the body: REST there lifts off
   // again as soon as the acceleration lets it, rocking_3d_edge.cpp)
+  // A rest capture collapses the rest of a Zeno sequence of landings. Where friction cannot stop the
+  // base at once it slides on: with the frictional answer's slip where that was solved, else by the
+  // flat landing's rule (the planar contact model's): the normal impulse stops the fall, friction
+  // takes up to mu_s of it, else mu_k of it off the slip (the rotation is what the capture drops).
   auto rest = [&](int k) {
-    if (slips) {
-      slide_after_landing(r, sc.hull_index[k], set.point[k], sc.down, sc.friction.velocity.head<2>(),
-                          sc.friction.omega.z(), sc.tau);
-    } else {
-      capture_rest(r, sc.hull_index[k], set.point[k], sc.down);
+    Eigen::Vector2d u = Eigen::Vector2d::Zero();
+    double spin = 0.0;
+    if (sc.frictional && sc.friction.slipping > 0) {
+      u = sc.friction.velocity.head<2>();
+      spin = sc.friction.omega.z();
+    } else if (sc.needs_friction && !sc.solved) {
+      const Eigen::Vector2d v = sc.body->velocity.head<2>();
+      const double pn = std::max(-sc.body->velocity.z(), 0.0), speed = v.norm();
+      if (speed > body_.parameters().mu_s * pn) u = v * (1.0 - std::min(1.0, mu_k() * pn / speed));
     }
+    if (u.squaredNorm() > 0.0 || spin != 0.0) slide_after_landing(r, sc.hull_index[k], set.point[k], sc.down, u, spin, sc.tau);
+    else capture_rest(r, sc.hull_index[k], set.point[k], sc.down);
   };
   // An edge: the face it is rocked on and its index there (without a hull: base edge k joins base
   // vertices k and k + 1).
@@ -285,8 +318,10 @@ void Rocking3DModel::continue_after_landing(const LandingScene& sc, const Landin
       enter_vertex(vertex, set.point[chosen.first], r, w);
     }
   }
-  if (sc.frictional && (mode_ == Mode3D::Edge || mode_ == Mode3D::Vertex) &&
-      (sc.friction.slipping > 0 || sc.friction.stay == 0)) {
+  // (unsolved on a corner or an edge: the sticking answer needs more than mu_s there, so a contact
+  // of the real answer slips)
+  if (sc.needs_friction && (mode_ == Mode3D::Edge || mode_ == Mode3D::Vertex) &&
+      (!sc.solved || (sc.frictional && (sc.friction.slipping > 0 || sc.friction.stay == 0)))) {
     ++outcome3_.pivot_slip_landings;
     landing_reason_ = Transition3D::LandingPivotSlips;
   }

@@ -49,19 +49,29 @@ SlipTrial slip_trial(const Eigen::Matrix3d& w, const Eigen::Vector3d& q, double 
 
 double slip_cross(const SlipTrial& t) { return t.ut.x() * t.s.y() - t.ut.y() * t.s.x(); }
 
+// The slip trial's cross product u_t x s and its derivative in the slip angle (analytic: one sincos).
+double slip_cross_and_slope(const Eigen::Matrix3d& w, const Eigen::Vector3d& q, double mu, double phi, double& slope) {
+  const double c = std::cos(phi), sn = std::sin(phi);
+  const Eigen::Vector3d g(-mu * c, -mu * sn, 1.0), dg(mu * sn, -mu * c, 0.0);
+  const Eigen::Vector3d wg = w * g, dwg = w * dg;
+  const double rn = -q.z() / wg.z(), drn = q.z() * dwg.z() / (wg.z() * wg.z());
+  const Eigen::Vector2d ut = rn * wg.head<2>() + q.head<2>(), dut = drn * wg.head<2>() + rn * dwg.head<2>();
+  slope = dut.x() * sn + ut.x() * c - dut.y() * c + ut.y() * sn;
+  return ut.x() * sn - ut.y() * c;
+}
+
 // Newton's method on the slip angle from the previous root (a warm start: the sweeps change each
 // contact's problem a little); false when it does not settle on an admissible root.
 bool slip_newton(const Eigen::Matrix3d& w, const Eigen::Vector3d& q, double mu, double& phi, Eigen::Vector3d& r) {
-  constexpr double h = 1e-7;
   double x = phi;
-  for (int it = 0; it < 12; ++it) {
-    const double f = slip_cross(slip_trial(w, q, mu, x));
-    const double df = (slip_cross(slip_trial(w, q, mu, x + h)) - slip_cross(slip_trial(w, q, mu, x - h))) / (2 * h);
+  for (int it = 0;; ++it) {
+    if (it == 12) return false;
+    double df;
+    const double f = slip_cross_and_slope(w, q, mu, x, df);
     if (!(std::abs(df) > 0.0)) return false;
     const double step = std::clamp(f / df, -0.5, 0.5);
     x -= step;
     if (std::abs(step) <= 1e-15 * (1.0 + std::abs(x))) break;
-    if (it == 11) return false;
   }
   const SlipTrial t = slip_trial(w, q, mu, x);
   if (!t.ok || t.ut.dot(t.s) < 0.0) return false;
@@ -106,9 +116,10 @@ bool slip_root(const Eigen::Matrix3d& w, const Eigen::Vector3d& q, double mu, do
 }
 
 // One contact's problem u = W r + q under the contact law: separate, stick, or slip.
-Eigen::Vector3d solve_contact(const Eigen::Matrix3d& w, const Eigen::Vector3d& q, const ImpactFriction& f, double& phi) {
+Eigen::Vector3d solve_contact(const Eigen::Matrix3d& w, const Eigen::Matrix3d& w_inv, const Eigen::Vector3d& q,
+                              const ImpactFriction& f, double& phi) {
   if (q.z() >= 0.0) return Eigen::Vector3d::Zero();
-  const Eigen::Vector3d stick = w.ldlt().solve(-q);
+  const Eigen::Vector3d stick = -(w_inv * q);
   if (stick.z() > 0.0 && std::hypot(stick.x(), stick.y()) <= f.mu_s * stick.z()) return stick;
   if (f.mu_k == 0.0) return Eigen::Vector3d(0.0, 0.0, -q.z() / w(2, 2));
   Eigen::Vector3d r;
@@ -149,52 +160,124 @@ double kinetic(const LandingBody& b, const Eigen::Vector3d& omega, const Eigen::
 
 }  // namespace
 
-FrictionalLanding frictional_landing(const LandingBody& b, const LandingContacts& c, const ImpactFriction& f) {
-  static thread_local Eigen::Vector3d r[LandingContacts::kMax], arm[LandingContacts::kMax];
-  static thread_local Eigen::Matrix3d w[LandingContacts::kMax];
-  static thread_local double phi[LandingContacts::kMax];
-  const Eigen::Matrix3d j_inv = b.central_inertia.inverse();
-  double size = 0.0;
-  for (int k = 0; k < c.count; ++k) {
-    arm[k] = c.point[k] - b.centre;
-    const Eigen::Matrix3d s = skew_of(arm[k]);
-    w[k] = Eigen::Matrix3d::Identity() - s * j_inv * s;  // the contact's own Delassus block
-    r[k].setZero();
-    const Eigen::Vector3d u = point_velocity(b.omega, b.velocity, b.centre, c.point[k]);
-    phi[k] = std::atan2(u.y(), u.x());
-    size = std::max(size, arm[k].norm());
-  }
-  FrictionalLanding out;
-  out.energy_before = kinetic(b, b.omega, b.velocity);
-  const double scale = b.velocity.norm() + b.omega.norm() * size + 1e-300;
-  Eigen::Vector3d v = b.velocity, om = b.omega;
-  for (out.sweeps = 1; out.sweeps <= kMaxSweeps; ++out.sweeps) {
-    double change = 0.0;
-    // Where the sweeps cycle (a contact switching between stick and slip with its neighbours), an
-    // under-relaxed update settles them.
-    const double relax = out.sweeps < kPlainSweeps ? 1.0 : out.sweeps < 2 * kPlainSweeps ? 0.5 : 0.25;
+namespace {
+
+// The solver's state: per contact its lever from the centre of mass, Delassus block, impulse and last
+// slip angle; one per thread (no allocation per landing).
+struct Sweeper {
+  Eigen::Vector3d r[LandingContacts::kMax], arm[LandingContacts::kMax];
+  Eigen::Matrix3d w[LandingContacts::kMax], w_inv[LandingContacts::kMax];
+  double phi[LandingContacts::kMax];
+  Eigen::Matrix3d j_inv;
+  double scale = 0.0;
+
+  void start(const LandingBody& b, const LandingContacts& c) {
+    j_inv = b.central_inertia.inverse();
+    double size = 0.0;
     for (int k = 0; k < c.count; ++k) {
-      const Eigen::Vector3d q = v + om.cross(arm[k]) - w[k] * r[k];
-      const Eigen::Vector3d d = relax * (solve_contact(w[k], q, f, phi[k]) - r[k]);
-      v += d;
-      om += j_inv * arm[k].cross(d);
-      r[k] += d;
-      change = std::max(change, d.norm());
+      arm[k] = c.point[k] - b.centre;
+      const Eigen::Matrix3d s = skew_of(arm[k]);
+      w[k] = Eigen::Matrix3d::Identity() - s * j_inv * s;  // the contact's own Delassus block
+      w_inv[k] = w[k].inverse();                             // (symmetric positive definite: >= identity)
+      r[k].setZero();
+      const Eigen::Vector3d u = point_velocity(b.omega, b.velocity, b.centre, c.point[k]);
+      phi[k] = std::atan2(u.y(), u.x());
+      size = std::max(size, arm[k].norm());
     }
-    // Converged: the sweep moves nothing, or (checked every few sweeps: a face's redundant contacts
-    // converge slowly in their impulses, not in the motion) the contact law holds to rounding.
-    if (change <= kSweepTol * scale ||
-        (out.sweeps % kCheckEvery == 0 && law_residual(c, f, r, arm, v, om, scale, out) <= kLawTol * scale))
-      break;
+    scale = b.velocity.norm() + b.omega.norm() * size + 1e-300;
   }
-  out.sweeps = std::min(out.sweeps, kMaxSweeps);
-  out.velocity = v;
-  out.omega = om;
-  out.impulse = v - b.velocity;
-  out.energy_after = kinetic(b, om, v);
-  out.residual = law_residual(c, f, r, arm, v, om, scale, out);
-  out.converged = out.residual <= kConvergedTol * scale;
-  return out;
+
+  // Gauss-Seidel over the contacts `idx` (the others take no impulse); the law checked on all.
+  FrictionalLanding sweep(const LandingBody& b, const LandingContacts& c, const ImpactFriction& f, const int* idx,
+                          int m, int max_sweeps = kMaxSweeps, double sweep_tol = kSweepTol) {
+    FrictionalLanding out;
+    out.energy_before = kinetic(b, b.omega, b.velocity);
+    Eigen::Vector3d v = b.velocity, om = b.omega;
+    for (out.sweeps = 1; out.sweeps <= max_sweeps; ++out.sweeps) {
+      double change = 0.0;
+      // Where the sweeps cycle (a contact switching between stick and slip with its neighbours), an
+      // under-relaxed update settles them.
+      const double relax = out.sweeps < kPlainSweeps ? 1.0 : out.sweeps < 2 * kPlainSweeps ? 0.5 : 0.25;
+      for (int i = 0; i < m; ++i) {
+        const int k = idx[i];
+        const Eigen::Vector3d q = v + om.cross(arm[k]) - w[k] * r[k];
+        const Eigen::Vector3d d = relax * (solve_contact(w[k], w_inv[k], q, f, phi[k]) - r[k]);
+        v += d;
+        om += j_inv * arm[k].cross(d);
+        r[k] += d;
+        change = std::max(change, d.norm());
+      }
+      // Converged: the sweep moves nothing, or (checked every few sweeps: a face's redundant contacts
+      // converge slowly in their impulses, not in the motion) the contact law holds to rounding.
+      if (change <= sweep_tol * scale ||
+          (out.sweeps % kCheckEvery == 0 && law_residual(c, f, r, arm, v, om, scale, out) <= kLawTol * scale))
+        break;
+    }
+    out.sweeps = std::min(out.sweeps, max_sweeps);
+    out.velocity = v;
+    out.omega = om;
+    out.impulse = v - b.velocity;
+    out.energy_after = kinetic(b, om, v);
+    out.residual = law_residual(c, f, r, arm, v, om, scale, out);
+    out.converged = out.residual <= kConvergedTol * scale;
+    return out;
+  }
+};
+
+}  // namespace
+
+FrictionalLanding frictional_landing(const LandingBody& b, const LandingContacts& c, const ImpactFriction& f,
+                                     const int* first, int first_count) {
+  static thread_local Sweeper s;
+  static thread_local int all[LandingContacts::kMax];
+  s.start(b, c);
+  if (first_count > 0 && first_count < c.count) {
+    // The contacts the sticking law loads, alone: where the others then leave the floor (or stay on
+    // it) this is a solution of the whole set's law, at a fraction of the sweeps.
+    const FrictionalLanding out = s.sweep(b, c, f, first, first_count);
+    if (out.converged) return out;
+    s.start(b, c);
+  }
+  for (int k = 0; k < c.count; ++k) all[k] = k;
+  return s.sweep(b, c, f, all, c.count);
+}
+
+bool keeps_pivot(const LandingBody& b, const LandingContacts& c, const int* pivot, int pivot_count) {
+  if (pivot_count <= 0 || pivot_count > 2 || pivot_count >= c.count) return false;
+  // The frictionless impact on the pivot's contacts: normal impulses only, u_n = 0 at each (1 x 1 or
+  // 2 x 2 in the normal rows of the Delassus operator).
+  const Eigen::Matrix3d j_inv = b.central_inertia.inverse();
+  Eigen::Vector3d arm[2], z_turn[2];
+  double u_n[2];
+  for (int i = 0; i < pivot_count; ++i) {
+    arm[i] = c.point[pivot[i]] - b.centre;
+    z_turn[i] = j_inv * arm[i].cross(Eigen::Vector3d::UnitZ());  // the turn of a unit normal impulse there
+    u_n[i] = point_velocity(b.omega, b.velocity, b.centre, c.point[pivot[i]]).z();
+  }
+  auto w_nn = [&](int i, int k) { return 1.0 + z_turn[k].cross(arm[i]).z(); };
+  double p[2] = {0.0, 0.0};
+  if (pivot_count == 1) {
+    p[0] = -u_n[0] / w_nn(0, 0);
+  } else {
+    const double a = w_nn(0, 0), bb = w_nn(0, 1), cc = w_nn(1, 0), d = w_nn(1, 1), det = a * d - bb * cc;
+    if (!(std::abs(det) > 1e-12 * std::abs(a * d))) return false;
+    p[0] = (-u_n[0] * d + u_n[1] * bb) / det;
+    p[1] = (-u_n[1] * a + u_n[0] * cc) / det;
+  }
+  if (p[0] < 0.0 || p[1] < 0.0) return false;
+  Eigen::Vector3d v = b.velocity, om = b.omega;
+  for (int i = 0; i < pivot_count; ++i) {
+    v.z() += p[i];
+    om += p[i] * z_turn[i];
+  }
+  double size = 0.0;
+  for (int k = 0; k < c.count; ++k) size = std::max(size, (c.point[k] - b.centre).norm());
+  const double margin = 1e-6 * (b.velocity.norm() + b.omega.norm() * size);
+  for (int k = 0; k < c.count; ++k) {
+    const bool loaded = k == pivot[0] || (pivot_count == 2 && k == pivot[1]);
+    if (!loaded && !(point_velocity(om, v, b.centre, c.point[k]).z() > margin)) return false;
+  }
+  return true;
 }
 
 }  // namespace rocking_monitor::core

@@ -100,12 +100,12 @@ struct Rocking3DOutcome {
   long slipping_landings = 0;
   // Friction at landings (issue 51 part 3): where the sticking law needs more than mu_s or has no
   // solution, the frictional plastic impact (physics/frictional_impact.hpp) decides.
-  long frictional_landings = 0;   ///< landings friction decided
+  long frictional_landings = 0;   ///< landings friction decided (solved where the answer can change what follows)
   long landing_slides = 0;        ///< of those, the ones after which the base slides on flat (SLIDE)
   /// Of those, the ones after which a pivot slips (or the body leaves the floor): slide-rock in 3-D is
   /// not modelled, the sticking answer is followed there.
   long pivot_slip_landings = 0;
-  long unresolved_landings = 0;   ///< the frictional law did not converge: the sticking answer followed
+  long unresolved_landings = 0;   ///< the frictional law, solved, did not converge: the sticking answer followed
   /// Landings onto a hull face other than the one rocked on (the body rolled over its hull).
   long hull_landings = 0;
   /// Rest captures on a hull face other than the base (a state the monitor reports).
@@ -277,7 +277,11 @@ class Rocking3DModel {
     bool flat_edge;                  // EDGE back flat on its face
     int face_before;
     double tau;
-    bool frictional = false;         // friction decided (its answer in `friction`)
+    const Landing* law;              // issue 40's sticking answer
+    const LandingBody* body;         // the body before
+    bool needs_friction = false;     // the sticking answer needs more than mu_s (or has no solution)
+    bool solved = false;             // the frictional impact was solved (into `friction`)
+    bool frictional = false;         // ... and converged: its answer is followed
     FrictionalLanding friction;
   };
   const std::vector<int>* landing_pose(int touching, Eigen::Matrix3d& r, Eigen::Vector3d& t, Eigen::Vector3d& omega,
@@ -286,9 +290,10 @@ class Rocking3DModel {
                         const std::vector<int>* landing_face, LandingContacts& set, int* hull_index) const;
   void see_saw_rule(const LandingBody& lb, const LandingContacts& set, const int* hull_index, double kappa,
                     Landing& chosen, Eigen::Vector3d& w);
-  bool frictional_answer(const Landing& law, double demand, const LandingBody& lb, const LandingContacts& set,
-                         FrictionalLanding& out);
-  void continue_after_landing(const LandingScene& scene, const Landing& chosen, const Eigen::Vector3d& w, double kappa);
+  bool friction_decides(const Landing& law, double demand) const;
+  void solve_friction(LandingScene& scene);
+  bool keeps_loaded_pivot(const LandingScene& scene) const;
+  void continue_after_landing(LandingScene& scene, const Landing& chosen, const Eigen::Vector3d& w, double kappa);
   void place_flat(const Eigen::Matrix3d& rotation, int vertex, const Eigen::Vector3d& point, int face);
   void slide_after_landing(const Eigen::Matrix3d& rotation, int vertex, const Eigen::Vector3d& point, int face,
                            const Eigen::Vector2d& u, double spin, double tau);

@@ -53,8 +53,18 @@ inline Eigen::Vector3d point_velocity(const Eigen::Vector3d& omega, const Eigen:
 }
 
 /// Solves the frictional plastic impact over the contact set (points on z = 0). `count` >= 1,
-/// mu_s >= mu_k >= 0. No allocation.
+/// mu_s >= mu_k >= 0. No allocation. `first` (optional, `first_count` indices into the set): the
+/// contacts to try alone first, e.g. those the sticking law loads; their answer is taken when it keeps
+/// the law at every contact of the set (the others leave the floor or stay on it), else the whole set
+/// is solved.
 FrictionalLanding frictional_landing(const LandingBody& body, const LandingContacts& contacts,
-                                     const ImpactFriction& friction);
+                                     const ImpactFriction& friction, const int* first = nullptr, int first_count = 0);
+
+/// A screening in O(1), for a landing whose sticking answer pivots on `pivot` (one contact or the
+/// two ends of an edge) and leaves the rest of the set: whether the frictionless impact on the pivot
+/// leaves the rest of the set too (upward at 1e-6 of the velocity scale). With the sticking answer,
+/// the two ends of the friction range then keep the pivot, and the frictional answer is taken to
+/// keep it as well: a slipping pivot, not a flat landing (not a proof: the monotone case).
+bool keeps_pivot(const LandingBody& body, const LandingContacts& contacts, const int* pivot, int pivot_count);
 
 }  // namespace rocking_monitor::core
