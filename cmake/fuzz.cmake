@@ -3,6 +3,7 @@
 # Built in every build with tests so it never rots; only the sanitizer script runs its long pass.
 if(BUILD_TESTING)
   add_executable(fuzz_parsers test/fuzz/fuzz_parsers.cpp test/fuzz/mutator.cpp test/fuzz/seed_records.cpp
+                            test/fuzz/network_parsers.cpp
                             test/support/record_writers.cpp)  # the format tests' writers
   target_link_libraries(fuzz_parsers PRIVATE rocking_monitor_core PkgConfig::ROCKING_MSEED)
   target_include_directories(fuzz_parsers PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/fuzz ${CMAKE_CURRENT_SOURCE_DIR}/test/support)

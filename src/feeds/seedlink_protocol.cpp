@@ -114,6 +114,35 @@ bool record_station(const char* r, std::size_t length, std::string& network, std
   return !station.empty();
 }
 
+namespace {
+// Days from 1970-01-01 to the first of January of `year` (proleptic Gregorian).
+std::int64_t slproto_days_to_year(int year) {
+  std::int64_t days = 0;
+  for (int y = 1970; y < year; ++y) days += (y % 4 == 0 && (y % 100 != 0 || y % 400 == 0)) ? 366 : 365;
+  for (int y = year; y < 1970; ++y) days -= (y % 4 == 0 && (y % 100 != 0 || y % 400 == 0)) ? 366 : 365;
+  return days;
+}
+std::uint16_t slproto_u16(const char* p, bool big_endian) {
+  const auto b0 = static_cast<unsigned char>(p[0]), b1 = static_cast<unsigned char>(p[1]);
+  return static_cast<std::uint16_t>(big_endian ? (b0 << 8) | b1 : (b1 << 8) | b0);
+}
+}  // namespace
+
+std::optional<std::int64_t> record_start_us(const char* r, std::size_t length) {
+  std::string net, sta;
+  if (!record_station(r, length, net, sta)) return std::nullopt;
+  const char* t = r + 20;
+  // The record's byte order is not said before blockette 1000: the one giving a plausible year wins.
+  const bool big = slproto_u16(t, true) >= 1900 && slproto_u16(t, true) <= 2500;
+  const int year = slproto_u16(t, big), day = slproto_u16(t + 2, big);
+  const int hour = static_cast<unsigned char>(t[4]), minute = static_cast<unsigned char>(t[5]);
+  const int second = static_cast<unsigned char>(t[6]), tenth_ms = slproto_u16(t + 8, big);
+  if (year < 1900 || year > 2500 || day < 1 || day > 366 || hour > 23 || minute > 59 || second > 60 || tenth_ms > 9999)
+    return std::nullopt;
+  const std::int64_t s = (slproto_days_to_year(year) + day - 1) * 86400 + hour * 3600 + minute * 60 + second;
+  return s * 1000000 + static_cast<std::int64_t>(tenth_ms) * 100;
+}
+
 SequenceStep sequence_step(std::uint32_t last, std::uint32_t got) {
   const std::uint32_t ahead = (got - last) & (kSequenceModulus - 1);
   SequenceStep s;

@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cstdio>
 #include <thread>
 
 #include "rocking_monitor/feeds/seedlink_protocol.hpp"
 #include "rocking_monitor/feeds/tcp_connection.hpp"
+#include "rocking_monitor/safe_text.hpp"
 
 namespace rocking_monitor::feeds {
 namespace {
@@ -17,7 +19,7 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 
 SeedLinkSession::SeedLinkSession(SessionConfig config, RecordHandler on_record, LogHandler log)
     : config_(std::move(config)), on_record_(std::move(on_record)), log_(std::move(log)),
-      last_sequence_(config_.streams.size()) {}
+      last_sequence_(config_.streams.size()), latest_time_us_(config_.streams.size()) {}
 
 std::optional<std::uint32_t> SeedLinkSession::last_sequence(std::size_t stream) const {
   std::lock_guard<std::mutex> lock(mutex_);
@@ -39,12 +41,52 @@ std::string SeedLinkSession::last_error() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return last_error_;
 }
-void SeedLinkSession::note_error(const std::string& what) {
+void SeedLinkSession::note_error(const std::string& raw) {
+  // Messages quote the server's replies: no control character may forge a log line (issue 54).
+  const std::string what = printable_text(raw, 1024);
   {
     std::lock_guard<std::mutex> lock(mutex_);
     last_error_ = what;
   }
   log_(Level::Warn, what);
+}
+
+bool SeedLinkSession::accept_sequence(std::size_t stream, std::uint32_t sequence, std::optional<std::int64_t> time_us,
+                                      bool first, const std::string& where) {
+  const auto last = last_sequence(stream);
+  if (!last) return true;
+  const std::string name = config_.streams[stream].name();
+  auto hex6 = [](std::uint32_t n) {
+    char text[8];
+    std::snprintf(text, sizeof text, "%06X", static_cast<unsigned>(n));
+    return std::string(text);
+  };
+  const std::string hex = hex6(sequence);
+  const SequenceStep step = sequence_step(*last, sequence);
+  if (step.kind == SequenceStep::Kind::Repeat) {
+    // A true repeat was handed on before, so its record is no newer than the latest one handed on
+    // (the latest over all channels: records of a station's channels interleave out of time order).
+    // Newer data under an old number, or a lower number where last + 1 was asked for and no record
+    // time is known yet: the server restarted and numbers afresh; dropping would lose it all.
+    const std::optional<std::int64_t> last_time = latest_time_us_[stream];
+    const bool newer = time_us && last_time && *time_us > *last_time;
+    if (newer || (first && !last_time && time_us)) {
+      ++counters_.server_restarts;
+      note_error("seedlink " + where + ": " + name + ": packet " + hex + " is numbered at or before the last one (" + hex6(*last) +
+                 ") but " + (newer ? "its record is newer" : "the server was asked for the next one") +
+                 ": the server restarted its numbering; resynchronised");
+      return true;
+    }
+    ++counters_.repeated_sequence;
+    note_error("seedlink " + where + ": " + name + ": packet " + hex + " repeats or precedes the last one handed on: dropped");
+    return false;
+  }
+  if (step.kind == SequenceStep::Kind::Jump) {
+    ++counters_.sequence_jumps;
+    counters_.skipped_sequence += step.skipped;
+    note_error("seedlink " + where + ": " + name + ": " + std::to_string(step.skipped) + " sequence number(s) missing before packet " + hex);
+  }
+  return true;
 }
 
 void SeedLinkSession::run(const std::atomic<bool>& stop) {
@@ -157,9 +199,10 @@ bool SeedLinkSession::session_once(const std::atomic<bool>& stop, bool& got_data
   }
   ++counters_.connects;
   connected_ = true;
-  log_(Level::Info, "seedlink " + where + ": streaming " + std::to_string(accepted) + " station(s) (server: " + org + ")");
+  log_(Level::Info, "seedlink " + where + ": streaming " + std::to_string(accepted) + " station(s) (server: " + printable_text(org, 200) + ")");
 
   std::array<char, kSeedLinkPacketBytes> packet{};
+  std::vector<bool> seen_this_connection(config_.streams.size(), false);
   std::string net, sta;
   auto last_byte = Clock::now();
   for (;;) {
@@ -172,11 +215,17 @@ bool SeedLinkSession::session_once(const std::atomic<bool>& stop, bool& got_data
       }
       ++counters_.keepalives;
       s = tcp.send_all(keepalive_command(), config_.connect_timeout_s);
-      if (s != TcpConnection::Status::Ok) break;
+      if (s != TcpConnection::Status::Ok) {
+        connected_ = false;
+        return failed(s, "keep-alive");
+      }
       continue;
     }
     if (s != TcpConnection::Status::Ok) break;
-    s = tcp.read_exact(packet.data(), kSeedLinkHeaderBytes, config_.idle_timeout_s);
+    // The whole packet within record_timeout_s of its first byte: a drip of a byte now and then
+    // would otherwise keep an idle timeout from ever firing while no record comes.
+    const auto packet_start = Clock::now();
+    s = tcp.read_exact(packet.data(), kSeedLinkHeaderBytes, config_.record_timeout_s);
     if (s != TcpConnection::Status::Ok) break;
     last_byte = Clock::now();
     const PacketHeader h = parse_packet_header(packet.data());
@@ -186,7 +235,8 @@ bool SeedLinkSession::session_once(const std::atomic<bool>& stop, bool& got_data
       note_error("seedlink " + where + ": a packet header does not start with 'SL': the stream lost its framing; reconnecting");
       return true;
     }
-    s = tcp.read_exact(packet.data() + kSeedLinkHeaderBytes, kSeedLinkRecordBytes, config_.idle_timeout_s);
+    const double left_s = std::max(1e-3, config_.record_timeout_s - seconds_since(packet_start));
+    s = tcp.read_exact(packet.data() + kSeedLinkHeaderBytes, kSeedLinkRecordBytes, left_s);
     if (s != TcpConnection::Status::Ok) break;
     if (h.kind == PacketHeader::Kind::Info) {
       ++counters_.info_packets;
@@ -207,21 +257,11 @@ bool SeedLinkSession::session_once(const std::atomic<bool>& stop, bool& got_data
       ++counters_.unrequested;
       continue;
     }
-    if (const auto last = last_sequence(stream)) {
-      const SequenceStep step = sequence_step(*last, h.sequence);
-      if (step.kind == SequenceStep::Kind::Repeat) {
-        ++counters_.repeated_sequence;
-        note_error("seedlink " + where + ": " + config_.streams[stream].name() + ": packet " + std::string(packet.data() + 2, 6) +
-                   " repeats or precedes the last one handed on: dropped");
-        continue;
-      }
-      if (step.kind == SequenceStep::Kind::Jump) {
-        ++counters_.sequence_jumps;
-        counters_.skipped_sequence += step.skipped;
-        note_error("seedlink " + where + ": " + config_.streams[stream].name() + ": " + std::to_string(step.skipped) +
-                   " sequence number(s) missing before packet " + std::string(packet.data() + 2, 6));
-      }
-    }
+    const std::optional<std::int64_t> time_us = record_start_us(record, kSeedLinkRecordBytes);
+    const bool first = !seen_this_connection[stream];
+    seen_this_connection[stream] = true;
+    if (!accept_sequence(stream, h.sequence, time_us, first, where)) continue;
+    if (time_us && (!latest_time_us_[stream] || *time_us > *latest_time_us_[stream])) latest_time_us_[stream] = time_us;
     got_data = true;
     ++counters_.packets;
     on_record_(stream, h.sequence, record, kSeedLinkRecordBytes);
@@ -229,6 +269,12 @@ bool SeedLinkSession::session_once(const std::atomic<bool>& stop, bool& got_data
     last_sequence_[stream] = h.sequence;
   }
   connected_ = false;
+  if (s == TcpConnection::Status::Timeout) {
+    ++counters_.slow_packets;
+    note_error("seedlink " + where + ": a packet did not come whole within " + std::to_string(config_.record_timeout_s) +
+               " s (~record_timeout): the link drips; reconnecting");
+    return true;
+  }
   return failed(s, "streaming");
 }
 

@@ -38,14 +38,26 @@ void TcpConnection::close() {
   has_pending_ = false;
 }
 
+namespace {
+TcpConnection::Deadline tcp_deadline_in(double timeout_s) {
+  return std::chrono::steady_clock::now() +
+         std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(timeout_s));
+}
+}  // namespace
+
 TcpConnection::Status TcpConnection::wait(short events, double timeout_s) {
+  const Status s = wait_until(events, tcp_deadline_in(timeout_s));
+  if (s == Status::Timeout) error_ = "timed out after " + std::to_string(timeout_s) + " s";
+  return s;
+}
+
+TcpConnection::Status TcpConnection::wait_until(short events, Deadline until) {
   using clock = std::chrono::steady_clock;
-  const auto until = clock::now() + std::chrono::duration<double>(timeout_s);
   for (;;) {
     if (stop_ != nullptr && stop_->load()) return Status::Stopped;
     const double left = std::chrono::duration<double>(until - clock::now()).count();
     if (left <= 0.0) {
-      error_ = "timed out after " + std::to_string(timeout_s) + " s";
+      error_ = "timed out";
       return Status::Timeout;
     }
     pollfd p{fd_, events, 0};
@@ -126,14 +138,20 @@ TcpConnection::Status TcpConnection::wait_readable(double timeout_s) {
   return wait(POLLIN, timeout_s);
 }
 
-TcpConnection::Status TcpConnection::read_exact(char* out, std::size_t n, double idle_timeout_s) {
+TcpConnection::Status TcpConnection::read_exact(char* out, std::size_t n, double timeout_s) {
+  const Status s = read_exact_until(out, n, tcp_deadline_in(timeout_s));
+  if (s == Status::Timeout) error_ = "not all of " + std::to_string(n) + " bytes came within " + std::to_string(timeout_s) + " s";
+  return s;
+}
+
+TcpConnection::Status TcpConnection::read_exact_until(char* out, std::size_t n, Deadline deadline) {
   std::size_t done = 0;
   if (n > 0 && has_pending_) {
     out[done++] = pending_;
     has_pending_ = false;
   }
   while (done < n) {
-    const Status w = wait(POLLIN, idle_timeout_s);
+    const Status w = wait_until(POLLIN, deadline);
     if (w != Status::Ok) return w;
     const ssize_t r = ::recv(fd_, out + done, n - done, 0);
     if (r < 0 && (errno == EAGAIN || errno == EINTR)) continue;
@@ -152,9 +170,11 @@ TcpConnection::Status TcpConnection::read_exact(char* out, std::size_t n, double
 
 TcpConnection::Status TcpConnection::read_line(std::string& line, double timeout_s, std::size_t max_length) {
   line.clear();
+  const Deadline deadline = tcp_deadline_in(timeout_s);  // for the whole line, not each byte
   for (;;) {
     char c = 0;
-    const Status s = read_exact(&c, 1, timeout_s);
+    const Status s = read_exact_until(&c, 1, deadline);
+    if (s == Status::Timeout) error_ = "no whole reply line within " + std::to_string(timeout_s) + " s";
     if (s != Status::Ok) return s;
     if (c == '\n') return Status::Ok;
     if (c == '\r') {

@@ -17,7 +17,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "rocking_monitor/json_text.hpp"
 #include "rocking_monitor/monitoring/event_clock.hpp"
+#include "rocking_monitor/private_files.hpp"
 
 namespace rocking_monitor::core {
 namespace {
@@ -168,7 +170,7 @@ std::string to_json_line(const JournalRecord& r) {
   if (r.kind == JournalKind::ProbabilityAlarm) j["ensemble_size"] = r.ensemble_size;
   if (r.kind == JournalKind::Reset || r.kind == JournalKind::End) j["reason"] = r.reason;
   put(j, "written", r.written);
-  return j.dump();
+  return json_text(j);
 }
 
 namespace {
@@ -356,7 +358,7 @@ std::string AlarmJournal::open(const std::string& path, double window, double no
   if (!dir.empty()) std::filesystem::create_directories(dir, ec);
   if (ec) return "cannot create the directory " + dir.string() + ": " + ec.message();
   reading_ = read_journal(path);
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  const int fd = ::open(path.c_str(), kPrivateAppendFlags, kPrivateFileMode);
   if (fd < 0) return errno_text("cannot open", path);
   // A line cut by a power cut is dropped, so that the next record starts on a line of its own.
   struct stat st {};

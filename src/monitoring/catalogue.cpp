@@ -8,6 +8,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "rocking_monitor/monitoring/catalogue_names.hpp"
+#include "rocking_monitor/safe_text.hpp"
+
 namespace rocking_monitor::core {
 namespace {
 
@@ -201,7 +204,7 @@ void parse_solid(const Entry& e, ItemSpec& s) {
 std::string label(const char* list, int i, const std::string& name) {
   std::ostringstream os;
   os << list << "[" << i << "]";
-  if (!name.empty()) os << " '" << name << "'";
+  if (!name.empty()) os << " '" << printable_text(name, 64) << "'";  // the id may be what is wrong
   return os.str();
 }
 
@@ -249,6 +252,9 @@ CatalogueItem parse_item(const json& v, int i, const std::set<std::string>* sens
   CatalogueItem item;
   ItemSpec& s = item.spec;
   s.id = e.text("id", true);
+  // Live ids reach MQTT topics, mail and file names; offline catalogues may name ensemble members.
+  const NameRule rule = sensor_names != nullptr ? NameRule::Strict : NameRule::MemberSuffix;
+  if (const std::string why = name_problem(s.id, rule); !why.empty()) e.fail("id", why);
   if (!ids.insert(s.id).second) e.fail("id", "duplicate id");
   s.description = e.text("description", false);
   // Offline, an item may come without a sensor (the record is the input); validate() wants a name.
@@ -345,6 +351,7 @@ Catalogue parse_catalogue(const json& sensors, const json& items) {
     e.only({"name", "topic", "type", "frame_id", "rate"});
     SensorSpec s;
     s.name = e.text("name", true);
+    if (const std::string why = name_problem(s.name); !why.empty()) e.fail("name", why);
     s.topic = e.text("topic", true);
     const std::string type = e.text("type", false, "imu");
     if (type == "imu") s.type = SensorSpec::Type::Imu;

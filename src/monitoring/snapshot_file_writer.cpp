@@ -11,13 +11,15 @@
 #include <cstring>
 #include <filesystem>
 
+#include "rocking_monitor/private_files.hpp"
+
 namespace rocking_monitor::core {
 
 std::string write_file_durably(const std::string& path, const std::uint8_t* data, std::size_t size) {
   auto failed = [](const std::string& what, const std::string& p) { return what + " " + p + ": " + std::strerror(errno); };
-  const std::string tmp = path + ".tmp";
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) return failed("cannot create", tmp);
+  std::string tmp;
+  const int fd = create_temp_beside(path, tmp);  // 0600, a fresh name: never an existing file or link
+  if (fd < 0) return failed("cannot create a temporary file beside", path);
   std::size_t done = 0;
   while (done < size) {
     const ssize_t n = ::write(fd, data + done, size - done);

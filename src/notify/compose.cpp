@@ -8,6 +8,8 @@
 #include <set>
 #include <sstream>
 
+#include "rocking_monitor/json_text.hpp"
+
 namespace rocking_monitor::notify {
 
 using nlohmann::json;
@@ -147,7 +149,7 @@ OutMessage compose_group(const NotifyConfig& config, const RecipientConfig& reci
     doc["counts"] = counts;
     doc["instructions"] = what;
     doc["alarms"] = list;
-    m.body = doc.dump(-1, ' ', false, json::error_handler_t::replace);
+    m.body = json_text(doc);
   } else {
     m.body = body.str();
   }
@@ -169,7 +171,7 @@ std::vector<OutMessage> compose_mqtt(const ChannelConfig& channel, const Recipie
   json doc = alarm_doc(alarm);
   doc["what_to_do"] = instructions(alarm.alarm.level);
   level.topic = base + (alarm.alarm.probability ? "probability/" : "") + level_name(alarm.alarm.level);
-  level.body = doc.dump(-1, ' ', false, json::error_handler_t::replace);
+  level.body = json_text(doc);
   if (alarm.alarm.probability) return {level};  // a share of an ensemble is not the item's state
   OutMessage state = level;
   state.topic = base + "state";

@@ -7,6 +7,8 @@
 #include <mutex>
 
 #include "rocking_monitor/notify/channels.hpp"
+#include "rocking_monitor/notify/redact.hpp"
+#include "rocking_monitor/safe_text.hpp"
 
 namespace rocking_monitor::notify {
 namespace {
@@ -26,6 +28,18 @@ int on_debug(CURL*, curl_infotype type, char* data, size_t size, void* user) {
   if (line.rfind("HTTP/", 0) == 0 && line.size() > 9) line = line.substr(line.find(' ') + 1);
   if (!line.empty() && (line[0] == '4' || line[0] == '5')) *reply = line;
   return 0;
+}
+
+// Permanent refusals (issue 54): retrying cannot deliver the message. Refused logins (SMTP 530, 534,
+// 535, 538; HTTP 401, 403, 407) are the channel's credentials, not the message: they stay temporary,
+// so that fixing the configuration delivers every message that waited.
+bool smtp_refusal_permanent(const std::string& reply) {
+  if (reply.size() < 3 || reply[0] != '5') return false;  // 5xx: permanent negative (RFC 5321 4.2.1)
+  const std::string code = reply.substr(0, 3);
+  return code != "530" && code != "534" && code != "535" && code != "538";
+}
+bool http_refusal_permanent(long status) {  // 4xx: the request itself is refused; 408, 429: come back later
+  return status >= 400 && status < 500 && status != 408 && status != 429 && status != 401 && status != 403 && status != 407;
 }
 
 size_t on_body(char* data, size_t size, size_t n, void* user) {
@@ -91,6 +105,7 @@ class CurlChannel : public Channel {
  protected:
   // Common settings, reset before each message (the connection itself is kept by the handle).
   void prepare(std::string* reply) {
+    permanent_ = false;
     curl_easy_reset(curl_);
     errbuf_[0] = '\0';
     reply->clear();
@@ -112,9 +127,12 @@ class CurlChannel : public Channel {
   std::string failure(CURLcode rc, const std::string& reply) const {
     std::string e = config_.url + ": " + (errbuf_[0] ? std::string(errbuf_) : curl_easy_strerror(rc));
     if (!reply.empty()) e += " (server: " + reply + ")";
-    return e;
+    // The URL may hold a token or user:pass@, the server's text anything: neither reaches a log.
+    return printable_text(redact_secrets(e, config_.url, config_.password));
   }
+  bool refusal_is_permanent() const override { return permanent_; }
   ChannelConfig config_;
+  bool permanent_ = false;  ///< the last failure was a permanent refusal (smtp/http_refusal_permanent)
   CURL* curl_ = nullptr;
   char errbuf_[CURL_ERROR_SIZE] = {};
 };
@@ -140,6 +158,7 @@ class SmtpChannel : public CurlChannel {
       curl_slist_free_all(rcpt);
       if (rc != CURLE_OK) {
         *error = failure(rc, reply);
+        permanent_ = smtp_refusal_permanent(reply);
         break;
       }
       ++done;
@@ -188,7 +207,9 @@ class WebhookChannel : public CurlChannel {
         break;
       }
       if (status < 200 || status >= 300) {
-        *error = config_.url + ": HTTP " + std::to_string(status) + (body.empty() ? "" : ": " + body);
+        permanent_ = http_refusal_permanent(status);
+        *error = printable_text(redact_secrets(config_.url + ": HTTP " + std::to_string(status) + (body.empty() ? "" : ": " + body),
+                                               config_.url, config_.password));
         break;
       }
       ++done;

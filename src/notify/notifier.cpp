@@ -226,8 +226,28 @@ void Notifier::acknowledge(Sender& s, const std::vector<std::string>& ids) {
   s.cv.notify_all();
 }
 
-// Backoff is per recipient: a recipient the server refuses (550 user unknown) waits and is retried,
-// without holding up the others' messages; each recipient's messages stay in order.
+// A message the server refused for good (550 user unknown, HTTP 404): retrying cannot help and would
+// hold up the recipient's later messages for ever. Closed as failed in the outbox, said, not retried.
+void Notifier::give_up(Sender& s, const OutMessage& m, const std::string& reason) {
+  std::string error;
+  {
+    std::lock_guard<std::mutex> l(outbox_mutex_);
+    outbox_.add_failed(m.id, reason);
+    error = outbox_.sync();
+  }
+  std::lock_guard<std::mutex> l(s.mutex);
+  s.queue.erase(std::remove_if(s.queue.begin(), s.queue.end(), [&](const OutMessage& q) { return q.id == m.id; }),
+                s.queue.end());
+  ++s.status.failures;
+  ++s.status.refused;
+  s.status.queued = s.queue.size();
+  s.status.last_error = "refused for good, not retried: message " + m.id + " to " + m.recipient + ": " + reason;
+  if (!error.empty()) s.status.last_error += "; outbox: " + error;
+  s.cv.notify_all();
+}
+
+// Backoff is per recipient: a recipient the server refuses for now (451, HTTP 503) waits and is
+// retried, without holding up the others' messages; each recipient's messages stay in order.
 void Notifier::sender_loop(Sender& s) {
   using Clock = std::chrono::steady_clock;
   struct Backoff {
@@ -274,6 +294,13 @@ void Notifier::sender_loop(Sender& s) {
         backoff.erase(batch[i].recipient);
       }
       acknowledge(s, ids);
+    }
+    if (done < batch.size() && s.channel->refusal_is_permanent()) {
+      backoff.erase(batch[done].recipient);
+      give_up(s, batch[done], error.empty() ? "refused (no reason given)" : error);
+      std::lock_guard<std::mutex> l(s.mutex);
+      s.status.failing_attempts = failing();
+      continue;
     }
     std::lock_guard<std::mutex> l(s.mutex);
     if (done < batch.size()) {

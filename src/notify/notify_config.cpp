@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "rocking_monitor/notify/notify_alarm.hpp"
+#include "rocking_monitor/notify/redact.hpp"
 
 namespace rocking_monitor::notify {
 
@@ -118,7 +119,7 @@ ChannelConfig parse_channel(const Ctx& c, const std::string& name, const YAML::N
                                                  : (scheme == "http" || scheme == "https");
     if (!ok || channel_host(ch).empty())
       c.fail(n["url"], f + ".url",
-             (ch.url.empty() ? std::string("missing") : "bad URL '" + ch.url + "'") +
+             (ch.url.empty() ? std::string("missing") : "bad URL '" + redact_url(ch.url) + "'") +
                  (ch.type == ChannelType::Smtp ? " (smtp://host:port or smtps://host:port)" : " (http://host:port/path or https://...)"));
   }
   if (ch.type == ChannelType::Smtp) {

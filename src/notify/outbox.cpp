@@ -13,6 +13,9 @@
 #include <random>
 #include <sstream>
 
+#include "rocking_monitor/json_text.hpp"
+#include "rocking_monitor/private_files.hpp"
+
 namespace rocking_monitor::notify {
 
 using nlohmann::json;
@@ -57,7 +60,7 @@ json message_json(const OutMessage& m) {
               {"alarms", m.alarms}, {"created", m.created}};
 }
 
-std::string line_of(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace) + "\n"; }
+std::string line_of(const json& j) { return json_text(j) + "\n"; }
 
 std::string write_all(int fd, const std::string& text, const std::string& path) {
   std::size_t done = 0;
@@ -83,7 +86,7 @@ std::string fsync_folder(const std::string& path) {
 
 }  // namespace
 
-std::string to_json(const NotifyAlarm& a) { return alarm_json(a).dump(); }
+std::string to_json(const NotifyAlarm& a) { return json_text(alarm_json(a)); }
 
 Outbox::~Outbox() {
   if (fd_ >= 0) {
@@ -99,7 +102,7 @@ std::string Outbox::open(const std::string& path) {
   if (!dir.empty()) std::filesystem::create_directories(dir, ec);
   if (ec) return "cannot create folder " + dir.string() + ": " + ec.message();
   if (std::string e = replay(); !e.empty()) return e;
-  fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0640);
+  fd_ = ::open(path.c_str(), kPrivateAppendFlags, kPrivateFileMode);
   if (fd_ < 0) return errno_text("cannot open", path);
   if (token_.empty()) {
     std::random_device rd;
@@ -161,6 +164,9 @@ std::string Outbox::replay() {
         unacked_[m.id] = std::move(m);
       } else if (t == "ack") {
         unacked_.erase(j.at("id").get<std::string>());
+      } else if (t == "failed") {
+        unacked_.erase(j.at("id").get<std::string>());
+        ++failed_;
       } else {
         throw std::runtime_error("unknown record type '" + t + "'");
       }
@@ -205,6 +211,12 @@ void Outbox::add_ack(const std::string& id) {
   unacked_.erase(id);
 }
 
+void Outbox::add_failed(const std::string& id, const std::string& reason) {
+  pending_ += line_of(json{{"t", "failed"}, {"id", id}, {"reason", reason}});
+  unacked_.erase(id);
+  ++failed_;
+}
+
 std::string Outbox::sync() {
   if (pending_.empty() || fd_ < 0) return "";
   std::string e = write_all(fd_, pending_, path_);
@@ -240,14 +252,17 @@ std::string Outbox::compact(double now, double remember, std::size_t min_alarms)
                          {"accepted", k.accepted}});
     kept.push_back(std::move(k));
   }
-  const std::string tmp = path_ + ".tmp";
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0640);
-  if (fd < 0) return errno_text("cannot create", tmp);
+  std::string tmp;
+  const int fd = create_temp_beside(path_, tmp);  // 0600, a fresh name: never an existing file or link
+  if (fd < 0) return errno_text("cannot create a temporary file beside", path_);
   std::string e = write_all(fd, text, tmp);
   if (e.empty() && ::fsync(fd) != 0) e = errno_text("cannot fsync", tmp);
   ::close(fd);
   if (e.empty() && ::rename(tmp.c_str(), path_.c_str()) != 0) e = errno_text("cannot rename over", path_);
-  if (!e.empty()) return e;
+  if (!e.empty()) {
+    ::unlink(tmp.c_str());
+    return e;
+  }
   if (e = fsync_folder(path_); !e.empty()) return e;
   ::close(fd_);
   fd_ = ::open(path_.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);

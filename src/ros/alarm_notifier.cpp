@@ -128,6 +128,10 @@ void AlarmNotifier::tick(const ros::WallTimerEvent&) {
     ROS_ERROR_THROTTLE(10.0, "alarm_notifier: outbox: %s (nothing is sent that is not on disk)", e.c_str());
   std::lock_guard<std::mutex> lock(reported_mutex_);
   for (const auto& s : notifier_->status()) {
+    std::uint64_t& refused = reported_refused_[s.name];
+    if (s.refused != refused)
+      ROS_ERROR("alarm_notifier: channel %s: %s", s.name.c_str(), s.last_error.c_str());  // never retried: said once
+    refused = s.refused;
     std::string& said = reported_[s.name];
     const std::string now = s.failing_attempts > 0 ? s.last_error : "";
     if (now == said) continue;
@@ -156,12 +160,16 @@ void AlarmNotifier::publish_diagnostics(const ros::WallTimerEvent&) {
     if (s.failing_attempts > 0) {
       st.level = diagnostic_msgs::DiagnosticStatus::ERROR;
       st.message = "cannot deliver: " + s.last_error;
+    } else if (s.refused > 0) {  // delivering, but messages were refused for good: someone must look
+      st.level = diagnostic_msgs::DiagnosticStatus::WARN;
+      st.message = std::to_string(s.refused) + " message(s) refused for good (not retried); last error: " + s.last_error;
     } else {
       st.level = diagnostic_msgs::DiagnosticStatus::OK;
       st.message = s.queued > 0 ? "delivering" : "ok";
     }
     st.values = {kv("waiting", std::to_string(s.queued)), kv("delivered", std::to_string(s.delivered)),
-                 kv("failed attempts", std::to_string(s.failures)), kv("last error", s.last_error)};
+                 kv("failed attempts", std::to_string(s.failures)),
+                 kv("refused for good (not retried)", std::to_string(s.refused)), kv("last error", s.last_error)};
     array.status.push_back(st);
   }
   const auto c = notifier_->counts();

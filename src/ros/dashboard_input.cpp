@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "rocking_monitor/json_text.hpp"
 #include "rocking_monitor/ros/dashboard.hpp"
 
 namespace rocking_monitor::live {
@@ -79,7 +80,7 @@ std::string Dashboard::input_json() const {
     topic = input_topic_;
     for (const InputPoint& p : input_) points.push_back({p.t, p.a[0], p.a[1], p.a[2]});
   }
-  return nlohmann::json{{"topic", topic}, {"points", std::move(points)}}.dump();
+  return json_text(nlohmann::json{{"topic", topic}, {"points", std::move(points)}});
 }
 
 void Dashboard::push_input() {
@@ -94,7 +95,7 @@ void Dashboard::push_input() {
       points.push_back({input_[i].t, input_[i].a[0], input_[i].a[1], input_[i].a[2]});
     input_pushed_ = input_.size() - 1;
   }
-  if (!points.empty()) publish_event("input", nlohmann::json{{"points", std::move(points)}}.dump());
+  if (!points.empty()) publish_event("input", json_text(nlohmann::json{{"points", std::move(points)}}));
 }
 
 }  // namespace rocking_monitor::live

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "rocking_monitor/json_text.hpp"
 #include "rocking_monitor/ros/dashboard.hpp"
 
 namespace rocking_monitor::live {
@@ -148,7 +149,7 @@ void Dashboard::on_alarm_from(const std::string& source, const OverturnAlarm::Co
     }
   }
   // Immediately, not at the next tick: an alarm is what the operator waits for.
-  publish_event("alarm", frame.dump());
+  publish_event("alarm", json_text(frame));
 }
 
 void Dashboard::on_criterion(const CriterionExceedance::ConstPtr& msg) {
@@ -243,7 +244,7 @@ std::string Dashboard::snapshot_json() const {
   out["update_rate"] = update_rate_;
   out["stamp"] = latest ? latest->header.stamp.toSec() : 0.0;
   out["items"] = std::move(items);
-  return out.dump();
+  return json_text(out);
 }
 
 std::string Dashboard::item_json(const std::string& id) const {
@@ -254,7 +255,7 @@ std::string Dashboard::item_json(const std::string& id) const {
   if (latest_)
     for (std::size_t i = 0; i < latest_->items.size() && i < state_to_item_.size(); ++i)
       if (state_to_item_[i] == it->second) state = &latest_->items[i];
-  return item_json_locked(it->second, state).dump();
+  return json_text(item_json_locked(it->second, state));
 }
 
 std::string Dashboard::history_json(const std::string& id) const {
@@ -264,7 +265,7 @@ std::string Dashboard::history_json(const std::string& id) const {
     if (const auto it = index_of_.find(id); it != index_of_.end() && it->second < history_.size())
       for (const Point& p : history_[it->second]) points.push_back({p.t, p.ratio, p.margin});
   }
-  return json{{"id", id}, {"points", std::move(points)}}.dump();
+  return json_text(json{{"id", id}, {"points", std::move(points)}});
 }
 
 void Dashboard::on_update_timer(const ::ros::WallTimerEvent&) {
@@ -312,11 +313,11 @@ void Dashboard::on_update_timer(const ::ros::WallTimerEvent&) {
     }
   }
   if (!changed.empty())
-    publish_event("states", json{{"stamp", stamp},
-                                 {"fields", {"id", "mode", "plane", "theta", "rotation_ratio", "energy_margin",
-                                             "impacts", "stamp", "criteria", "p_overturned"}},
-                                 {"items", std::move(changed)}}.dump());
-  if (push_health) publish_event("health", health.dump());
+    publish_event("states", json_text(json{{"stamp", stamp},
+                                           {"fields", {"id", "mode", "plane", "theta", "rotation_ratio", "energy_margin",
+                                                       "impacts", "stamp", "criteria", "p_overturned"}},
+                                           {"items", std::move(changed)}}));
+  if (push_health) publish_event("health", json_text(health));
   push_input();
 }
 

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "rocking_monitor/integrate/solver_settings.hpp"
+#include "rocking_monitor/json_text.hpp"
 
 namespace rocking_monitor::live {
 
@@ -61,7 +62,7 @@ void RockingMonitor::open_snapshot(const XmlRpc::XmlRpcValue& sensors, const Xml
                 options_.scene.vertical, options_.linearized_max_alpha, core::to_string(options_.solid),
                 options_.bidirectional_ratio, options_.velocity_highpass_hz, ensemble_size_, ensemble_seed_,
                 alarm_probability_, static_cast<int>(baseline_config_.mode));
-  fingerprint_ = core::configuration_fingerprint(to_json(sensors).dump() + "\n" + to_json(items).dump() + "\n" + options);
+  fingerprint_ = core::configuration_fingerprint(json_text(to_json(sensors)) + "\n" + json_text(to_json(items)) + "\n" + options);
   resume_pending_.assign(sensors_.size(), false);
   if (snapshot_path_.empty()) {
     snapshot_start_ = "off (~snapshot is \"\")";

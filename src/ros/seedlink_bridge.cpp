@@ -88,11 +88,14 @@ bool SeedLinkBridge::init() {
   pnh_.param("connect_timeout", cfg.connect_timeout_s, cfg.connect_timeout_s);
   pnh_.param("keepalive", cfg.keepalive_s, cfg.keepalive_s);
   pnh_.param("idle_timeout", cfg.idle_timeout_s, cfg.idle_timeout_s);
+  pnh_.param("record_timeout", cfg.record_timeout_s, cfg.record_timeout_s);
   pnh_.param("backoff_min", cfg.backoff_min_s, cfg.backoff_min_s);
   pnh_.param("backoff_max", cfg.backoff_max_s, cfg.backoff_max_s);
-  for (double v : {cfg.connect_timeout_s, cfg.keepalive_s, cfg.idle_timeout_s, cfg.backoff_min_s, cfg.backoff_max_s}) {
+  for (double v : {cfg.connect_timeout_s, cfg.keepalive_s, cfg.idle_timeout_s, cfg.record_timeout_s, cfg.backoff_min_s,
+                   cfg.backoff_max_s}) {
     if (!(v > 0.0) || !std::isfinite(v)) {
-      ROS_FATAL("seedlink_bridge: ~connect_timeout, ~keepalive, ~idle_timeout, ~backoff_min and ~backoff_max must be > 0 s");
+      ROS_FATAL("seedlink_bridge: ~connect_timeout, ~keepalive, ~idle_timeout, ~record_timeout, ~backoff_min and "
+                "~backoff_max must be > 0 s");
       return false;
     }
   }
@@ -235,7 +238,7 @@ void SeedLinkBridge::on_record(std::size_t stream, std::uint32_t /*sequence*/, c
 void SeedLinkBridge::connection_diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st) {
   const feeds::SessionCounters& k = session_->counters();
   const std::uint64_t problems = k.malformed + k.out_of_sync + k.repeated_sequence + k.sequence_jumps + k.unrequested +
-                                 k.error_replies + k.disconnects;
+                                 k.error_replies + k.disconnects + k.server_restarts + k.slow_packets;
   const feeds::SessionConfig& c = session_->config();
   if (!session_->connected()) {
     st.summary(diagnostic_msgs::DiagnosticStatus::ERROR,
@@ -258,10 +261,12 @@ void SeedLinkBridge::connection_diagnostics(diagnostic_updater::DiagnosticStatus
   st.add("malformed packets", k.malformed.load());
   st.add("framing lost", k.out_of_sync.load());
   st.add("repeated sequence numbers (dropped)", k.repeated_sequence.load());
+  st.add("server restarts (renumbered, resynchronised)", k.server_restarts.load());
   st.add("sequence jumps", k.sequence_jumps.load());
   st.add("sequence numbers skipped", k.skipped_sequence.load());
   st.add("records of unrequested stations", k.unrequested.load());
   st.add("ERROR replies", k.error_replies.load());
+  st.add("packets too slow (dripping link, reconnected)", k.slow_packets.load());
   st.add("last error", session_->last_error());
   st.add("state file", state_file_.empty() ? std::string("(not kept)") : state_file_);
   st.add("state file write failures", state_write_failures_);

@@ -18,6 +18,11 @@
 #include "rocking_monitor/constants.hpp"
 
 namespace rocking_monitor::live {
+namespace {
+// What the bridge asks the kernel for: a few seconds of datagrams at 1 kHz. Linux grants at most
+// net.core.rmem_max and reads back twice what it granted, so with rmem_max >= 4 MiB this is met.
+constexpr int kAskedRcvbufBytes = 4 << 20;
+}  // namespace
 
 UdpAccelBridge::UdpAccelBridge(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh) {}
 
@@ -71,8 +76,15 @@ bool UdpAccelBridge::init() {
   if (::bind(socket_, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
     return bad("cannot bind " + bind_address_ + ":" + std::to_string(port_) + ": " + std::strerror(errno));
   }
-  int rcvbuf = 4 << 20;  // a burst of a few seconds at 1 kHz must not overflow the kernel buffer
+  int rcvbuf = kAskedRcvbufBytes;  // a burst of a few seconds at 1 kHz must not overflow the kernel buffer
   ::setsockopt(socket_, SOL_SOCKET, SO_RCVBUF, &rcvbuf, sizeof rcvbuf);
+  // The kernel caps the request at net.core.rmem_max (and reports twice what it grants, for its
+  // bookkeeping): read back what was got, so that a small buffer is said, not silently suffered.
+  socklen_t rcvbuf_len = sizeof rcvbuf_bytes_;
+  if (::getsockopt(socket_, SOL_SOCKET, SO_RCVBUF, &rcvbuf_bytes_, &rcvbuf_len) != 0) rcvbuf_bytes_ = 0;
+  if (rcvbuf_bytes_ < kAskedRcvbufBytes)
+    ROS_WARN("udp_accel_bridge: receive buffer %d bytes, asked for %d: raise net.core.rmem_max (docs/inputs.md)",
+             rcvbuf_bytes_, kAskedRcvbufBytes);
   timeval tv{};
   tv.tv_usec = 20000;  // wake up to flush a paused stream
   ::setsockopt(socket_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
@@ -258,7 +270,11 @@ void UdpAccelBridge::diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st
                     std::to_string(c.conflicts) + " sequence numbers sent twice with different values (first kept)");
   else if (c.lost + c.late + c.duplicates + malformed_ + off_grid_ > 0)
     st.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, "samples lost, late, duplicated or malformed");
+  if (rcvbuf_bytes_ < kAskedRcvbufBytes)
+    st.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, "receive buffer " + std::to_string(rcvbuf_bytes_) +
+                                                                  " bytes: raise net.core.rmem_max");
   st.add("port", port_);
+  st.add("receive buffer (bytes)", rcvbuf_bytes_);
   st.add("sender", last_sender_);
   st.add("allowed senders", senders_.pinned() ? std::to_string(senders_.rules().size()) + " entries" : "any (none set)");
   st.add("senders admitted", feeds::SenderTally::describe(tally_.admitted()));

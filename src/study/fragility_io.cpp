@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "rocking_monitor/json_text.hpp"
 #include "rocking_monitor/csv/csv_writer.hpp"
 
 namespace rocking_monitor::core::study {
@@ -79,7 +80,7 @@ void write_fragility_json(std::ostream& out, const FragilityResult& r, const std
                     {"vertical", o.vertical},
                     {"bootstrap", o.bootstrap},
                     {"bodies", list}};
-  out << doc.dump(2) << "\n";
+  out << json_text(doc, 2) << "\n";
 }
 
 std::string format_fragility(const FragilityResult& r, const std::vector<StudyBody>& bodies, const FragilityOptions& o) {

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>
 
+#include "rocking_monitor/json_text.hpp"
 #include "rocking_monitor/monitoring/catalogue_file.hpp"
 
 namespace rocking_monitor::core::study {
@@ -387,7 +388,7 @@ std::string summary_json(const StudySummary& s, const StudyRunInfo& run, const I
   }
   out["vertical_effect"] = ve;
   if (items != nullptr) out["two_plane_items"] = items_json(*items);
-  return out.dump(2) + "\n";
+  return json_text(out, 2) + "\n";
 }
 
 }  // namespace rocking_monitor::core::study

@@ -14,6 +14,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "rocking_monitor/json_text.hpp"
+
 #include "command_line.hpp"
 #include "rocking_monitor/constants.hpp"
 #include "rocking_monitor/monitoring/catalogue_file.hpp"
@@ -25,6 +27,7 @@ namespace {
 
 using nlohmann::json;
 using namespace rocking_monitor::core;
+using rocking_monitor::json_text;
 
 json finite_or_null(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
 
@@ -105,7 +108,7 @@ int main(int argc, char** argv) {
     if (as_json) {
       json out = json::array();
       for (const CatalogueItem& item : items) out.push_back(item_json(item));
-      std::cout << json{{"catalogue", path}, {"sensors", sensors}, {"items", out}}.dump(1) << "\n";
+      std::cout << json_text(json{{"catalogue", path}, {"sensors", sensors}, {"items", out}}, 1) << "\n";
     } else {
       std::cout << path << ": ok, " << items.size() << " items, " << sensors << " sensors\n";
     }

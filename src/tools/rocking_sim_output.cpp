@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "rocking_monitor/csv/csv_writer.hpp"
+#include "rocking_monitor/json_text.hpp"
 #include "rocking_monitor/monitoring/simulation.hpp"
 #include "rocking_monitor/physics/criteria.hpp"
 #include "rocking_sim_ensemble.hpp"
@@ -294,7 +295,7 @@ if (as_json) {
   if (item_entry != nullptr) out["item"]["id"] = item_entry->spec.id;
   if (solid != nullptr) out["solid"] = solid->out;
   if (ensemble != nullptr) out["ensemble"] = ensemble->out;
-  std::cout << out.dump(2) << "\n";
+  std::cout << json_text(out, 2) << "\n";
 } else {
   const bool prefixed = y != nullptr || solid != nullptr;
   const std::string px = prefixed ? "[x] " : "", py = "[y] ", p3 = "[3d] ", indent = prefixed ? "    " : "";

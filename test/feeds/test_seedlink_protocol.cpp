@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <optional>
 
 #include "rocking_monitor/feeds/seedlink_protocol.hpp"
 #include "rocking_monitor/feeds/stream_list.hpp"
@@ -80,6 +81,24 @@ TEST(SeedLinkProtocol, StationOfARecordHeader) {
   EXPECT_EQ(sta, "RIN");
   std::memcpy(r, "SLINFO *", 8);
   EXPECT_FALSE(record_station(r, sizeof r, net, sta));
+}
+
+// Issue 54: the record time that tells a restarted server's new numbers from repeats.
+TEST(SeedLinkProtocol, StartTimeOfARecordHeaderInEitherByteOrder) {
+  char r[64];
+  std::memset(r, 0, sizeof r);
+  std::memcpy(r, "000001D RIN  00HN1CI", 20);
+  // 2024, day 60 (29 February), 12:34:56.7890: 1709210096.789 s since 1970
+  const unsigned char big[10] = {0x07, 0xE8, 0x00, 0x3C, 12, 34, 56, 0, 0x1E, 0xD2};
+  std::memcpy(r + 20, big, 10);
+  EXPECT_EQ(record_start_us(r, sizeof r), std::optional<std::int64_t>(1709210096789000LL));
+  const unsigned char little[10] = {0xE8, 0x07, 0x3C, 0x00, 12, 34, 56, 0, 0xD2, 0x1E};
+  std::memcpy(r + 20, little, 10);
+  EXPECT_EQ(record_start_us(r, sizeof r), std::optional<std::int64_t>(1709210096789000LL));
+  r[24] = 24;  // hour 24: no time
+  EXPECT_EQ(record_start_us(r, sizeof r), std::nullopt);
+  std::memcpy(r, "SLINFO *", 8);  // no data record
+  EXPECT_EQ(record_start_us(r, sizeof r), std::nullopt);
 }
 
 TEST(StreamList, ItemsAndTheirErrors) {

@@ -1,6 +1,7 @@
 // Seeded mutation fuzzer (issue 19 part 4) for every record reader (read_record: AT2, BBP, SMC,
-// CSV, miniSEED, COSMOS V2, K-NET) and the catalogue parser (load_catalogue_file,
-// load_catalogue_items_file). Each input must either parse into finite SI values or throw the
+// CSV, miniSEED, COSMOS V2, K-NET), the catalogue parser (load_catalogue_file,
+// load_catalogue_items_file) and the network parsers (issue 54, network_parsers.hpp: parse_datagram,
+// the SeedLink packet header and replies, one miniSEED record through the bridge's decoder). Each input must either parse into finite SI values or throw the
 // project's error type (RecordError / CatalogueError) whose message starts with "<file>:"; anything
 // else (another exception, a non-finite value, a crash, a sanitizer report, an input taking longer
 // than --timeout seconds) is a failure. Run by scripts/run_sanitizers.sh; docs/sanitizers.md.
@@ -22,11 +23,13 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "mutator.hpp"
+#include "network_parsers.hpp"
 #include "rocking_monitor/monitoring/catalogue_file.hpp"
 #include "rocking_monitor/motion/record_reader.hpp"
 #include "seed_records.hpp"
@@ -57,6 +60,11 @@ std::string arg(int argc, char** argv, const std::string& name, const std::strin
 
 /// "" when the outcome is acceptable, else what is wrong.
 std::string check(const fz::Target& target, const std::string& path) {
+  if (fz::is_network_target(target.name)) {
+    std::ifstream in(path, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return fz::check_network(target.name, bytes, g_rejected);
+  }
   const bool catalogue = target.name.rfind("catalogue", 0) == 0;
   g_rejected = true;
   try {
@@ -136,7 +144,7 @@ int main(int argc, char** argv) {
       if (!problem.empty() || g_rejected) {
         std::string why = problem;
         try {
-          if (t.name.rfind("catalogue", 0) != 0) rm::read_record(path);
+          if (t.name.rfind("catalogue", 0) != 0 && !fz::is_network_target(t.name)) rm::read_record(path);
         } catch (const std::exception& e) {
           why += e.what();
         }

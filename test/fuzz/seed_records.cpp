@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "record_writers.hpp"  // test/support: the writers the format tests use
+#include "rocking_monitor/feeds/udp_datagram.hpp"
 #include "rocking_monitor/motion/record_reader.hpp"
 
 namespace rocking_monitor::fuzz {
@@ -13,6 +14,7 @@ namespace {
 
 namespace rm = rocking_monitor::core;
 namespace rt = rocking_monitor::core::testing;
+namespace rf = rocking_monitor::feeds;
 
 std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -64,6 +66,19 @@ std::vector<Target> make_targets(const std::string& records_dir, const std::stri
                                         file_seed(config_dir + "/catalogue_uncertain_example.yaml")};  // config/monitor.yaml holds no catalogue
   t.push_back({"catalogue", false, catalogues});
   t.push_back({"catalogue_items", false, catalogues});
+  // The network parsers (issue 54): what a shaking table's datagram, a SeedLink server's packets and
+  // replies, and one miniSEED record off the wire can hold.
+  const std::string record512 = rt::pack_channel("HNZ", 1.0 / h228.dt, rt::kRinaldiStart, rt::counts(h228, rt::logger_gain()),
+                                                 DE_STEIM2, 512).at(0);
+  unsigned char binary[48];
+  const double accel[3] = {0.1, -0.02, 9.81};
+  rf::encode_binary(42, 12.345, accel, binary);
+  t.push_back({"udp_datagram", true,
+               {{"text.dgram", "12.345,0.1,-0.02,0.003\n"}, {"binary.dgram", std::string(reinterpret_cast<char*>(binary), 48)}}});
+  t.push_back({"seedlink", true,
+               {{"packet.sl", "SL00A3F1" + record512},
+                {"replies.sl", "SeedLink v3.1 (2020.075) :: SLPROTO:3.1\r\nGEOFON\r\nOK\r\nERROR\r\n"}}});
+  t.push_back({"mseed_record", true, {{"record.mseed", record512}}});
   return t;
 }
 

@@ -15,7 +15,8 @@ struct Seed {
 
 /// One parser and its seeds. `records_dir` is ROCKING_RECORDS_DIR, `config_dir` the package's config/.
 struct Target {
-  std::string name;  ///< at2, bbp, smc, csv, miniseed, cosmos, knet, catalogue, catalogue_items
+  std::string name;  ///< at2, bbp, smc, csv, miniseed, cosmos, knet, catalogue, catalogue_items, and the
+                     ///< network parsers (network_parsers.hpp): udp_datagram, seedlink, mseed_record
   bool binary = false;
   std::vector<Seed> seeds;
 };

@@ -136,3 +136,41 @@ TEST(CatalogueFile, InputGainIsANumberOrALawAboveZero) {
                 dir.path().string() + "/catalogue.yaml: items[0] 'cart': input_gain: lognormal"),
             0u);
 }
+
+// Issue 54: ids are names. An item id or sensor name outside letters, digits, '_', '-', '.' is
+// refused when the catalogue loads, the error naming item and field; offline catalogues may name
+// ensemble members "<id>#<k>" (rocking_geometry.py --ensemble), the live one may not.
+namespace {
+std::string live_error_of(const std::string& sensor, const std::string& item) {
+  const nlohmann::json sensors = {{{"name", sensor}, {"topic", "/imu"}}};
+  const nlohmann::json items = {{{"id", item}, {"sensor", sensor}, {"width", 0.5}, {"cg_height", 0.8}}};
+  try {
+    rc::parse_catalogue(sensors, items);
+  } catch (const rc::CatalogueError& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(CatalogueFile, IdsAreNamesOfLettersDigitsUnderscoreDashDot) {
+  EXPECT_EQ(live_error_of("table_1", "Vase-3.b_2"), "");
+  const std::string rule = ": an id is a name of letters, digits, '_', '-' and '.' (it becomes an MQTT topic "
+                           "level, a file name and part of an e-mail subject)";
+  EXPECT_EQ(live_error_of("table", "vase 1"), "items[0] 'vase 1': id: 'vase 1' holds ' ' at character 5" + rule);
+  EXPECT_EQ(live_error_of("table", "vase/1"), "items[0] 'vase/1': id: 'vase/1' holds '/' at character 5" + rule);
+  EXPECT_EQ(live_error_of("table", "vase#1"), "items[0] 'vase#1': id: 'vase#1' holds '#' at character 5" + rule);
+  // A header injection and invalid UTF-8: refused, and the error itself is printable.
+  EXPECT_EQ(live_error_of("table", "v\r\nBcc: x"),
+            "items[0] 'v\\x0D\\x0ABcc: x': id: 'v\\x0D\\x0ABcc: x' holds '\\x0D' at character 2" + rule);
+  EXPECT_EQ(live_error_of("table", "vase\xFF"),
+            "items[0] 'vase\xEF\xBF\xBD': id: 'vase\xEF\xBF\xBD' holds a non-ASCII byte at character 5" + rule);
+  EXPECT_EQ(live_error_of("table+1", "vase"), "sensors[0] 'table+1': name: 'table+1' holds '+' at character 6" + rule);
+  EXPECT_EQ(live_error_of("table", std::string(129, 'a')).find("items[0] '"), 0u);
+  EXPECT_NE(live_error_of("table", std::string(129, 'a')).find("is 129 bytes long: at most 128"), std::string::npos);
+  // Offline: members "SP1#0" pass; anything else after '#' does not.
+  EXPECT_EQ(error_of(write("items:\n  - id: SP1#12\n    width: 0.5\n    cg_height: 0.8\n")), "");
+  EXPECT_EQ(error_of(write("items:\n  - id: SP1#x\n    width: 0.5\n    cg_height: 0.8\n")),
+            dir.path().string() + "/catalogue.yaml: items[0] 'SP1#x': id: 'SP1#x' holds '#' at character 4" + rule +
+                ", optionally followed by '#<member number>'");
+}

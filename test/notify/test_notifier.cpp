@@ -1,7 +1,10 @@
 // The notifier's core without servers: deduplication, the outbox across restarts, grouping, retries.
 // The channel here is a recording double whose failures the test switches; the same logic against real
 // servers is in test_notify_servers.cpp.
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -10,8 +13,10 @@
 #include <fstream>
 #include <mutex>
 
+#include "rocking_monitor/notify/channels.hpp"
 #include "rocking_monitor/notify/compose.hpp"
 #include "rocking_monitor/notify/notifier.hpp"
+#include "rocking_monitor/notify/redact.hpp"
 
 using namespace rocking_monitor::notify;
 
@@ -33,6 +38,8 @@ struct Recorded {
   std::mutex mutex;
   std::vector<OutMessage> delivered;
   std::atomic<int> fail_next{0};   // deliveries to refuse, with a server's reply
+  std::atomic<int> refuse_next{0};  // deliveries to refuse for good (550), issue 54
+  std::atomic<int> attempts{0};     // deliver() calls
   std::vector<OutMessage> of(const std::string& recipient) {
     std::lock_guard<std::mutex> l(mutex);
     std::vector<OutMessage> out;
@@ -46,6 +53,14 @@ class RecordingChannel : public Channel {
  public:
   explicit RecordingChannel(Recorded* r) : r_(r) {}
   std::size_t deliver(const std::vector<OutMessage>& batch, std::string* error) override {
+    ++r_->attempts;
+    permanent_ = false;
+    if (r_->refuse_next > 0) {
+      --r_->refuse_next;
+      *error = "550 5.1.1 <nobody@museum.example>: Recipient address rejected";
+      permanent_ = true;
+      return 0;
+    }
     if (r_->fail_next > 0) {
       --r_->fail_next;
       *error = "451 4.3.0 mailbox temporarily unavailable";
@@ -55,7 +70,9 @@ class RecordingChannel : public Channel {
     r_->delivered.insert(r_->delivered.end(), batch.begin(), batch.end());
     return batch.size();
   }
+  bool refusal_is_permanent() const override { return permanent_; }
   Recorded* r_;
+  bool permanent_ = false;
 };
 
 NotifyAlarm alarm(const std::string& source, const std::string& item, int level, double t, std::uint64_t seq,
@@ -311,4 +328,101 @@ TEST(NotifyCompose, ProbabilityAlarmIsNoItemState) {
   const auto prob = compose_mqtt(c.channels.at("bms"), c.recipients[2], a, 0);
   ASSERT_EQ(prob.size(), 1u);
   EXPECT_EQ(prob[0].topic, "museum/vase_1/probability/COMMITTED");
+}
+
+// Issue 54: an alarm from a topic may carry any bytes. Invalid UTF-8 in its item id or description
+// is replaced (U+FFFD) on the outbox's JSON and in the messages, never thrown in the notifier.
+TEST_F(NotifierCore, InvalidUtf8InAnAlarmIsReplacedNeverThrown) {
+  const std::string bad_id = "vase_\xFF", replaced_id = "vase_\xEF\xBF\xBD";
+  NotifyAlarm a = alarm("/m", bad_id, kCommitted, 100.0, 1);
+  a.description = "Ming \xC3(";
+  std::string line;
+  ASSERT_NO_THROW(line = to_json(a));
+  EXPECT_NE(line.find(replaced_id), std::string::npos) << line;
+  EXPECT_NE(line.find("Ming \xEF\xBF\xBD("), std::string::npos) << line;
+  auto n = start(1000.0);
+  EXPECT_EQ(n->accept(a, 1000.0), Notifier::Accepted::Routed);
+  ASSERT_EQ(n->tick(1000.0), "");
+  ASSERT_TRUE(n->wait_idle(10));
+  const auto mqtt = rec.of("building");
+  ASSERT_FALSE(mqtt.empty());
+  EXPECT_NE(mqtt[0].body.find(replaced_id), std::string::npos) << mqtt[0].body;
+  ASSERT_EQ(rec.of("curator").size(), 1u);
+  n.reset();  // the outbox written above reads back after a restart
+  auto again = start(1001.0);
+  EXPECT_EQ(again->accept(a, 1001.0), Notifier::Accepted::Repeat);
+}
+
+// Issue 54: secrets stay out of errors. The token in a webhook URL's path or query and a
+// user:pass@ are redacted, here and in what a failed delivery says (a real connection refused).
+TEST(NotifyRedact, UrlsLoseUserInformationPathAndQuery) {
+  EXPECT_EQ(redact_url("https://user:pw@hooks.example:8443/services/T0/B0/secret?token=y"), "https://***@hooks.example:8443/***");
+  EXPECT_EQ(redact_url("smtp://alice:hunter2@mail.example:587"), "smtp://***@mail.example:587");
+  EXPECT_EQ(redact_url("smtps://mail.example:465/"), "smtps://mail.example:465");
+  EXPECT_EQ(redact_url("http://127.0.0.1:8080?key=abc"), "http://127.0.0.1:8080/***");
+  EXPECT_EQ(redact_url("not a url"), "***");
+  EXPECT_EQ(redact_secrets("x https://h/t0k3n y pw", "https://h/t0k3n", "pw"), "x https://h/*** y ***");
+}
+
+TEST(NotifyRedact, FailedWebhookDeliverySaysNoToken) {
+  // A port nothing listens on: bind one, note it, close it.
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+  socklen_t len = sizeof a;
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len);
+  ::close(fd);
+  ChannelConfig c;
+  c.type = ChannelType::Webhook;
+  c.url = "http://ops:s3cr3t@127.0.0.1:" + std::to_string(ntohs(a.sin_port)) + "/hooks/T0/B0/t0k3n?token=abc";
+  c.timeout = 5.0;
+  OutMessage m;
+  m.id = "m1";
+  m.body = "{}";
+  std::string error;
+  EXPECT_EQ(make_webhook_channel(c)->deliver({m}, &error), 0u);
+  EXPECT_EQ(error.rfind("http://***@127.0.0.1:" + std::to_string(ntohs(a.sin_port)) + "/***: ", 0), 0u) << error;
+  for (const char* secret : {"s3cr3t", "t0k3n", "abc", "ops"}) EXPECT_EQ(error.find(secret), std::string::npos) << error;
+}
+
+// Issue 54: a permanent refusal (550) is not retried: the message is closed as failed in the outbox
+// (with the reason), said in the channel's status, and the recipient's next message goes out.
+TEST_F(NotifierCore, PermanentRefusalIsMarkedFailedAndNotRetried) {
+  config.recipients.resize(2);  // the mail channel alone: the refusal is the curator's first message
+  rec.refuse_next = 1;
+  {
+    auto n = start(1000.0);
+    n->accept(alarm("/m", "vase_1", kCommitted, 100.0, 1), 1000.0);
+    ASSERT_EQ(n->tick(1000.0), "");
+    ASSERT_TRUE(n->wait_idle(10));  // the refused message left the queue: no backoff, no retry
+    EXPECT_TRUE(rec.of("curator").empty());
+    const int attempts_after_refusal = rec.attempts.load();
+    n->accept(alarm("/m", "vase_2", kOverturned, 200.0, 2, "2026-11-27T10:05:00.000Z/1"), 1100.0);
+    ASSERT_EQ(n->tick(1100.0), "");
+    ASSERT_TRUE(n->wait_idle(10));
+    ASSERT_EQ(rec.of("curator").size(), 1u);  // the next message was not held up
+    EXPECT_NE(rec.of("curator")[0].subject.find("OVERTURNED"), std::string::npos);
+    EXPECT_GT(rec.attempts.load(), attempts_after_refusal);
+    std::uint64_t refused = 0;
+    std::string last_error;
+    for (const auto& s : n->status())
+      if (s.name == "mail") refused = s.refused, last_error = s.last_error;
+    EXPECT_EQ(refused, 1u);
+    EXPECT_NE(last_error.find("refused for good, not retried: message "), std::string::npos) << last_error;
+    EXPECT_NE(last_error.find("to curator: 550 5.1.1"), std::string::npos) << last_error;
+  }
+  std::ifstream in(outbox);
+  std::string line, failed_line;
+  int failed_lines = 0;
+  while (std::getline(in, line))
+    if (line.find("\"t\":\"failed\"") != std::string::npos) ++failed_lines, failed_line = line;
+  EXPECT_EQ(failed_lines, 1);
+  EXPECT_NE(failed_line.find("Recipient address rejected"), std::string::npos) << failed_line;
+  // After a restart the failed message is not sent again.
+  const std::size_t curator_before = rec.of("curator").size();
+  auto again = start(1200.0);
+  ASSERT_TRUE(again->wait_idle(10));
+  EXPECT_EQ(rec.of("curator").size(), curator_before);
 }

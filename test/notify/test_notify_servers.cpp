@@ -183,18 +183,22 @@ TEST_F(NotifyServers, RefusalsAreReportedWithTheServersReason) {
   Notifier n(c, dir + "/outbox.jsonl", make_channel, 1000.0);
   n.accept(alarm("vase_1", kOverturned, 100.0, 1), 1000.0);
   ASSERT_EQ(n.tick(1000.0), "");
-  ASSERT_TRUE(wait_for([&] { return !channel_error(n, "mail").empty(); }));
-  EXPECT_NE(channel_error(n, "mail").find("550 5.1.1 <nobody@test.example>: Recipient address rejected"), std::string::npos)
-      << channel_error(n, "mail");
+  auto mail = [&] {
+    for (const auto& s : n.status())
+      if (s.name == "mail") return s;
+    return Notifier::ChannelStatus{};
+  };
+  // The refusal (550: permanent, issue 54) closes the message as failed, with the server's reason;
+  // it is not retried.
+  ASSERT_TRUE(wait_for([&] { return mail().refused == 1u; }));
+  EXPECT_NE(mail().last_error.find("refused for good, not retried"), std::string::npos) << mail().last_error;
+  EXPECT_NE(mail().last_error.find("550 5.1.1 <nobody@test.example>: Recipient address rejected"), std::string::npos)
+      << mail().last_error;
   ASSERT_TRUE(wait_for([&] { return read_log(smtp_log).size() == 1; }));
   EXPECT_EQ(read_log(smtp_log)[0]["to"], nlohmann::json::array({"facilities@test.example"}));
-  auto mail_queued = [&] {
-    for (const auto& s : n.status())
-      if (s.name == "mail") return s.queued;
-    return std::size_t{0};
-  };
-  // facilities' message acknowledged, the refused one waits for its retry
-  EXPECT_TRUE(wait_for([&] { return mail_queued() == 1u; })) << mail_queued();
+  // facilities' message acknowledged, nothing waits
+  EXPECT_TRUE(wait_for([&] { return mail().queued == 0u; })) << mail().queued;
+  EXPECT_EQ(mail().refused, 1u);
   // The webhook's receiver refuses twice with a reason, then takes it.
   ASSERT_TRUE(wait_for([&] { return read_log(http_log).size() == 1; }));
   std::uint64_t hook_failures = 0;

@@ -123,6 +123,10 @@ class UdpAccelBridgeTest(unittest.TestCase):
             self.assertEqual(int(d['malformed']), 1, key)
             self.assertEqual(int(d['datagrams']), len(order) + 1, key)
             self.assertEqual(d['form'], 'binary' if key == 'bin' else 'text')
+            # issue 54: the buffer the kernel granted, read back (Linux: twice min(asked, rmem_max))
+            with open('/proc/sys/net/core/rmem_max') as f:
+                granted = 2 * min(4 << 20, int(f.read()))
+            self.assertEqual(int(d['receive buffer (bytes)']), granted, key)
         rospy.loginfo('udp_accel_bridge: %d samples, %d dropped, %d swapped: all counted', self.n, len(dropped), swaps)
         self.check_history()
 

@@ -65,6 +65,13 @@ PacketHeader parse_packet_header(const char* bytes8);
 /// indicator D/R/Q/M).
 bool record_station(const char* record, std::size_t length, std::string& network, std::string& station);
 
+/// Start time of a miniSEED 2 record (fixed header BTIME, bytes 20-29, either byte order), in
+/// microseconds since the epoch (UTC); nothing when the header is no data record or the time is no
+/// date (year 1900..2500, day 1..366, hour < 24, minute < 60, second <= 60); as stamped, without
+/// the header's time correction (ordering records needs no more). Used to tell a server
+/// that renumbered its packets after a restart from one that repeats old ones.
+std::optional<std::int64_t> record_start_us(const char* record, std::size_t length);
+
 /// Where packet `got` stands after the station's `last` one (24-bit wrap): the next one, a repeat
 /// or older one (to drop), or a jump forward by `skipped` + 1 (packets missing in between).
 struct SequenceStep {

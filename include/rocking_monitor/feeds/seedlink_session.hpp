@@ -8,6 +8,12 @@
 // Every packet is checked: malformed headers, INFO packets (the keep-alive replies), repeated or
 // skipped sequence numbers, records of stations not asked for. Each is counted; a malformed
 // packet is dropped and the session goes on, a stream that lost its framing is reconnected.
+//
+// A packet numbered at or before the last one is a repeat unless the server restarted and numbers
+// from lower values again (issue 54): a record newer in record time than any handed on, or
+// the first packet of a connection when the stream's last record time is unknown (resumed from a
+// state file: the server was asked for last + 1 and, not holding it, began lower). Either is
+// accepted, counted in `server_restarts` and said in last_error(): the numbers restart from there.
 
 #include <atomic>
 #include <chrono>
@@ -29,6 +35,7 @@ struct SessionConfig {
   double connect_timeout_s = 10.0;  ///< s, for the TCP connect and each handshake reply
   double keepalive_s = 15.0;        ///< s without a packet before "INFO ID" is sent (keep-alive)
   double idle_timeout_s = 60.0;     ///< s without any byte before the connection is dropped and redone
+  double record_timeout_s = 10.0;   ///< s for a whole packet (8 + 512 bytes) once its first byte came
   double backoff_min_s = 1.0;       ///< s, first wait before reconnecting
   double backoff_max_s = 30.0;      ///< s, longest wait (doubling in between)
 };
@@ -44,10 +51,12 @@ struct SessionCounters {
   std::atomic<std::uint64_t> malformed{0};            ///< headers neither "SL"+hex6 nor "SLINFO", dropped
   std::atomic<std::uint64_t> out_of_sync{0};          ///< byte streams that lost framing (reconnected)
   std::atomic<std::uint64_t> repeated_sequence{0};    ///< packets at or before the last number, dropped
+  std::atomic<std::uint64_t> server_restarts{0};      ///< lower numbers on newer records: the server renumbered
   std::atomic<std::uint64_t> sequence_jumps{0};       ///< packets after a hole in the numbers
   std::atomic<std::uint64_t> skipped_sequence{0};     ///< sequence numbers never received
   std::atomic<std::uint64_t> unrequested{0};          ///< records of no requested station, dropped
   std::atomic<std::uint64_t> error_replies{0};        ///< ERROR answers to STATION / SELECT / DATA
+  std::atomic<std::uint64_t> slow_packets{0};         ///< packets not whole within record_timeout_s (reconnected)
 };
 
 class SeedLinkSession {
@@ -77,7 +86,11 @@ class SeedLinkSession {
  private:
   /// One connection: false when it ended by `stop`.
   bool session_once(const std::atomic<bool>& stop, bool& got_data);
-  void note_error(const std::string& what);
+  void note_error(const std::string& raw);
+  /// Whether the stream's packet `sequence` (record start `time_us`) is handed on; counts and says
+  /// why not, or that the server renumbered. `first` marks the stream's first packet of a connection.
+  bool accept_sequence(std::size_t stream, std::uint32_t sequence, std::optional<std::int64_t> time_us, bool first,
+                       const std::string& where);
 
   SessionConfig config_;
   RecordHandler on_record_;
@@ -88,6 +101,7 @@ class SeedLinkSession {
   std::chrono::steady_clock::time_point down_since_;
   mutable std::mutex mutex_;  // guards the fields below
   std::vector<std::optional<std::uint32_t>> last_sequence_;
+  std::vector<std::optional<std::int64_t>> latest_time_us_;  ///< latest record start handed on (session thread)
   double last_outage_s_ = 0.0, total_outage_s_ = 0.0;
   std::string last_error_;
 };

@@ -13,7 +13,8 @@ namespace rocking_monitor::feeds {
 /// for a line that is not "<NET_STA> <hex>" with a number below 2^24.
 std::map<std::string, std::uint32_t> read_sequence_state(const std::string& path);
 
-/// Writes the map to "<path>.tmp" and renames it over the file (never a half-written file).
+/// Writes the map to a fresh "<path>.tmp.XXXXXX" (mkostemp: 0600, never a planted link) and renames it
+/// over the file (never a half-written file).
 /// Throws std::runtime_error naming the file when it cannot be written.
 void write_sequence_state(const std::string& path, const std::map<std::string, std::uint32_t>& state);
 

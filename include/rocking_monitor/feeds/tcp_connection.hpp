@@ -2,8 +2,11 @@
 
 // A plain POSIX TCP client connection with timeouts on every call (poll()), for the SeedLink
 // client. Never blocks longer than the timeout it is given; a stop flag ends waits early.
+// A read's timeout bounds the whole read, not the wait for each byte (issue 54): a server or a
+// half-dead link that drips one byte at a time cannot keep a read, hence a session, alive forever.
 
 #include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -16,6 +19,7 @@ void parse_host_port(const std::string& text, std::string& host, std::uint16_t& 
 class TcpConnection {
  public:
   enum class Status { Ok, Timeout, Closed, Error, Stopped };
+  using Deadline = std::chrono::steady_clock::time_point;
 
   TcpConnection() = default;
   ~TcpConnection();
@@ -28,9 +32,10 @@ class TcpConnection {
   bool is_open() const { return fd_ >= 0; }
 
   Status send_all(const std::string& bytes, double timeout_s);
-  /// Reads exactly n bytes; `idle_timeout_s` bounds the wait for each chunk, not the whole.
-  Status read_exact(char* out, std::size_t n, double idle_timeout_s);
-  /// Reads one line ending in '\n' (or "\r" alone, as old servers do), terminator stripped.
+  /// Reads exactly n bytes, all within timeout_s (Timeout when they did not all come in time).
+  Status read_exact(char* out, std::size_t n, double timeout_s);
+  /// Reads one line ending in '\n' (or "\r" alone, as old servers do), terminator stripped; the
+  /// whole line within timeout_s.
   Status read_line(std::string& line, double timeout_s, std::size_t max_length = 1024);
   /// Waits until a byte can be read; Timeout when none came within timeout_s.
   Status wait_readable(double timeout_s);
@@ -40,6 +45,8 @@ class TcpConnection {
 
  private:
   Status wait(short events, double timeout_s);
+  Status wait_until(short events, Deadline deadline);
+  Status read_exact_until(char* out, std::size_t n, Deadline deadline);
   int fd_ = -1;
   const std::atomic<bool>* stop_ = nullptr;
   std::string error_;

@@ -100,7 +100,8 @@ std::string read_snapshot(const std::string& path, StateSnapshot& out, bool* exi
 std::string foreign_snapshot(const StateSnapshot& snapshot, std::uint32_t fingerprint,
                              const std::vector<std::string>& sensor_names, const std::vector<std::string>& item_ids);
 
-/// Writes data to path durably: a temporary file beside it (path + ".tmp"), write, fsync, rename over
+/// Writes data to path durably: a temporary file beside it (path + ".tmp.XXXXXX", mkostemp: 0600, a
+/// fresh name, never a planted link), write, fsync, rename over
 /// path, fsync of the directory, as the journal keeps its lines. Empty string, else what failed
 /// (path and errno text); path is then untouched (the previous snapshot stays).
 std::string write_file_durably(const std::string& path, const std::uint8_t* data, std::size_t size);

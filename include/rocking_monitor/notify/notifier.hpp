@@ -46,6 +46,9 @@ class Channel {
   virtual std::size_t deliver(const std::vector<OutMessage>& batch, std::string* error) = 0;
   /// Messages per deliver() call (an MQTT broker acknowledges many in flight).
   virtual std::size_t batch_size() const { return 1; }
+  /// After a deliver() that stopped short: whether the server refused the first undelivered message
+  /// for good (SMTP 5xx, HTTP 4xx other than 408 and 429), so that retrying cannot help (issue 54).
+  virtual bool refusal_is_permanent() const { return false; }
 };
 using ChannelFactory = std::function<std::unique_ptr<Channel>(const ChannelConfig&)>;
 
@@ -75,6 +78,7 @@ class Notifier {
     std::size_t queued = 0;          ///< messages not yet acknowledged
     std::uint64_t delivered = 0;     ///< acknowledged since start
     std::uint64_t failures = 0;      ///< failed attempts since start
+    std::uint64_t refused = 0;       ///< messages refused for good (marked failed in the outbox, not retried)
     unsigned failing_attempts = 0;   ///< consecutive failed attempts of the recipient failing longest (0: none failing)
     std::string last_error;          ///< the last failure's reason (the server's reply)
   };
@@ -104,6 +108,7 @@ class Notifier {
   double due_at(const RecipientConfig& r, const Waiting& w) const;
   void sender_loop(Sender& s);
   void acknowledge(Sender& s, const std::vector<std::string>& ids);
+  void give_up(Sender& s, const OutMessage& m, const std::string& reason);
 
   NotifyConfig config_;
   mutable std::mutex outbox_mutex_;   // outbox_, counts_

@@ -6,6 +6,8 @@
 //          fields and the recipients it was routed to
 //   msg:   a message formed for one recipient (its text, the alarms it covers); sent until acknowledged
 //   ack:   the server acknowledged a message: it is never sent again
+//   failed: the server refused a message for good (SMTP 5xx, HTTP 4xx but 408/429): never sent again,
+//          its reason kept; like an ack, it lets the outbox compact
 // On open the file is replayed: alarms routed to a recipient but in no message go back to the grouper,
 // messages without an ack are sent again. Compaction (when everything is acknowledged) rewrites the file
 // with the alarms younger than `remember` only (rename over the old file, then fsync of the folder).
@@ -61,6 +63,10 @@ class Outbox {
   std::uint64_t add_alarm(OutboxAlarm& a);
   void add_message(const OutMessage& m);
   void add_ack(const std::string& message_id);
+  /// The message was refused for good: closed as an ack is, with the server's reason on record.
+  void add_failed(const std::string& message_id, const std::string& reason);
+  /// Messages closed as failed in the file (replayed) and since.
+  std::uint64_t failed() const { return failed_; }
   /// Writes what was appended and fsyncs. Empty string on success, else the error.
   std::string sync();
 
@@ -91,6 +97,7 @@ class Outbox {
   std::set<std::pair<std::uint64_t, std::string>> covered_;
   std::uint64_t next_alarm_ = 1;
   std::uint64_t next_message_ = 0;
+  std::uint64_t failed_ = 0;
   std::string token_;
   std::map<std::string, double> last_message_;
 };

@@ -17,6 +17,7 @@
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <ros/ros.h>
 
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -50,6 +51,7 @@ class AlarmNotifier {
   ros::WallTimer tick_timer_, diag_timer_;
   std::mutex reported_mutex_;                    // tick() runs on the timer and on a COMMITTED alarm's callback
   std::map<std::string, std::string> reported_;  // channel -> the failure last logged ("" while it works)
+  std::map<std::string, std::uint64_t> reported_refused_;  // channel -> messages refused for good, as last logged
 };
 
 }  // namespace rocking_monitor::live

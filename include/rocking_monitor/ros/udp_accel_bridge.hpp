@@ -70,6 +70,7 @@ class UdpAccelBridge {
   feeds::SenderFilter senders_;
 
   int socket_ = -1;
+  int rcvbuf_bytes_ = 0;  ///< the kernel's receive buffer as read back (it may cap what was asked)
   std::thread thread_;
   std::atomic<bool> running_{false};
 

@@ -206,7 +206,7 @@ function fillRow(tr, it) {
   tr.dataset.mode = m;
   tr.classList.toggle('selected', it.id === view.selected);
   const s = it.state;
-  tr.cells[1].innerHTML = '<span class="mode m-' + m + '">' + LABELS[m] + '</span>';
+  tr.cells[1].innerHTML = '<span class="mode m-' + esc(m) + '">' + esc(LABELS[m]) + '</span>';
   tr.cells[2].textContent = s ? s.plane : '';
   tr.cells[3].textContent = s ? fmt(s.rotation_ratio) : '';
   tr.cells[4].textContent = s ? fmt(s.energy_margin) : '';
@@ -444,13 +444,13 @@ function renderDetail() {
   const it = view.selected && view.byId.get(view.selected);
   if (!it) return;
   const s = it.state, m = modeOf(it);
-  $('sel-title').innerHTML = esc(it.id) + ' <span class="mode m-' + m + '">' + LABELS[m] + '</span>';
+  $('sel-title').innerHTML = esc(it.id) + ' <span class="mode m-' + esc(m) + '">' + esc(LABELS[m]) + '</span>';
   $('sel-desc').textContent = it.description || '';
   const rows = [];
   const row = (k, v) => rows.push('<tr><td>' + k + '</td><td>' + v + '</td></tr>');
   row('base B \u00d7 D, h', fmt(it.width, 2) + ' \u00d7 ' + (it.depth ? fmt(it.depth, 2) : '\u2013') + ' m, ' + fmt(it.cg_height, 2) + ' m');
   if (s) {
-    row('governing plane', s.plane + (s.plane_count > 1 ? ' (of 2)' : s.plane_count === 1 ? ' (x only)' : ''));
+    row('governing plane', esc(s.plane) + (s.plane_count > 1 ? ' (of 2)' : s.plane_count === 1 ? ' (x only)' : ''));
     row('\u03b8, \u03b8/\u03b1', fmt(s.theta, 4) + ' rad, ' + fmt(s.rotation_ratio, 3));
     row('energy margin', fmt(s.energy_margin, 3));
     if (s.x) row('impacts x / y', s.x.impacts + (s.y ? ' / ' + s.y.impacts : ''));
