@@ -19,6 +19,10 @@ if(CATKIN_ENABLE_TESTING)
   add_test(NAME report.pair_alarms_each_once
            COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/test_report_pair.py
                    ${CMAKE_CURRENT_SOURCE_DIR}/scripts/rocking_report)
+  # An item on a support (issue 51): "fell off its support" and the support margin (needs the generated messages).
+  add_test(NAME report.fell_off_support_and_support_margin
+           COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/test_report_support.py
+                   ${CMAKE_CURRENT_SOURCE_DIR}/scripts/rocking_report)
   # The report written by the node after the pulse replay equals the monitor's alarms and states.
   if(TARGET monitor)
     # From record files and a catalogue (no bag): record_to_bag, replay, the node's report.

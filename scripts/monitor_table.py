@@ -107,8 +107,10 @@ class Table:
         print("\nAlarm summary (%d alarms; copies not listed: %d from the pair's other monitor, %d received again):"
               % (len(alarms), self.alarms.merged, self.alarms.repeats))
         for a in alarms:
-            print("  t = %8.3f s  %s  %-15s %-18s plane %s  predicted by: %s; not by: %s" % (
-                a.time_since_first_sample, self.utc(a.event_time), LEVELS.get(a.level, "?"), a.item_id, a.plane,
+            # OverturnAlarm.cause 1 (issue 51): it slid off its plinth, shelf or pedestal
+            fell_off = " (fell off its support)" if getattr(a, "cause", 0) == 1 else ""
+            print("  t = %8.3f s  %s  %-15s %-18s plane %s%s  predicted by: %s; not by: %s" % (
+                a.time_since_first_sample, self.utc(a.event_time), LEVELS.get(a.level, "?"), a.item_id, a.plane, fell_off,
                 ", ".join(a.predicted_by) or "none",
                 ", ".join(a.not_predicted_by) or "none"), flush=True)
         if not alarms:

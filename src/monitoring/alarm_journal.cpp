@@ -114,6 +114,9 @@ JournalRecord from_json_line(const std::string& line) {
     if (r.plane != "x" && r.plane != "y" && r.plane != "3d")
       throw std::runtime_error("field 'plane' must be \"x\", \"y\" or \"3d\"");
     r.rotation_ratio = number(j, "rotation_ratio", false);
+    const std::string cause = text(j, "cause", false);
+    if (!cause.empty() && !parse_alarm_cause(cause.c_str(), r.cause))
+      throw std::runtime_error("unknown cause '" + cause + "'");
   } else {
     r.probability = number(j, "probability", true);
     r.lower = number(j, "lower", false);
@@ -155,6 +158,7 @@ std::string to_json_line(const JournalRecord& r) {
   if (!r.item.empty()) j["item"] = r.item;
   if (r.level != 0 && level_name(r.level) != nullptr) j["level"] = level_name(r.level);
   if (!r.plane.empty()) j["plane"] = r.plane;
+  if (r.kind == JournalKind::Alarm && r.cause != AlarmCause::Rocking) j["cause"] = to_string(r.cause);
   if (!r.sensor.empty()) j["sensor"] = r.sensor;
   put(j, "time", r.time);
   j["time_utc"] = iso8601_utc(r.time);  // for a person reading the file; not read back

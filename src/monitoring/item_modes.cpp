@@ -1,5 +1,7 @@
 #include "rocking_monitor/monitoring/item_modes.hpp"
 
+#include <cstring>
+
 namespace rocking_monitor::core {
 
 const char* to_string(ItemMode mode) {
@@ -11,6 +13,23 @@ const char* to_string(ItemMode mode) {
     case ItemMode::Overturned: return "OVERTURNED";
   }
   return "UNKNOWN";
+}
+
+const char* to_string(AlarmCause cause) {
+  switch (cause) {
+    case AlarmCause::Rocking: return "rocking";
+    case AlarmCause::FellOffSupport: return "fell_off_support";
+  }
+  return "unknown";
+}
+
+bool parse_alarm_cause(const char* name, AlarmCause& cause) {
+  for (AlarmCause c : {AlarmCause::Rocking, AlarmCause::FellOffSupport})
+    if (std::strcmp(name, to_string(c)) == 0) {
+      cause = c;
+      return true;
+    }
+  return false;
 }
 
 const char* to_string(CriterionId id) {

@@ -53,7 +53,10 @@ ItemMonitor::ItemMonitor(const ItemSpec& spec, const Options& options) : spec_(c
     s.method = Method::Dopri5;  // the 3-D model's only integrator
     s.model = ModelKind::Nonlinear;
     solid_ = std::make_unique<Rocking3DModel>(BaseBody(*spec_.solid), s);
-    solid_always_ = options.solid == SolidChoice::Solid || !axis_aligned_rectangle(*spec_.solid);
+    // A support (plinth, shelf, pedestal) is known to the 3-D model only: the planar pair would never
+    // see the item reach its edge, so an item on one is the 3-D model's under every shaking.
+    solid_always_ = options.solid == SolidChoice::Solid || !axis_aligned_rectangle(*spec_.solid) ||
+                    !spec_.solid->support.empty();
     bidirectional_ratio_ = options.bidirectional_ratio;
   }
 }
@@ -165,6 +168,10 @@ const ItemEvents& ItemMonitor::step_planes(double ax, double ay, double az, doub
       alarmed_[l] = true;
       AlarmEvent& a = events_.alarms[events_.alarm_count++];
       a.level = level;
+      // Sliding past the support's edge is the model's other way to overturn (rocking_3d.md "Supports
+      // that end"): OVERTURNED, and COMMITTED at the same instant; the cause tells it from rocking over.
+      const Rocking3DOutcome& o3 = solid_->outcome_3d();
+      a.cause = o3.fell_off_support && time >= o3.fell_off_time ? AlarmCause::FellOffSupport : AlarmCause::Rocking;
       a.plane = Plane::X;
       a.time = time;
       a.rotation_ratio = solid_->rotation_ratio();

@@ -57,15 +57,23 @@ std::string iso_utc(double t) {
 
 namespace {
 
+const char* const kFellOffText =
+    "fell off its support (slid off the edge of its plinth, shelf or pedestal: look for it on the floor beside "
+    "the support)";
+
 double when(const NotifyAlarm& a) {
   return std::isfinite(a.event_time) ? a.event_time : static_cast<double>(a.stamp_ns) * 1e-9;
 }
+
+bool notify_fell_off(const NotifyAlarm& a) { return !a.probability && a.cause == core::AlarmCause::FellOffSupport; }
 
 std::string line_of(const NotifyAlarm& a) {
   std::ostringstream s;
   s << "  - " << a.item;
   if (!a.description.empty()) s << " (" << a.description << ")";
   s << " at " << iso_utc(when(a));
+  // Overturned either way; falling off a plinth or shelf is a fall from a height, often further away.
+  if (notify_fell_off(a)) s << ": " << kFellOffText;
   if (a.probability) {
     char buf[96];
     std::snprintf(buf, sizeof buf, ": probability %.2f >= %.2f over its uncertain parameters", a.probability_value,
@@ -80,6 +88,7 @@ json alarm_doc(const OutboxAlarm& o) {
   json j{{"item", a.item}, {"description", a.description}, {"level", level_name(a.level)}, {"time", iso_utc(when(a))},
          {"event_id", a.event_id}, {"sequence", a.sequence}, {"monitor", a.source},
          {"kind", a.probability ? "probability" : "alarm"}};
+  if (!a.probability) j["cause"] = core::to_string(a.cause);  // "rocking" or "fell_off_support"
   if (a.probability) {
     j["probability"] = std::isfinite(a.probability_value) ? json(a.probability_value) : json(nullptr);
     j["threshold"] = std::isfinite(a.threshold) ? json(a.threshold) : json(nullptr);
@@ -111,7 +120,8 @@ OutMessage compose_group(const NotifyConfig& config, const RecipientConfig& reci
     subject << (comma ? ", " : "") << list.size() << (list.size() == 1 ? " item " : " items ") << level_name(level);
     comma = true;
   }
-  if (alarms.size() == 1) subject << ": " << alarms.front()->alarm.item;
+  if (alarms.size() == 1)
+    subject << ": " << alarms.front()->alarm.item << (notify_fell_off(alarms.front()->alarm) ? " (fell off its support)" : "");
 
   std::string events_text;
   for (const auto& e : events) events_text += (events_text.empty() ? "" : ", ") + e;

@@ -32,7 +32,7 @@ double num(const json& j) { return j.is_number() ? j.get<double>() : NotifyAlarm
 
 json alarm_json(const NotifyAlarm& a) {
   return json{{"probability", a.probability}, {"source", a.source}, {"item", a.item}, {"description", a.description},
-              {"level", a.level}, {"stamp_ns", a.stamp_ns}, {"event_time", num(a.event_time)},
+              {"level", a.level}, {"cause", core::to_string(a.cause)}, {"stamp_ns", a.stamp_ns}, {"event_time", num(a.event_time)},
               {"event_id", a.event_id}, {"sequence", a.sequence}, {"whole", a.whole},
               {"value", num(a.probability_value)}, {"threshold", num(a.threshold)}};
 }
@@ -44,6 +44,9 @@ NotifyAlarm alarm_from(const json& j) {
   a.item = j.at("item").get<std::string>();
   a.description = j.at("description").get<std::string>();
   a.level = j.at("level").get<int>();
+  // an outbox written before issue 51 has no cause: those alarms rocked
+  if (!core::parse_alarm_cause(j.value("cause", "rocking").c_str(), a.cause))
+    throw std::runtime_error("unknown cause '" + j.at("cause").get<std::string>() + "'");
   a.stamp_ns = j.at("stamp_ns").get<std::int64_t>();
   a.event_time = num(j.at("event_time"));
   a.event_id = j.at("event_id").get<std::string>();

@@ -106,6 +106,7 @@ notify::NotifyAlarm common_fields(const std::string& monitor, const Message& m) 
 void AlarmNotifier::on_alarm(const std::string& monitor, const OverturnAlarm::ConstPtr& m) {
   notify::NotifyAlarm a = common_fields(monitor, *m);
   a.whole = m->frozen_s == 0.0;
+  a.cause = static_cast<core::AlarmCause>(m->cause);
   accept(a);
 }
 

@@ -49,6 +49,7 @@ void Dashboard::read_journal() {
     m->event_time = r.time;
     m->time_since_first_sample = r.since_event_start;
     m->rotation_ratio = r.rotation_ratio;
+    m->cause = static_cast<std::uint8_t>(r.cause);
     m->event_id = r.event;
     m->sequence = r.sequence;
     on_alarm(m);

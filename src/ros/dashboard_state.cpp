@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "rocking_monitor/json_text.hpp"
+#include "rocking_monitor/monitoring/item_modes.hpp"
 #include "rocking_monitor/ros/dashboard.hpp"
 
 namespace rocking_monitor::live {
@@ -57,6 +58,8 @@ json state_json(const RockingState& s) {
   if (s.model == "rocking_3d") {  // the 3-D model decides: the side view turns about its contact
     j["tilt"] = s.tilt;
     j["contact"] = s.contact;
+    // on a support: how far the centre of mass is inside its nearest edge, m (NaN, no JSON number: left out)
+    if (std::isfinite(s.support_margin)) j["support_margin"] = s.support_margin;
   }
   if (s.ensemble_size > 0) {  // an item with uncertain parameters: P(level) over its members
     j["ensemble_size"] = s.ensemble_size;
@@ -79,7 +82,13 @@ double short_number(double v) {
 // Changes smaller than these are not worth a delta: 10,000 quiet items must cost nothing.
 constexpr double kRatioStep = 1e-3;   // of alpha
 constexpr double kMarginStep = 1e-3;  // of the energy margin's range [-1, 1]
+constexpr double kSupportStep = 1e-3;  // m: the support margin (a sliding item at rest moves only in it)
 constexpr double kHistorySeconds = 60.0;  // the page's chart window
+
+// NaN (no support) on both sides is no change.
+bool same_support_margin(double a, double b) {
+  return (std::isnan(a) && std::isnan(b)) || std::abs(a - b) < kSupportStep;
+}
 
 }  // namespace
 
@@ -171,6 +180,7 @@ void Dashboard::on_diagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr&
 
 json Dashboard::alarm_json(const OverturnAlarm& a) {
   return {{"item", a.item_id}, {"description", a.description}, {"level", mode_name(a.level)},
+          {"cause", core::to_string(static_cast<core::AlarmCause>(a.cause))},
           {"plane", a.plane}, {"event_time", a.event_time}, {"utc", utc(a.event_time)},
           {"t", a.time_since_first_sample}, {"rotation_ratio", a.rotation_ratio},
           {"stamp", a.header.stamp.toSec()}, {"predicted_by", a.predicted_by},
@@ -283,9 +293,10 @@ void Dashboard::on_update_timer(const ::ros::WallTimerEvent&) {
         const double p = s.ensemble_size > 0 ? s.p_overturned.probability : -1.0;
         if (last.valid && last.mode == s.mode && last.plane == s.plane && last.impacts == s.impacts &&
             std::abs(last.rotation_ratio - s.rotation_ratio) < kRatioStep &&
-            std::abs(last.energy_margin - s.energy_margin) < kMarginStep && std::abs(last.p_overturned - p) < kRatioStep)
+            std::abs(last.energy_margin - s.energy_margin) < kMarginStep && std::abs(last.p_overturned - p) < kRatioStep &&
+            same_support_margin(last.support_margin, s.support_margin))
           continue;
-        last = {s.mode, s.plane, s.rotation_ratio, s.energy_margin, s.theta, s.impacts, true, p};
+        last = {s.mode, s.plane, s.rotation_ratio, s.energy_margin, s.theta, s.impacts, true, p, s.support_margin};
         auto& h = history_[state_to_item_[i]];
         const double t = s.input_stamp.toSec();
         if (!h.empty() && t < h.back().t - 1.0) h.clear();  // the clock went back: monitor restarted, bag looped

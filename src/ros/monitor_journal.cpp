@@ -113,6 +113,7 @@ void RockingMonitor::open_journal() {
       m.event_time = r.time;
       m.time_since_first_sample = r.since_event_start;  // from the journal: since the event's first sample
       m.rotation_ratio = r.rotation_ratio;
+      m.cause = static_cast<std::uint8_t>(r.cause);
       m.frozen_s = std::numeric_limits<double>::quiet_NaN();  // not journaled
       m.event_id = r.event;
       m.sequence = r.sequence;
@@ -161,6 +162,7 @@ bool RockingMonitor::journal_alarm(Item& it, OverturnAlarm& m, double run_start)
   r.time = m.event_time;
   r.stamp_ns = static_cast<std::int64_t>(m.header.stamp.toNSec());
   r.rotation_ratio = m.rotation_ratio;
+  r.cause = static_cast<core::AlarmCause>(m.cause);
   const std::string before = journal_.event().id;
   if (const std::string e = journal_.append(r, run_start, journal_clock(m.header.stamp), false); !e.empty()) {
     ++journal_errors_;

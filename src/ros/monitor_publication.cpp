@@ -65,6 +65,7 @@ void RockingMonitor::publish_events(Item& it, const core::ItemEvents& ev, const 
     const core::AlarmEvent& a = ev.alarms[i];
     OverturnAlarm m = alarm_for<OverturnAlarm>(spec, stamp);
     m.level = static_cast<std::uint8_t>(a.level);
+    m.cause = static_cast<std::uint8_t>(a.cause);
     // the 3-D model decides the item: it reached the level on its base polygon, not in a plane
     const bool solid = it.monitor->solid_active();
     m.plane = solid ? "3d" : core::to_string(a.plane);
@@ -83,8 +84,9 @@ void RockingMonitor::publish_events(Item& it, const core::ItemEvents& ev, const 
                                                        : "across its depth";
       char text[512];
       if (a.level == ItemMode::Overturned) {
-        std::snprintf(text, sizeof text, "rocking_monitor: OVERTURNED: %s (%s), %s (plane %s), %s [event %s #%lu]",
-                      spec.id.c_str(), spec.description.c_str(), across, m.plane.c_str(), when.c_str(),
+        const char* how = a.cause == core::AlarmCause::FellOffSupport ? " (fell off its support)" : "";
+        std::snprintf(text, sizeof text, "rocking_monitor: OVERTURNED%s: %s (%s), %s (plane %s), %s [event %s #%lu]",
+                      how, spec.id.c_str(), spec.description.c_str(), across, m.plane.c_str(), when.c_str(),
                       m.event_id.c_str(), static_cast<unsigned long>(m.sequence));
       } else {
         std::snprintf(text, sizeof text, "rocking_monitor: %s: %s (%s), %s (plane %s), %s", core::to_string(a.level),

@@ -107,6 +107,38 @@ TEST(AlarmJournal, RecordsAreReadBackExactlyAndNumberedWithinTheEvent) {
   EXPECT_NE(text.find("\"level\":\"OVERTURNED\""), std::string::npos) << text;
 }
 
+// An item that slid off its plinth (issue 51): its OVERTURNED alarm carries the cause, by name, and
+// reads back; an overturn by rocking writes no cause (the lines of older journals) and reads as rocking;
+// a cause the reader does not know is a corrupt line naming it.
+TEST(AlarmJournal, TheCauseFellOffItsSupportIsWrittenByNameAndReadBack) {
+  const std::string p = fresh("cause/journal.jsonl");
+  AlarmJournal j;
+  ASSERT_EQ(j.open(p, 3600.0, kNow), "");
+  JournalRecord off = alarm("bust", 4, kRun + 3.5);
+  off.cause = AlarmCause::FellOffSupport;
+  JournalRecord rocked = alarm("vase", 4, kRun + 4.0);
+  ASSERT_EQ(j.append(off, kRun, kNow), "");
+  ASSERT_EQ(j.append(rocked, kRun, kNow), "");
+  const std::string text = slurp(p);
+  const std::size_t second_line = text.find('\n') + 1;
+  EXPECT_NE(text.find("\"cause\":\"fell_off_support\""), std::string::npos) << text;
+  EXPECT_EQ(text.find("\"cause\"", second_line), std::string::npos) << text;
+  const JournalReading r = read_journal(p);
+  ASSERT_EQ(r.records.size(), 2u);
+  EXPECT_TRUE(r.errors.empty());
+  EXPECT_EQ(r.records[0].cause, AlarmCause::FellOffSupport);
+  EXPECT_EQ(r.records[1].cause, AlarmCause::Rocking);
+
+  std::ofstream(p, std::ios::app) << R"({"kind":"alarm","event":"1994-01-17T12:30:55.000Z/1","sequence":3,)"
+                                  << R"("item":"urn","level":"OVERTURNED","plane":"3d","cause":"fell_off_roof",)"
+                                  << R"("time":758809860.0,"event_start":758809855.0,"since_event_start":5.0,)"
+                                  << R"("written":1700000000.0})" << "\n";
+  const JournalReading bad = read_journal(p);
+  EXPECT_EQ(bad.records.size(), 2u);
+  ASSERT_EQ(bad.errors.size(), 1u);
+  EXPECT_NE(bad.errors[0].find("unknown cause 'fell_off_roof'"), std::string::npos) << bad.errors[0];
+}
+
 // The monitor appends a sample's alarms without sync and calls sync() before it publishes them: the
 // lines reach the file then, in order, in one write; closing the journal writes what is left.
 TEST(AlarmJournal, LinesAppendedWithoutSyncReachTheFileAtSyncInOrder) {

@@ -105,5 +105,87 @@ TEST(ItemMonitor3D, AnIrregularBaseAlwaysRunsThe3DModelAndPlanarOnlyNever) {
   EXPECT_TRUE(rect.solid_active());
 }
 
+// A cabinet (base 0.6 x 0.5 m, centre of mass 0.35 m high, mu_s 0.3: it slides rather than rocks) on
+// a plinth 0.4 m beyond its centre of mass towards +x, 0.5 m towards -x (issue 51, docs/rocking_3d.md).
+// The item's frame has its origin below the centre of mass (as Rocking3DSupport's box).
+ItemSpec plinth_cabinet() {
+  ItemSpec spec = box_item(0.6, 0.5, 0.35);
+  spec.id = "cabinet_on_plinth";
+  BaseBodyParameters& p = *spec.solid;
+  p.centre_of_mass = {0.0, 0.0, 0.35};
+  p.base = {{-0.3, -0.25}, {0.3, -0.25}, {0.3, 0.25}, {-0.3, 0.25}};
+  p.central_inertia = Eigen::Vector3d((0.25 + 4 * 0.1225) / 12, (0.36 + 4 * 0.1225) / 12, (0.36 + 0.25) / 12).asDiagonal();
+  p.mu_s = 0.3;
+  p.support = {{-0.5, -0.4}, {0.4, -0.4}, {0.4, 0.4}, {-0.5, 0.4}};
+  return spec;
+}
+
+// A 0.5 Hz sine pulse along x of amplitude amp (m/s^2), then 4 s at rest.
+Input slow_pulse(double amp) {
+  Input in;
+  for (double t = 0.0; t < 6.0; t += in.dt) in.a.emplace_back(t < 2.0 ? -amp * std::sin(kPi * t) : 0.0, 0.0, 0.0);
+  return in;
+}
+
+// It slides off the plinth: COMMITTED and OVERTURNED alarms whose cause says so, at the instant the 3-D model run
+// alone locates the fall (that instant is checked against an exact 1-D slider in
+// Rocking3DSupport.ABoxOnAPlinthFallsOffWhenItsSlipReachesTheEdge). A weaker pulse slides it less than
+// the 0.4 m to the edge: no alarm, and its support margin says how far it stayed from the edge.
+TEST(ItemMonitor3D, AnItemThatSlidesOffItsPlinthIsAlarmedOverturnedBecauseItFellOffItsSupport) {
+  const ItemSpec spec = plinth_cabinet();
+  ItemMonitor::Options solid;
+  solid.solid = SolidChoice::Solid;
+  const Input strong = slow_pulse(0.8 * kGravity);
+  ItemMonitor im(spec, solid);
+  const std::vector<AlarmEvent> alarms = run(im, strong);
+  Rocking3DModel alone(BaseBody(*spec.solid), SolverSettings{});
+  alone.reset(0.0, strong.a[0]);
+  for (std::size_t i = 1; i < strong.a.size(); ++i) alone.step(strong.a[i], strong.dt);
+  ASSERT_TRUE(alone.outcome_3d().fell_off_support) << "the case is one that slides off";
+  // sliding is no tipping level: no BEYOND_TIPPING; COMMITTED and OVERTURNED at the fall
+  ASSERT_EQ(alarms.size(), 2u);
+  EXPECT_EQ(alarms[0].level, ItemMode::Committed);
+  EXPECT_EQ(alarms[1].level, ItemMode::Overturned);
+  for (const AlarmEvent& a : alarms) {
+    EXPECT_EQ(a.cause, AlarmCause::FellOffSupport);
+    EXPECT_NEAR(a.time, alone.outcome_3d().fell_off_time, 1e-9);
+  }
+  EXPECT_STREQ(to_string(alarms[1].cause), "fell_off_support");
+  EXPECT_EQ(im.mode(), ItemMode::Overturned);
+  EXPECT_NEAR(im.solid()->support_margin(), 0.0, 1e-9);  // on the edge when it went over
+
+  ItemMonitor weak(spec, solid);
+  EXPECT_TRUE(run(weak, slow_pulse(0.35 * kGravity)).empty());
+  EXPECT_GT(weak.solid()->outcome_3d().max_slip, 0.0) << "it slid";
+  EXPECT_LT(weak.solid()->outcome_3d().max_slip, 0.4) << "never as far as the edge";
+  EXPECT_GT(weak.solid()->support_margin(), 0.0);
+}
+
+// Supports are known to the 3-D model only: the monitor runs it for an item on a support whatever the
+// shaking (auto would keep the planar pair of a rectangle under one component, which knows no edge).
+TEST(ItemMonitor3D, AutoRunsThe3DModelForAnItemOnASupport) {
+  ItemMonitor im(plinth_cabinet(), ItemMonitor::Options{});
+  const std::vector<AlarmEvent> alarms = run(im, slow_pulse(0.8 * kGravity));
+  EXPECT_TRUE(im.solid_active());
+  ASSERT_EQ(alarms.size(), 2u);
+  EXPECT_EQ(alarms[1].level, ItemMode::Overturned);
+  EXPECT_EQ(alarms[1].cause, AlarmCause::FellOffSupport);
+}
+
+// Without a support the same kind of item that overturns by rocking says so: cause rocking at every
+// level (the bidirectional case above, the 3-D model deciding, and the planar pair).
+TEST(ItemMonitor3D, AnItemThatOverturnsByRockingHasNoSupportCause) {
+  for (SolidChoice choice : {SolidChoice::Solid, SolidChoice::Planar}) {
+    ItemMonitor::Options o;
+    o.solid = choice;
+    ItemMonitor im(box_item(0.4, 0.3, 0.7), o);
+    const std::vector<AlarmEvent> alarms = run(im, pulse(0.6 * kGravity, std::sqrt(0.5), std::sqrt(0.5)));
+    ASSERT_EQ(im.mode(), ItemMode::Overturned) << to_string(choice);
+    ASSERT_FALSE(alarms.empty());
+    EXPECT_EQ(alarms.back().level, ItemMode::Overturned);
+    for (const AlarmEvent& a : alarms) EXPECT_EQ(a.cause, AlarmCause::Rocking) << to_string(choice);
+  }
+}
+
 }  // namespace
 }  // namespace rocking_monitor::core

@@ -94,6 +94,7 @@ void expect_same_events(const ItemEvents& a, const ItemEvents& b, std::size_t i)
     EXPECT_EQ(a.alarms[j].level, b.alarms[j].level) << "sample " << i;
     EXPECT_EQ(a.alarms[j].time, b.alarms[j].time) << "sample " << i;
     EXPECT_EQ(a.alarms[j].plane, b.alarms[j].plane) << "sample " << i;
+    EXPECT_EQ(a.alarms[j].cause, b.alarms[j].cause) << "sample " << i;
   }
 }
 
@@ -215,6 +216,50 @@ TEST(StateSnapshot, ResumedSlidingThreeDItemEqualsTheUnbrokenRun) {
   ASSERT_EQ(at.size(), 3u) << "the crate never slid: the test would not test a sliding item";
   resume_equals_unbroken(spec, opt, m, at);
   ASSERT_FALSE(HasFailure());
+}
+
+// A 3-D item on a plinth (issue 51): snapshotted while it slides towards the edge, it resumes and falls
+// off at the unbroken run's instant with the same alarms and cause (expect_same_events); snapshotted
+// after the fall, it resumes still fallen off its support.
+TEST(StateSnapshot, ResumedItemOnAPlinthFallsOffAsTheUnbrokenRun) {
+  const Motion m = rinaldi(0.8);
+  ItemSpec spec = box("crate_on_plinth", 0.60, 0.50, 0.35, 0.2);
+  spec.solid = box_base_body(spec.body, spec.depth.depth, 0.5, std::nan(""));
+  // the base is (0, 0)-(B, D), the centre of mass above (0.3, 0.25): a plinth edge 0.1 m beyond it
+  // towards +x (the contact ends there: tan = 0.1 / 0.35 > mu_s, so it slides before it rocks)
+  spec.solid->mu_s = 0.2;
+  spec.solid->support = {{-0.2, -0.2}, {0.4, -0.2}, {0.4, 0.7}, {-0.2, 0.7}};
+  ItemMonitor::Options opt;
+  opt.solid = SolidChoice::Solid;
+  std::vector<std::size_t> at;
+  std::size_t fell = 0;
+  {
+    ItemMonitor probe(spec, opt);
+    probe.start(0.0, m.x[0], m.y[0], m.z[0], m.dt);
+    for (std::size_t i = 1; i < m.size() && fell == 0; ++i) {
+      probe.step(m.x[i], m.y[i], m.z[i], m.dt);
+      if (probe.solid()->outcome_3d().fell_off_support) fell = i;
+      else if (probe.solid()->mode() == Mode3D::Slide && (at.empty() || i > at.back() + 20)) at.push_back(i);
+    }
+  }
+  ASSERT_GT(fell, 0u) << "the crate never fell off its plinth: the test would not test a fall";
+  ASSERT_FALSE(at.empty()) << "never snapshotted while it slid";
+  at.resize(std::min<std::size_t>(at.size(), 2));
+  at.push_back(fell + 10);
+  const Outcome o = resume_equals_unbroken(spec, opt, m, at);
+  ASSERT_FALSE(HasFailure());
+  EXPECT_GE(o.alarms_after, 2u * (at.size() - 1));  // COMMITTED and OVERTURNED after each earlier snapshot
+  ItemMonitor ref(spec, opt);
+  ref.start(0.0, m.x[0], m.y[0], m.z[0], m.dt);
+  for (std::size_t i = 1; i <= fell + 10; ++i) ref.step(m.x[i], m.y[i], m.z[i], m.dt);
+  const std::vector<std::uint8_t> bytes = snapshot_of(ref);
+  StateSnapshot snap;
+  ASSERT_EQ(decode_snapshot(bytes.data(), bytes.size(), snap), "");
+  ItemMonitor resumed(spec, opt);
+  resumed.restore(snap.items[0].monitor);
+  EXPECT_TRUE(resumed.solid()->outcome_3d().fell_off_support);
+  EXPECT_EQ(resumed.solid()->outcome_3d().fell_off_time, ref.solid()->outcome_3d().fell_off_time);
+  EXPECT_TRUE(resumed.alarmed(ItemMode::Overturned));
 }
 
 // A body on its hull (issue 40 part 3): an octagonal prism lying on a side rolls onto other sides

@@ -13,6 +13,8 @@
 #include <fstream>
 #include <mutex>
 
+#include <nlohmann/json.hpp>
+
 #include "rocking_monitor/notify/channels.hpp"
 #include "rocking_monitor/notify/compose.hpp"
 #include "rocking_monitor/notify/notifier.hpp"
@@ -425,4 +427,78 @@ TEST_F(NotifierCore, PermanentRefusalIsMarkedFailedAndNotRetried) {
   auto again = start(1200.0);
   ASSERT_TRUE(again->wait_idle(10));
   EXPECT_EQ(rec.of("curator").size(), curator_before);
+}
+
+// Issue 51: an item that slid off its plinth is OVERTURNED (routing reads the level) and every message
+// says why: the e-mail's subject and line, the webhook's text and its alarm's "cause", the MQTT alarm.
+// An item that overturned by rocking says nothing of a support ("cause": "rocking").
+TEST(NotifyCompose, AnItemThatFellOffItsSupportSaysSoInEveryMessage) {
+  const NotifyConfig c = parse_notify_config(R"(
+channels:
+  mail: {type: smtp, url: "smtp://127.0.0.1:1", from: monitor@museum.example}
+  chat: {type: webhook, url: "http://127.0.0.1:8080/hook"}
+  bms: {type: mqtt, host: 127.0.0.1, topic_prefix: museum}
+recipients:
+  - {name: curator, channel: mail, to: curator@museum.example}
+  - {name: chat, channel: chat}
+  - {name: building, channel: bms}
+)", "cause.yaml");
+  OutboxAlarm off, rocked;
+  off.number = 1;
+  off.alarm = alarm("/a", "bust", kOverturned, 100.0, 1);
+  off.alarm.cause = rocking_monitor::core::AlarmCause::FellOffSupport;
+  rocked.number = 2;
+  rocked.alarm = alarm("/a", "amphora", kOverturned, 101.0, 2);
+
+  const OutMessage mail = compose_group(c, c.recipients[0], {&off});
+  EXPECT_EQ(mail.subject, "[" + c.site + "] 1 item OVERTURNED: bust (fell off its support)");
+  EXPECT_NE(mail.body.find("  - bust (item bust) at 1970-01-01T00:01:40.000Z: fell off its support (slid off the "
+                           "edge of its plinth, shelf or pedestal"),
+            std::string::npos)
+      << mail.body;
+  const OutMessage both = compose_group(c, c.recipients[0], {&off, &rocked});
+  EXPECT_NE(both.body.find("  - amphora (item amphora) at 1970-01-01T00:01:41.000Z\n"), std::string::npos) << both.body;
+
+  const nlohmann::json hook = nlohmann::json::parse(compose_group(c, c.recipients[1], {&off, &rocked}).body);
+  ASSERT_EQ(hook.at("alarms").size(), 2u);
+  EXPECT_EQ(hook["alarms"][0].at("item"), "bust");
+  EXPECT_EQ(hook["alarms"][0].at("level"), "OVERTURNED");
+  EXPECT_EQ(hook["alarms"][0].at("cause"), "fell_off_support");
+  EXPECT_EQ(hook["alarms"][1].at("cause"), "rocking");
+  EXPECT_NE(hook.at("text").get<std::string>().find("bust (item bust) at 1970-01-01T00:01:40.000Z: fell off its support"),
+            std::string::npos);
+  EXPECT_EQ(hook.at("text").get<std::string>().find("amphora (item amphora) at 1970-01-01T00:01:41.000Z: fell"),
+            std::string::npos);
+
+  const auto mqtt = compose_mqtt(c.channels.at("bms"), c.recipients[2], off, kOverturned);
+  ASSERT_EQ(mqtt.size(), 2u);
+  EXPECT_EQ(mqtt[0].topic, "museum/bust/OVERTURNED");  // the same topics: subscribers keep working
+  EXPECT_EQ(nlohmann::json::parse(mqtt[0].body).at("cause"), "fell_off_support");
+  EXPECT_EQ(mqtt[1].body, "OVERTURNED");
+}
+
+// The cause of an alarm still waiting for its group is in the outbox: a notifier restarted before the
+// group is sent still says the item fell off its support.
+TEST_F(NotifierCore, TheCauseOfAWaitingAlarmSurvivesARestart) {
+  {
+    auto n = start(1000.0);
+    n->accept(alarm("/m", "amphora", kOverturned, 100.0, 1), 1000.0);  // facilities' first: at once
+    ASSERT_EQ(n->tick(1000.0), "");
+    ASSERT_TRUE(n->wait_idle(10));
+    NotifyAlarm off = alarm("/m", "bust", kOverturned, 100.5, 2);
+    off.cause = rocking_monitor::core::AlarmCause::FellOffSupport;
+    n->accept(off, 1000.5);  // waits for the window
+    ASSERT_EQ(n->tick(1000.5), "");
+    ASSERT_TRUE(n->wait_idle(10));
+  }
+  ASSERT_EQ(rec.of("facilities").size(), 1u);
+  EXPECT_EQ(rec.of("facilities")[0].body.find("fell off"), std::string::npos);
+  auto n = start(1001.0);
+  ASSERT_EQ(n->tick(1010.0), "");
+  ASSERT_TRUE(n->wait_idle(10));
+  const auto facilities = rec.of("facilities");
+  ASSERT_EQ(facilities.size(), 2u);
+  EXPECT_NE(facilities[1].body.find("  - bust (item bust) at 1970-01-01T00:01:40.500Z: fell off its support"),
+            std::string::npos)
+      << facilities[1].body;
 }

@@ -34,11 +34,14 @@ class DashboardBrowser(unittest.TestCase):
         self.assertIsNotNone(shutil.which('chromium'), 'chromium not installed (scripts/install_deps.sh)')
         must_overturn = rospy.get_param('~must_overturn')
         must_survive = rospy.get_param('~must_survive')
-        last = {'states': None, 'time': time.time(), 'alarms': []}
+        last = {'states': None, 'time': time.time(), 'alarms': [], 'causes': {}}
         rospy.Subscriber('/rocking_monitor/states', RockingStateArray,
                          lambda m: last.update(states=m, time=time.time()), queue_size=10)
-        rospy.Subscriber('/rocking_monitor/alarms', OverturnAlarm,
-                         lambda m: last['alarms'].append((m.item_id, m.level)), queue_size=1000)
+
+        def on_alarm(m):
+            last['alarms'].append((m.item_id, m.level))
+            last['causes'][(m.item_id, m.level)] = m.cause
+        rospy.Subscriber('/rocking_monitor/alarms', OverturnAlarm, on_alarm, queue_size=1000)
         deadline = time.time() + 90
         while not rospy.has_param('/dashboard/url'):
             self.assertLess(time.time(), deadline, 'no /dashboard/url')
@@ -106,6 +109,25 @@ class DashboardBrowser(unittest.TestCase):
             self.assertAlmostEqual(float(tilt.group(1)), state.tilt, delta=1e-4)
             self.assertRegex(detail, r'<tr data-item="%s" data-level="[^"]+">(?:(?!</tr>).)*<td>3d</td>' % re.escape(solid))
             print('3-D item %s: tilt %s rad, %s' % (solid, tilt.group(1), tilt.group(2)))
+
+        # An item that slid off its plinth (~fell_off: its id; issue 51): its OVERTURNED alarm has the cause
+        # on ROS and in the alarm log, the rocked item's has not; its detail gives the support margin.
+        fell_off = rospy.get_param('~fell_off', '')
+        if fell_off:
+            self.assertEqual(last['causes'].get((fell_off, OverturnAlarm.OVERTURNED)), OverturnAlarm.CAUSE_FELL_OFF_SUPPORT)
+            self.assertEqual(last['causes'][(must_overturn, OverturnAlarm.OVERTURNED)], OverturnAlarm.CAUSE_ROCKING)
+            level_cell = r'<tr data-item="%s" data-level="OVERTURNED">(?:(?!</tr>).)*<td data-cause="%s">(?:(?!</td>).)*</td>'
+            off = re.search(level_cell % (re.escape(fell_off), 'fell_off_support'), dom)
+            self.assertIsNotNone(off, 'no OVERTURNED row of %s with its cause in the alarm log' % fell_off)
+            self.assertIn('fell off its support', off.group(0))
+            self.assertRegex(dom, level_cell % (re.escape(must_overturn), 'rocking'))
+            state = [s for s in last['states'].items if s.id == fell_off][0]
+            self.assertEqual(state.contact, 'fell off its support')
+            detail = chromium(['--window-size=1280,1000', '--dump-dom', url + '?poll=1&select=' + fell_off]).decode('utf-8', 'replace')
+            margin = re.search(r'<td>support margin</td><td>(-?[0-9.]+) m to the edge</td>', detail)
+            self.assertIsNotNone(margin, 'no support margin row in the detail of %s' % fell_off)
+            self.assertAlmostEqual(float(margin.group(1)), state.support_margin, delta=1e-3)
+            print('%s fell off its support: alarm and log say so, support margin %s m' % (fell_off, margin.group(1)))
 
         shot = rospy.get_param('~screenshot', '') or os.path.join(
             os.environ.get('ROS_HOME', os.path.expanduser('~/.ros')), 'dashboard_browser.png')

@@ -22,6 +22,8 @@
 #include <unordered_set>
 #include <vector>
 
+#include "rocking_monitor/monitoring/item_modes.hpp"
+
 namespace rocking_monitor::core {
 
 /// End (issue 29): the shaking stopped (every sensor quiet, every item at rest or overturned, for the
@@ -38,6 +40,8 @@ struct JournalRecord {
   std::string item;             ///< catalogue item id (alarms)
   int level = 0;                ///< 2 BEYOND_TIPPING, 3 COMMITTED, 4 OVERTURNED (codes of OverturnAlarm.msg)
   std::string plane;            ///< "x" or "y" (alarm)
+  /// alarm: how the item reached the level; "cause" in the line only when not Rocking (older lines: Rocking)
+  AlarmCause cause = AlarmCause::Rocking;
   std::string sensor;           ///< sensor name (stale period; alarms: the item's sensor)
   double time = kNaN;           ///< alarm: when the level was reached; stale: start of the period; reset: node clock
   std::int64_t stamp_ns = 0;    ///< alarms: header stamp of the input sample, ns since 1970 (0: unknown)

@@ -32,9 +32,23 @@ struct CriterionChange {
   double second_value = 0.0, second_threshold = 0.0; ///< Ishiyama-type: PGA and its threshold, m/s^2
 };
 
+/// Why an item reached an alarm level (the values of OverturnAlarm.msg's CAUSE_* constants). The
+/// level stays the severity (routing and latching read it); the cause says how the item got there.
+enum class AlarmCause : std::uint8_t {
+  Rocking = 0,         ///< it rocked or tipped about its base's edges or corners (every level)
+  /// it slid off the edge of its plinth, shelf or pedestal (issue 51): Overturned, and the Committed
+  /// that the 3-D model reaches at the same instant
+  FellOffSupport = 1,
+};
+/// "rocking", "fell_off_support" (the journal's, dashboard's and notifier's words).
+const char* to_string(AlarmCause cause);
+/// The cause of a name from to_string; false when it is none.
+bool parse_alarm_cause(const char* name, AlarmCause& cause);
+
 /// An overturning level reached during a sample, in one rocking plane.
 struct AlarmEvent {
   ItemMode level = ItemMode::BeyondTipping;  ///< BeyondTipping, Committed or Overturned
+  AlarmCause cause = AlarmCause::Rocking;
   Plane plane = Plane::X;
   double time = 0.0;                         ///< s, when it was reached (inside the sample)
   double rotation_ratio = 0.0;

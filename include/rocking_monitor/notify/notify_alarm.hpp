@@ -7,6 +7,8 @@
 #include <limits>
 #include <string>
 
+#include "rocking_monitor/monitoring/item_modes.hpp"
+
 namespace rocking_monitor::notify {
 
 /// OverturnAlarm level codes.
@@ -23,6 +25,8 @@ struct NotifyAlarm {
   std::string item;             ///< item_id
   std::string description;      ///< the catalogue's description of the item
   int level = 0;                ///< Level code
+  /// OverturnAlarm.cause: how the item got there (FellOffSupport: it slid off its plinth, shelf or pedestal)
+  core::AlarmCause cause = core::AlarmCause::Rocking;
   std::int64_t stamp_ns = 0;    ///< header.stamp: the input sample, ns since 1970
   double event_time = kNaN;     ///< when the level was reached, s since 1970 (input clock)
   std::string event_id;         ///< the monitor journal's event id ("" when it has none)

@@ -85,6 +85,7 @@ class Dashboard {
     std::uint32_t impacts = 0;
     bool valid = false;
     double p_overturned = -1.0;  // ensemble items: P(overturned) last sent
+    double support_margin = 0.0;  // m, NaN without a support: a sliding item's margin changes alone
   };
   struct InputPoint {  // one 50 ms bin of the input acceleration (its sample of largest magnitude)
     double t;          // stamp, s

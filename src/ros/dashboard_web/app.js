@@ -234,11 +234,17 @@ function updateBanner() {
   b.hidden = false;
 }
 
+// An OVERTURNED alarm's cause (OverturnAlarm.cause): "fell_off_support" when the item slid off its
+// plinth, shelf or pedestal (docs/dashboard.md); rocking, the usual way, adds nothing.
+const CAUSES = { fell_off_support: 'fell off its support' };
+
 function renderAlarms() {
   const rows = view.alarms.slice(0, 500).map((a) =>
     '<tr data-item="' + esc(a.item) + '" data-level="' + a.level + '"><td>' + utc(a.event_time) + '</td><td>' +
-    fmt(a.t, 3) + '</td><td title="' + esc(a.description) + '">' + esc(a.item) + '</td><td><span class="mode m-' +
-    a.level + '">' + LABELS[a.level] + '</span></td><td>' + esc(a.plane) + '</td><td>' + fmt(a.rotation_ratio, 2) +
+    fmt(a.t, 3) + '</td><td title="' + esc(a.description) + '">' + esc(a.item) + '</td><td data-cause="' +
+    esc(a.cause || 'rocking') + '"><span class="mode m-' +
+    a.level + '">' + LABELS[a.level] + '</span>' + (CAUSES[a.cause] ? '<br>' + CAUSES[a.cause] : '') + '</td><td>' +
+    esc(a.plane) + '</td><td>' + fmt(a.rotation_ratio, 2) +
     '</td><td>' + esc((a.predicted_by || []).join(', ') || 'none') + '</td></tr>');
   $('alarms').tBodies[0].innerHTML = rows.join('') ||
     '<tr><td colspan="7" class="hint">no alarms</td></tr>';
@@ -458,6 +464,8 @@ function renderDetail() {
     if (s.model === 'rocking_3d') {
       row('tilt, contact', fmt(s.tilt, 4) + ' rad, ' +
           esc(s.contact || (s.mode === 'OVERTURNED' ? 'on its side' : 'flat on its base')));
+      // on a plinth, shelf or pedestal: the live margin to its edge, like the energy margin to tipping
+      if (s.support_margin !== undefined) row('support margin', fmt(s.support_margin, 3) + ' m to the edge');
     }
   }
   row('criteria exceeded', esc((it.criteria || []).join(', ') || 'none'));
