@@ -8,7 +8,7 @@ if(BUILD_TESTING)
     find_package(GTest REQUIRED)
     include(GoogleTest)
     add_executable(reference_friction_tests test/reference/test_siconos_friction.cpp)
-    target_include_directories(reference_friction_tests PRIVATE ${ROCKING_SICONOS_INCLUDE}
+    target_include_directories(reference_friction_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/support ${ROCKING_SICONOS_INCLUDE}
                                ${ROCKING_SICONOS_INCLUDE}/siconos/numerics ${ROCKING_SICONOS_INCLUDE}/siconos)
     target_link_libraries(reference_friction_tests PRIVATE rocking_monitor_core GTest::gtest_main ${ROCKING_SICONOS_NUMERICS})
     target_compile_options(reference_friction_tests PRIVATE -Wall -Wextra)

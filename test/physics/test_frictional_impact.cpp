@@ -17,6 +17,7 @@
 #include "rocking_monitor/constants.hpp"
 #include "rocking_monitor/physics/frictional_impact.hpp"
 #include "rocking_monitor/physics/impact_3d.hpp"
+#include "random_landings.hpp"
 
 namespace rocking_monitor::core {
 namespace {
@@ -132,20 +133,10 @@ TEST(FrictionalImpact, RandomLandingsKeepTheContactLawAndNeverGainEnergy) {
   long sweeps = 0;
   double worst_unconverged = 0.0;
   for (int trial = 0; trial < kTrials; ++trial) {
-    const int n = 3 + trial % 6;
-    const double ry = 0.3 * (1.0 + 0.5 * u(rng));
-    std::vector<Eigen::Vector2d> base;
-    for (int i = 0; i < n; ++i) {
-      const double a = 2 * kPi * (i + 0.4 * u(rng)) / n;
-      base.emplace_back(0.3 * std::cos(a), ry * std::sin(a));
-    }
-    const Eigen::Vector3d c(0.05 * u(rng), 0.05 * u(rng), 0.08 + 0.6 * (1 + u(rng)));
-    Eigen::Matrix3d a = Eigen::Matrix3d::Random() * 0.1;
-    const Eigen::Matrix3d jc = a * a.transpose() + 0.02 * Eigen::Matrix3d::Identity();
-    const Eigen::Vector3d p(base[trial % n].x(), base[trial % n].y(), 0.0);
-    const Eigen::Vector3d omega(u(rng), u(rng), 0.3 * u(rng));
-    const LandingBody body{jc, c, omega, omega.cross(c - p)};
-    const LandingContacts set = points_at(base);
+    const testing::RandomLanding rl = testing::random_landing(rng, trial);
+    const LandingBody& body = rl.body;
+    const LandingContacts& set = rl.set;
+    const Eigen::Vector3d& omega = body.omega;
     const double scale = body.velocity.norm() + omega.norm();
     const double mu = 0.1 + 0.9 * (1 + u(rng)) / 2;
     const FrictionalLanding f = frictional_landing(body, set, {mu, mu});

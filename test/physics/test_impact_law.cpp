@@ -15,6 +15,7 @@
 #include "rocking_monitor/constants.hpp"
 #include "rocking_monitor/physics/body.hpp"
 #include "rocking_monitor/physics/impact_3d.hpp"
+#include "random_landings.hpp"
 
 namespace rocking_monitor::core {
 namespace {
@@ -135,31 +136,17 @@ KktResult kkt_projection(const LandingBody& b, const LandingContacts& c, const s
 
 TEST(ImpactLaw, RandomLandingsAgreeWithAnIndependentKktFormulationAndNeverGainEnergy) {
   std::mt19937 rng(40);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
   int checked = 0, vertex = 0, edge = 0, rest = 0, inadmissible = 0;
   double worst_violation = 0.0;
   for (int trial = 0; trial < 3000; ++trial) {
-    // an irregular convex base (points on an ellipse at perturbed angles: convex, as BaseBody
-    // requires), an off-centre centre of mass
-    const int n = 3 + trial % 6;
-    const double ry = 0.3 * (1.0 + 0.5 * u(rng));
-    std::vector<Eigen::Vector2d> base;
-    for (int i = 0; i < n; ++i) {
-      const double a = 2 * kPi * (i + 0.4 * u(rng)) / n;
-      base.emplace_back(0.3 * std::cos(a), ry * std::sin(a));
-    }
-    const Eigen::Vector3d c(0.05 * u(rng), 0.05 * u(rng), 0.08 + 0.6 * (1 + u(rng)));
-    Eigen::Matrix3d a = Eigen::Matrix3d::Random() * 0.1;
-    const Eigen::Matrix3d jc = a * a.transpose() + 0.02 * Eigen::Matrix3d::Identity();
-    // a landing flat on the whole base (the body turning about one of its vertices or edges) or
-    // on two or one points; the pivot one of the base vertices
-    const int pivot = trial % n;
-    const Eigen::Vector3d p(base[pivot].x(), base[pivot].y(), 0.0);
-    const Eigen::Vector3d omega(u(rng), u(rng), 0.3 * u(rng));
+    // a landing flat on the whole base, the body turning about one of its vertices (random_landings.hpp)
+    const testing::RandomLanding rl = testing::random_landing(rng, trial);
+    const LandingBody& body = rl.body;
+    const LandingContacts& set = rl.set;
+    const Eigen::Vector3d& c = body.centre;
+    const Eigen::Vector3d& omega = body.omega;
     std::vector<int> which;
-    for (int i = 0; i < n; ++i) which.push_back(i);
-    const LandingBody body = turning(jc, c, omega, p);
-    const LandingContacts set = contacts_of(base, which);
+    for (int i = 0; i < set.count; ++i) which.push_back(i);
     const Landing l = plastic_landing(body, set);
     ASSERT_LE(l.energy_after, l.energy_before * (1 + 1e-12) + 1e-300) << trial;
     if (l.violation > 0.0) {

@@ -23,6 +23,7 @@ extern "C" {
 
 #include "rocking_monitor/constants.hpp"
 #include "rocking_monitor/physics/frictional_impact.hpp"
+#include "random_landings.hpp"
 
 namespace rocking_monitor::core {
 namespace {
@@ -96,20 +97,11 @@ TEST(SiconosFriction, RandomLandingsAgreeWithSiconosFc3d) {
   int compared = 0, agree = 0, face_other = 0, ours_unconverged = 0, siconos_unconverged = 0, slipping = 0;
   double worst = 0.0;
   for (int trial = 0; trial < 400; ++trial) {
-    const int n = 3 + trial % 6;
-    const double ry = 0.3 * (1.0 + 0.5 * u(rng));
-    std::vector<Eigen::Vector2d> base;
-    for (int i = 0; i < n; ++i) {
-      const double a = 2 * kPi * (i + 0.4 * u(rng)) / n;
-      base.emplace_back(0.3 * std::cos(a), ry * std::sin(a));
-    }
-    const Eigen::Vector3d c(0.05 * u(rng), 0.05 * u(rng), 0.08 + 0.6 * (1 + u(rng)));
-    Eigen::Matrix3d a = Eigen::Matrix3d::Random() * 0.1;
-    const Eigen::Matrix3d jc = a * a.transpose() + 0.02 * Eigen::Matrix3d::Identity();
-    const int pivot = trial % n;
-    const Eigen::Vector3d p(base[pivot].x(), base[pivot].y(), 0.0);
-    const Eigen::Vector3d omega(u(rng), u(rng), 0.3 * u(rng));
-    const LandingBody body{jc, c, omega, omega.cross(c - p)};
+    const testing::RandomLanding rl = testing::random_landing(rng, trial);
+    const LandingBody& body = rl.body;
+    const std::vector<Eigen::Vector2d>& base = rl.base;
+    const int n = static_cast<int>(base.size()), pivot = rl.pivot;
+    const Eigen::Vector3d& omega = body.omega;
     LandingContacts set;
     set.base_vertex_count = n;
     const int touching = trial % 3 == 0 ? 1 : trial % 3 == 1 ? 2 : n;  // a vertex, an edge, the face
@@ -141,7 +133,7 @@ TEST(SiconosFriction, RandomLandingsAgreeWithSiconosFc3d) {
       ++face_other;
       std::printf("trial %d (%d contacts, mu %.3f): another solution, relative difference %.3g, energy after %.6g "
                   "(Siconos %.6g)\n", trial, touching, mu, d, ours.energy_after,
-                  0.5 * ref.omega.dot(jc * ref.omega) + 0.5 * ref.velocity.squaredNorm());
+                  0.5 * ref.omega.dot(body.central_inertia * ref.omega) + 0.5 * ref.velocity.squaredNorm());
     }
   }
   std::printf("[ measure ] 400 landings: %d compared (%d slip), %d agree to 1e-7 (worst %.2g); unconverged: ours %d, "
