@@ -2,6 +2,7 @@
 // gives exactly the states and alarms of one monitor holding the whole catalogue.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <set>
 #include <string>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include <ros/ros.h>
+#include <sensor_msgs/Imu.h>
 
 #include "rocking_monitor/OverturnAlarm.h"
 #include "rocking_monitor/RockingStateArray.h"
@@ -37,16 +39,42 @@ std::tuple<std::string, int, std::string, double> key(const OverturnAlarm& a) {
 TEST(MonitorSharded, ShardsTogetherEqualTheWholeCatalogue) {
   ros::NodeHandle nh;
   Monitor whole(nh, "/rocking_monitor"), one(nh, "/rocking_monitor_1"), two(nh, "/rocking_monitor_2");
-  // The bag lasts about 8 s of sim time after a 4 s delay; wait until the three have gone quiet.
-  std::size_t last = 0;
-  int quiet = 0;
-  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(60.0);
-  while (ros::ok() && ros::WallTime::now() < deadline && quiet < 30) {
+  // Done when each of the three has published its state for the bag's last sample, however slow the
+  // machine: a few seconds without states once meant the end, and a starved player or shard at CI's
+  // load made that come early ("a shard has no state for input stamp"). The player has ended when the
+  // master lists no publisher of /ground/imu; the last stamp is the last one this test received.
+  std::uint64_t last_input = 0;
+  std::size_t inputs = 0;
+  ros::Subscriber imu = nh.subscribe<sensor_msgs::Imu>("/ground/imu", 100000, [&](const sensor_msgs::Imu::ConstPtr& m) {
+    last_input = std::max(last_input, m->header.stamp.toNSec());
+    ++inputs;
+  });
+  const auto player_done = [] {
+    ros::master::V_TopicInfo topics;
+    ros::master::getTopics(topics);  // topics with a publisher
+    return std::none_of(topics.begin(), topics.end(), [](const auto& t) { return t.name == "/ground/imu"; });
+  };
+  const auto has_last = [&](const Monitor& m) { return m.states.count(last_input) > 0; };
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(200.0);
+  bool done = false;
+  while (ros::ok() && ros::WallTime::now() < deadline && !done) {
     ros::spinOnce();
     ros::WallDuration(0.1).sleep();
-    const std::size_t n = whole.states.size() + one.states.size() + two.states.size();
-    quiet = (n > 0 && n == last) ? quiet + 1 : 0;
-    last = n;
+    done = inputs > 0 && player_done() && has_last(whole) && has_last(one) && has_last(two);
+  }
+  ASSERT_TRUE(done) << "after 200 s of wall clock: " << inputs << " inputs seen, states "
+                    << whole.states.size() << " / " << one.states.size() << " / " << two.states.size();
+  // Alarms travel on their own topics: let those already sent arrive (as many from the shards as from
+  // the whole, or 30 s), then one more second for any late extra one.
+  const ros::WallTime alarms_deadline = ros::WallTime::now() + ros::WallDuration(30.0);
+  while (ros::ok() && ros::WallTime::now() < alarms_deadline &&
+         whole.alarms.size() != one.alarms.size() + two.alarms.size()) {
+    ros::spinOnce();
+    ros::WallDuration(0.1).sleep();
+  }
+  for (int i = 0; i < 10; ++i) {
+    ros::spinOnce();
+    ros::WallDuration(0.1).sleep();
   }
   ASSERT_GT(whole.states.size(), 1000u);
 
