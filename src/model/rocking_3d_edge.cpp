@@ -161,6 +161,7 @@ Rocking3DModel::Event Rocking3DModel::advance_edge(const GroundInput3& in, doubl
       }
     }
     if (terminal == Event::None) {
+      watch_pivot(in, dopri5_.t0(), dopri5_.t1(), t_tol);
       theta_ = dopri5_.theta1();
       omega_ = dopri5_.omega1();
       tau = dopri5_.t1();
@@ -171,6 +172,7 @@ Rocking3DModel::Event Rocking3DModel::advance_edge(const GroundInput3& in, doubl
       outcome3_.max_tilt = std::max(outcome3_.max_tilt, theta_);
       continue;
     }
+    watch_pivot(in, dopri5_.t0(), t_end_step, t_tol);
     tau = t_end_step;
     dopri5_.single_step(ode, t_start, th_start, om_start, tau - t_start, theta_, omega_);
     dopri5_.invalidate();

@@ -82,6 +82,7 @@ void Rocking3DModel::reset(double t, const Eigen::Vector3d& a) {
   slide_stepper_.reset(0.05 / body_.max_p());
   slide_.setZero();
   transition_count_ = 0;
+  pivot_outside_cone_ = false;
 }
 
 void Rocking3DModel::save(Saved& out) const {
@@ -105,6 +106,7 @@ void Rocking3DModel::save(Saved& out) const {
   out.last_probe_t = last_probe_t_;
   out.slide = slide_;
   slide_stepper_.save(out.slide_stepper);
+  out.pivot_outside_cone = pivot_outside_cone_;
 }
 
 void Rocking3DModel::restore(const Saved& in) {
@@ -130,6 +132,7 @@ void Rocking3DModel::restore(const Saved& in) {
   last_probe_t_ = in.last_probe_t;
   slide_ = in.slide;
   slide_stepper_.restore(in.slide_stepper);
+  pivot_outside_cone_ = in.pivot_outside_cone;
 }
 
 Eigen::Matrix3d Rocking3DModel::yaw_matrix() const { return rot_z(yaw_); }

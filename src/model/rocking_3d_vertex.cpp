@@ -203,6 +203,7 @@ Rocking3DModel::Event Rocking3DModel::advance_vertex(const GroundInput3& in, dou
       }
     }
     if (event == Event::None) {
+      watch_pivot(in, t0, t1, t_tol);
       y_ = vector_.y1();
       y_.head<4>().normalize();
       tau = t1;
@@ -211,6 +212,7 @@ Rocking3DModel::Event Rocking3DModel::advance_vertex(const GroundInput3& in, dou
       note_ratio();
       continue;
     }
+    watch_pivot(in, t0, t_event, t_tol);
     y_ = vector_.eval(t_event);
     y_.head<4>().normalize();
     vector_.invalidate();

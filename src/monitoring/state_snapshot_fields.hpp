@@ -414,8 +414,13 @@ void visit(V& v, Rocking3DModel::Saved& s) {
     v("slip_time", s.outcome_3d.slip_time);
     v("fell_off_support", s.outcome_3d.fell_off_support);
     v("fell_off_time", s.outcome_3d.fell_off_time);
+    v("max_pivot_friction_demand", s.outcome_3d.max_pivot_friction_demand);
+    v("pivot_slips", s.outcome_3d.pivot_slips);
+    v("pivot_lifts", s.outcome_3d.pivot_lifts);
+    v("first_pivot_slip_time", s.outcome_3d.first_pivot_slip_time);
     v("transitions", s.outcome_3d.transitions);
   });
+  v("pivot_outside_cone", s.pivot_outside_cone);
   v("last_probe_t", s.last_probe_t);
   v.group("dopri5", [&] { visit(v, s.dopri5); });
   v.group("dopri5_vector", [&] {

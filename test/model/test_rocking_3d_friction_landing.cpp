@@ -79,10 +79,13 @@ TEST(FrictionLanding, ASquatBoxThatFrictionCannotTurnSlidesOnAsTheSimultaneousLa
     EXPECT_NEAR(solid.slip().y(), 0.0, 1e-12);
     EXPECT_LE(solid.outcome_3d().max_slip_speed, v_after) << omega0;  // (at step ends: after the first)
     EXPECT_LE(o.max_impact_energy_ratio, 1.0);
-    // The two transitions, located and named: the landing (at once) and the stick, v / (mu g) later.
-    ASSERT_EQ(solid.transition_records(), 2);
-    const Transition3DRecord& land = solid.transition(0);
-    const Transition3DRecord& stick = solid.transition(1);
+    // The transitions, located and named: the pivot slipping on the way down (rocking on it needs more
+    // than mu), the landing (at once) and the stick, v / (mu g) later.
+    ASSERT_EQ(solid.transition_records(), 3);
+    EXPECT_EQ(solid.transition(0).reason, Transition3D::PivotSlips);
+    EXPECT_EQ(o.pivot_slips, 1);
+    const Transition3DRecord& land = solid.transition(1);
+    const Transition3DRecord& stick = solid.transition(2);
     EXPECT_EQ(land.from, Mode3D::Edge);
     EXPECT_EQ(land.to, Mode3D::Slide);
     EXPECT_EQ(land.reason, Transition3D::LandingSlides);
@@ -141,7 +144,7 @@ TEST(FrictionLanding, BidirectionalTakatoriOnEccentricCabinets) {
 // and the records add up to the outcome's counters: a centred and an eccentric cabinet with friction
 // under a one-sine pulse along a diagonal (rocking, corner wobble, landings, slides, overturn).
 TEST(FrictionLanding, EveryTransitionIsRecordedInOrderWithItsReason) {
-  int runs_with_slip = 0, runs_with_wobble = 0, complete = 0;
+  int runs_with_slip = 0, runs_with_wobble = 0, runs_with_pivot_slip = 0, complete = 0;
   for (double ecc : {0.0, 0.1}) {
     for (double ap : {0.35, 0.5, 0.8}) {
       BaseBodyParameters p = friction_box(0.5, 0.4, 0.7, 0.4);
@@ -156,7 +159,7 @@ TEST(FrictionLanding, EveryTransitionIsRecordedInOrderWithItsReason) {
       const Rocking3DOutcome& o = m.outcome_3d();
       const bool all_kept = o.transitions <= Rocking3DModel::kMaxTransitionRecords;
       ASSERT_EQ(m.transition_records(), std::min<long>(o.transitions, Rocking3DModel::kMaxTransitionRecords));
-      long counts[13] = {};
+      long counts[32] = {};  // (more than the reasons)
       Mode3D mode = Mode3D::Rest;
       double t = 0.0;
       for (int i = 0; i < m.transition_records(); ++i) {
@@ -178,6 +181,8 @@ TEST(FrictionLanding, EveryTransitionIsRecordedInOrderWithItsReason) {
       EXPECT_EQ(n(Transition3D::EdgeToVertex), o.edge_to_vertex);
       EXPECT_EQ(n(Transition3D::LandingSlides), o.landing_slides);
       EXPECT_EQ(n(Transition3D::LandingPivotSlips), o.pivot_slip_landings);
+      EXPECT_EQ(n(Transition3D::PivotSlips), o.pivot_slips);
+      EXPECT_EQ(n(Transition3D::PivotLifts), o.pivot_lifts);
       EXPECT_EQ(n(Transition3D::Landing) + n(Transition3D::LandingSlides) + n(Transition3D::LandingPivotSlips) +
                     n(Transition3D::RestCapture),
                 m.outcome().impacts);
@@ -185,11 +190,13 @@ TEST(FrictionLanding, EveryTransitionIsRecordedInOrderWithItsReason) {
       if (m.outcome().overturned) EXPECT_EQ(t, m.outcome().overturn_time);
       runs_with_slip += o.slides > 0;
       runs_with_wobble += o.edge_to_vertex > 0;
+      runs_with_pivot_slip += o.pivot_slips > 0;
     }
   }
   EXPECT_GE(complete, 4);
   EXPECT_GT(runs_with_slip, 0);
   EXPECT_GT(runs_with_wobble, 0);
+  EXPECT_GT(runs_with_pivot_slip, 0);
 }
 
 }  // namespace

@@ -15,8 +15,9 @@
 // direction and turning about the vertical under one isotropic Coulomb law over the face's contact
 // polygon (physics/base_friction.hpp); slip onset and stick are located exactly in the sample.
 // Landings where the sticking impact needs more friction than mu_s are decided by the frictional
-// impact (physics/frictional_impact.hpp). Rocking on a slipping pivot is not modelled yet (counted:
-// slide_to_rock, pivot_slip_landings).
+// impact (physics/frictional_impact.hpp). Rocking on a slipping pivot is not modelled yet: where the
+// pivot's reaction leaves the friction cone (or pulls) the onset is located and named (PivotSlips,
+// PivotLifts) and counted with slide_to_rock and pivot_slip_landings.
 //
 // Frames: the item's floor frame at rest (x, y horizontal, z up); the body keeps a footprint
 // (yaw and shift on the floor) that changes only when it turns while pivoting on a vertex.
@@ -61,6 +62,10 @@ enum class Transition3D : std::uint8_t {
   Degenerate,         ///< -> REST: a degenerate pivot motion (rocking_3d_vertex.cpp)
   ForcedRest,         ///< -> REST: the bound on events per sample
   FellOffSupport,     ///< SLIDE -> OVERTURNED: the centre of mass passed the support's edge
+  // Not a mode change (from == to): where the rocking model stops being exact (slide-rock and flight
+  // are not modelled in 3-D yet; the motion after is followed as rocking on a sticking pivot).
+  PivotSlips,         ///< EDGE, VERTEX: the pivot's reaction left the friction cone (slide-rock)
+  PivotLifts,         ///< EDGE, VERTEX: the pivot's normal reaction vanished (flight)
   Overturn,           ///< -> OVERTURNED: lying on its side, or over the tipping point
 };
 const char* to_string(Transition3D reason);
@@ -127,6 +132,13 @@ struct Rocking3DOutcome {
   /// pedestal (it counts OVERTURNED, at that instant).
   bool fell_off_support = false;
   double fell_off_time = std::numeric_limits<double>::quiet_NaN();  ///< s
+  // The pivot while rocking (EDGE, VERTEX): the floor's reaction on the body against the friction cone
+  // |F_h| <= mu_s F_z, from the equations of motion at each step's end (onsets located on the dense
+  // output). Beyond it the real body slide-rocks (or flies); the model follows a sticking pivot.
+  double max_pivot_friction_demand = 0.0;  ///< largest |F_h| / F_z of the pivot's reaction while rocking
+  long pivot_slips = 0;           ///< onsets of a slipping pivot (Transition3D::PivotSlips)
+  long pivot_lifts = 0;           ///< onsets of a pivot pulled off the floor (Transition3D::PivotLifts)
+  double first_pivot_slip_time = std::numeric_limits<double>::quiet_NaN();  ///< s (slip or lift)
   long transitions = 0;           ///< mode transitions (the first kMaxTransitionRecords are kept: transitions())
 };
 
@@ -184,6 +196,7 @@ class Rocking3DModel {
     double last_probe_t = -1e300;  ///< s: when COMMITTED on a corner was last looked ahead for
     Eigen::Matrix<double, 6, 1> slide = Eigen::Matrix<double, 6, 1>::Zero();  ///< SLIDE: u (m/s), spin (rad/s), shift (m), yaw (rad)
     Dopri5Vector<6>::Saved slide_stepper;
+    bool pivot_outside_cone = false;  ///< EDGE, VERTEX: the pivot's reaction is outside the cone (onset counted)
   };
   void save(Saved& out) const;
   void restore(const Saved& in);
@@ -314,6 +327,12 @@ class Rocking3DModel {
   double ratio_of(const Vec7& y) const;
   double rise_rate(const Vec7& y) const;
   void record_impact(double tau, double energy_before);
+  // The pivot's reaction while rocking (rocking_3d_pivot.cpp).
+  Eigen::Vector3d edge_reaction(const GroundInput3& in, double t, double theta, double omega) const;
+  Eigen::Vector3d vertex_reaction(const GroundInput3& in, double t, const Vec7& y) const;
+  Eigen::Vector3d pivot_reaction(const GroundInput3& in, double t) const;
+  double cone_margin(const Eigen::Vector3d& f) const;
+  void watch_pivot(const GroundInput3& in, double t0, double t1, double t_tol);
   void go_to_rest();
   void note_ratio();
   void vertex_rhs(const GroundInput3& in, double t, const Vec7& y, Vec7& dy) const;
@@ -370,6 +389,7 @@ class Rocking3DModel {
   Rocking3DOutcome outcome3_;
   std::array<Transition3DRecord, kMaxTransitionRecords> transitions_{};
   int transition_count_ = 0;
+  bool pivot_outside_cone_ = false;  // EDGE, VERTEX: the onset is counted, not again until back inside
   Transition3D landing_reason_ = Transition3D::Landing;  // set by land(): how the landing ended
   // VERTEX: COMMITTED (it would overturn if the shaking stopped now) has no closed form on a corner
   // as it has about an edge: once the energy could carry the centre of mass over the corner, the free

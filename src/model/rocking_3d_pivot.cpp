@@ -1,0 +1,82 @@
+// The 3-D model's pivot while rocking (EDGE, VERTEX): the floor's reaction on the body from the
+// equations of motion, against Coulomb's cone. Rocking on a sticking pivot is exact only while
+// |F_h| <= mu_s F_z; where the reaction leaves the cone the real body slide-rocks (or, F_z <= 0, flies):
+// not modelled in 3-D yet, so the onset is located, named and counted (the planar ContactModel's
+// SLIDE-ROCK and FLIGHT onsets, which the tests compare with).
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "rocking_3d_internal.hpp"
+#include "rocking_monitor/integrate/event_location.hpp"
+#include "rocking_monitor/model/rocking_3d_model.hpp"
+
+namespace rocking_monitor::core {
+
+using rocking_3d::gravity_and_inertia;
+
+// Per unit mass, in the footprint frame: m a_rel = F + m (gravity and the ground's inertial force),
+// with a_rel the centre of mass's acceleration turning about the fixed edge.
+Eigen::Vector3d Rocking3DModel::edge_reaction(const GroundInput3& in, double t, double theta, double omega) const {
+  const BaseEdge& e = fb().edge(contact_);
+  const RockingOde ode{&e.pivot, 1, ModelKind::Nonlinear, edge_input(in, contact_)};
+  const Eigen::Vector3d r = Eigen::AngleAxisd(theta, e.axis) * fb().vertex(e.a).to_centre;
+  const Eigen::Vector3d w = omega * e.axis;
+  const Eigen::Vector3d a_rel = (ode.angular_acceleration(t, theta) * e.axis).cross(r) + w.cross(w.cross(r));
+  return a_rel - gravity_and_inertia(to_footprint(in.at(t)));
+}
+
+// Per unit mass, in the world frame: as above, the angular acceleration from Euler's equations.
+Eigen::Vector3d Rocking3DModel::vertex_reaction(const GroundInput3& in, double t, const Vec7& y) const {
+  Vec7 dy;
+  vertex_rhs(in, t, y, dy);
+  const Eigen::Vector3d c = vertex_rotation(y) * hv(contact_).to_centre;
+  const Eigen::Vector3d w = y.tail<3>();
+  return Eigen::Vector3d(dy.tail<3>().cross(c) + w.cross(w.cross(c)) - gravity_and_inertia(in.at(t)));
+}
+
+// At local time t inside the current step, on the stepper's dense output.
+Eigen::Vector3d Rocking3DModel::pivot_reaction(const GroundInput3& in, double t) const {
+  if (mode_ == Mode3D::Vertex) {
+    Vec7 y = vector_.eval(t);
+    y.head<4>().normalize();
+    return vertex_reaction(in, t, y);
+  }
+  double th, om;
+  dopri5_.eval(t, th, om);
+  return edge_reaction(in, t, th, om);
+}
+
+// >= 0 inside the cone and pressing (m/s^2); continuous, so that its root is the onset. Without a
+// friction coefficient (mu_s infinite) only a pull counts.
+double Rocking3DModel::cone_margin(const Eigen::Vector3d& f) const {
+  const double mu = body_.parameters().mu_s;
+  return std::isfinite(mu) ? mu * f.z() - std::hypot(f.x(), f.y()) : f.z();
+}
+
+// Over the step [t0, t1] just taken (its dense output valid): the largest demand at its end, and the
+// first instant the reaction leaves the cone, located and recorded once until it comes back inside.
+void Rocking3DModel::watch_pivot(const GroundInput3& in, double t0, double t1, double t_tol) {
+  const Eigen::Vector3d f1 = pivot_reaction(in, t1);
+  if (f1.z() > 0.0)
+    outcome3_.max_pivot_friction_demand = std::max(outcome3_.max_pivot_friction_demand, std::hypot(f1.x(), f1.y()) / f1.z());
+  const double m1 = cone_margin(f1);
+  if (m1 >= 0.0) {
+    pivot_outside_cone_ = false;
+    return;
+  }
+  if (pivot_outside_cone_) return;
+  pivot_outside_cone_ = true;
+  auto margin_at = [&](double t) { return cone_margin(pivot_reaction(in, t)); };
+  const double m0 = margin_at(t0);
+  const double t = m0 > 0.0 ? bracketed_root(margin_at, t0, t1, m0, m1, t_tol) : t0;
+  // At the root mu_s F_z = |F_h|: a pull when F_z is (to rounding) zero there, a slip otherwise.
+  const bool lifts = !(pivot_reaction(in, t).z() > 1e-9 * kGravity);
+  if (lifts) ++outcome3_.pivot_lifts;
+  else ++outcome3_.pivot_slips;
+  if (std::isnan(outcome3_.first_pivot_slip_time)) outcome3_.first_pivot_slip_time = t_ + t;
+  note_transition(mode_, lifts ? Transition3D::PivotLifts : Transition3D::PivotSlips, t);
+}
+
+}  // namespace rocking_monitor::core

@@ -1,0 +1,138 @@
+// The 3-D model's pivot against the friction cone while rocking (issue 51 part 2's onset): a box about
+// a side under one component gives the planar contact model's SLIDE-ROCK onset (an independent code:
+// the planar equations of motion in x, y, theta with RK4, its own event location); the reaction along
+// the edge stays zero (symmetry); a vertical pull gives the FLIGHT onset; a snapshot carries the state.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "rocking_monitor/model/contact_model.hpp"
+#include "rocking_monitor/model/rocking_3d_model.hpp"
+#include "test_helpers.hpp"
+
+namespace rocking_monitor::core {
+namespace {
+
+SolverSettings pivot_settings() {
+  SolverSettings s;
+  s.method = Method::Dopri5;
+  s.model = ModelKind::Nonlinear;
+  s.tol = 1e-11;
+  return s;
+}
+
+// A uniform box: base b x d centred on the origin, centre of mass h up.
+BaseBodyParameters pivot_box(double b, double d, double h, double mu) {
+  BaseBodyParameters p;
+  p.centre_of_mass = {0.0, 0.0, h};
+  p.base = {{-b / 2, -d / 2}, {b / 2, -d / 2}, {b / 2, d / 2}, {-b / 2, d / 2}};
+  p.central_inertia = Eigen::Vector3d((d * d + 4 * h * h) / 12, (b * b + 4 * h * h) / 12, (b * b + d * d) / 12).asDiagonal();
+  p.mu_s = mu;
+  p.mu_k = std::min(mu, 0.5);
+  return p;
+}
+
+struct Onsets {
+  double uplift = NAN, slip = NAN, flight = NAN;
+};
+
+// One sine pulse a_x = A sin(2 pi t / T) for t < T (then still), vertical av(t), sampled at dt; run
+// for `duration` or until the first slip or flight.
+template <class Vertical>
+Onsets planar_onsets(double b, double h, double mu, double A, double T, Vertical av, double dt, double duration) {
+  BodyParameters x;
+  x.width = b;
+  x.cg_height = h;
+  x.mu_s = mu;
+  x.mu_k = std::min(mu, 0.5);  // (finite: without mu_s the slip is never checked)
+  ContactSettings cs;
+  cs.substeps = 256;
+  ContactModel m(x, cs);
+  m.reset(0.0, 0.0, av(0.0));
+  for (int i = 1; i * dt <= duration + 1e-12; ++i) {
+    const double t = i * dt;
+    m.step(t < T ? A * std::sin(2 * kPi * t / T) : 0.0, av(t), dt);
+    if (!std::isnan(m.outcome().first_slip_time) || !std::isnan(m.outcome().first_flight_time)) break;
+  }
+  return {m.outcome().first_uplift_time, m.outcome().first_slip_time, m.outcome().first_flight_time};
+}
+
+TEST(Rocking3DPivot, ABoxAboutASideLeavesTheConeWhenThePlanarContactModelSlideRocks) {
+  const double b = 0.4, d = 0.5, h = 0.8, dt = 0.005;
+  int compared = 0;
+  double worst = 0.0;
+  for (double mu : {0.26, 0.3, 0.35, 0.45})
+    for (double A : {0.3, 0.45, 0.7})
+      for (double T : {0.3, 0.6, 1.2}) {
+        const Onsets ref = planar_onsets(b, h, mu, A * kGravity, T, [](double) { return 0.0; }, dt, 3.0);
+        Rocking3DModel m(BaseBody(pivot_box(b, d, h, mu)), pivot_settings());
+        m.reset(0.0);
+        bool wobbled = false;
+        for (int i = 1; i * dt <= 3.0 + 1e-12 && m.mode() != Mode3D::Overturned; ++i) {
+          const double t = i * dt;
+          m.step(Eigen::Vector3d(t < T ? A * kGravity * std::sin(2 * kPi * t / T) : 0.0, 0.0, 0.0), dt);
+          if (m.mode() == Mode3D::Vertex) wobbled = true;  // a box about a side never lifts an end
+          if (m.outcome_3d().pivot_slips + m.outcome_3d().pivot_lifts > 0) break;
+        }
+        const Rocking3DOutcome& o = m.outcome_3d();
+        std::printf("[ measure ] mu %.2f A %.2f g T %.1f s: planar uplift %.6f slip %.9f flight %.6f | 3-D uplift %.6f "
+                    "pivot slip %.9f (%ld slips, %ld lifts)\n", mu, A, T, ref.uplift, ref.slip, ref.flight,
+                    m.outcome().uplift_time, o.first_pivot_slip_time, o.pivot_slips, o.pivot_lifts);
+        EXPECT_FALSE(wobbled);
+        if (std::isnan(ref.uplift) || !(ref.slip > ref.uplift)) {
+          // Slides from rest or never rocks: the onset while rocking is not this test's.
+          continue;
+        }
+        ++compared;
+        EXPECT_NEAR(m.outcome().uplift_time, ref.uplift, 1e-6) << mu << " " << A << " " << T;
+        ASSERT_EQ(o.pivot_slips, 1) << mu << " " << A << " " << T;
+        EXPECT_NEAR(o.first_pivot_slip_time, ref.slip, 1e-6) << mu << " " << A << " " << T;
+        worst = std::max(worst, std::abs(o.first_pivot_slip_time - ref.slip));
+        // Named and located, no mode change: the last record (the run stops at it).
+        ASSERT_GE(m.transition_records(), 2);
+        const Transition3DRecord& r = m.transition(m.transition_records() - 1);
+        EXPECT_EQ(r.reason, Transition3D::PivotSlips);
+        EXPECT_EQ(r.from, Mode3D::Edge);
+        EXPECT_EQ(r.to, Mode3D::Edge);
+        EXPECT_DOUBLE_EQ(r.time, o.first_pivot_slip_time);
+      }
+  std::printf("[ measure ] %d slide-rock onsets compared with the planar contact model, largest difference %.2g s\n",
+              compared, worst);
+  EXPECT_GE(compared, 5);
+}
+
+// Rocking under a horizontal pulse, then the floor drops faster than gravity for 0.2 s: the pivot's
+// normal reaction vanishes (FLIGHT in the planar contact model) with no friction limit to leave first.
+TEST(Rocking3DPivot, AFloorFallingFasterThanGravityLiftsThePivotWhenThePlanarModelFlies) {
+  const double b = 0.4, d = 0.5, h = 0.8, dt = 0.005, mu = INFINITY;
+  int compared = 0;
+  for (double drop : {1.2, 1.6, 2.5})
+    for (double t_drop : {0.3, 0.45}) {
+      auto av = [&](double t) { return t > t_drop && t < t_drop + 0.2 ? -drop * kGravity * std::sin(kPi * (t - t_drop) / 0.2) : 0.0; };
+      const Onsets ref = planar_onsets(b, h, mu, 0.6 * kGravity, 0.6, av, dt, 1.5);
+      Rocking3DModel m(BaseBody(pivot_box(b, d, h, mu)), pivot_settings());
+      m.reset(0.0);
+      for (int i = 1; i * dt <= 1.5 + 1e-12 && m.mode() != Mode3D::Overturned; ++i) {
+        const double t = i * dt;
+        m.step(Eigen::Vector3d(t < 0.6 ? 0.6 * kGravity * std::sin(2 * kPi * t / 0.6) : 0.0, 0.0, av(t)), dt);
+        if (m.outcome_3d().pivot_slips + m.outcome_3d().pivot_lifts > 0) break;
+      }
+      const Rocking3DOutcome& o = m.outcome_3d();
+      std::printf("[ measure ] drop %.1f g at %.2f s: planar uplift %.6f flight %.9f | 3-D pivot lift %.9f (%ld lifts, "
+                  "mode %s)\n", drop, t_drop, ref.uplift, ref.flight, o.first_pivot_slip_time, o.pivot_lifts,
+                  to_string(m.mode()));
+      if (std::isnan(ref.flight) || !(ref.flight > ref.uplift)) continue;
+      ++compared;
+      EXPECT_EQ(o.pivot_slips, 0);
+      ASSERT_EQ(o.pivot_lifts, 1);
+      EXPECT_NEAR(o.first_pivot_slip_time, ref.flight, 1e-6) << drop << " " << t_drop;
+      EXPECT_EQ(m.transition(m.transition_records() - 1).reason, Transition3D::PivotLifts);
+    }
+  EXPECT_GE(compared, 3);
+}
+
+}  // namespace
+}  // namespace rocking_monitor::core
