@@ -5,7 +5,8 @@
 
 namespace rocking_monitor::feeds {
 
-SampleSequencer::SampleSequencer(std::size_t window) : slots_(window + 1), history_(kResyncSpan), ready_(window + 2) {}
+SampleSequencer::SampleSequencer(std::size_t window, bool resync_backward)
+    : slots_(window + 1), history_(kResyncSpan), ready_(window + 2), resync_backward_(resync_backward) {}
 
 void SampleSequencer::remember(std::uint64_t sequence, Fate fate, const AccelSample* sample) {
   History& h = history_[sequence % history_.size()];
@@ -59,6 +60,10 @@ void SampleSequencer::push(const AccelSample& sample) {
   // A restart of the controller's counter (far back or far ahead): release what is held, go on from s.
   const bool far_back = s < next_ && next_ - s > kResyncSpan;
   const bool far_ahead = s > next_ && s - next_ > kResyncSpan;
+  if (far_back && !resync_backward_) {
+    ++counts_.stale;
+    return;
+  }
   if (far_back || far_ahead) {
     while (held_ > 0) release_next();
     ++counts_.resyncs;

@@ -184,3 +184,24 @@ TEST(SampleSequencer, ConflictingPayloadKeepsTheFirstAndIsCounted) {
   EXPECT_EQ(q.counts().lost, 1u);
   EXPECT_EQ(q.counts().released, 2u);
 }
+
+// Issue 52: with a key, a replayed datagram far behind the stream has a valid tag; it must not be
+// taken for a restart (which would publish it and drop the real stream after it as late).
+TEST(SampleSequencer, WithoutBackwardResyncFarBehindIsStale) {
+  fd::SampleSequencer q(4, /*resync_backward=*/false);
+  const std::uint64_t far = fd::SampleSequencer::kResyncSpan + 1;
+  // 10000..10004, then 10004 - far (a replay of an old datagram), then 10005; then a jump ahead.
+  const auto out = run(q, {10000, 10001, 10002, 10003, 10004, 10004 - far, 10005, 10005 + far + 1});
+  EXPECT_EQ(out, (std::vector<std::uint64_t>{10000, 10001, 10002, 10003, 10004, 10005, 10005 + far + 1}));
+  EXPECT_EQ(q.counts().stale, 1u);
+  EXPECT_EQ(q.counts().resyncs, 1u);  // forward: a sender's counter may jump ahead (it cannot be forged)
+  EXPECT_EQ(q.counts().late, 0u);
+  EXPECT_EQ(q.counts().accepted, 8u);
+  // The same stream with backward resyncs on (no key): the old sample restarts the stream and is
+  // published; the real one resyncs again after it.
+  fd::SampleSequencer open(4);
+  const auto out2 = run(open, {10000, 10001, 10002, 10003, 10004, 10004 - far, 10005});
+  EXPECT_EQ(out2, (std::vector<std::uint64_t>{10000, 10001, 10002, 10003, 10004, 10004 - far, 10005}));
+  EXPECT_EQ(open.counts().resyncs, 2u);
+  EXPECT_EQ(open.counts().stale, 0u);
+}

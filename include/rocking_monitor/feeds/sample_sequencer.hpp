@@ -16,7 +16,11 @@
 //    since two sources or a broken controller feed one stream. Released samples are compared
 //    within the last kResyncSpan sequence numbers, held ones always;
 //  * a jump of more than kResyncSpan (the controller restarted, or its counter was reset):
-//    everything held is released, counted `resyncs`, and the stream continues from there.
+//    everything held is released, counted `resyncs`, and the stream continues from there. Unless
+//    backward resyncs are off (the bridge with a ~key_file, issue 52): then a sample more than
+//    kResyncSpan behind is dropped and counted `stale`, since a captured authenticated datagram
+//    replayed later carries a valid tag, and only its old sequence number gives it away. An
+//    authenticated sender's counter must therefore never go back (docs/inputs.md).
 // A lost sample delays the samples after it by at most `window` samples (or until flush(), which
 // the bridge calls when the stream pauses). Nothing is allocated after construction.
 
@@ -37,6 +41,7 @@ struct SequenceCounts {
   std::uint64_t duplicates = 0;  ///< a sequence number seen twice, same payload: dropped
   std::uint64_t conflicts = 0;   ///< a sequence number seen twice, different payload: first kept
   std::uint64_t resyncs = 0;     ///< jumps of more than kResyncSpan: the stream restarted
+  std::uint64_t stale = 0;       ///< more than kResyncSpan behind, backward resyncs off: dropped
 };
 
 class SampleSequencer {
@@ -46,7 +51,8 @@ class SampleSequencer {
 
   /// `window`: how many sequence numbers a sample may arrive out of place and still be released
   /// in order (0: no reordering; a sample behind is late).
-  explicit SampleSequencer(std::size_t window);
+  /// `resync_backward` false: a sample far behind is `stale` (dropped), not a restart.
+  explicit SampleSequencer(std::size_t window, bool resync_backward = true);
 
   /// Accepts one sample (its `sequence` must be set); the samples it releases are in ready().
   /// ready() is emptied at the start of each push() and flush().
@@ -84,6 +90,7 @@ class SampleSequencer {
   std::vector<AccelSample> ready_;
   std::size_t ready_count_ = 0;
   std::size_t held_ = 0;
+  bool resync_backward_ = true;
   bool started_ = false;
   std::uint64_t next_ = 0;
   std::uint64_t max_seen_ = 0;
