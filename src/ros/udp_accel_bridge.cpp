@@ -12,6 +12,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -279,6 +280,10 @@ void UdpAccelBridge::publish_ready(const ros::Time& arrival) {
     msg_.linear_acceleration.x = s.accel[0];
     msg_.linear_acceleration.y = s.accel[1];
     msg_.linear_acceleration.z = s.accel[2] + (add_gravity_ ? core::kGravity : 0.0);
+    // A conflicting sample (issue 52) keeps its values but says they are not to be trusted:
+    // infinite variance (docs/inputs.md); REP 145's -1 would say "no data" and discard them.
+    const double variance = s.conflict ? std::numeric_limits<double>::infinity() : accel_variance_;
+    for (int k = 0; k < 3; ++k) msg_.linear_acceleration_covariance[4 * k] = variance;
     // Kept before it is published: a subscriber asking later finds whatever it did not receive.
     if (history_) history_->push(0, msg_.header.stamp, msg_.linear_acceleration.x, msg_.linear_acceleration.y,
                                  msg_.linear_acceleration.z);
@@ -371,6 +376,8 @@ void UdpAccelBridge::diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st
   st.add("late (dropped)", c.late);
   st.add("duplicates (dropped)", c.duplicates);
   st.add("conflicts (same sequence, other values: dropped, first kept)", c.conflicts);
+  st.add("conflicts marked on the published sample (variance inf)", c.conflicts_marked);
+  st.add("last conflict (sequence)", c.conflicts > 0 ? std::to_string(c.last_conflict) : std::string("none"));
   st.add("resyncs (counter restarted)", c.resyncs);
   st.add("stale (far behind, with key_file: dropped)", c.stale);
   st.add("held in the reorder window", sequencer_->held());

@@ -164,6 +164,7 @@ TEST(SampleSequencer, ConflictingPayloadKeepsTheFirstAndIsCounted) {
   fd::SampleSequencer q(4);
   q.push(sample(10));  // released at once
   ASSERT_EQ(q.ready_count(), 1u);
+  EXPECT_FALSE(q.ready()[0].conflict);
   fd::AccelSample other = sample(10);
   other.accel[0] = -3.5;
   q.push(other);  // after release: compared with the remembered payload
@@ -175,10 +176,13 @@ TEST(SampleSequencer, ConflictingPayloadKeepsTheFirstAndIsCounted) {
   q.push(sample(12));  // the same bytes again: a duplicate
   q.push(sample(10));  // the released one again, same bytes: a duplicate
   EXPECT_EQ(q.counts().conflicts, 2u);
+  EXPECT_EQ(q.counts().conflicts_marked, 1u);  // 12 was held; 10 had been released
+  EXPECT_EQ(q.counts().last_conflict, 12u);
   EXPECT_EQ(q.counts().duplicates, 2u);
   q.flush();
   ASSERT_EQ(q.ready_count(), 1u);
   EXPECT_EQ(q.ready()[0].sequence, 12u);
+  EXPECT_TRUE(q.ready()[0].conflict);  // released marked, with the first payload
   EXPECT_EQ(q.ready()[0].time_s, sample(12).time_s);
   EXPECT_EQ(q.ready()[0].accel[0], 12.0);
   EXPECT_EQ(q.counts().lost, 1u);

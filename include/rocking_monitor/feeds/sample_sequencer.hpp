@@ -14,7 +14,9 @@
 //  * the same sequence number with a different payload: `conflicts` (issue 52): the first one is
 //    kept (it may already be published), the second dropped; the bridge reports it as an ERROR,
 //    since two sources or a broken controller feed one stream. Released samples are compared
-//    within the last kResyncSpan sequence numbers, held ones always;
+//    within the last kResyncSpan sequence numbers, held ones always. A held sample is marked
+//    (AccelSample::conflict, counted `conflicts_marked`) and released so marked; one already
+//    released cannot be;
 //  * a jump of more than kResyncSpan (the controller restarted, or its counter was reset):
 //    everything held is released, counted `resyncs`, and the stream continues from there. Unless
 //    backward resyncs are off (the bridge with a ~key_file, issue 52): then a sample more than
@@ -40,6 +42,8 @@ struct SequenceCounts {
   std::uint64_t late = 0;        ///< arrived after their place was given up: dropped
   std::uint64_t duplicates = 0;  ///< a sequence number seen twice, same payload: dropped
   std::uint64_t conflicts = 0;   ///< a sequence number seen twice, different payload: first kept
+  std::uint64_t conflicts_marked = 0;  ///< of those, found while the first was held: it is marked
+  std::uint64_t last_conflict = 0;     ///< the sequence number of the latest conflict
   std::uint64_t resyncs = 0;     ///< jumps of more than kResyncSpan: the stream restarted
   std::uint64_t stale = 0;       ///< more than kResyncSpan behind, backward resyncs off: dropped
 };
@@ -83,7 +87,8 @@ class SampleSequencer {
 
   void release_next();  // releases or gives up next_, then advances
   void remember(std::uint64_t sequence, Fate fate, const AccelSample* sample = nullptr);
-  void count_repeat(const AccelSample& first, const AccelSample& again);
+  /// Counts a repeat as a duplicate or a conflict; `held`: `first` is not released yet, mark it.
+  void count_repeat(AccelSample& first, const AccelSample& again, bool held);
 
   std::vector<Slot> slots_;       // window + 1, indexed by sequence % size
   std::vector<History> history_;  // kResyncSpan, indexed by sequence % size

@@ -48,6 +48,9 @@ struct AccelSample {
   std::uint64_t sequence = 0;
   double time_s = 0.0;                ///< controller clock, s
   double accel[3] = {0.0, 0.0, 0.0};  ///< ax, ay, az, m/s^2
+  /// Set by the sequencer (never by parsing): another datagram came with this sequence number and
+  /// other values while this one was held (issue 52); the bridge marks it on the published Imu.
+  bool conflict = false;
 };
 
 enum class DatagramError {
