@@ -3,7 +3,9 @@
 // udp_accel_bridge: a shaking-table controller's (or DAQ program's) UDP stream, one datagram per
 // sample (feeds/udp_datagram.hpp: text "time,ax,ay,az" or the 48-byte binary layout), published as
 // sensor_msgs/Imu (REP 145) for the monitor, in sequence order (feeds/sample_sequencer.hpp), with
-// drops, reordering, late and malformed datagrams counted in /diagnostics.
+// drops, reordering, late and malformed datagrams counted in /diagnostics. Issue 52: only
+// ~allowed_senders are read; with ~key_file only authenticated (version-2) datagrams are published,
+// every refusal counted per source; a conflicting held sample is published marked (variance +inf).
 // Parameters and the stamp rule: README "Connect a shaking table". The last ~history_length s
 // published are served as ~history for a restarted monitor to catch up (docs/journal.md).
 
