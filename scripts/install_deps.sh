@@ -19,6 +19,7 @@ packages=(
   zlib1g-dev
   libbullet-dev libsiconos-numerics-dev
   libcurl4-openssl-dev libmosquitto-dev mosquitto python3-aiosmtpd
+  libssl-dev  # OpenSSL libcrypto: HMAC-SHA256 of authenticated datagrams (udp_accel_bridge ~key_file)
 )
 
 missing=()

@@ -5,7 +5,8 @@
 
 namespace rocking_monitor::feeds {
 
-SampleSequencer::SampleSequencer(std::size_t window) : slots_(window + 1), history_(kResyncSpan), ready_(window + 2) {}
+SampleSequencer::SampleSequencer(std::size_t window, bool resync_backward)
+    : slots_(window + 1), history_(kResyncSpan), ready_(window + 2), resync_backward_(resync_backward) {}
 
 void SampleSequencer::remember(std::uint64_t sequence, Fate fate, const AccelSample* sample) {
   History& h = history_[sequence % history_.size()];
@@ -15,10 +16,19 @@ void SampleSequencer::remember(std::uint64_t sequence, Fate fate, const AccelSam
 }
 
 // Bit for bit: a resent datagram is the same bytes; any difference means another source.
-void SampleSequencer::count_repeat(const AccelSample& first, const AccelSample& again) {
+void SampleSequencer::count_repeat(AccelSample& first, const AccelSample& again, bool held) {
   const bool same = std::memcmp(&first.time_s, &again.time_s, sizeof first.time_s) == 0 &&
                     std::memcmp(first.accel, again.accel, sizeof first.accel) == 0;
-  ++(same ? counts_.duplicates : counts_.conflicts);
+  if (same) {
+    ++counts_.duplicates;
+    return;
+  }
+  ++counts_.conflicts;
+  counts_.last_conflict = first.sequence;
+  if (held) {
+    ++counts_.conflicts_marked;
+    first.conflict = true;
+  }
 }
 
 void SampleSequencer::release_next() {
@@ -59,6 +69,10 @@ void SampleSequencer::push(const AccelSample& sample) {
   // A restart of the controller's counter (far back or far ahead): release what is held, go on from s.
   const bool far_back = s < next_ && next_ - s > kResyncSpan;
   const bool far_ahead = s > next_ && s - next_ > kResyncSpan;
+  if (far_back && !resync_backward_) {
+    ++counts_.stale;
+    return;
+  }
   if (far_back || far_ahead) {
     while (held_ > 0) release_next();
     ++counts_.resyncs;
@@ -73,7 +87,7 @@ void SampleSequencer::push(const AccelSample& sample) {
       --counts_.lost;
       h.fate = Fate::Unknown;
     } else if (h.sequence == s && h.fate == Fate::Released) {
-      count_repeat(h.sample, sample);
+      count_repeat(h.sample, sample, false);
     } else {
       ++counts_.late;
     }
@@ -83,7 +97,7 @@ void SampleSequencer::push(const AccelSample& sample) {
   while (s >= next_ + cap) release_next();
   Slot& slot = slots_[s % cap];
   if (slot.filled) {
-    count_repeat(slot.sample, sample);
+    count_repeat(slot.sample, sample, true);
   } else {
     if (s < max_seen_) ++counts_.reordered;
     slot.filled = true;

@@ -12,10 +12,12 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
 #include "rocking_monitor/constants.hpp"
+#include "rocking_monitor/feeds/datagram_key.hpp"
 
 namespace rocking_monitor::live {
 namespace {
@@ -62,32 +64,13 @@ bool UdpAccelBridge::init() {
     return bad("~clock must be first_arrival or controller, not '" + clock + "'");
   if (!(accel_variance_ >= 0.0)) return bad("~linear_acceleration_variance must be >= 0 (m/s^2)^2");
   if (!read_allowed_senders()) return false;
+  if (!read_key()) return false;
 
-  sequencer_ = std::make_unique<feeds::SampleSequencer>(static_cast<std::size_t>(window_));
+  // With a key, a far-behind sample is a replay (or a counter that went back), not a restart.
+  sequencer_ = std::make_unique<feeds::SampleSequencer>(static_cast<std::size_t>(window_), datagram_key_.size == 0);
   grid_ = std::make_unique<feeds::TimeGrid>(rate_hz_);
 
-  socket_ = ::socket(AF_INET, SOCK_DGRAM, 0);
-  if (socket_ < 0) return bad(std::string("socket: ") + std::strerror(errno));
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_port = htons(static_cast<uint16_t>(port_));
-  if (::inet_pton(AF_INET, bind_address_.c_str(), &addr.sin_addr) != 1)
-    return bad("~bind_address '" + bind_address_ + "' is not an IPv4 address");
-  if (::bind(socket_, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
-    return bad("cannot bind " + bind_address_ + ":" + std::to_string(port_) + ": " + std::strerror(errno));
-  }
-  int rcvbuf = kAskedRcvbufBytes;  // a burst of a few seconds at 1 kHz must not overflow the kernel buffer
-  ::setsockopt(socket_, SOL_SOCKET, SO_RCVBUF, &rcvbuf, sizeof rcvbuf);
-  // The kernel caps the request at net.core.rmem_max (and reports twice what it grants, for its
-  // bookkeeping): read back what was got, so that a small buffer is said, not silently suffered.
-  socklen_t rcvbuf_len = sizeof rcvbuf_bytes_;
-  if (::getsockopt(socket_, SOL_SOCKET, SO_RCVBUF, &rcvbuf_bytes_, &rcvbuf_len) != 0) rcvbuf_bytes_ = 0;
-  if (rcvbuf_bytes_ < kAskedRcvbufBytes)
-    ROS_WARN("udp_accel_bridge: receive buffer %d bytes, asked for %d: raise net.core.rmem_max (docs/inputs.md)",
-             rcvbuf_bytes_, kAskedRcvbufBytes);
-  timeval tv{};
-  tv.tv_usec = 20000;  // wake up to flush a paused stream
-  ::setsockopt(socket_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+  if (!open_socket()) return false;
 
   // REP 145: linear acceleration only; orientation and angular velocity "not provided".
   msg_.header.frame_id = frame_id_;
@@ -115,6 +98,37 @@ bool UdpAccelBridge::init() {
   thread_ = std::thread([this] { receive_loop(); });
   ROS_INFO_STREAM("udp_accel_bridge: listening on " << bind_address_ << ":" << port_ << ", " << rate_hz_
                                                     << " Hz, publishing " << imu_pub_.getTopic());
+  return true;
+}
+
+// Binds ~bind_address:~port and sizes the receive buffer; false after a FATAL line saying why.
+bool UdpAccelBridge::open_socket() {
+  auto bad = [](const std::string& what) {
+    ROS_FATAL_STREAM("udp_accel_bridge: " << what);
+    return false;
+  };
+  socket_ = ::socket(AF_INET, SOCK_DGRAM, 0);
+  if (socket_ < 0) return bad(std::string("socket: ") + std::strerror(errno));
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<uint16_t>(port_));
+  if (::inet_pton(AF_INET, bind_address_.c_str(), &addr.sin_addr) != 1)
+    return bad("~bind_address '" + bind_address_ + "' is not an IPv4 address");
+  if (::bind(socket_, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
+    return bad("cannot bind " + bind_address_ + ":" + std::to_string(port_) + ": " + std::strerror(errno));
+  }
+  int rcvbuf = kAskedRcvbufBytes;  // a burst of a few seconds at 1 kHz must not overflow the kernel buffer
+  ::setsockopt(socket_, SOL_SOCKET, SO_RCVBUF, &rcvbuf, sizeof rcvbuf);
+  // The kernel caps the request at net.core.rmem_max (and reports twice what it grants, for its
+  // bookkeeping): read back what was got, so that a small buffer is said, not silently suffered.
+  socklen_t rcvbuf_len = sizeof rcvbuf_bytes_;
+  if (::getsockopt(socket_, SOL_SOCKET, SO_RCVBUF, &rcvbuf_bytes_, &rcvbuf_len) != 0) rcvbuf_bytes_ = 0;
+  if (rcvbuf_bytes_ < kAskedRcvbufBytes)
+    ROS_WARN("udp_accel_bridge: receive buffer %d bytes, asked for %d: raise net.core.rmem_max (docs/inputs.md)",
+             rcvbuf_bytes_, kAskedRcvbufBytes);
+  timeval tv{};
+  tv.tv_usec = 20000;  // wake up to flush a paused stream
+  ::setsockopt(socket_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
   return true;
 }
 
@@ -147,7 +161,7 @@ void UdpAccelBridge::receive_loop() {
       ::inet_ntop(AF_INET, &from.sin_addr, ip, sizeof ip);
       last_sender_ = std::string(ip) + ":" + std::to_string(ntohs(from.sin_port));
     }
-    on_datagram(buf, static_cast<std::size_t>(n), arrival);
+    on_datagram(buf, static_cast<std::size_t>(n), ntohl(from.sin_addr.s_addr), ntohs(from.sin_port), arrival);
   }
 }
 
@@ -183,11 +197,46 @@ bool UdpAccelBridge::read_allowed_senders() {
   return true;
 }
 
-void UdpAccelBridge::on_datagram(const char* data, std::size_t size, const ros::Time& arrival) {
+bool UdpAccelBridge::read_key() {
+  pnh_.param("key_file", key_file_, key_file_);
+  if (key_file_.empty()) return true;  // opt-in: no key, version-2 datagrams are refused (counted)
+  std::string error;
+  if (!feeds::read_key_file(key_file_, key_, error)) {
+    ROS_FATAL_STREAM("udp_accel_bridge: ~key_file: " << error);
+    return false;
+  }
+  datagram_key_ = feeds::DatagramKey{key_.data(), key_.size()};
+  if (key_.size() < 16)
+    ROS_WARN("udp_accel_bridge: the key in '%s' is %zu bytes; use 32 random bytes (docs/inputs.md)",
+             key_file_.c_str(), key_.size());
+  ROS_INFO("udp_accel_bridge: authenticated datagrams only (HMAC-SHA256, key from '%s')", key_file_.c_str());
+  return true;
+}
+
+// An authentication refusal is counted per source (true); other errors are left to the caller.
+bool UdpAccelBridge::count_refusal(feeds::DatagramError err, std::uint32_t address, std::uint16_t port) {
+  switch (err) {
+    case feeds::DatagramError::Unauthenticated:
+      unauthenticated_.add(address, port);
+      return true;
+    case feeds::DatagramError::BadTag:
+      bad_tag_.add(address, port);
+      return true;
+    case feeds::DatagramError::NoKey:
+      no_key_.add(address, port);
+      return true;
+    default:
+      return false;
+  }
+}
+
+void UdpAccelBridge::on_datagram(const char* data, std::size_t size, std::uint32_t address, std::uint16_t port,
+                                 const ros::Time& arrival) {
   ++datagrams_;
   feeds::AccelSample s;
-  const feeds::DatagramError err = feeds::parse_datagram(data, size, s);
+  const feeds::DatagramError err = feeds::parse_datagram(data, size, datagram_key_, s);
   if (err != feeds::DatagramError::None) {
+    if (count_refusal(err, address, port)) return;
     ++malformed_;
     last_error_ = feeds::to_string(err);
     return;
@@ -231,6 +280,10 @@ void UdpAccelBridge::publish_ready(const ros::Time& arrival) {
     msg_.linear_acceleration.x = s.accel[0];
     msg_.linear_acceleration.y = s.accel[1];
     msg_.linear_acceleration.z = s.accel[2] + (add_gravity_ ? core::kGravity : 0.0);
+    // A conflicting sample (issue 52) keeps its values but says they are not to be trusted:
+    // infinite variance (docs/inputs.md); REP 145's -1 would say "no data" and discard them.
+    const double variance = s.conflict ? std::numeric_limits<double>::infinity() : accel_variance_;
+    for (int k = 0; k < 3; ++k) msg_.linear_acceleration_covariance[4 * k] = variance;
     // Kept before it is published: a subscriber asking later finds whatever it did not receive.
     if (history_) history_->push(0, msg_.header.stamp, msg_.linear_acceleration.x, msg_.linear_acceleration.y,
                                  msg_.linear_acceleration.z);
@@ -245,6 +298,8 @@ void UdpAccelBridge::publish_ready(const ros::Time& arrival) {
 // unpinned port is ERROR (two streams interleaved are not ground motion), no list is WARN.
 void UdpAccelBridge::sender_summary(diagnostic_updater::DiagnosticStatusWrapper& st) const {
   using diagnostic_msgs::DiagnosticStatus;
+  // With a key, a datagram from anyone else fails authentication (auth_status says so): no list is fine.
+  if (!senders_.pinned() && datagram_key_.size > 0) return;
   if (!senders_.pinned() && tally_.admitted_sources() >= 2)
     st.summary(DiagnosticStatus::ERROR,
                "several senders feed one stream: " + feeds::SenderTally::describe(tally_.admitted()));
@@ -253,6 +308,33 @@ void UdpAccelBridge::sender_summary(diagnostic_updater::DiagnosticStatusWrapper&
   else if (tally_.dropped_total() > 0)
     st.summary(DiagnosticStatus::WARN,
                "datagrams from senders not allowed dropped: " + feeds::SenderTally::describe(tally_.dropped()));
+}
+
+// Authentication (issue 52): any refused datagram is an ERROR, since either someone without the
+// key is sending, or the real controller is not (yet) configured with it.
+void UdpAccelBridge::auth_status(diagnostic_updater::DiagnosticStatusWrapper& st) const {
+  using diagnostic_msgs::DiagnosticStatus;
+  std::string refused;
+  auto add = [&refused](const char* kind, const feeds::SourceCounter& c) {
+    if (c.total() == 0) return;
+    refused += (refused.empty() ? "" : "; ") + std::string(kind) + ": " + c.describe();
+  };
+  add("unauthenticated", unauthenticated_);
+  add("bad tag", bad_tag_);
+  add("version 2 without key_file", no_key_);
+  if (!refused.empty()) st.mergeSummary(DiagnosticStatus::ERROR, "datagrams refused by authentication: " + refused);
+  const std::uint64_t stale = sequencer_->counts().stale;
+  if (stale > 0)
+    st.mergeSummary(DiagnosticStatus::ERROR, std::to_string(stale) + " samples far behind the stream dropped "
+                                             "(replayed, or the sender's counter went back)");
+  st.add("authentication", datagram_key_.size > 0 ? "HMAC-SHA256, key_file " + key_file_
+                                                  : std::string("none (no key_file)"));
+  st.add("dropped, unauthenticated (no tag)", unauthenticated_.total());
+  st.add("dropped, bad tag", bad_tag_.total());
+  st.add("dropped, version 2 without key_file", no_key_.total());
+  st.add("senders unauthenticated", unauthenticated_.describe());
+  st.add("senders with a bad tag", bad_tag_.describe());
+  st.add("senders of version 2 without key_file", no_key_.describe());
 }
 
 void UdpAccelBridge::diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st) {
@@ -270,6 +352,7 @@ void UdpAccelBridge::diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st
                     std::to_string(c.conflicts) + " sequence numbers sent twice with different values (first kept)");
   else if (c.lost + c.late + c.duplicates + malformed_ + off_grid_ > 0)
     st.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, "samples lost, late, duplicated or malformed");
+  auth_status(st);
   if (rcvbuf_bytes_ < kAskedRcvbufBytes)
     st.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, "receive buffer " + std::to_string(rcvbuf_bytes_) +
                                                                   " bytes: raise net.core.rmem_max");
@@ -293,7 +376,10 @@ void UdpAccelBridge::diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st
   st.add("late (dropped)", c.late);
   st.add("duplicates (dropped)", c.duplicates);
   st.add("conflicts (same sequence, other values: dropped, first kept)", c.conflicts);
+  st.add("conflicts marked on the published sample (variance inf)", c.conflicts_marked);
+  st.add("last conflict (sequence)", c.conflicts > 0 ? std::to_string(c.last_conflict) : std::string("none"));
   st.add("resyncs (counter restarted)", c.resyncs);
+  st.add("stale (far behind, with key_file: dropped)", c.stale);
   st.add("held in the reorder window", sequencer_->held());
   st.add("reorder window (samples)", window_);
   st.add("idle flushes", flushes_);

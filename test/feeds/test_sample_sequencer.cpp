@@ -164,6 +164,7 @@ TEST(SampleSequencer, ConflictingPayloadKeepsTheFirstAndIsCounted) {
   fd::SampleSequencer q(4);
   q.push(sample(10));  // released at once
   ASSERT_EQ(q.ready_count(), 1u);
+  EXPECT_FALSE(q.ready()[0].conflict);
   fd::AccelSample other = sample(10);
   other.accel[0] = -3.5;
   q.push(other);  // after release: compared with the remembered payload
@@ -175,12 +176,36 @@ TEST(SampleSequencer, ConflictingPayloadKeepsTheFirstAndIsCounted) {
   q.push(sample(12));  // the same bytes again: a duplicate
   q.push(sample(10));  // the released one again, same bytes: a duplicate
   EXPECT_EQ(q.counts().conflicts, 2u);
+  EXPECT_EQ(q.counts().conflicts_marked, 1u);  // 12 was held; 10 had been released
+  EXPECT_EQ(q.counts().last_conflict, 12u);
   EXPECT_EQ(q.counts().duplicates, 2u);
   q.flush();
   ASSERT_EQ(q.ready_count(), 1u);
   EXPECT_EQ(q.ready()[0].sequence, 12u);
+  EXPECT_TRUE(q.ready()[0].conflict);  // released marked, with the first payload
   EXPECT_EQ(q.ready()[0].time_s, sample(12).time_s);
   EXPECT_EQ(q.ready()[0].accel[0], 12.0);
   EXPECT_EQ(q.counts().lost, 1u);
   EXPECT_EQ(q.counts().released, 2u);
+}
+
+// Issue 52: with a key, a replayed datagram far behind the stream has a valid tag; it must not be
+// taken for a restart (which would publish it and drop the real stream after it as late).
+TEST(SampleSequencer, WithoutBackwardResyncFarBehindIsStale) {
+  fd::SampleSequencer q(4, /*resync_backward=*/false);
+  const std::uint64_t far = fd::SampleSequencer::kResyncSpan + 1;
+  // 10000..10004, then 10004 - far (a replay of an old datagram), then 10005; then a jump ahead.
+  const auto out = run(q, {10000, 10001, 10002, 10003, 10004, 10004 - far, 10005, 10005 + far + 1});
+  EXPECT_EQ(out, (std::vector<std::uint64_t>{10000, 10001, 10002, 10003, 10004, 10005, 10005 + far + 1}));
+  EXPECT_EQ(q.counts().stale, 1u);
+  EXPECT_EQ(q.counts().resyncs, 1u);  // forward: a sender's counter may jump ahead (it cannot be forged)
+  EXPECT_EQ(q.counts().late, 0u);
+  EXPECT_EQ(q.counts().accepted, 8u);
+  // The same stream with backward resyncs on (no key): the old sample restarts the stream and is
+  // published; the real one resyncs again after it.
+  fd::SampleSequencer open(4);
+  const auto out2 = run(open, {10000, 10001, 10002, 10003, 10004, 10004 - far, 10005});
+  EXPECT_EQ(out2, (std::vector<std::uint64_t>{10000, 10001, 10002, 10003, 10004, 10004 - far, 10005}));
+  EXPECT_EQ(open.counts().resyncs, 2u);
+  EXPECT_EQ(open.counts().stale, 0u);
 }

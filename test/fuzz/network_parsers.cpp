@@ -4,6 +4,7 @@
 #include <cmath>
 #include <exception>
 #include <optional>
+#include <cstring>
 #include <sstream>
 
 #include "rocking_monitor/feeds/mseed_record.hpp"
@@ -15,11 +16,26 @@ namespace {
 
 namespace rf = rocking_monitor::feeds;
 
+// Parsed without a key and with kFuzzDatagramKey (issue 52, version 2); rejected when both refuse.
+// Accepted with the key means: 80 bytes whose last 32 are the HMAC of the first 48.
 std::string fuzz_check_datagram(const std::string& bytes, bool& rejected) {
   rf::AccelSample s;
-  const rf::DatagramError e = rf::parse_datagram(bytes.data(), bytes.size(), s);
-  rejected = e != rf::DatagramError::None;
-  if (rejected) return std::string(rf::to_string(e)).empty() ? "a refusal without a reason" : "";
+  const rf::DatagramError plain = rf::parse_datagram(bytes.data(), bytes.size(), s);
+  const rf::DatagramKey key{reinterpret_cast<const unsigned char*>(kFuzzDatagramKey), sizeof kFuzzDatagramKey - 1};
+  rf::AccelSample keyed;
+  const rf::DatagramError e = rf::parse_datagram(bytes.data(), bytes.size(), key, keyed);
+  if (e == rf::DatagramError::None) {
+    unsigned char tag[rf::kTagSize];
+    const auto* u = reinterpret_cast<const unsigned char*>(bytes.data());
+    if (bytes.size() != rf::kAuthSize || !rf::hmac_sha256(key, u, rf::kBinarySize, tag) ||
+        std::memcmp(tag, u + rf::kBinarySize, rf::kTagSize) != 0)
+      return "accepted with the key without a valid tag";
+    if (plain == rf::DatagramError::None) return "a version-2 datagram accepted without a key";
+    s = keyed;
+  }
+  rejected = plain != rf::DatagramError::None && e != rf::DatagramError::None;
+  if (rejected) return std::string(rf::to_string(plain)).empty() || std::string(rf::to_string(e)).empty()
+                           ? "a refusal without a reason" : "";
   if (!std::isfinite(s.time_s)) return "parsed with a non-finite time";
   for (double a : s.accel)
     if (!std::isfinite(a)) return "parsed with a non-finite acceleration";

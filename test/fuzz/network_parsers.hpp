@@ -9,6 +9,9 @@
 
 namespace rocking_monitor::fuzz {
 
+/// The key the udp_datagram target's version-2 seed is tagged with and parsed under (issue 52).
+inline constexpr char kFuzzDatagramKey[] = "fuzz-datagram-key";
+
 /// Whether `target` is one of the network parsers' targets.
 bool is_network_target(const std::string& target);
 

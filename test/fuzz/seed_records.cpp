@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "network_parsers.hpp"  // kFuzzDatagramKey
 #include "record_writers.hpp"  // test/support: the writers the format tests use
 #include "rocking_monitor/feeds/udp_datagram.hpp"
 #include "rocking_monitor/motion/record_reader.hpp"
@@ -73,8 +74,13 @@ std::vector<Target> make_targets(const std::string& records_dir, const std::stri
   unsigned char binary[48];
   const double accel[3] = {0.1, -0.02, 9.81};
   rf::encode_binary(42, 12.345, accel, binary);
+  unsigned char authenticated[rf::kAuthSize];
+  rf::encode_binary_auth(43, 12.35, accel,
+                         rf::DatagramKey{reinterpret_cast<const unsigned char*>(kFuzzDatagramKey), sizeof kFuzzDatagramKey - 1},
+                         authenticated);
   t.push_back({"udp_datagram", true,
-               {{"text.dgram", "12.345,0.1,-0.02,0.003\n"}, {"binary.dgram", std::string(reinterpret_cast<char*>(binary), 48)}}});
+               {{"text.dgram", "12.345,0.1,-0.02,0.003\n"}, {"binary.dgram", std::string(reinterpret_cast<char*>(binary), 48)},
+                {"binary_v2.dgram", std::string(reinterpret_cast<char*>(authenticated), rf::kAuthSize)}}});
   t.push_back({"seedlink", true,
                {{"packet.sl", "SL00A3F1" + record512},
                 {"replies.sl", "SeedLink v3.1 (2020.075) :: SLPROTO:3.1\r\nGEOFON\r\nOK\r\nERROR\r\n"}}});

@@ -14,9 +14,15 @@
 //  * the same sequence number with a different payload: `conflicts` (issue 52): the first one is
 //    kept (it may already be published), the second dropped; the bridge reports it as an ERROR,
 //    since two sources or a broken controller feed one stream. Released samples are compared
-//    within the last kResyncSpan sequence numbers, held ones always;
+//    within the last kResyncSpan sequence numbers, held ones always. A held sample is marked
+//    (AccelSample::conflict, counted `conflicts_marked`) and released so marked; one already
+//    released cannot be;
 //  * a jump of more than kResyncSpan (the controller restarted, or its counter was reset):
-//    everything held is released, counted `resyncs`, and the stream continues from there.
+//    everything held is released, counted `resyncs`, and the stream continues from there. Unless
+//    backward resyncs are off (the bridge with a ~key_file, issue 52): then a sample more than
+//    kResyncSpan behind is dropped and counted `stale`, since a captured authenticated datagram
+//    replayed later carries a valid tag, and only its old sequence number gives it away. An
+//    authenticated sender's counter must therefore never go back (docs/inputs.md).
 // A lost sample delays the samples after it by at most `window` samples (or until flush(), which
 // the bridge calls when the stream pauses). Nothing is allocated after construction.
 
@@ -36,7 +42,10 @@ struct SequenceCounts {
   std::uint64_t late = 0;        ///< arrived after their place was given up: dropped
   std::uint64_t duplicates = 0;  ///< a sequence number seen twice, same payload: dropped
   std::uint64_t conflicts = 0;   ///< a sequence number seen twice, different payload: first kept
+  std::uint64_t conflicts_marked = 0;  ///< of those, found while the first was held: it is marked
+  std::uint64_t last_conflict = 0;     ///< the sequence number of the latest conflict
   std::uint64_t resyncs = 0;     ///< jumps of more than kResyncSpan: the stream restarted
+  std::uint64_t stale = 0;       ///< more than kResyncSpan behind, backward resyncs off: dropped
 };
 
 class SampleSequencer {
@@ -46,7 +55,8 @@ class SampleSequencer {
 
   /// `window`: how many sequence numbers a sample may arrive out of place and still be released
   /// in order (0: no reordering; a sample behind is late).
-  explicit SampleSequencer(std::size_t window);
+  /// `resync_backward` false: a sample far behind is `stale` (dropped), not a restart.
+  explicit SampleSequencer(std::size_t window, bool resync_backward = true);
 
   /// Accepts one sample (its `sequence` must be set); the samples it releases are in ready().
   /// ready() is emptied at the start of each push() and flush().
@@ -77,13 +87,15 @@ class SampleSequencer {
 
   void release_next();  // releases or gives up next_, then advances
   void remember(std::uint64_t sequence, Fate fate, const AccelSample* sample = nullptr);
-  void count_repeat(const AccelSample& first, const AccelSample& again);
+  /// Counts a repeat as a duplicate or a conflict; `held`: `first` is not released yet, mark it.
+  void count_repeat(AccelSample& first, const AccelSample& again, bool held);
 
   std::vector<Slot> slots_;       // window + 1, indexed by sequence % size
   std::vector<History> history_;  // kResyncSpan, indexed by sequence % size
   std::vector<AccelSample> ready_;
   std::size_t ready_count_ = 0;
   std::size_t held_ = 0;
+  bool resync_backward_ = true;
   bool started_ = false;
   std::uint64_t next_ = 0;
   std::uint64_t max_seen_ = 0;

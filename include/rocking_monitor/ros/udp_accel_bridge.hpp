@@ -3,7 +3,9 @@
 // udp_accel_bridge: a shaking-table controller's (or DAQ program's) UDP stream, one datagram per
 // sample (feeds/udp_datagram.hpp: text "time,ax,ay,az" or the 48-byte binary layout), published as
 // sensor_msgs/Imu (REP 145) for the monitor, in sequence order (feeds/sample_sequencer.hpp), with
-// drops, reordering, late and malformed datagrams counted in /diagnostics.
+// drops, reordering, late and malformed datagrams counted in /diagnostics. Issue 52: only
+// ~allowed_senders are read; with ~key_file only authenticated (version-2) datagrams are published,
+// every refusal counted per source; a conflicting held sample is published marked (variance +inf).
 // Parameters and the stamp rule: README "Connect a shaking table". The last ~history_length s
 // published are served as ~history for a restarted monitor to catch up (docs/journal.md).
 
@@ -18,9 +20,11 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "rocking_monitor/feeds/sample_sequencer.hpp"
 #include "rocking_monitor/feeds/sender_filter.hpp"
+#include "rocking_monitor/feeds/source_counter.hpp"
 #include "rocking_monitor/feeds/time_grid.hpp"
 #include "rocking_monitor/feeds/udp_datagram.hpp"
 #include "rocking_monitor/ros/sample_history_server.hpp"
@@ -41,12 +45,17 @@ class UdpAccelBridge {
  private:
   enum class Clock { FirstArrival, Controller };
 
+  bool open_socket();
   void receive_loop();
-  void on_datagram(const char* data, std::size_t size, const ros::Time& arrival);
+  void on_datagram(const char* data, std::size_t size, std::uint32_t address, std::uint16_t port,
+                   const ros::Time& arrival);
   void publish_ready(const ros::Time& arrival);
   void diagnostics(diagnostic_updater::DiagnosticStatusWrapper& st);
   bool read_allowed_senders();
   void sender_summary(diagnostic_updater::DiagnosticStatusWrapper& st) const;
+  bool read_key();
+  bool count_refusal(feeds::DatagramError err, std::uint32_t address, std::uint16_t port);
+  void auth_status(diagnostic_updater::DiagnosticStatusWrapper& st) const;
 
   ros::NodeHandle nh_, pnh_;
   ros::Publisher imu_pub_;
@@ -68,6 +77,10 @@ class UdpAccelBridge {
 
   // ~allowed_senders (issue 52): empty means anyone, which /diagnostics warns about.
   feeds::SenderFilter senders_;
+  // ~key_file (issue 52): with a key only authenticated (version 2) datagrams are accepted.
+  std::string key_file_;
+  std::vector<unsigned char> key_;
+  feeds::DatagramKey datagram_key_;  // views key_; size 0 without a key
 
   int socket_ = -1;
   int rcvbuf_bytes_ = 0;  ///< the kernel's receive buffer as read back (it may cap what was asked)
@@ -85,6 +98,8 @@ class UdpAccelBridge {
   std::optional<ros::Time> first_arrival_;
   double first_time_s_ = 0.0;
   feeds::SenderTally tally_;  // per source: admitted and dropped datagrams
+  // Refused by authentication, per source: no tag while a key is set, a wrong tag, a tag but no key.
+  feeds::SourceCounter unauthenticated_, bad_tag_, no_key_;
   std::uint64_t datagrams_ = 0;
   std::uint64_t malformed_ = 0;
   std::uint64_t off_grid_ = 0;
