@@ -211,6 +211,8 @@ void Rocking3DModel::land(int touching, double tau) {
   lb.centre = r * body_.centre_of_mass() + t;
   lb.omega = omega;
   lb.velocity = omega.cross(lb.centre - fixed);
+  if (mode_ == Mode3D::Vertex && pivot_slipping_) lb.velocity += Eigen::Vector3d(ys_(9), ys_(10), 0.0);  // slide-rock
+  pivot_slipping_ = false;
   const Landing law = plastic_landing(lb, set);
   outcome3_.max_landing_violation = std::max(outcome3_.max_landing_violation, law.violation);
   double demand = 0.0;

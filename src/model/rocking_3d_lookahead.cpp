@@ -89,6 +89,12 @@ double Rocking3DModel::kinetic_energy() const {
   if (mode_ != Mode3D::Vertex) return 0.0;
   const Eigen::Matrix3d r = vertex_rotation(y_);
   const Eigen::Vector3d w = y_.tail<3>();
+  if (pivot_slipping_) {
+    // (the centre's velocity with the pivot's slip, and the turning about the centre)
+    const Eigen::Vector3d c = r * hv(contact_).to_centre;
+    const Eigen::Vector3d v = Eigen::Vector3d(ys_(9), ys_(10), 0.0) + w.cross(c);
+    return 0.5 * v.squaredNorm() + 0.5 * w.dot(r * body_.central_inertia_per_mass() * r.transpose() * w);
+  }
   return rotation_energy(r * hv(contact_).inertia * r.transpose(), w);
 }
 

@@ -49,6 +49,8 @@ Rocking3DModel::Rocking3DModel(const BaseBody& body, const SolverSettings& setti
   double size = 0.0;
   for (const BaseVertex& v : hull().vertices) size = std::max(size, v.radius);
   floor_tol_ = 1e-9 * size;
+  central_inverse_ = body_.central_inertia_per_mass().inverse();
+  stop_speed_ = 1e-6 * kGravity / body_.max_p();
   for (const HullFace& f : hull().faces) {
     std::vector<Eigen::Vector2d> polygon;
     for (int k = 0; k < f.body->vertex_count(); ++k) polygon.push_back(f.body->vertex(k).position.head<2>());
@@ -80,6 +82,9 @@ void Rocking3DModel::reset(double t, const Eigen::Vector3d& a) {
   dopri5_.reset(0.05 / body_.max_p());
   vector_.reset(0.05 / body_.max_p());
   slide_stepper_.reset(0.05 / body_.max_p());
+  slip_stepper_.reset(0.05 / body_.max_p());
+  pivot_slipping_ = false;
+  ys_.setZero();
   slide_.setZero();
   transition_count_ = 0;
   pivot_outside_cone_ = false;
@@ -107,6 +112,10 @@ void Rocking3DModel::save(Saved& out) const {
   out.slide = slide_;
   slide_stepper_.save(out.slide_stepper);
   out.pivot_outside_cone = pivot_outside_cone_;
+  out.pivot_slipping = pivot_slipping_;
+  out.slip_state = ys_;
+  out.slip_direction = slip_dir_;
+  slip_stepper_.save(out.slip_stepper);
 }
 
 void Rocking3DModel::restore(const Saved& in) {
@@ -133,6 +142,10 @@ void Rocking3DModel::restore(const Saved& in) {
   slide_ = in.slide;
   slide_stepper_.restore(in.slide_stepper);
   pivot_outside_cone_ = in.pivot_outside_cone;
+  pivot_slipping_ = in.pivot_slipping;
+  ys_ = in.slip_state;
+  slip_dir_ = in.slip_direction;
+  slip_stepper_.restore(in.slip_stepper);
 }
 
 Eigen::Matrix3d Rocking3DModel::yaw_matrix() const { return rot_z(yaw_); }
@@ -203,6 +216,7 @@ void Rocking3DModel::go_to_rest() {
   dopri5_.invalidate();
   vector_.invalidate();
   slide_stepper_.invalidate();
+  pivot_slipping_ = false;
 }
 
 void Rocking3DModel::set_edge_state(int edge, double theta, double omega) {
@@ -236,6 +250,8 @@ void Rocking3DModel::apply_rest_samples(double t, const Eigen::Vector3d& a, doub
   sample_dt_ = dt;
   lifts_ = 0;
   slide_lifts_ = 0;
+  slip_switches_ = 0;
+  slip_steps_ = 0;
   t_ = t;
   a_prev_ = a;
   outcome_.samples += n;
@@ -250,6 +266,8 @@ const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
   sample_dt_ = dt;
   lifts_ = 0;
   slide_lifts_ = 0;
+  slip_switches_ = 0;
+  slip_steps_ = 0;
   GroundInput3 in;
   in.a0 = a_prev_;
   in.slope = (a - a_prev_) / dt;

@@ -5,6 +5,7 @@
 // SLIDE-ROCK and FLIGHT onsets, which the tests compare with).
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Geometry>
 
@@ -57,16 +58,24 @@ double Rocking3DModel::cone_margin(const Eigen::Vector3d& f) const {
 
 // Over the step [t0, t1] just taken (its dense output valid): the largest demand at its end, and the
 // first instant the reaction leaves the cone, located and recorded once until it comes back inside.
-void Rocking3DModel::watch_pivot(const GroundInput3& in, double t0, double t1, double t_tol) {
+// Returns that instant where the motion after it is modelled (a vertex's slip: slide-rock), else NaN.
+double Rocking3DModel::watch_pivot(const GroundInput3& in, double t0, double t1, double t_tol) {
+  constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
   const Eigen::Vector3d f1 = pivot_reaction(in, t1);
   if (f1.z() > 0.0)
     outcome3_.max_pivot_friction_demand = std::max(outcome3_.max_pivot_friction_demand, std::hypot(f1.x(), f1.y()) / f1.z());
   const double m1 = cone_margin(f1);
   if (m1 >= 0.0) {
     pivot_outside_cone_ = false;
-    return;
+    return kNone;
   }
-  if (pivot_outside_cone_) return;
+  if (pivot_outside_cone_) {
+    // Outside already (counted on the edge this vertex ended, or held by the bound): a vertex pressing
+    // on the floor slips from here.
+    if (mode_ != Mode3D::Vertex || !(f1.z() > 0.0) || slip_switches_ >= kMaxSlipSwitches) return kNone;
+    ++slip_switches_;
+    return t0;
+  }
   pivot_outside_cone_ = true;
   auto margin_at = [&](double t) { return cone_margin(pivot_reaction(in, t)); };
   const double m0 = margin_at(t0);
@@ -77,6 +86,13 @@ void Rocking3DModel::watch_pivot(const GroundInput3& in, double t0, double t1, d
   else ++outcome3_.pivot_slips;
   if (std::isnan(outcome3_.first_pivot_slip_time)) outcome3_.first_pivot_slip_time = t_ + t;
   note_transition(mode_, lifts ? Transition3D::PivotLifts : Transition3D::PivotSlips, t);
+  if (lifts || mode_ != Mode3D::Vertex) return kNone;
+  if (slip_switches_ >= kMaxSlipSwitches) {
+    ++outcome3_.pivot_slips_not_followed;
+    return kNone;
+  }
+  ++slip_switches_;
+  return t;
 }
 
 }  // namespace rocking_monitor::core

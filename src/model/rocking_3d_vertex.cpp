@@ -47,6 +47,7 @@ void Rocking3DModel::enter_vertex(int vertex, const Eigen::Vector3d& pivot_world
   const Eigen::Quaterniond q(rotation);
   y_ << q.w(), q.x(), q.y(), q.z(), omega_world;
   vector_.invalidate();
+  pivot_slipping_ = false;  // (a new pivot sticks until its reaction leaves the cone)
   // A vertex on the floor now may only trigger an impact after it has been off the floor (it is
   // an end of the edge just left, or a neighbour of a flat base).
   // (A vertex within floor_tol_ of the floor is on it: the pose at an event is exact to the
@@ -98,13 +99,16 @@ void Rocking3DModel::enter_edge_from_pose(int face, int edge, const Eigen::Matri
   dopri5_.invalidate();
 }
 
-Rocking3DModel::Event Rocking3DModel::advance_vertex(const GroundInput3& in, double& tau, double tau_end,
-                                                     int& touching) {
+// Steps the motion on a vertex (state: the sticking pivot's q, omega; or the slipping pivot's q, omega,
+// pivot, velocity) to the first touchdown, overturn, or a slip beginning or ending (switched: the other
+// stepper goes on from tau).
+template <int N, class Rhs>
+Rocking3DModel::Event Rocking3DModel::vertex_motion(Dopri5Vector<N>& stepper, Eigen::Matrix<double, N, 1>& state,
+                                                    const Rhs& f, const Eigen::Matrix<double, N, 1>& atol,
+                                                    const GroundInput3& in, double& tau, double tau_end, int& touching,
+                                                    bool& switched) {
+  using State = Eigen::Matrix<double, N, 1>;
   const double t_tol = 1e-12 * std::max(sample_dt_, 1e-6);
-  const double alpha = body_.min_alpha(), p = body_.max_p();
-  Vec7 atol;
-  atol << Eigen::Vector4d::Constant(settings_.tol * alpha), Eigen::Vector3d::Constant(settings_.tol * p * alpha);
-  auto f = [&](double t, const Vec7& y, Vec7& dy) { vertex_rhs(in, t, y, dy); };
   const BaseVertex& pivot = hv(contact_);
   const std::vector<int>& candidates = hull().neighbours[static_cast<std::size_t>(contact_)];
   const double eps = 3.0 * floor_tol_;  // (a landing's set is within floor_tol_ of the floor, seen from any of its points within 2 floor_tol_)
@@ -113,9 +117,19 @@ Rocking3DModel::Event Rocking3DModel::advance_vertex(const GroundInput3& in, dou
   auto height = [&](const Vec7& y, int i) {
     return (vertex_rotation(y) * (hv(i).position - pivot.position)).z();
   };
+  // the rotation's part of the dense output
+  auto rot = [&](double t) { return Vec7(stepper.eval(t).template head<7>()); };
+  auto settle = [&](const State& y) {
+    state = y;
+    state.template head<4>().normalize();
+    if constexpr (N == 11) sync_slip();
+  };
   while (tau < tau_end) {
-    report_.integrator_steps += vector_.step(f, tau, y_, tau_end, settings_.tol, atol);
-    const double t0 = vector_.t0(), t1 = vector_.t1();
+    const Vec7 y0 = state.template head<7>();
+    if constexpr (N == 11) aim_slip_ref();
+    report_.integrator_steps += stepper.step(f, tau, state, tau_end, settings_.tol, atol);
+    const double t0 = stepper.t0(), t1 = stepper.t1();
+    const Vec7 y1 = stepper.y1().template head<7>();
     // The first touchdown of an armed vertex or the overturn inside the step, on the dense
     // output, probed at quarter steps so that a grazing dip inside the step is not missed.
     double t_event = std::numeric_limits<double>::infinity();
@@ -126,7 +140,7 @@ Rocking3DModel::Event Rocking3DModel::advance_vertex(const GroundInput3& in, dou
     // its dot product with the vertex's offset from the pivot).
     Eigen::Vector3d up[kProbes + 1];
     for (int k = 0; k <= kProbes; ++k) {
-      const Vec7 yk = k == 0 ? y_ : k == kProbes ? Vec7(vector_.y1()) : Vec7(vector_.eval(t0 + (t1 - t0) * k / kProbes));
+      const Vec7 yk = k == 0 ? y0 : k == kProbes ? y1 : rot(t0 + (t1 - t0) * k / kProbes);
       up[k] = vertex_rotation(yk).row(2).transpose();
     }
     for (int i : candidates) {
@@ -139,7 +153,7 @@ Rocking3DModel::Event Rocking3DModel::advance_vertex(const GroundInput3& in, dou
         // An unarmed vertex that sinks clearly below the floor is a touchdown too (the pivot
         // turned the wrong way for the vertex it left): resolved as an impact.
         if ((armed && zb <= 0.0 && za > 0.0) || zb < -sink) {
-          auto z_at = [&](double t) { return height(Vec7(vector_.eval(t)), i); };
+          auto z_at = [&](double t) { return height(rot(t), i); };
           double te = ta;
           if (za > 0.0) {
             te = bracketed_root(z_at, ta, tb, za, zb, t_tol);
@@ -147,7 +161,7 @@ Rocking3DModel::Event Rocking3DModel::advance_vertex(const GroundInput3& in, dou
             // An unarmed vertex below the floor: it may have hopped up and come back inside the
             // probe interval (a hop lower than the arming height): then the touchdown is where it
             // came back through the floor, after the top of the hop.
-            double t_top = t0, z_top = height(y_, i);
+            double t_top = t0, z_top = height(y0, i);
             constexpr int kScan = 16;
             for (int m = 1; m <= kScan; ++m) {
               const double tm = t0 + (tb - t0) * m / kScan;
@@ -168,11 +182,11 @@ Rocking3DModel::Event Rocking3DModel::advance_vertex(const GroundInput3& in, dou
       }
     }
     {
-      const double c1 = vertex_rotation(vector_.y1())(2, 2) - cos_over;
+      const double c1 = vertex_rotation(y1)(2, 2) - cos_over;
       if (c1 <= 0.0) {
-        const double c0 = vertex_rotation(y_)(2, 2) - cos_over;
+        const double c0 = vertex_rotation(y0)(2, 2) - cos_over;
         const double te = c0 > 0.0 ? bracketed_root(
-                                         [&](double t) { return vertex_rotation(Vec7(vector_.eval(t)))(2, 2) - cos_over; },
+                                         [&](double t) { return vertex_rotation(rot(t))(2, 2) - cos_over; },
                                          t0, t1, c0, c1, t_tol)
                                    : t0;
         if (te < t_event) {
@@ -185,13 +199,13 @@ Rocking3DModel::Event Rocking3DModel::advance_vertex(const GroundInput3& in, dou
       // A turning point of the centre of mass inside the step (before any event): the peak of the
       // rotation ratio, located on the dense output as the planar model locates omega = 0.
       const double t_stop = event == Event::None ? t1 : t_event;
-      const double g0 = rise_rate(y_);
-      const Vec7 y_stop = event == Event::None ? Vec7(vector_.y1()) : Vec7(vector_.eval(t_stop));
+      const double g0 = rise_rate(y0);
+      const Vec7 y_stop = event == Event::None ? y1 : rot(t_stop);
       const double g1 = rise_rate(y_stop);
       if (g0 > 0.0 && g1 <= 0.0) {
-        const double tp = bracketed_root([&](double t) { return rise_rate(Vec7(vector_.eval(t))); }, t0, t_stop,
+        const double tp = bracketed_root([&](double t) { return rise_rate(rot(t)); }, t0, t_stop,
                                          g0, g1, t_tol);
-        Vec7 yp = vector_.eval(tp);
+        Vec7 yp = rot(tp);
         yp.head<4>().normalize();
         const double ratio = ratio_of(yp);
         report_.peak_ratio = std::max(report_.peak_ratio, ratio);
@@ -202,25 +216,81 @@ Rocking3DModel::Event Rocking3DModel::advance_vertex(const GroundInput3& in, dou
         outcome3_.max_tilt = std::max(outcome3_.max_tilt, std::acos(std::clamp(vertex_rotation(yp)(2, 2), -1.0, 1.0)));
       }
     }
+    {
+      // A slip beginning (sticking) or ending (slipping) before the step's end or event: from there on
+      // the other stepper.
+      const double t_stop = event == Event::None ? t1 : t_event;
+      bool lifts = false;
+      double t_switch;
+      if constexpr (N == 7) t_switch = watch_pivot(in, t0, t_stop, t_tol);
+      else t_switch = slip_end(in, t0, t_stop, t_tol, lifts);
+      // Bounded work: a slip that needs more than kMaxSlipSteps steps in one sample (the 2-D law near
+      // zero speed can be stiff) is held from the step's end, counted.
+      if constexpr (N == 11) {
+        if (!std::isfinite(t_switch) && ++slip_steps_ > kMaxSlipSteps) {
+          settle(stepper.y1());
+          stepper.invalidate();
+          tau = t1;
+          note_ratio();
+          hold_slip(in, tau);
+          switched = true;
+          return Event::None;
+        }
+      }
+      if (std::isfinite(t_switch)) {
+        settle(stepper.eval(t_switch));
+        stepper.invalidate();
+        tau = t_switch;
+        note_ratio();
+        if constexpr (N == 7) begin_slip(in, tau);
+        else end_slip(in, tau, lifts);
+        switched = true;
+        return Event::None;
+      }
+    }
     if (event == Event::None) {
-      watch_pivot(in, t0, t1, t_tol);
-      y_ = vector_.y1();
-      y_.head<4>().normalize();
+      settle(stepper.y1());
       tau = t1;
       for (int i : candidates)
         if (!armed_[i] && up[kProbes].dot(hv(i).position - pivot.position) > eps) armed_[i] = true;
       note_ratio();
       continue;
     }
-    watch_pivot(in, t0, t_event, t_tol);
-    y_ = vector_.eval(t_event);
-    y_.head<4>().normalize();
-    vector_.invalidate();
+    settle(stepper.eval(t_event));
+    stepper.invalidate();
     tau = t_event;
     note_ratio();
     return event;
   }
   return Event::None;
+}
+
+Rocking3DModel::Event Rocking3DModel::advance_vertex(const GroundInput3& in, double& tau, double tau_end,
+                                                     int& touching) {
+  const double alpha = body_.min_alpha(), p = body_.max_p();
+  // (the slipping pivot's place to the tolerance of the body's size, its speed to that per 1/p)
+  const double length = hv(contact_).radius;
+  for (;;) {
+    bool switched = false;
+    Event e;
+    if (!pivot_slipping_) {
+      Vec7 atol;
+      atol << Eigen::Vector4d::Constant(settings_.tol * alpha), Eigen::Vector3d::Constant(settings_.tol * p * alpha);
+      auto f = [&](double t, const Vec7& y, Vec7& dy) { vertex_rhs(in, t, y, dy); };
+      e = vertex_motion(vector_, y_, f, atol, in, tau, tau_end, touching, switched);
+    } else {
+      Vec11 atol;
+      atol << Eigen::Vector4d::Constant(settings_.tol * alpha), Eigen::Vector3d::Constant(settings_.tol * p * alpha),
+          Eigen::Vector2d::Constant(settings_.tol * length), Eigen::Vector2d::Constant(settings_.tol * p * length);
+      auto f = [&](double t, const Vec11& y, Vec11& dy) { slip_rhs(in, t, y, dy); };
+      const double t_start = tau;
+      const Eigen::Vector2d p_start = ys_.segment<2>(7);
+      e = vertex_motion(slip_stepper_, ys_, f, atol, in, tau, tau_end, touching, switched);
+      outcome3_.pivot_slip_time += tau - t_start;
+      outcome3_.pivot_slip_distance += (ys_.segment<2>(7) - p_start).norm();
+    }
+    if (!switched || mode_ != Mode3D::Vertex) return e;
+  }
 }
 
 }  // namespace rocking_monitor::core

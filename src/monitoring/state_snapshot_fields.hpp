@@ -418,9 +418,21 @@ void visit(V& v, Rocking3DModel::Saved& s) {
     v("pivot_slips", s.outcome_3d.pivot_slips);
     v("pivot_lifts", s.outcome_3d.pivot_lifts);
     v("first_pivot_slip_time", s.outcome_3d.first_pivot_slip_time);
+    v("pivot_sticks", s.outcome_3d.pivot_sticks);
+    v("pivot_slip_time", s.outcome_3d.pivot_slip_time);
+    v("pivot_slip_distance", s.outcome_3d.pivot_slip_distance);
+    v("pivot_slips_not_followed", s.outcome_3d.pivot_slips_not_followed);
     v("transitions", s.outcome_3d.transitions);
   });
   v("pivot_outside_cone", s.pivot_outside_cone);
+  v("pivot_slipping", s.pivot_slipping);
+  visit_matrix(v, "slip_state", s.slip_state);
+  visit_matrix(v, "slip_direction", s.slip_direction);
+  v.group("slip_stepper", [&] {
+    v("h", s.slip_stepper.h);
+    v("fsal_valid", s.slip_stepper.fsal_valid);
+    visit_matrix(v, "k1", s.slip_stepper.k1);
+  });
   v("last_probe_t", s.last_probe_t);
   v.group("dopri5", [&] { visit(v, s.dopri5); });
   v.group("dopri5_vector", [&] {

@@ -146,6 +146,10 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
              {"pivot_slips", r3.pivot_slips},
              {"pivot_lifts", r3.pivot_lifts},
              {"first_pivot_slip_time_s", nullable(r3.first_pivot_slip_time)},
+             {"pivot_sticks", r3.pivot_sticks},
+             {"pivot_slip_time_s", r3.pivot_slip_time},
+             {"pivot_slip_distance_m", r3.pivot_slip_distance},
+             {"pivot_slips_not_followed", r3.pivot_slips_not_followed},
              {"final_mode", rm::to_string(model.mode())},
              {"final_contact", model.contact()},
              {"final_face", model.face()},
@@ -188,9 +192,10 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
                      r3.max_landing_violation, r3.frictional_landings, r3.landing_slides, r3.pivot_slip_landings,
                      r3.unresolved_landings));
   L.push_back(format("pivot       friction demand while rocking up to %.3f; %ld slip onsets, %ld lift-offs (first at "
-                     "%s): slide-rock and flight are not modelled in 3-D, followed as rocking on a sticking pivot",
-                     r3.max_pivot_friction_demand, r3.pivot_slips, r3.pivot_lifts,
-                     std::isnan(r3.first_pivot_slip_time) ? "-" : format("%.4f s", r3.first_pivot_slip_time).c_str()));
+                     "%s); on a vertex slide-rock for %.3f s over %.4f m, %ld sticks (on an edge, and flight, followed as "
+                     "sticking)", r3.max_pivot_friction_demand, r3.pivot_slips, r3.pivot_lifts,
+                     std::isnan(r3.first_pivot_slip_time) ? "-" : format("%.4f s", r3.first_pivot_slip_time).c_str(),
+                     r3.pivot_slip_time, r3.pivot_slip_distance, r3.pivot_sticks));
   L.push_back(format("sliding     %ld slip onsets (first at %s), %ld sticks; max slip %.4f m, final %.4f m, "
                      "max slip speed %.3f m/s, max twist %.4f rad, %.3f s sliding; %ld slides ended by an edge lifting",
                      r3.slides, std::isnan(r3.first_slip_time) ? "-" : format("%.4f s", r3.first_slip_time).c_str(),

@@ -15,9 +15,11 @@
 // direction and turning about the vertical under one isotropic Coulomb law over the face's contact
 // polygon (physics/base_friction.hpp); slip onset and stick are located exactly in the sample.
 // Landings where the sticking impact needs more friction than mu_s are decided by the frictional
-// impact (physics/frictional_impact.hpp). Rocking on a slipping pivot is not modelled yet: where the
-// pivot's reaction leaves the friction cone (or pulls) the onset is located and named (PivotSlips,
-// PivotLifts) and counted with slide_to_rock and pivot_slip_landings.
+// impact (physics/frictional_impact.hpp). Slide-rock on a vertex (issue 51 part 2): where the sticking
+// pivot's reaction leaves the friction cone the vertex slips on the floor under kinetic friction
+// mu_k against its slip (rocking_3d_vertex_slip.cpp) until it sticks again under the static law, lands
+// or lifts. On an edge, slide-rock is not modelled yet: the onset is located and named (PivotSlips)
+// and the edge followed as sticking; flight likewise (PivotLifts).
 //
 // Frames: the item's floor frame at rest (x, y horizontal, z up); the body keeps a footprint
 // (yaw and shift on the floor) that changes only when it turns while pivoting on a vertex.
@@ -66,6 +68,7 @@ enum class Transition3D : std::uint8_t {
   // are not modelled in 3-D yet; the motion after is followed as rocking on a sticking pivot).
   PivotSlips,         ///< EDGE, VERTEX: the pivot's reaction left the friction cone (slide-rock)
   PivotLifts,         ///< EDGE, VERTEX: the pivot's normal reaction vanished (flight)
+  PivotSticks,        ///< VERTEX: the slipping pivot stopped and the static law holds
   Overturn,           ///< -> OVERTURNED: lying on its side, or over the tipping point
 };
 const char* to_string(Transition3D reason);
@@ -139,6 +142,12 @@ struct Rocking3DOutcome {
   long pivot_slips = 0;           ///< onsets of a slipping pivot (Transition3D::PivotSlips)
   long pivot_lifts = 0;           ///< onsets of a pivot pulled off the floor (Transition3D::PivotLifts)
   double first_pivot_slip_time = std::numeric_limits<double>::quiet_NaN();  ///< s (slip or lift)
+  // Slide-rock on a vertex: the pivot slipping (VERTEX).
+  long pivot_sticks = 0;          ///< slipping vertex pivots that stuck again (Transition3D::PivotSticks)
+  double pivot_slip_time = 0.0;   ///< time a vertex pivot spent slipping, s
+  double pivot_slip_distance = 0.0;  ///< path of slipping vertex pivots on the floor, m (at step ends)
+  /// Slips not started because the sample's bound on them was reached (followed as sticking).
+  long pivot_slips_not_followed = 0;
   long transitions = 0;           ///< mode transitions (the first kMaxTransitionRecords are kept: transitions())
 };
 
@@ -197,6 +206,10 @@ class Rocking3DModel {
     Eigen::Matrix<double, 6, 1> slide = Eigen::Matrix<double, 6, 1>::Zero();  ///< SLIDE: u (m/s), spin (rad/s), shift (m), yaw (rad)
     Dopri5Vector<6>::Saved slide_stepper;
     bool pivot_outside_cone = false;  ///< EDGE, VERTEX: the pivot's reaction is outside the cone (onset counted)
+    bool pivot_slipping = false;      ///< VERTEX: the pivot slips (slip_state holds the motion)
+    Eigen::Matrix<double, 11, 1> slip_state = Eigen::Matrix<double, 11, 1>::Zero();  ///< q, omega (rad/s), pivot (m), its velocity (m/s)
+    Eigen::Vector2d slip_direction = Eigen::Vector2d::UnitX();  ///< the slip's direction while its speed is 0
+    Dopri5Vector<11>::Saved slip_stepper;
   };
   void save(Saved& out) const;
   void restore(const Saved& in);
@@ -213,6 +226,10 @@ class Rocking3DModel {
   /// SLIDE: the centre of mass's horizontal velocity relative to the floor (world frame), m/s.
   Eigen::Vector2d slip_velocity() const {
     return mode_ == Mode3D::Slide ? Eigen::Vector2d(slide_.head<2>()) : Eigen::Vector2d::Zero();
+  }
+  /// VERTEX: the slipping pivot's velocity on the floor (world), m/s; zero when it sticks.
+  Eigen::Vector2d pivot_slip_velocity() const {
+    return mode_ == Mode3D::Vertex && pivot_slipping_ ? Eigen::Vector2d(ys_.segment<2>(9)) : Eigen::Vector2d::Zero();
   }
   /// SLIDE: the turning rate about the vertical, rad/s.
   double spin() const { return mode_ == Mode3D::Slide ? slide_(2) : 0.0; }
@@ -332,7 +349,25 @@ class Rocking3DModel {
   Eigen::Vector3d vertex_reaction(const GroundInput3& in, double t, const Vec7& y) const;
   Eigen::Vector3d pivot_reaction(const GroundInput3& in, double t) const;
   double cone_margin(const Eigen::Vector3d& f) const;
-  void watch_pivot(const GroundInput3& in, double t0, double t1, double t_tol);
+  double watch_pivot(const GroundInput3& in, double t0, double t1, double t_tol);
+  // Slide-rock on a vertex (rocking_3d_vertex_slip.cpp).
+  using Vec11 = Eigen::Matrix<double, 11, 1>;
+  double slip_dynamics(const GroundInput3& in, double t, const Vec11& y, Eigen::Vector3d& w_dot,
+                       Eigen::Vector2d& u_dot) const;
+  double slip_accelerations(const GroundInput3& in, double t, const Vec11& y, const Eigen::Vector2d& dir,
+                            Eigen::Vector3d& w_dot, Eigen::Vector2d& u_dot) const;
+  Eigen::Vector2d starting_slip_direction(const GroundInput3& in, double t, const Eigen::Vector2d& guess) const;
+  void slip_rhs(const GroundInput3& in, double t, const Vec11& y, Vec11& dy) const;
+  void begin_slip(const GroundInput3& in, double tau);
+  double slip_end(const GroundInput3& in, double t0, double t1, double t_tol, bool& lifts) const;
+  void end_slip(const GroundInput3& in, double tau, bool lifts);
+  void hold_slip(const GroundInput3& in, double tau);
+  void sync_slip();
+  void aim_slip_ref();
+  template <int N, class Rhs>
+  Event vertex_motion(Dopri5Vector<N>& stepper, Eigen::Matrix<double, N, 1>& state, const Rhs& f,
+                      const Eigen::Matrix<double, N, 1>& atol, const GroundInput3& in, double& tau,
+                      double tau_end, int& touching, bool& switched);
   void go_to_rest();
   void note_ratio();
   void vertex_rhs(const GroundInput3& in, double t, const Vec7& y, Vec7& dy) const;
@@ -390,6 +425,20 @@ class Rocking3DModel {
   std::array<Transition3DRecord, kMaxTransitionRecords> transitions_{};
   int transition_count_ = 0;
   bool pivot_outside_cone_ = false;  // EDGE, VERTEX: the onset is counted, not again until back inside
+  // VERTEX slide-rock: the slipping pivot's motion (q, omega, pivot x y, its velocity) on its own
+  // stepper; y_ and pivot_world_ follow it at every step's end, so that every measure reads them.
+  bool pivot_slipping_ = false;
+  Vec11 ys_ = Vec11::Zero();
+  Eigen::Vector2d slip_dir_ = Eigen::Vector2d::UnitX();  // the slip's direction while its speed is 0
+  Eigen::Vector2d slip_ref_ = Eigen::Vector2d::UnitX();  // the slip's velocity at the step's start (stop event)
+  Dopri5Vector<11> slip_stepper_;
+  Eigen::Matrix3d central_inverse_ = Eigen::Matrix3d::Identity();  // (J_c / m)^-1 in the item frame
+  double stop_speed_ = 0.0;  // m/s: a slipping pivot slower than this has stopped (1e-6 g / p)
+  // Bounded work: at most kMaxSlipSwitches slips begun or ended in one sample (then followed as sticking).
+  static constexpr int kMaxSlipSwitches = 16;
+  int slip_switches_ = 0;
+  static constexpr int kMaxSlipSteps = 2000;
+  int slip_steps_ = 0;  // the slipping pivot's steps in the current sample
   Transition3D landing_reason_ = Transition3D::Landing;  // set by land(): how the landing ended
   // VERTEX: COMMITTED (it would overturn if the shaking stopped now) has no closed form on a corner
   // as it has about an edge: once the energy could carry the centre of mass over the corner, the free
