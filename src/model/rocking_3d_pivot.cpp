@@ -32,6 +32,11 @@ Eigen::Vector3d Rocking3DModel::edge_reaction(const GroundInput3& in, double t, 
 Eigen::Vector3d Rocking3DModel::vertex_reaction(const GroundInput3& in, double t, const Vec7& y) const {
   Vec7 dy;
   vertex_rhs(in, t, y, dy);
+  return vertex_reaction(in, t, y, dy);
+}
+
+// The same with the state's derivative known (dy: at a step's end the stepper's last stage).
+Eigen::Vector3d Rocking3DModel::vertex_reaction(const GroundInput3& in, double t, const Vec7& y, const Vec7& dy) const {
   const Eigen::Vector3d c = vertex_rotation(y) * hv(contact_).to_centre;
   const Eigen::Vector3d w = y.tail<3>();
   return Eigen::Vector3d(dy.tail<3>().cross(c) + w.cross(w.cross(c)) - gravity_and_inertia(in.at(t)));
@@ -40,6 +45,7 @@ Eigen::Vector3d Rocking3DModel::vertex_reaction(const GroundInput3& in, double t
 // At local time t inside the current step, on the stepper's dense output.
 Eigen::Vector3d Rocking3DModel::pivot_reaction(const GroundInput3& in, double t) const {
   if (mode_ == Mode3D::Vertex) {
+    if (t == vector_.t1()) return vertex_reaction(in, t, vector_.y1(), vector_.derivative1());
     Vec7 y = vector_.eval(t);
     y.head<4>().normalize();
     return vertex_reaction(in, t, y);

@@ -62,24 +62,28 @@ double Rocking3DModel::slip_dynamics(const GroundInput3& in, double t, const Vec
 // in the direction's angle of dir x u'(dir), scanned and bisected; of several, the one nearest `guess`
 // (against the friction the held pivot needed). None found: the guess.
 Eigen::Vector2d Rocking3DModel::starting_slip_direction(const GroundInput3& in, double t, const Eigen::Vector2d& guess) const {
+  constexpr int kScan = 24;
   Vec11 y;
   y << y_, pivot_world_.x(), pivot_world_.y(), 0.0, 0.0;
-  auto at = [&](double phi, double& along) {
-    const Eigen::Vector2d dir(std::cos(phi), std::sin(phi));
+  auto at_dir = [&](const Eigen::Vector2d& dir, double& along) {
     Eigen::Vector3d w_dot;
     Eigen::Vector2d u_dot;
     slip_accelerations(in, t, y, dir, w_dot, u_dot);
     along = dir.dot(u_dot);
     return dir.x() * u_dot.y() - dir.y() * u_dot.x();
   };
-  constexpr int kScan = 72;
+  auto at = [&](double phi, double& along) { return at_dir(Eigen::Vector2d(std::cos(phi), std::sin(phi)), along); };
+  // (the scan turns its direction by a fixed rotation: no sine or cosine per probe)
+  const Eigen::Rotation2Dd turn(2 * kPi / kScan);
   const double phi0 = std::atan2(guess.y(), guess.x());
   double along = 0.0, best_gap = std::numeric_limits<double>::infinity();
   Eigen::Vector2d best = guess;
-  double fa = at(phi0, along);
+  Eigen::Vector2d probe = guess.normalized();
+  double fa = at_dir(probe, along);
   for (int k = 1; k <= kScan; ++k) {
     const double pa = phi0 + 2 * kPi * (k - 1) / kScan, pb = phi0 + 2 * kPi * k / kScan;
-    const double fb = at(pb, along);
+    probe = turn * probe;
+    const double fb = at_dir(probe, along);
     if ((fa <= 0.0) != (fb <= 0.0)) {
       const double phi = bracketed_root([&](double q) { double s; return at(q, s); }, pa, pb, fa, fb, 1e-12);
       const double gap = std::min(phi - phi0, 2 * kPi - (phi - phi0));

@@ -110,6 +110,8 @@ class Dopri5Vector {
   double t0() const { return t0_; }
   double t1() const { return t1_; }
   const State& y1() const { return y1_; }
+  /// f(t1, y1), computed by the last step (first same as last): valid until the next step or invalidate().
+  const State& derivative1() const { return k_[0]; }
 
  private:
   double h_ = 1e-3;

@@ -347,6 +347,7 @@ class Rocking3DModel {
   // The pivot's reaction while rocking (rocking_3d_pivot.cpp).
   Eigen::Vector3d edge_reaction(const GroundInput3& in, double t, double theta, double omega) const;
   Eigen::Vector3d vertex_reaction(const GroundInput3& in, double t, const Vec7& y) const;
+  Eigen::Vector3d vertex_reaction(const GroundInput3& in, double t, const Vec7& y, const Vec7& dy) const;
   Eigen::Vector3d pivot_reaction(const GroundInput3& in, double t) const;
   double cone_margin(const Eigen::Vector3d& f) const;
   double watch_pivot(const GroundInput3& in, double t0, double t1, double t_tol);
@@ -435,9 +436,9 @@ class Rocking3DModel {
   Eigen::Matrix3d central_inverse_ = Eigen::Matrix3d::Identity();  // (J_c / m)^-1 in the item frame
   double stop_speed_ = 0.0;  // m/s: a slipping pivot slower than this has stopped (1e-6 g / p)
   // Bounded work: at most kMaxSlipSwitches slips begun or ended in one sample (then followed as sticking).
-  static constexpr int kMaxSlipSwitches = 16;
+  static constexpr int kMaxSlipSwitches = 4;
   int slip_switches_ = 0;
-  static constexpr int kMaxSlipSteps = 2000;
+  static constexpr int kMaxSlipSteps = 500;
   int slip_steps_ = 0;  // the slipping pivot's steps in the current sample
   Transition3D landing_reason_ = Transition3D::Landing;  // set by land(): how the landing ended
   // VERTEX: COMMITTED (it would overturn if the shaking stopped now) has no closed form on a corner
