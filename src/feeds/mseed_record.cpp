@@ -26,6 +26,31 @@ std::string trimmed(const char* s) {
   return t;
 }
 
+// The record's samples as doubles; false for a sample type that is not numeric.
+bool copy_samples(const MSRecord* m, std::vector<double>& samples) {
+  const auto n = static_cast<std::size_t>(m->numsamples);
+  samples.resize(n);
+  switch (m->sampletype) {
+    case 'i': {
+      const auto* s = static_cast<const std::int32_t*>(m->datasamples);
+      for (std::size_t i = 0; i < n; ++i) samples[i] = s[i];
+      return true;
+    }
+    case 'f': {
+      const auto* s = static_cast<const float*>(m->datasamples);
+      for (std::size_t i = 0; i < n; ++i) samples[i] = s[i];
+      return true;
+    }
+    case 'd': {
+      const auto* s = static_cast<const double*>(m->datasamples);
+      for (std::size_t i = 0; i < n; ++i) samples[i] = s[i];
+      return true;
+    }
+    default:
+      return false;
+  }
+}
+
 }  // namespace
 
 MseedDecoder::MseedDecoder() {
@@ -42,8 +67,7 @@ bool MseedDecoder::supported_encoding(int e) {
   return e == DE_INT16 || e == DE_INT32 || e == DE_FLOAT32 || e == DE_FLOAT64 || e == DE_STEIM1 || e == DE_STEIM2;
 }
 
-MseedDecoder::Result MseedDecoder::decode(const char* record, std::size_t length, DecodedRecord& out) {
-  error_.clear();
+MseedDecoder::Result MseedDecoder::unpack_header(const char* record, std::size_t length, DecodedRecord& out) {
   if (length < 128 || length > (1u << 20)) {
     error_ = "record of " + std::to_string(length) + " bytes (miniSEED records are 128 bytes to 1 MiB)";
     return Result::Malformed;
@@ -51,13 +75,12 @@ MseedDecoder::Result MseedDecoder::decode(const char* record, std::size_t length
   if (buffer_.size() < length) buffer_.resize(length);
   std::memcpy(buffer_.data(), record, length);
   auto* m = static_cast<MSRecord*>(msr_);
-  // The header first: an unknown encoding is its own finding, not a decoding failure.
   last_libmseed_message.clear();
   if (MS_ISVALIDHEADER(buffer_.data()) == 0) {
     error_ = "not a miniSEED data record header";
     return Result::Malformed;
   }
-  int r = msr_unpack(buffer_.data(), static_cast<int>(length), &m, 0, 0);
+  const int r = msr_unpack(buffer_.data(), static_cast<int>(length), &m, 0, 0);
   msr_ = m;
   if (r != MS_NOERROR) {
     error_ = std::string("miniSEED header: ") + ms_errorstr(r) + (last_libmseed_message.empty() ? "" : ": " + last_libmseed_message);
@@ -78,15 +101,29 @@ MseedDecoder::Result MseedDecoder::decode(const char* record, std::size_t length
              std::to_string(length);
     return Result::Malformed;
   }
+  return Result::Ok;
+}
+
+MseedDecoder::Result MseedDecoder::unpack_data(const char* record, std::size_t length) {
+  auto* m = static_cast<MSRecord*>(msr_);
   std::memcpy(buffer_.data(), record, length);  // the header pass may have swapped bytes in place
   last_libmseed_message.clear();
-  r = msr_unpack(buffer_.data(), static_cast<int>(length), &m, 1, 0);
+  const int r = msr_unpack(buffer_.data(), static_cast<int>(length), &m, 1, 0);
   msr_ = m;
   if (r != MS_NOERROR || m->numsamples != m->samplecnt) {
     error_ = std::string("miniSEED data: ") + (r != MS_NOERROR ? ms_errorstr(r) : "sample count mismatch") +
              (last_libmseed_message.empty() ? "" : ": " + last_libmseed_message);
     return Result::Malformed;
   }
+  return Result::Ok;
+}
+
+MseedDecoder::Result MseedDecoder::decode(const char* record, std::size_t length, DecodedRecord& out) {
+  error_.clear();
+  // The header first: an unknown encoding is its own finding, not a decoding failure.
+  if (const Result r = unpack_header(record, length, out); r != Result::Ok) return r;
+  if (const Result r = unpack_data(record, length); r != Result::Ok) return r;
+  auto* m = static_cast<MSRecord*>(msr_);
   const double rate = msr_samprate(m);
   if (!(rate > 0.0)) {
     error_ = "sample rate " + std::to_string(rate) + " Hz (a data record needs a positive rate)";
@@ -99,27 +136,9 @@ MseedDecoder::Result MseedDecoder::decode(const char* record, std::size_t length
   out.start_us = msr_starttime(m);  // hptime_t: microseconds (HPTMODULUS 1000000)
   out.sample_rate = rate;
   out.record_length = static_cast<std::uint32_t>(m->reclen);
-  const auto n = static_cast<std::size_t>(m->numsamples);
-  out.samples.resize(n);
-  switch (m->sampletype) {
-    case 'i': {
-      const auto* s = static_cast<const std::int32_t*>(m->datasamples);
-      for (std::size_t i = 0; i < n; ++i) out.samples[i] = s[i];
-      break;
-    }
-    case 'f': {
-      const auto* s = static_cast<const float*>(m->datasamples);
-      for (std::size_t i = 0; i < n; ++i) out.samples[i] = s[i];
-      break;
-    }
-    case 'd': {
-      const auto* s = static_cast<const double*>(m->datasamples);
-      for (std::size_t i = 0; i < n; ++i) out.samples[i] = s[i];
-      break;
-    }
-    default:
-      error_ = std::string("sample type '") + m->sampletype + "' is not numeric";
-      return Result::Malformed;
+  if (!copy_samples(m, out.samples)) {
+    error_ = std::string("sample type '") + m->sampletype + "' is not numeric";
+    return Result::Malformed;
   }
   return Result::Ok;
 }

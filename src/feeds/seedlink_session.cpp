@@ -109,89 +109,105 @@ void SeedLinkSession::run(const std::atomic<bool>& stop) {
   connected_ = false;
 }
 
-bool SeedLinkSession::session_once(const std::atomic<bool>& stop, bool& got_data) {
-  TcpConnection tcp;
-  tcp.set_stop_flag(&stop);
-  const std::string where = config_.host + ":" + std::to_string(config_.port);
-  auto failed = [&](TcpConnection::Status s, const std::string& during) {
-    if (s == TcpConnection::Status::Stopped) return false;
-    note_error("seedlink " + where + ": " + during + ": " + tcp.error());
-    return true;
-  };
-  TcpConnection::Status s = tcp.open(config_.host, config_.port, config_.connect_timeout_s);
-  if (s != TcpConnection::Status::Ok) {
-    ++counters_.connect_failures;
-    return failed(s, "connect");
-  }
-  auto command = [&](const std::string& cmd, bool reply, std::string& line) {
-    TcpConnection::Status st = tcp.send_all(cmd, config_.connect_timeout_s);
-    if (st == TcpConnection::Status::Ok && reply) st = tcp.read_line(line, config_.connect_timeout_s);
-    return st;
-  };
-  std::string line, org;
-  s = command(hello_command(), true, line);
+bool SeedLinkSession::failed(const TcpConnection& tcp, TcpConnection::Status s, const std::string& where,
+                             const std::string& during) {
+  if (s == TcpConnection::Status::Stopped) return false;
+  note_error("seedlink " + where + ": " + during + ": " + tcp.error());
+  return true;
+}
+
+TcpConnection::Status SeedLinkSession::command(TcpConnection& tcp, const std::string& cmd, bool reply,
+                                               std::string& line) const {
+  TcpConnection::Status st = tcp.send_all(cmd, config_.connect_timeout_s);
+  if (st == TcpConnection::Status::Ok && reply) st = tcp.read_line(line, config_.connect_timeout_s);
+  return st;
+}
+
+std::optional<bool> SeedLinkSession::greet(TcpConnection& tcp, const std::string& where, std::string& org) {
+  std::string line;
+  TcpConnection::Status s = command(tcp, hello_command(), true, line);
   if (s == TcpConnection::Status::Ok) s = tcp.read_line(org, config_.connect_timeout_s);
   if (s != TcpConnection::Status::Ok) {
     ++counters_.connect_failures;
-    return failed(s, "HELLO");
+    return failed(tcp, s, where, "HELLO");
   }
   if (!hello_version(line)) {
     ++counters_.connect_failures;
     note_error("seedlink " + where + ": the answer to HELLO ('" + line + "') is not a SeedLink server's");
     return true;
   }
-  std::size_t accepted = 0;
+  return std::nullopt;
+}
+
+std::optional<bool> SeedLinkSession::request_stream(TcpConnection& tcp, const std::string& where, std::size_t i,
+                                                    bool& accepted) {
+  accepted = false;
+  std::string line;
+  const StreamSpec& st = config_.streams[i];
+  TcpConnection::Status s = command(tcp, station_command(st.network, st.station), true, line);
+  if (s != TcpConnection::Status::Ok) {
+    ++counters_.connect_failures;
+    return failed(tcp, s, where, "STATION " + st.name());
+  }
+  if (classify_reply(line) != Reply::Ok) {
+    ++counters_.error_replies;
+    note_error("seedlink " + where + ": STATION " + st.station + " " + st.network + " refused: '" + line + "'");
+    return std::nullopt;
+  }
+  bool selected = false;
+  for (const std::string& sel : st.selectors) {
+    s = command(tcp, select_command(sel), true, line);
+    if (s != TcpConnection::Status::Ok) {
+      ++counters_.connect_failures;
+      return failed(tcp, s, where, "SELECT " + sel);
+    }
+    if (classify_reply(line) == Reply::Ok) {
+      selected = true;
+    } else {
+      ++counters_.error_replies;
+      note_error("seedlink " + where + ": " + st.name() + ": SELECT " + sel + " refused: '" + line + "'");
+    }
+  }
+  if (!selected) return std::nullopt;
+  std::optional<std::uint32_t> from;
+  if (const auto last = last_sequence(i)) from = next_sequence(*last);
+  s = command(tcp, data_command(from), true, line);
+  if (s != TcpConnection::Status::Ok) {
+    ++counters_.connect_failures;
+    return failed(tcp, s, where, "DATA");
+  }
+  if (classify_reply(line) != Reply::Ok) {
+    ++counters_.error_replies;
+    note_error("seedlink " + where + ": " + st.name() + ": DATA refused: '" + line + "'");
+    return std::nullopt;
+  }
+  accepted = true;
+  return std::nullopt;
+}
+
+std::optional<bool> SeedLinkSession::request_streams(TcpConnection& tcp, const std::string& where,
+                                                     std::size_t& accepted) {
+  accepted = 0;
   for (std::size_t i = 0; i < config_.streams.size(); ++i) {
-    const StreamSpec& st = config_.streams[i];
-    s = command(station_command(st.network, st.station), true, line);
-    if (s != TcpConnection::Status::Ok) {
-      ++counters_.connect_failures;
-      return failed(s, "STATION " + st.name());
-    }
-    if (classify_reply(line) != Reply::Ok) {
-      ++counters_.error_replies;
-      note_error("seedlink " + where + ": STATION " + st.station + " " + st.network + " refused: '" + line + "'");
-      continue;
-    }
-    bool selected = false;
-    for (const std::string& sel : st.selectors) {
-      s = command(select_command(sel), true, line);
-      if (s != TcpConnection::Status::Ok) {
-        ++counters_.connect_failures;
-        return failed(s, "SELECT " + sel);
-      }
-      if (classify_reply(line) == Reply::Ok) {
-        selected = true;
-      } else {
-        ++counters_.error_replies;
-        note_error("seedlink " + where + ": " + st.name() + ": SELECT " + sel + " refused: '" + line + "'");
-      }
-    }
-    if (!selected) continue;
-    std::optional<std::uint32_t> from;
-    if (const auto last = last_sequence(i)) from = next_sequence(*last);
-    s = command(data_command(from), true, line);
-    if (s != TcpConnection::Status::Ok) {
-      ++counters_.connect_failures;
-      return failed(s, "DATA");
-    }
-    if (classify_reply(line) != Reply::Ok) {
-      ++counters_.error_replies;
-      note_error("seedlink " + where + ": " + st.name() + ": DATA refused: '" + line + "'");
-      continue;
-    }
-    ++accepted;
+    bool ok = false;
+    if (const std::optional<bool> end = request_stream(tcp, where, i, ok)) return end;
+    if (ok) ++accepted;
   }
   if (accepted == 0) {
     ++counters_.connect_failures;
     note_error("seedlink " + where + ": the server accepted none of the requested stations");
     return true;
   }
-  s = command(end_command(), false, line);
+  std::string line;
+  const TcpConnection::Status s = command(tcp, end_command(), false, line);
   if (s != TcpConnection::Status::Ok) {
     ++counters_.connect_failures;
-    return failed(s, "END");
+    return failed(tcp, s, where, "END");
   }
+  return std::nullopt;
+}
+
+void SeedLinkSession::note_connected(const std::string& where, std::size_t accepted, const std::string& org) {
   if (lost_) {  // this handshake ends the outage since the last connection was lost
     std::lock_guard<std::mutex> lock(mutex_);
     last_outage_s_ = seconds_since(down_since_);
@@ -200,11 +216,37 @@ bool SeedLinkSession::session_once(const std::atomic<bool>& stop, bool& got_data
   ++counters_.connects;
   connected_ = true;
   log_(Level::Info, "seedlink " + where + ": streaming " + std::to_string(accepted) + " station(s) (server: " + printable_text(org, 200) + ")");
+}
 
+void SeedLinkSession::hand_on(const char* record, std::uint32_t sequence, std::vector<bool>& seen_this_connection,
+                              const std::string& where, bool& got_data) {
+  std::string net, sta;
+  std::size_t stream = config_.streams.size();
+  if (record_station(record, kSeedLinkRecordBytes, net, sta)) {
+    for (std::size_t i = 0; i < config_.streams.size(); ++i)
+      if (config_.streams[i].network == net && config_.streams[i].station == sta) stream = i;
+  }
+  if (stream == config_.streams.size()) {
+    ++counters_.unrequested;
+    return;
+  }
+  const std::optional<std::int64_t> time_us = record_start_us(record, kSeedLinkRecordBytes);
+  const bool first = !seen_this_connection[stream];
+  seen_this_connection[stream] = true;
+  if (!accept_sequence(stream, sequence, time_us, first, where)) return;
+  if (time_us && (!latest_time_us_[stream] || *time_us > *latest_time_us_[stream])) latest_time_us_[stream] = time_us;
+  got_data = true;
+  ++counters_.packets;
+  on_record_(stream, sequence, record, kSeedLinkRecordBytes);
+  std::lock_guard<std::mutex> lock(mutex_);
+  last_sequence_[stream] = sequence;
+}
+
+bool SeedLinkSession::stream_packets(TcpConnection& tcp, const std::string& where, bool& got_data) {
   std::array<char, kSeedLinkPacketBytes> packet{};
   std::vector<bool> seen_this_connection(config_.streams.size(), false);
-  std::string net, sta;
   auto last_byte = Clock::now();
+  TcpConnection::Status s;
   for (;;) {
     s = tcp.wait_readable(config_.keepalive_s);
     if (s == TcpConnection::Status::Timeout) {
@@ -217,7 +259,7 @@ bool SeedLinkSession::session_once(const std::atomic<bool>& stop, bool& got_data
       s = tcp.send_all(keepalive_command(), config_.connect_timeout_s);
       if (s != TcpConnection::Status::Ok) {
         connected_ = false;
-        return failed(s, "keep-alive");
+        return failed(tcp, s, where, "keep-alive");
       }
       continue;
     }
@@ -247,26 +289,7 @@ bool SeedLinkSession::session_once(const std::atomic<bool>& stop, bool& got_data
       note_error("seedlink " + where + ": malformed packet header '" + std::string(packet.data(), 8) + "' dropped");
       continue;
     }
-    const char* record = packet.data() + kSeedLinkHeaderBytes;
-    std::size_t stream = config_.streams.size();
-    if (record_station(record, kSeedLinkRecordBytes, net, sta)) {
-      for (std::size_t i = 0; i < config_.streams.size(); ++i)
-        if (config_.streams[i].network == net && config_.streams[i].station == sta) stream = i;
-    }
-    if (stream == config_.streams.size()) {
-      ++counters_.unrequested;
-      continue;
-    }
-    const std::optional<std::int64_t> time_us = record_start_us(record, kSeedLinkRecordBytes);
-    const bool first = !seen_this_connection[stream];
-    seen_this_connection[stream] = true;
-    if (!accept_sequence(stream, h.sequence, time_us, first, where)) continue;
-    if (time_us && (!latest_time_us_[stream] || *time_us > *latest_time_us_[stream])) latest_time_us_[stream] = time_us;
-    got_data = true;
-    ++counters_.packets;
-    on_record_(stream, h.sequence, record, kSeedLinkRecordBytes);
-    std::lock_guard<std::mutex> lock(mutex_);
-    last_sequence_[stream] = h.sequence;
+    hand_on(packet.data() + kSeedLinkHeaderBytes, h.sequence, seen_this_connection, where, got_data);
   }
   connected_ = false;
   if (s == TcpConnection::Status::Timeout) {
@@ -275,7 +298,24 @@ bool SeedLinkSession::session_once(const std::atomic<bool>& stop, bool& got_data
                " s (~record_timeout): the link drips; reconnecting");
     return true;
   }
-  return failed(s, "streaming");
+  return failed(tcp, s, where, "streaming");
+}
+
+bool SeedLinkSession::session_once(const std::atomic<bool>& stop, bool& got_data) {
+  TcpConnection tcp;
+  tcp.set_stop_flag(&stop);
+  const std::string where = config_.host + ":" + std::to_string(config_.port);
+  const TcpConnection::Status s = tcp.open(config_.host, config_.port, config_.connect_timeout_s);
+  if (s != TcpConnection::Status::Ok) {
+    ++counters_.connect_failures;
+    return failed(tcp, s, where, "connect");
+  }
+  std::string org;
+  if (const std::optional<bool> end = greet(tcp, where, org)) return *end;
+  std::size_t accepted = 0;
+  if (const std::optional<bool> end = request_streams(tcp, where, accepted)) return *end;
+  note_connected(where, accepted, org);
+  return stream_packets(tcp, where, got_data);
 }
 
 }  // namespace rocking_monitor::feeds

@@ -242,15 +242,8 @@ Catalogue select_shard(const Catalogue& catalogue, int k, int n) {
 
 namespace {
 
-// One `items:` entry; `sensor_names` null: the sensor is not checked (offline use).
-CatalogueItem parse_item(const json& v, int i, const std::set<std::string>* sensor_names, std::set<std::string>& ids) {
-  const Entry e(v, label("items", i, name_of(v, "id")));
-  e.only({"id", "description", "sensor", "frame", "shape", "width", "depth", "cg_height", "eccentricity",
-          "eccentricity_y", "radius_of_gyration", "radius_of_gyration_y", "mu_s", "mu_k", "restitution",
-          "restitution_shift", "overturn_angle", "pose", "ensemble_size", "mass", "centre_of_mass",
-          "central_inertia", "base_polygon", "restitution_factor", "hull", "support", "input_gain"});
-  CatalogueItem item;
-  ItemSpec& s = item.spec;
+// id, description, sensor and frame; `sensor_names` null: the sensor is not checked (offline use).
+void parse_names(const Entry& e, ItemSpec& s, const std::set<std::string>* sensor_names, std::set<std::string>& ids) {
   s.id = e.text("id", true);
   // Live ids reach MQTT topics, mail and file names; offline catalogues may name ensemble members.
   const NameRule rule = sensor_names != nullptr ? NameRule::Strict : NameRule::MemberSuffix;
@@ -262,14 +255,11 @@ CatalogueItem parse_item(const json& v, int i, const std::set<std::string>* sens
   if (sensor_names != nullptr && !sensor_names->count(s.sensor))
     e.fail("sensor", "'" + s.sensor + "' is not a sensor of this catalogue");
   s.frame = e.text("frame", false, s.id);
-  UncertainItemSpec& u = item.uncertain;
+}
+
+// depth and the y-z plane's eccentricity and radius of gyration, which mean nothing without it.
+void parse_depth(const Entry& e, DepthParameters& d, UncertainItemSpec& u) {
   using F = UncertainField;
-  BodyParameters& b = s.body;
-  b.width = e.quantity("width", F::Width, true, 0.0, "base width B, m", u);
-  b.cg_height = e.quantity("cg_height", F::CgHeight, true, 0.0, "height h of the centre of mass, m", u);
-  b.nu1 = e.quantity("eccentricity", F::Eccentricity, false, 0.5, "nu1, dimensionless", u);
-  const std::string shape = e.text("shape", false, "box");
-  DepthParameters& d = s.depth;
   if (e.has("depth")) {
     d.depth = e.quantity("depth", F::Depth, true, 0.0, "base depth D along the item's y, m", u);
     d.eccentricity_y = e.quantity("eccentricity_y", F::EccentricityY, false, 0.5, "nu1 of the y-z plane, dimensionless", u);
@@ -279,6 +269,19 @@ CatalogueItem parse_item(const json& v, int i, const std::set<std::string>* sens
     for (const char* key : {"eccentricity_y", "radius_of_gyration_y"})
       if (e.has(key)) e.fail(key, "needs depth (the base along the item's y): without it the item rocks in x only");
   }
+}
+
+// The rocking planes' geometry: width, cg_height, eccentricity, depth and the radii of gyration
+// (given, or from shape).
+void parse_plane_geometry(const Entry& e, ItemSpec& s, UncertainItemSpec& u) {
+  using F = UncertainField;
+  BodyParameters& b = s.body;
+  b.width = e.quantity("width", F::Width, true, 0.0, "base width B, m", u);
+  b.cg_height = e.quantity("cg_height", F::CgHeight, true, 0.0, "height h of the centre of mass, m", u);
+  b.nu1 = e.quantity("eccentricity", F::Eccentricity, false, 0.5, "nu1, dimensionless", u);
+  const std::string shape = e.text("shape", false, "box");
+  DepthParameters& d = s.depth;
+  parse_depth(e, d, u);
   // Solid cylinder of diameter B and height 2h rocking about a horizontal diameter; an ensemble member
   // re-derives it from its own B (D) and h.
   if (e.has("radius_of_gyration")) {
@@ -295,40 +298,69 @@ CatalogueItem parse_item(const json& v, int i, const std::set<std::string>* sens
   } else {
     e.fail("shape", "'" + shape + "' is not one of: box, cylinder (or give radius_of_gyration)");
   }
+}
+
+// Friction, restitution and the overturn angle: what happens at the contact.
+void parse_contact(const Entry& e, BodyParameters& b, UncertainItemSpec& u) {
+  using F = UncertainField;
   b.mu_s = e.quantity("mu_s", F::MuS, false, b.mu_s, "static friction coefficient", u);
   if (e.has("mu_k")) b.mu_k = e.number("mu_k", false, 0.0, "kinetic friction coefficient");
   if (e.has("restitution")) b.restitution = e.quantity("restitution", F::Restitution, false, 0.0, "angular-velocity ratio", u);
   if (e.has("restitution_shift"))
     b.restitution_shift = e.number("restitution_shift", false, 0.0, "added to each pivot's angular-velocity ratio");
   if (e.has("overturn_angle")) b.overturn_angle = e.number("overturn_angle", false, 0.0, "rad");
+}
+
+// ensemble_size, only for an item with a distribution.
+void parse_ensemble_size(const Entry& e, const UncertainItemSpec& u, CatalogueItem& item) {
+  if (!e.has("ensemble_size")) return;
+  const double n = e.number("ensemble_size", false, 0.0, "members");
+  if (!u.uncertain())
+    e.fail("ensemble_size", "only for an item with a distribution (this item is deterministic: one run)");
+  if (n != std::floor(n) || n < 1 || n > 100000) e.fail("ensemble_size", "must be an integer in [1, 100000]");
+  item.ensemble_size = static_cast<int>(n);
+}
+
+// The optional static pose the monitor publishes as a transform.
+void parse_pose(const Entry& e, ItemPose& pose) {
+  if (!e.has("pose")) return;
+  const Entry p(e.member("pose"), e.where() + ": pose");
+  p.only({"parent_frame", "x", "y", "z", "roll", "pitch", "yaw"});
+  pose.given = true;
+  pose.parent_frame = p.text("parent_frame", true);
+  pose.x = p.number("x", false, 0.0, "m");
+  pose.y = p.number("y", false, 0.0, "m");
+  pose.z = p.number("z", false, 0.0, "m");
+  pose.roll = p.number("roll", false, 0.0, "rad");
+  pose.pitch = p.number("pitch", false, 0.0, "rad");
+  pose.yaw = p.number("yaw", false, 0.0, "rad");
+}
+
+// One `items:` entry; `sensor_names` null: the sensor is not checked (offline use).
+CatalogueItem parse_item(const json& v, int i, const std::set<std::string>* sensor_names, std::set<std::string>& ids) {
+  const Entry e(v, label("items", i, name_of(v, "id")));
+  e.only({"id", "description", "sensor", "frame", "shape", "width", "depth", "cg_height", "eccentricity",
+          "eccentricity_y", "radius_of_gyration", "radius_of_gyration_y", "mu_s", "mu_k", "restitution",
+          "restitution_shift", "overturn_angle", "pose", "ensemble_size", "mass", "centre_of_mass",
+          "central_inertia", "base_polygon", "restitution_factor", "hull", "support", "input_gain"});
+  CatalogueItem item;
+  ItemSpec& s = item.spec;
+  UncertainItemSpec& u = item.uncertain;
+  parse_names(e, s, sensor_names, ids);
+  parse_plane_geometry(e, s, u);
+  parse_contact(e, s.body, u);
   parse_solid(e, s);
   // A scale of the input (issue 41: the calibrated fragility of a shaking-table rock is a lognormal
   // input_gain): a number or a distribution, dimensionless, > 0 (validate(ItemSpec) says so).
-  s.input_gain = e.quantity("input_gain", F::InputGain, false, 1.0, "dimensionless scale of the ground acceleration", u);
+  s.input_gain = e.quantity("input_gain", UncertainField::InputGain, false, 1.0,
+                            "dimensionless scale of the ground acceleration", u);
   u.nominal = s;
   for (const std::string& err : {validate(s), validate(u)}) {
     // core messages read "item '<id>': <field> ..."; keep the list position too.
     if (!err.empty()) throw CatalogueError(e.where() + ": " + err.substr(err.find(": ") + 2));
   }
-  if (e.has("ensemble_size")) {
-    const double n = e.number("ensemble_size", false, 0.0, "members");
-    if (!u.uncertain())
-      e.fail("ensemble_size", "only for an item with a distribution (this item is deterministic: one run)");
-    if (n != std::floor(n) || n < 1 || n > 100000) e.fail("ensemble_size", "must be an integer in [1, 100000]");
-    item.ensemble_size = static_cast<int>(n);
-  }
-  if (e.has("pose")) {
-    const Entry p(e.member("pose"), e.where() + ": pose");
-    p.only({"parent_frame", "x", "y", "z", "roll", "pitch", "yaw"});
-    item.pose.given = true;
-    item.pose.parent_frame = p.text("parent_frame", true);
-    item.pose.x = p.number("x", false, 0.0, "m");
-    item.pose.y = p.number("y", false, 0.0, "m");
-    item.pose.z = p.number("z", false, 0.0, "m");
-    item.pose.roll = p.number("roll", false, 0.0, "rad");
-    item.pose.pitch = p.number("pitch", false, 0.0, "rad");
-    item.pose.yaw = p.number("yaw", false, 0.0, "rad");
-  }
+  parse_ensemble_size(e, u, item);
+  parse_pose(e, item.pose);
   return item;
 }
 

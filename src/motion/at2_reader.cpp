@@ -116,30 +116,24 @@ bool find_key_value(const std::string& up, const std::string& key, std::string_v
   }
 }
 
-}  // namespace
-
-std::vector<Component> read_at2(const std::string& path, std::string_view data) {
-  const std::vector<Line> lines = split_lines(data);
+// Four header lines, line 3 saying the values are accelerations in g.
+void check_at2_header(const std::string& path, const std::vector<Line>& lines) {
   if (lines.empty()) fail(path, 0, "empty file");
   if (lines.size() < 4) {
     fail(path, lines.size(), "bad header: a PEER AT2 file needs 4 header lines, found " + std::to_string(lines.size()));
   }
-
-  // line 3: acceleration in g
   const std::string l3 = upper(lines[2].text);
   if (l3.find("UNITS OF G") == std::string::npos || l3.find("ACCEL") == std::string::npos ||
       l3.find("VELOCITY") != std::string::npos || l3.find("DISPLACEMENT") != std::string::npos) {
     fail(path, 3,
          "bad header: expected 'ACCELERATION ... IN UNITS OF G', found " + in_quotes(trim(lines[2].text)));
   }
+}
 
-  // line 4: NPTS and DT (three "KEY=" variants or "<npts> <dt> NPTS, DT")
-  const std::string_view raw4 = lines[3].text;
+// line 4's NPTS and DT texts: three "KEY=" variants or "<npts> <dt> NPTS, DT".
+void at2_npts_dt_tokens(const std::string& path, std::string_view raw4, std::string_view& npts_tok,
+                        std::string_view& dt_tok) {
   const std::string up4 = upper(raw4);
-  long long npts = -1;
-  double dt = 0.0;
-  std::string_view npts_tok;
-  std::string_view dt_tok;
   bool npts_key = false;
   bool dt_key = false;
   const bool has_npts = find_key_value(up4, "NPTS", raw4, npts_tok, npts_key);
@@ -147,22 +141,29 @@ std::vector<Component> read_at2(const std::string& path, std::string_view data) 
   if (has_npts || has_dt) {
     if (!has_npts) fail(path, 4, "bad header: missing NPTS in " + in_quotes(trim(raw4)));
     if (!has_dt) fail(path, 4, "bad header: missing DT in " + in_quotes(trim(raw4)));
-  } else {
-    // old NGA header: "5996    0.0050    NPTS, DT"
-    std::string compact;
-    for (char ch : up4) {
-      if (!is_space(ch)) compact.push_back(ch);
-    }
-    const std::string tail = "NPTS,DT";
-    if (compact.size() < tail.size() || compact.compare(compact.size() - tail.size(), tail.size(), tail) != 0) {
-      fail(path, 4, "bad header: missing NPTS/DT in " + in_quotes(trim(raw4)));
-    }
-    const std::vector<std::string_view> toks = ws_tokens(raw4);
-    if (toks.size() < 2) fail(path, 4, "bad header: missing NPTS/DT values in " + in_quotes(trim(raw4)));
-    npts_tok = toks[0];
-    dt_tok = toks[1];
-    if (!dt_tok.empty() && dt_tok.back() == ',') dt_tok.remove_suffix(1);
+    return;
   }
+  // old NGA header: "5996    0.0050    NPTS, DT"
+  std::string compact;
+  for (char ch : up4) {
+    if (!is_space(ch)) compact.push_back(ch);
+  }
+  const std::string tail = "NPTS,DT";
+  if (compact.size() < tail.size() || compact.compare(compact.size() - tail.size(), tail.size(), tail) != 0) {
+    fail(path, 4, "bad header: missing NPTS/DT in " + in_quotes(trim(raw4)));
+  }
+  const std::vector<std::string_view> toks = ws_tokens(raw4);
+  if (toks.size() < 2) fail(path, 4, "bad header: missing NPTS/DT values in " + in_quotes(trim(raw4)));
+  npts_tok = toks[0];
+  dt_tok = toks[1];
+  if (!dt_tok.empty() && dt_tok.back() == ',') dt_tok.remove_suffix(1);
+}
+
+// line 4: NPTS and DT, parsed and checked.
+void at2_npts_dt(const std::string& path, std::string_view raw4, long long& npts, double& dt) {
+  std::string_view npts_tok;
+  std::string_view dt_tok;
+  at2_npts_dt_tokens(path, raw4, npts_tok, dt_tok);
   if (!parse_integer(npts_tok, npts)) fail(path, 4, "bad header: cannot parse NPTS " + in_quotes(npts_tok));
   // DT may be followed directly by its unit ("DT= .0050SEC")
   std::string_view dt_num = dt_tok;
@@ -174,6 +175,16 @@ std::vector<Component> read_at2(const std::string& path, std::string_view data) 
   if (npts < 0) fail(path, 4, "bad header: negative NPTS " + std::to_string(npts));
   if (npts == 0) fail(path, 4, "empty data: NPTS = 0");
   if (!(dt > 0.0)) fail(path, 4, "non-positive DT " + in_quotes(dt_tok));
+}
+
+}  // namespace
+
+std::vector<Component> read_at2(const std::string& path, std::string_view data) {
+  const std::vector<Line> lines = split_lines(data);
+  check_at2_header(path, lines);
+  long long npts = -1;
+  double dt = 0.0;
+  at2_npts_dt(path, lines[3].text, npts, dt);
 
   Component c;
   c.file = path;

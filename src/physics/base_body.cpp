@@ -215,49 +215,54 @@ BaseBody::BaseBody(const BaseBodyParameters& parameters, bool must_stand) : para
   if (must_stand) build_contact_hull();
 }
 
-void BaseBody::build_contact_hull() {
+namespace {
+
+// Without a hull in the parameters: the base's vertices, each a neighbour of every other, and the
+// base as the only face.
+std::shared_ptr<ContactHull> base_only_hull(const std::vector<BaseVertex>& vertices, const BaseBody& base) {
   auto hull = std::make_shared<ContactHull>();
-  const int n = vertex_count();
-  BaseBody base = *this;
-  base.params_.hull.clear();
-  if (params_.hull.empty()) {
-    hull->vertices = vertices_;
-    hull->neighbours.resize(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j)
-        if (j != i) hull->neighbours[static_cast<std::size_t>(i)].push_back(j);
-    HullFace f;
-    f.body = std::make_shared<const BaseBody>(base);
-    for (int k = 0; k < n; ++k) {
-      f.hull_vertex.push_back(k);
-      f.across.push_back(-1);
-      f.fold.push_back(std::numeric_limits<double>::infinity());
-    }
-    hull->faces.push_back(std::move(f));
-    hull_ = std::move(hull);
-    return;
+  const int n = static_cast<int>(vertices.size());
+  hull->vertices = vertices;
+  hull->neighbours.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      if (j != i) hull->neighbours[static_cast<std::size_t>(i)].push_back(j);
+  HullFace f;
+  f.body = std::make_shared<const BaseBody>(base);
+  for (int k = 0; k < n; ++k) {
+    f.hull_vertex.push_back(k);
+    f.across.push_back(-1);
+    f.fold.push_back(std::numeric_limits<double>::infinity());
   }
-  hull->from_hull = true;
+  hull->faces.push_back(std::move(f));
+  return hull;
+}
+
+// The convex polyhedron of the base's vertices (first, in order) and the hull's points; origin[i]:
+// the hull point (1-based) input point i is, -1 for a base vertex.
+ConvexPolyhedron hull_polyhedron(const BaseBodyParameters& p, double tol, std::vector<int>& origin) {
   std::vector<Eigen::Vector3d> pts;
-  for (const auto& b : params_.base) pts.emplace_back(b.x(), b.y(), 0.0);
-  const double tol = hull_tolerance(params_);
+  for (const auto& b : p.base) pts.emplace_back(b.x(), b.y(), 0.0);
   // (a hull point at a base vertex is that vertex: a mesh's hull lists the base's corners too)
-  std::vector<int> origin(pts.size(), -1);  // the hull point each input point is (1-based), -1: a base vertex
-  for (std::size_t i = 0; i < params_.hull.size(); ++i) {
-    const Eigen::Vector3d& h = params_.hull[i];
+  origin.assign(pts.size(), -1);
+  for (std::size_t i = 0; i < p.hull.size(); ++i) {
+    const Eigen::Vector3d& h = p.hull[i];
     if (std::none_of(pts.begin(), pts.end(), [&](const Eigen::Vector3d& q) { return (q - h).norm() <= tol; })) {
       pts.push_back(h);
       origin.push_back(static_cast<int>(i) + 1);
     }
   }
-  ConvexPolyhedron poly;
   try {
-    poly = convex_polyhedron(pts, tol);
+    return convex_polyhedron(pts, tol);
   } catch (const std::invalid_argument& e) {
     throw BodyError(std::string("hull: ") + e.what());
   }
-  // The base is a face of the hull: its vertices are the hull's first n, in order, and the face on
-  // the floor has exactly them.
+}
+
+// The base is a face of the hull: its vertices are the hull's first n, in order, and the face on
+// the floor has exactly them; the centre of mass is inside. Returns the base's face.
+int checked_base_face(const ConvexPolyhedron& poly, int n, double tol, const std::vector<int>& origin,
+                      const Eigen::Vector3d& c) {
   for (int i = 0; i < n; ++i)
     if (i >= static_cast<int>(poly.source.size()) || poly.source[static_cast<std::size_t>(i)] != i)
       throw BodyError("hull: base_polygon vertex " + std::to_string(i + 1) + " is not a corner of the hull");
@@ -274,10 +279,66 @@ void BaseBody::build_contact_hull() {
                         " lies on the floor outside base_polygon (the base is the hull's face on the floor)");
     throw BodyError("hull: base_polygon is not the hull's face on the floor");
   }
-  const Eigen::Vector3d& c = params_.centre_of_mass;
   for (const auto& f : poly.faces)
     if (!(f.normal.dot(c) < f.offset - tol))
       throw BodyError("hull: the centre of mass is not inside the hull");
+  return base_face;
+}
+
+// A face other than the base as a body standing on it: the item rotated so that the face lies on
+// the floor, its vertices `verts` the face's base polygon.
+void stand_on_face(const PolyhedronFace& pf, const std::vector<int>& verts, const ConvexPolyhedron& poly,
+                   const BaseBodyParameters& params, HullFace& h) {
+  h.rotation = Eigen::Quaterniond::FromTwoVectors(pf.normal, -Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  h.offset = Eigen::Vector3d(0.0, 0.0, pf.offset);
+  BaseBodyParameters fp = params;
+  fp.hull.clear();
+  fp.base.clear();
+  for (int v : verts) {
+    const Eigen::Vector3d x = h.rotation * poly.points[static_cast<std::size_t>(v)] + h.offset;
+    fp.base.emplace_back(x.x(), x.y());
+  }
+  fp.centre_of_mass = h.rotation * params.centre_of_mass + h.offset;
+  fp.central_inertia = h.rotation * params.central_inertia * h.rotation.transpose();
+  fp.overturn_angle = kPi;
+  try {
+    h.body = std::make_shared<const BaseBody>(BaseBody::face(fp));
+  } catch (const BodyError& e) {
+    throw BodyError(std::string("hull: a face is degenerate (") + e.what() + ")");
+  }
+}
+
+// Face f's edges: the face across each (its slot) and the fold angle to it.
+void face_edges(const ConvexPolyhedron& poly, int f, const std::vector<int>& slot, HullFace& h) {
+  const PolyhedronFace& pf = poly.faces[static_cast<std::size_t>(f)];
+  const std::vector<int>& verts = h.hull_vertex;
+  const int m = static_cast<int>(verts.size());
+  for (int k = 0; k < m; ++k) {
+    // Face edge k runs verts[k] -> verts[k+1] from above, verts[k+1] -> verts[k] from outside.
+    const int g = poly.face_across(f, verts[static_cast<std::size_t>((k + 1) % m)], verts[static_cast<std::size_t>(k)]);
+    h.across.push_back(g < 0 ? -1 : slot[static_cast<std::size_t>(g)]);
+    h.fold.push_back(g < 0 ? std::numeric_limits<double>::infinity()
+                           : std::acos(std::clamp(pf.normal.dot(poly.faces[static_cast<std::size_t>(g)].normal), -1.0, 1.0)));
+  }
+}
+
+}  // namespace
+
+void BaseBody::build_contact_hull() {
+  const int n = vertex_count();
+  BaseBody base = *this;
+  base.params_.hull.clear();
+  if (params_.hull.empty()) {
+    hull_ = base_only_hull(vertices_, base);
+    return;
+  }
+  auto hull = std::make_shared<ContactHull>();
+  hull->from_hull = true;
+  const double tol = hull_tolerance(params_);
+  std::vector<int> origin;
+  const ConvexPolyhedron poly = hull_polyhedron(params_, tol, origin);
+  const Eigen::Vector3d& c = params_.centre_of_mass;
+  const int base_face = checked_base_face(poly, n, tol, origin, c);
   for (const auto& p : poly.points) hull->vertices.push_back(hull_vertex(p, c, central_));
   hull->neighbours = poly.neighbours;
   // Faces: the base first, then the others in the hull's order.
@@ -297,33 +358,10 @@ void BaseBody::build_contact_hull() {
       for (int i = 0; i < n; ++i) verts.push_back(i);
       h.body = std::make_shared<const BaseBody>(base);
     } else {
-      h.rotation = Eigen::Quaterniond::FromTwoVectors(pf.normal, -Eigen::Vector3d::UnitZ()).toRotationMatrix();
-      h.offset = Eigen::Vector3d(0.0, 0.0, pf.offset);
-      BaseBodyParameters fp = params_;
-      fp.hull.clear();
-      fp.base.clear();
-      for (int v : verts) {
-        const Eigen::Vector3d x = h.rotation * poly.points[static_cast<std::size_t>(v)] + h.offset;
-        fp.base.emplace_back(x.x(), x.y());
-      }
-      fp.centre_of_mass = h.rotation * c + h.offset;
-      fp.central_inertia = h.rotation * params_.central_inertia * h.rotation.transpose();
-      fp.overturn_angle = kPi;
-      try {
-        h.body = std::make_shared<const BaseBody>(BaseBody::face(fp));
-      } catch (const BodyError& e) {
-        throw BodyError(std::string("hull: a face is degenerate (") + e.what() + ")");
-      }
+      stand_on_face(pf, verts, poly, params_, h);
     }
     h.hull_vertex = verts;
-    const int m = static_cast<int>(verts.size());
-    for (int k = 0; k < m; ++k) {
-      // Face edge k runs verts[k] -> verts[k+1] from above, verts[k+1] -> verts[k] from outside.
-      const int g = poly.face_across(f, verts[static_cast<std::size_t>((k + 1) % m)], verts[static_cast<std::size_t>(k)]);
-      h.across.push_back(g < 0 ? -1 : slot[static_cast<std::size_t>(g)]);
-      h.fold.push_back(g < 0 ? std::numeric_limits<double>::infinity()
-                             : std::acos(std::clamp(pf.normal.dot(poly.faces[static_cast<std::size_t>(g)].normal), -1.0, 1.0)));
-    }
+    face_edges(poly, f, slot, h);
     hull->faces.push_back(std::move(h));
   }
   hull_ = std::move(hull);

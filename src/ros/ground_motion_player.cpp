@@ -178,15 +178,10 @@ bool GroundMotionPlayer::wait_until_ros(const ros::Time& t) {
   return ros::ok();
 }
 
-GroundMotionPlayer::Result GroundMotionPlayer::run() {
-  Result r;
-  const bool sim = ros::Time::isSimTime();
+bool GroundMotionPlayer::wait_to_start(bool sim) {
   if (sim) {
     ROS_INFO("ground_motion_player: /use_sim_time is set, waiting for /clock");
-    if (!ros::Time::waitForValid()) {
-      r.interrupted = true;
-      return r;
-    }
+    if (!ros::Time::waitForValid()) return false;
   }
   if (config_.wait_for_subscribers > 0) {
     ROS_INFO("ground_motion_player: waiting for %d subscriber(s) on %s", config_.wait_for_subscribers, imu_pub_.getTopic().c_str());
@@ -200,6 +195,48 @@ GroundMotionPlayer::Result GroundMotionPlayer::run() {
         next_log += std::chrono::seconds(5);
       }
     }
+  }
+  return true;
+}
+
+void GroundMotionPlayer::publish_sample(std::size_t i, const ros::Time& stamp) {
+  const core::AccelerometerSample s = motion_.sample(i);
+  const sensor_msgs::Imu imu = make_imu_message(s, stamp, config_.frame_id, variance_);
+  // Kept before it is published: a subscriber asking later finds whatever it did not receive.
+  if (history_) history_->push(imu_history_, stamp, imu.linear_acceleration.x, imu.linear_acceleration.y,
+                               imu.linear_acceleration.z);
+  imu_pub_.publish(imu);
+  if (accel_pub_) {
+    const geometry_msgs::AccelStamped accel = make_accel_message(s, stamp, config_.frame_id);
+    if (history_) history_->push(accel_history_, stamp, accel.accel.linear.x, accel.accel.linear.y, accel.accel.linear.z);
+    accel_pub_.publish(accel);
+  }
+}
+
+void GroundMotionPlayer::report_end(const Result& r, double wall) {
+  const std::size_t n = motion_.size();
+  if (r.interrupted) {
+    ROS_WARN("ground_motion_player: interrupted after %llu of %zu samples of pass %llu", static_cast<unsigned long long>(r.published % n), n,
+             static_cast<unsigned long long>(r.passes + 1));
+    return;
+  }
+  ROS_INFO("ground_motion_player: finished %s: published %llu samples in %llu pass(es), %.3f s wall; %llu late by more than one "
+           "sample interval (max %.1f ms)",
+           motion_.station.c_str(), static_cast<unsigned long long>(r.published), static_cast<unsigned long long>(r.passes), wall,
+           static_cast<unsigned long long>(r.late), r.max_lateness * 1e3);
+  std_msgs::Bool b;
+  b.data = true;
+  finished_pub_.publish(b);
+  // Give subscribers time to receive the queued samples and the latched end signal before exiting.
+  wait_until_wall(steady_now_ns() + static_cast<std::int64_t>(std::llround(config_.linger * 1e9)));
+}
+
+GroundMotionPlayer::Result GroundMotionPlayer::run() {
+  Result r;
+  const bool sim = ros::Time::isSimTime();
+  if (!wait_to_start(sim)) {
+    r.interrupted = true;
+    return r;
   }
   const std::size_t n = motion_.size();
   const double f = config_.rate_factor;
@@ -238,18 +275,7 @@ GroundMotionPlayer::Result GroundMotionPlayer::run() {
       }
       if (lateness > late_limit) ++r.late;
       r.max_lateness = std::max(r.max_lateness, lateness);
-      const ros::Time stamp = config_.stamp_now ? ros::Time::now() : due_ros;
-      const core::AccelerometerSample s = motion_.sample(i);
-      const sensor_msgs::Imu imu = make_imu_message(s, stamp, config_.frame_id, variance_);
-      // Kept before it is published: a subscriber asking later finds whatever it did not receive.
-      if (history_) history_->push(imu_history_, stamp, imu.linear_acceleration.x, imu.linear_acceleration.y,
-                                   imu.linear_acceleration.z);
-      imu_pub_.publish(imu);
-      if (accel_pub_) {
-        const geometry_msgs::AccelStamped accel = make_accel_message(s, stamp, config_.frame_id);
-        if (history_) history_->push(accel_history_, stamp, accel.accel.linear.x, accel.accel.linear.y, accel.accel.linear.z);
-        accel_pub_.publish(accel);
-      }
+      publish_sample(i, config_.stamp_now ? ros::Time::now() : due_ros);
       ++r.published;
     }
     if (r.interrupted) break;
@@ -257,21 +283,7 @@ GroundMotionPlayer::Result GroundMotionPlayer::run() {
     if (!config_.loop) break;
     ROS_INFO("ground_motion_player: pass %llu done, looping", static_cast<unsigned long long>(r.passes));
   }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  if (r.interrupted) {
-    ROS_WARN("ground_motion_player: interrupted after %llu of %zu samples of pass %llu", static_cast<unsigned long long>(r.published % n), n,
-             static_cast<unsigned long long>(r.passes + 1));
-    return r;
-  }
-  ROS_INFO("ground_motion_player: finished %s: published %llu samples in %llu pass(es), %.3f s wall; %llu late by more than one "
-           "sample interval (max %.1f ms)",
-           motion_.station.c_str(), static_cast<unsigned long long>(r.published), static_cast<unsigned long long>(r.passes), wall,
-           static_cast<unsigned long long>(r.late), r.max_lateness * 1e3);
-  std_msgs::Bool b;
-  b.data = true;
-  finished_pub_.publish(b);
-  // Give subscribers time to receive the queued samples and the latched end signal before exiting.
-  wait_until_wall(steady_now_ns() + static_cast<std::int64_t>(std::llround(config_.linger * 1e9)));
+  report_end(r, std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
   return r;
 }
 

@@ -73,9 +73,8 @@ std::string fmt(const char* f, double v) {
   return buf;
 }
 
-}  // namespace
-
-core::SensorFrameMotion synthetic_motion_from_yaml(const std::string& path) {
+// The spec file as a YAML mapping of known keys.
+YAML::Node load_spec(const std::string& path) {
   YAML::Node root;
   try {
     root = YAML::LoadFile(path);
@@ -92,6 +91,72 @@ core::SensorFrameMotion synthetic_motion_from_yaml(const std::string& path) {
       spec_fail(path, kv.first, "unknown key '" + key + "' (known: description, rate_hz, duration_s, x_azimuth_deg, x, y, z)");
     }
   }
+  return root;
+}
+
+// One term of an axis as a function of time (gaussian_noise: of the call order), and its
+// description appended to `what`.
+std::function<double(double)> synthetic_term(const std::string& path, const YAML::Node& term, std::string& what) {
+  if (!term.IsMap() || term.size() != 1) {
+    spec_fail(path, term, "each term is a mapping with one key: ricker, sine_pulse, gaussian_noise or constant");
+  }
+  const std::string kind = term.begin()->first.as<std::string>();
+  const YAML::Node body = term.begin()->second;
+  if (kind == "ricker") {
+    const auto p = term_params(path, body, kind, {"peak_mps2", "frequency_hz", "center_s"}, {});
+    if (!(p.at("frequency_hz") > 0.0)) spec_fail(path, body, "ricker frequency_hz must be > 0");
+    what += fmt(" + ricker(%g m/s^2", p.at("peak_mps2")) + fmt(", %g Hz", p.at("frequency_hz")) + fmt(", at %g s)", p.at("center_s"));
+    return [p](double t) { return core::ricker(t, p.at("peak_mps2"), p.at("frequency_hz"), p.at("center_s")); };
+  }
+  if (kind == "sine_pulse") {
+    const auto p = term_params(path, body, kind, {"amplitude_mps2", "period_s"}, {{"start_s", 0.0}, {"cycles", 1.0}});
+    if (!(p.at("period_s") > 0.0)) spec_fail(path, body, "sine_pulse period_s must be > 0");
+    if (!(p.at("cycles") >= 0.0)) spec_fail(path, body, "sine_pulse cycles must be >= 0");
+    what += fmt(" + sine_pulse(%g m/s^2", p.at("amplitude_mps2")) + fmt(", %g s", p.at("period_s")) + ")";
+    return [p](double t) { return core::sine_pulse(t, p.at("amplitude_mps2"), p.at("period_s"), p.at("start_s"), p.at("cycles")); };
+  }
+  if (kind == "gaussian_noise") {
+    const auto p = term_params(path, body, kind, {"rms_mps2", "seed"}, {});
+    if (!(p.at("rms_mps2") >= 0.0)) spec_fail(path, body, "gaussian_noise rms_mps2 must be >= 0");
+    const double seed = p.at("seed");
+    if (seed < 0.0 || seed != std::floor(seed) || seed > 9.007199254740992e15) {
+      spec_fail(path, body["seed"], "gaussian_noise seed must be a whole number >= 0");
+    }
+    auto noise = std::make_shared<core::GaussianNoise>(p.at("rms_mps2"), static_cast<std::uint64_t>(seed));
+    what += fmt(" + gaussian_noise(%g m/s^2 RMS", p.at("rms_mps2")) + fmt(", seed %.0f)", seed);
+    return [noise](double) { return noise->next(); };  // called once per sample, in order
+  }
+  if (kind == "constant") {
+    const auto p = term_params(path, body, kind, {"value_mps2"}, {});
+    what += fmt(" + constant(%g m/s^2)", p.at("value_mps2"));
+    return [v = p.at("value_mps2")](double) { return v; };
+  }
+  spec_fail(path, term, "unknown term '" + kind + "' (known: ricker, sine_pulse, gaussian_noise, constant)");
+}
+
+// Axis k: the sum of its terms over n samples (zeros when not given).
+void synthetic_axis(const std::string& path, const YAML::Node& root, std::size_t k, std::size_t n,
+                    core::SensorFrameMotion& m) {
+  const char* axes[3] = {"x", "y", "z"};
+  std::vector<double>& out = m.ground[k];
+  out.assign(n, 0.0);
+  m.source[k] = "none (zeros)";
+  const YAML::Node list = root[axes[k]];
+  if (!list) return;
+  if (!list.IsSequence()) spec_fail(path, list, std::string("'") + axes[k] + "' must be a list of terms");
+  m.recorded[k] = true;
+  std::string what;
+  for (const YAML::Node& term : list) {
+    const std::function<double(double)> f = synthetic_term(path, term, what);
+    for (std::size_t i = 0; i < n; ++i) out[i] += f(static_cast<double>(i) * m.dt);
+  }
+  m.source[k] = what.empty() ? "zeros" : what.substr(3);
+}
+
+}  // namespace
+
+core::SensorFrameMotion synthetic_motion_from_yaml(const std::string& path) {
+  const YAML::Node root = load_spec(path);
   if (!root["rate_hz"]) throw SpecError(path + ": missing 'rate_hz'");
   if (!root["duration_s"]) throw SpecError(path + ": missing 'duration_s'");
   const double rate = number(path, root["rate_hz"], "rate_hz");
@@ -104,56 +169,7 @@ core::SensorFrameMotion synthetic_motion_from_yaml(const std::string& path) {
   m.station = std::filesystem::path(path).stem().string();
   const std::size_t n = core::synthetic_sample_count(duration, m.dt);
   if (root["x_azimuth_deg"]) m.x_azimuth_deg = number(path, root["x_azimuth_deg"], "x_azimuth_deg");
-
-  const char* axes[3] = {"x", "y", "z"};
-  for (std::size_t k = 0; k < 3; ++k) {
-    std::vector<double>& out = m.ground[k];
-    out.assign(n, 0.0);
-    m.source[k] = "none (zeros)";
-    const YAML::Node list = root[axes[k]];
-    if (!list) continue;
-    if (!list.IsSequence()) spec_fail(path, list, std::string("'") + axes[k] + "' must be a list of terms");
-    m.recorded[k] = true;
-    std::string what;
-    for (const YAML::Node& term : list) {
-      if (!term.IsMap() || term.size() != 1) {
-        spec_fail(path, term, "each term is a mapping with one key: ricker, sine_pulse, gaussian_noise or constant");
-      }
-      const std::string kind = term.begin()->first.as<std::string>();
-      const YAML::Node body = term.begin()->second;
-      std::function<double(double)> f;
-      if (kind == "ricker") {
-        const auto p = term_params(path, body, kind, {"peak_mps2", "frequency_hz", "center_s"}, {});
-        if (!(p.at("frequency_hz") > 0.0)) spec_fail(path, body, "ricker frequency_hz must be > 0");
-        f = [p](double t) { return core::ricker(t, p.at("peak_mps2"), p.at("frequency_hz"), p.at("center_s")); };
-        what += fmt(" + ricker(%g m/s^2", p.at("peak_mps2")) + fmt(", %g Hz", p.at("frequency_hz")) + fmt(", at %g s)", p.at("center_s"));
-      } else if (kind == "sine_pulse") {
-        const auto p = term_params(path, body, kind, {"amplitude_mps2", "period_s"}, {{"start_s", 0.0}, {"cycles", 1.0}});
-        if (!(p.at("period_s") > 0.0)) spec_fail(path, body, "sine_pulse period_s must be > 0");
-        if (!(p.at("cycles") >= 0.0)) spec_fail(path, body, "sine_pulse cycles must be >= 0");
-        f = [p](double t) { return core::sine_pulse(t, p.at("amplitude_mps2"), p.at("period_s"), p.at("start_s"), p.at("cycles")); };
-        what += fmt(" + sine_pulse(%g m/s^2", p.at("amplitude_mps2")) + fmt(", %g s", p.at("period_s")) + ")";
-      } else if (kind == "gaussian_noise") {
-        const auto p = term_params(path, body, kind, {"rms_mps2", "seed"}, {});
-        if (!(p.at("rms_mps2") >= 0.0)) spec_fail(path, body, "gaussian_noise rms_mps2 must be >= 0");
-        const double seed = p.at("seed");
-        if (seed < 0.0 || seed != std::floor(seed) || seed > 9.007199254740992e15) {
-          spec_fail(path, body["seed"], "gaussian_noise seed must be a whole number >= 0");
-        }
-        auto noise = std::make_shared<core::GaussianNoise>(p.at("rms_mps2"), static_cast<std::uint64_t>(seed));
-        f = [noise](double) { return noise->next(); };  // called once per sample, in order
-        what += fmt(" + gaussian_noise(%g m/s^2 RMS", p.at("rms_mps2")) + fmt(", seed %.0f)", seed);
-      } else if (kind == "constant") {
-        const auto p = term_params(path, body, kind, {"value_mps2"}, {});
-        f = [v = p.at("value_mps2")](double) { return v; };
-        what += fmt(" + constant(%g m/s^2)", p.at("value_mps2"));
-      } else {
-        spec_fail(path, term, "unknown term '" + kind + "' (known: ricker, sine_pulse, gaussian_noise, constant)");
-      }
-      for (std::size_t i = 0; i < n; ++i) out[i] += f(static_cast<double>(i) * m.dt);
-    }
-    m.source[k] = what.empty() ? "zeros" : what.substr(3);
-  }
+  for (std::size_t k = 0; k < 3; ++k) synthetic_axis(path, root, k, n, m);
   return m;
 }
 

@@ -90,6 +90,14 @@ bool RockingMonitor::load_parameters() {
        param(pnh_, "scene_envelope/horizontal", scene_h, "number") &&
        param(pnh_, "scene_envelope/vertical", scene_v, "number");
   if (!ok || !load_journal_parameters() || !load_snapshot_parameters() || !load_catch_up_parameters()) return false;
+  return check_scene_and_ensemble(scene_h, scene_v, substeps) && resolve_threads() &&
+         parse_solver_choices(method, model, fidelity, solid) && parse_baseline_mode(baseline) &&
+         check_positive_parameters();
+}
+
+// ~linearized_max_alpha, ~scene_envelope, ~ensemble_size and ~alarm_probability in range; the scene
+// and ~substeps into the options.
+bool RockingMonitor::check_scene_and_ensemble(double scene_h, double scene_v, int substeps) {
   if (!(options_.linearized_max_alpha >= 0.0) || !(options_.linearized_max_alpha < 1.0)) {
     ROS_FATAL("rocking_monitor: ~linearized_max_alpha = %g rad must be in [0, 1) (0 = off)",
               options_.linearized_max_alpha);
@@ -110,6 +118,11 @@ bool RockingMonitor::load_parameters() {
     ROS_FATAL("rocking_monitor: ~alarm_probability = %g must be in (0, 1]", alarm_probability_);
     return false;
   }
+  return true;
+}
+
+// ~threads: 0 is every core; more than one steps the items on a task arena.
+bool RockingMonitor::resolve_threads() {
   if (threads_ < 0) {
     ROS_FATAL("rocking_monitor: ~threads = %d must be >= 1, or 0 for every core of this machine", threads_);
     return false;
@@ -119,6 +132,13 @@ bool RockingMonitor::load_parameters() {
     ROS_INFO("rocking_monitor: ~threads 0: %d worker threads (every core)", threads_);
   }
   if (threads_ > 1) arena_ = std::make_unique<tbb::task_arena>(threads_);
+  return true;
+}
+
+// ~method, ~fidelity, ~solid_model, ~bidirectional_ratio and ~model into the options, then the
+// solver settings checked as a whole.
+bool RockingMonitor::parse_solver_choices(const std::string& method, const std::string& model,
+                                          const std::string& fidelity, const std::string& solid) {
   if (!core::parse_method(method, options_.solver.method)) {
     ROS_FATAL("rocking_monitor: ~method '%s' is not one of dopri5, rk4, analytic", method.c_str());
     return false;
@@ -144,6 +164,10 @@ bool RockingMonitor::load_parameters() {
     ROS_FATAL("rocking_monitor: %s", e.c_str());
     return false;
   }
+  return true;
+}
+
+bool RockingMonitor::parse_baseline_mode(const std::string& baseline) {
   using Mode = core::GravityBaseline::Mode;
   if (baseline == "tracked") baseline_config_.mode = Mode::Tracked;
   else if (baseline == "initial") baseline_config_.mode = Mode::Initial;
@@ -152,6 +176,12 @@ bool RockingMonitor::load_parameters() {
     ROS_FATAL("rocking_monitor: ~gravity_baseline/mode '%s' is not one of tracked, initial, fixed", baseline.c_str());
     return false;
   }
+  return true;
+}
+
+// The times, thresholds and rates that must be > 0 (~state_rate, ~state_items_per_s: or 0; the
+// queue size: >= 1).
+bool RockingMonitor::check_positive_parameters() const {
   auto positive = [](double v, const char* name, const char* unit) {
     if (std::isfinite(v) && v > 0.0) return true;
     ROS_FATAL("rocking_monitor: ~%s = %g must be > 0 %s", name, v, unit);
@@ -177,12 +207,26 @@ bool RockingMonitor::load_parameters() {
 bool RockingMonitor::init() {
   if (!load_parameters()) return false;
   XmlRpc::XmlRpcValue sensors, items;
+  Catalogue cat;
+  if (!load_catalogue(sensors, items, cat)) return false;
+  add_sensors(cat);
+  add_items(cat);
+  advertise_outputs(sensors, items);
+  add_diagnostics();
+  subscribe_sensors();
+  start_timers();
+  log_startup();
+  log_initial_models();
+  return true;
+}
+
+// ~sensors and ~items parsed, then this node's ~shard of the items. False after a ROS_FATAL.
+bool RockingMonitor::load_catalogue(XmlRpc::XmlRpcValue& sensors, XmlRpc::XmlRpcValue& items, Catalogue& cat) {
   if (!pnh_.getParam("sensors", sensors) || !pnh_.getParam("items", items)) {
     ROS_FATAL("rocking_monitor: no catalogue: parameters ~sensors and ~items are required "
               "(load one, e.g. rosparam load config/catalogue_example.yaml into the node's namespace)");
     return false;
   }
-  Catalogue cat;
   try {
     cat = parse_catalogue(sensors, items);
   } catch (const CatalogueError& e) {
@@ -202,7 +246,11 @@ bool RockingMonitor::init() {
     ROS_FATAL("rocking_monitor: ~%s", e.what());
     return false;
   }
+  return true;
+}
 
+// Each sensor's input conditioning: gravity baseline, sample timing, stamp plausibility.
+void RockingMonitor::add_sensors(const Catalogue& cat) {
   for (const SensorSpec& spec : cat.sensors) {
     Sensor s;
     s.spec = spec;
@@ -221,6 +269,11 @@ bool RockingMonitor::init() {
     s.suspects.resize(static_cast<std::size_t>(pc.rebase_samples));
     sensors_.push_back(std::move(s));
   }
+}
+
+// Each item: its ensemble members (uncertain items), models and sensor; the given poses go out on
+// /tf_static.
+void RockingMonitor::add_items(const Catalogue& cat) {
   tf2_msgs::TFMessage statics;
   for (const CatalogueItem& entry : cat.items) {
     Item it;
@@ -238,36 +291,45 @@ bool RockingMonitor::init() {
       if (sensors_[i].spec.name == entry.spec.sensor) it.sensor = i;
     it.slot = sensors_[it.sensor].items.size();
     sensors_[it.sensor].items.push_back(items_.size());
-    if (entry.pose.given) {
-      geometry_msgs::TransformStamped t;
-      t.header.stamp = ::ros::Time::now();
-      t.header.frame_id = entry.pose.parent_frame;
-      t.child_frame_id = entry.spec.frame;
-      t.transform.translation.x = entry.pose.x;
-      t.transform.translation.y = entry.pose.y;
-      t.transform.translation.z = entry.pose.z;
-      const Eigen::Quaterniond q = Eigen::AngleAxisd(entry.pose.yaw, Eigen::Vector3d::UnitZ()) *
-                                   Eigen::AngleAxisd(entry.pose.pitch, Eigen::Vector3d::UnitY()) *
-                                   Eigen::AngleAxisd(entry.pose.roll, Eigen::Vector3d::UnitX());
-      t.transform.rotation = tf2::toMsg(q);
-      statics.transforms.push_back(t);
-    }
+    if (entry.pose.given) statics.transforms.push_back(pose_transform(entry));
     items_.push_back(std::move(it));
   }
-  if (!statics.transforms.empty()) {
-    // A frame given twice (two items in one frame) once, as tf2_ros's broadcaster keeps it: the last pose.
-    std::unordered_map<std::string, std::size_t> at;
-    std::vector<geometry_msgs::TransformStamped> unique;
-    for (geometry_msgs::TransformStamped& t : statics.transforms) {
-      const auto [it, fresh] = at.emplace(t.child_frame_id, unique.size());
-      if (fresh) unique.push_back(std::move(t));
-      else unique[it->second] = std::move(t);
-    }
-    statics.transforms = std::move(unique);
-    tf_static_pub_ = nh_.advertise<tf2_msgs::TFMessage>("/tf_static", 100, true);
-    tf_static_pub_.publish(statics);
-  }
+  if (!statics.transforms.empty()) publish_static_poses(statics);
+}
 
+// An item's ~pose as the transform parent frame -> item frame.
+geometry_msgs::TransformStamped RockingMonitor::pose_transform(const CatalogueItem& entry) {
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = ::ros::Time::now();
+  t.header.frame_id = entry.pose.parent_frame;
+  t.child_frame_id = entry.spec.frame;
+  t.transform.translation.x = entry.pose.x;
+  t.transform.translation.y = entry.pose.y;
+  t.transform.translation.z = entry.pose.z;
+  const Eigen::Quaterniond q = Eigen::AngleAxisd(entry.pose.yaw, Eigen::Vector3d::UnitZ()) *
+                               Eigen::AngleAxisd(entry.pose.pitch, Eigen::Vector3d::UnitY()) *
+                               Eigen::AngleAxisd(entry.pose.roll, Eigen::Vector3d::UnitX());
+  t.transform.rotation = tf2::toMsg(q);
+  return t;
+}
+
+void RockingMonitor::publish_static_poses(tf2_msgs::TFMessage& statics) {
+  // A frame given twice (two items in one frame) once, as tf2_ros's broadcaster keeps it: the last pose.
+  std::unordered_map<std::string, std::size_t> at;
+  std::vector<geometry_msgs::TransformStamped> unique;
+  for (geometry_msgs::TransformStamped& t : statics.transforms) {
+    const auto [it, fresh] = at.emplace(t.child_frame_id, unique.size());
+    if (fresh) unique.push_back(std::move(t));
+    else unique[it->second] = std::move(t);
+  }
+  statics.transforms = std::move(unique);
+  tf_static_pub_ = nh_.advertise<tf2_msgs::TFMessage>("/tf_static", 100, true);
+  tf_static_pub_.publish(statics);
+}
+
+// tf, the published topics (the alarm journal and the state snapshot opened on the way) and the
+// services.
+void RockingMonitor::advertise_outputs(const XmlRpc::XmlRpcValue& sensors, const XmlRpc::XmlRpcValue& items) {
   tf_buffer_ = std::make_unique<tf2_ros::Buffer>();
   tf_listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_buffer_, nh_);
   items_without_rotation_ = items_.size();
@@ -302,7 +364,10 @@ bool RockingMonitor::init() {
 
   states_msg_.items.resize(items_.size());
   for (std::size_t i = 0; i < items_.size(); ++i) states_msg_.items[i].id = items_[i].entry.spec.id;
+}
 
+// /diagnostics: each sensor's input rate and samples, the catalogue, the journal, the snapshot, catch-up.
+void RockingMonitor::add_diagnostics() {
   diagnostics_ = std::make_unique<diagnostic_updater::Updater>(nh_, pnh_);
   diagnostics_->setHardwareID("rocking_monitor");
   for (std::size_t i = 0; i < sensors_.size(); ++i) {
@@ -320,7 +385,9 @@ bool RockingMonitor::init() {
   diagnostics_->add("alarm journal", this, &RockingMonitor::journal_diagnostics);
   diagnostics_->add("state snapshot", this, &RockingMonitor::snapshot_diagnostics);
   if (!catch_up_service_.empty()) diagnostics_->add("catch-up", this, &RockingMonitor::catch_up_diagnostics);
+}
 
+void RockingMonitor::subscribe_sensors() {
   for (std::size_t i = 0; i < sensors_.size(); ++i) {
     Sensor& s = sensors_[i];
     const auto hints = ::ros::TransportHints().tcpNoDelay();
@@ -338,6 +405,9 @@ bool RockingMonitor::init() {
           {}, hints);
     }
   }
+}
+
+void RockingMonitor::start_timers() {
   // Full ~states of a large catalogue at a lower rate: items x rate <= ~state_items_per_s.
   if (state_rate_ > 0.0 && state_items_per_s_ > 0.0)
     full_state_every_ = std::max(1, static_cast<int>(std::ceil(static_cast<double>(items_.size()) * state_rate_ /
@@ -347,6 +417,10 @@ bool RockingMonitor::init() {
   // Wall time: under sim time nothing ticks until a /clock arrives, which is what we warn about.
   startup_timer_ = nh_.createWallTimer(::ros::WallDuration(5.0), &RockingMonitor::on_startup_timer, this);
   last_now_ = ::ros::Time::now();
+}
+
+// What runs: the items, the solver, and which items rock in one plane only.
+void RockingMonitor::log_startup() const {
   ROS_INFO("rocking_monitor: %zu items on %zu sensors, method %s (%s model, tol %g, substeps %d), fidelity %s",
            items_.size(), sensors_.size(), core::to_string(options_.solver.method),
            core::to_string(options_.solver.model), options_.solver.tol, options_.solver.substeps,
@@ -360,8 +434,6 @@ bool RockingMonitor::init() {
   if (single > 0)
     ROS_INFO("rocking_monitor: %zu of %zu items have no depth in the catalogue and rock in their x-z plane only "
              "(give depth to add the y-z plane): %s%s", single, items_.size(), names.c_str(), single > 10 ? ", ..." : "");
-  log_initial_models();
-  return true;
 }
 
 // Which model each item starts on and why (issue 7): one line per item for small catalogues,

@@ -41,6 +41,111 @@ constexpr std::array<core::CriterionId, core::kScreeningCount> kScreening = {
     core::CriterionId::Housner, core::CriterionId::Ishiyama, core::CriterionId::IshiyamaEquivalent,
     core::CriterionId::Proposed};
 
+// An item's body as drawn: its pose in the item frame (origin on the floor below the centre of
+// mass), its depth, the y of its centre and whether the pure-rocking model holds (else faded).
+struct DrawnBody {
+  Eigen::Isometry3d pose;
+  double depth;
+  double centre_y;
+  bool valid;
+};
+
+Eigen::Isometry3d about_pivot(const Eigen::Vector3d& pivot, const Eigen::Matrix3d& r) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.linear() = r;
+  t.translation() = pivot - r * pivot;
+  return t;
+}
+
+// Item frame: origin on the floor below the centre of mass, x across the width, y across the
+// depth, z up. x plane: corner 1 at x = -nu1 B, corner 2 at x = +nu2 B, theta > 0 about -y. y plane:
+// corner 1 at y = -nu1_y D, corner 2 at y = +nu2_y D, theta > 0 about +x. The body drawn is tilted
+// by the y plane's rotation, then the x plane's (the planes are independent: a picture, not a model).
+DrawnBody drawn_body(const core::ItemMonitor& monitor, const core::ItemSummary& sm) {
+  const core::PlaneSummary& px = sm.plane[0];
+  const core::Body& b = monitor.plane(core::Plane::X).body();  // geometry: constant
+  DrawnBody out;
+  out.pose = about_pivot(Eigen::Vector3d(px.side >= 0 ? -b.nu1() * b.width() : b.nu2() * b.width(), 0.0, 0.0),
+                         Eigen::AngleAxisd(-px.theta, Eigen::Vector3d::UnitY()).toRotationMatrix());
+  out.depth = 0.5 * b.width();  // no depth given: drawn half as deep as wide
+  out.centre_y = 0.0;
+  out.valid = px.violations == 0;
+  if (sm.planes > 1) {
+    const core::PlaneSummary& py = sm.plane[1];
+    const core::Body& d = monitor.plane(core::Plane::Y).body();
+    out.pose = out.pose * about_pivot(Eigen::Vector3d(0.0, py.side >= 0 ? -d.nu1() * d.width() : d.nu2() * d.width(), 0.0),
+                                      Eigen::AngleAxisd(py.theta, Eigen::Vector3d::UnitX()).toRotationMatrix());
+    out.depth = d.width();
+    out.valid = out.valid && py.violations == 0;
+    out.centre_y = (d.nu2() - d.nu1()) * d.width() / 2.0;
+  }
+  if (const core::Rocking3DModel* solid = monitor.solid(); solid && sm.solid_active) {
+    // The 3-D model's own pose (full orientation, the pivot it turns about), moved from the
+    // catalogue's floor frame to the item frame (origin on the floor below the centre of mass).
+    const Eigen::Vector3d& c = solid->body().centre_of_mass();
+    const Eigen::Vector3d below(c.x(), c.y(), 0.0);
+    out.pose.linear() = solid->rotation();
+    out.pose.translation() = solid->rotation() * below + solid->translation() - below;
+  }
+  return out;
+}
+
+// The item frame -> drawn body transform (child frame: the item's frame + ~marker_frame_suffix).
+void fill_transform(geometry_msgs::TransformStamped& t, const Eigen::Isometry3d& pose, const std::string& frame,
+                    const std::string& suffix) {
+  const Eigen::Matrix3d r = pose.linear();
+  const Eigen::Vector3d shift = pose.translation();
+  t.header.frame_id = frame;
+  t.child_frame_id.assign(frame).append(suffix);
+  t.transform.translation.x = shift.x();
+  t.transform.translation.y = shift.y();
+  t.transform.translation.z = shift.z();
+  t.transform.rotation = tf2::toMsg(Eigen::Quaterniond(r));
+}
+
+// The body's box, coloured by its mode.
+void fill_box(visualization_msgs::Marker& mk, int id, const std::string& frame, const core::Body& b,
+              const DrawnBody& drawn, const core::ItemSummary& sm) {
+  const Eigen::Matrix3d r = drawn.pose.linear();
+  mk.header.frame_id = frame;
+  mk.ns = "items";
+  mk.id = id;
+  mk.type = visualization_msgs::Marker::CUBE;
+  mk.action = visualization_msgs::Marker::ADD;
+  const Eigen::Vector3d centre((b.nu2() - b.nu1()) * b.width() / 2.0, drawn.centre_y, b.cg_height());
+  const Eigen::Vector3d c = drawn.pose * centre;
+  mk.pose.position.x = c.x();
+  mk.pose.position.y = c.y();
+  mk.pose.position.z = c.z();
+  mk.pose.orientation = tf2::toMsg(Eigen::Quaterniond(r));
+  mk.scale.x = b.width();
+  mk.scale.y = drawn.depth;
+  mk.scale.z = 2.0 * b.cg_height();
+  mk.color = color(sm.mode, drawn.valid);
+}
+
+// The label above the box: "<id> <mode>" (and the worst plane's mode of a two-plane item).
+void fill_label(visualization_msgs::Marker& label, const visualization_msgs::Marker& mk, const core::Body& b,
+                const std::string& id, const core::ItemSummary& sm) {
+  // The label: the box's fields but these (what a copy of the box, then changed, would be).
+  label.header = mk.header;
+  label.ns = "labels";
+  label.id = mk.id;
+  label.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
+  label.action = mk.action;
+  label.pose.position.x = mk.pose.position.x;
+  label.pose.position.y = mk.pose.position.y;
+  label.pose.position.z = 2.0 * b.cg_height() + 0.15;
+  label.pose.orientation.w = 1.0;
+  label.pose.orientation.x = label.pose.orientation.y = label.pose.orientation.z = 0.0;
+  label.scale.x = mk.scale.x;
+  label.scale.y = mk.scale.y;
+  label.scale.z = 0.1;
+  label.text.assign(id).append(" ").append(core::to_string(sm.mode));
+  if (sm.planes > 1 && sm.mode != ItemMode::Rest) label.text.append(" (").append(core::to_string(sm.worst)).append(")");
+  label.color.r = label.color.g = label.color.b = label.color.a = 1.0f;
+}
+
 }  // namespace
 
 void RockingMonitor::publish_events(Item& it, const core::ItemEvents& ev, const ::ros::Time& stamp) {
@@ -378,79 +483,11 @@ void RockingMonitor::publish_markers_and_tf() {
     mk.header.stamp = label.header.stamp = t.header.stamp = now;
     if (it.markers_revision == sm.revision && !sm.solid_active) continue;
     it.markers_revision = sm.revision;
-    const core::PlaneSummary& px = sm.plane[0];
     const core::Body& b = it.monitor->plane(core::Plane::X).body();  // geometry: constant
-    // Item frame: origin on the floor below the centre of mass, x across the width, y across the
-    // depth, z up. x plane: corner 1 at x = -nu1 B, corner 2 at x = +nu2 B, theta > 0 about -y. y plane:
-    // corner 1 at y = -nu1_y D, corner 2 at y = +nu2_y D, theta > 0 about +x. The body drawn is tilted
-    // by the y plane's rotation, then the x plane's (the planes are independent: a picture, not a model).
-    auto about_pivot = [](const Eigen::Vector3d& pivot, const Eigen::Matrix3d& r) {
-      Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-      t.linear() = r;
-      t.translation() = pivot - r * pivot;
-      return t;
-    };
-    Eigen::Isometry3d pose = about_pivot(Eigen::Vector3d(px.side >= 0 ? -b.nu1() * b.width() : b.nu2() * b.width(), 0.0, 0.0),
-                                         Eigen::AngleAxisd(-px.theta, Eigen::Vector3d::UnitY()).toRotationMatrix());
-    double depth = 0.5 * b.width(), centre_y = 0.0;  // no depth given: drawn half as deep as wide
-    bool valid = px.violations == 0;
-    if (sm.planes > 1) {
-      const core::PlaneSummary& py = sm.plane[1];
-      const core::Body& d = it.monitor->plane(core::Plane::Y).body();
-      pose = pose * about_pivot(Eigen::Vector3d(0.0, py.side >= 0 ? -d.nu1() * d.width() : d.nu2() * d.width(), 0.0),
-                                Eigen::AngleAxisd(py.theta, Eigen::Vector3d::UnitX()).toRotationMatrix());
-      depth = d.width();
-      valid = valid && py.violations == 0;
-      centre_y = (d.nu2() - d.nu1()) * d.width() / 2.0;
-    }
-    if (const core::Rocking3DModel* solid = it.monitor->solid(); solid && sm.solid_active) {
-      // The 3-D model's own pose (full orientation, the pivot it turns about), moved from the
-      // catalogue's floor frame to the item frame (origin on the floor below the centre of mass).
-      const Eigen::Vector3d& c = solid->body().centre_of_mass();
-      const Eigen::Vector3d below(c.x(), c.y(), 0.0);
-      pose.linear() = solid->rotation();
-      pose.translation() = solid->rotation() * below + solid->translation() - below;
-    }
-    const Eigen::Matrix3d r = pose.linear();
-    const Eigen::Vector3d shift = pose.translation();
-    t.header.frame_id = it.entry.spec.frame;
-    t.child_frame_id.assign(it.entry.spec.frame).append(marker_frame_suffix_);
-    t.transform.translation.x = shift.x();
-    t.transform.translation.y = shift.y();
-    t.transform.translation.z = shift.z();
-    t.transform.rotation = tf2::toMsg(Eigen::Quaterniond(r));
-    mk.header.frame_id = it.entry.spec.frame;
-    mk.ns = "items";
-    mk.id = static_cast<int>(i);
-    mk.type = visualization_msgs::Marker::CUBE;
-    mk.action = visualization_msgs::Marker::ADD;
-    const Eigen::Vector3d centre((b.nu2() - b.nu1()) * b.width() / 2.0, centre_y, b.cg_height());
-    const Eigen::Vector3d c = pose * centre;
-    mk.pose.position.x = c.x();
-    mk.pose.position.y = c.y();
-    mk.pose.position.z = c.z();
-    mk.pose.orientation = tf2::toMsg(Eigen::Quaterniond(r));
-    mk.scale.x = b.width();
-    mk.scale.y = depth;
-    mk.scale.z = 2.0 * b.cg_height();
-    mk.color = color(sm.mode, valid);
-    // The label: the box's fields but these (what a copy of the box, then changed, would be).
-    label.header = mk.header;
-    label.ns = "labels";
-    label.id = mk.id;
-    label.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
-    label.action = mk.action;
-    label.pose.position.x = mk.pose.position.x;
-    label.pose.position.y = mk.pose.position.y;
-    label.pose.position.z = 2.0 * b.cg_height() + 0.15;
-    label.pose.orientation.w = 1.0;
-    label.pose.orientation.x = label.pose.orientation.y = label.pose.orientation.z = 0.0;
-    label.scale.x = mk.scale.x;
-    label.scale.y = mk.scale.y;
-    label.scale.z = 0.1;
-    label.text.assign(it.entry.spec.id).append(" ").append(core::to_string(sm.mode));
-    if (sm.planes > 1 && sm.mode != ItemMode::Rest) label.text.append(" (").append(core::to_string(sm.worst)).append(")");
-    label.color.r = label.color.g = label.color.b = label.color.a = 1.0f;
+    const DrawnBody drawn = drawn_body(*it.monitor, sm);
+    fill_transform(t, drawn.pose, it.entry.spec.frame, marker_frame_suffix_);
+    fill_box(mk, static_cast<int>(i), it.entry.spec.frame, b, drawn, sm);
+    fill_label(label, mk, b, it.entry.spec.id, sm);
   }
   // tf2 rejects a second transform with the same stamp (sim time may not have advanced).
   if (tf_due && !transforms.empty() && now > last_tf_stamp_) {

@@ -34,6 +34,53 @@ bool station_number(const ::ros::NodeHandle& pnh, const std::string& name, const
   return found;
 }
 
+// ~server and ~streams: where to connect and what to ask for. False after a ROS_FATAL.
+bool read_server_and_streams(const ::ros::NodeHandle& pnh, feeds::SessionConfig& cfg, std::string& server) {
+  if (!pnh.getParam("server", server)) {
+    ROS_FATAL("seedlink_bridge: ~server (host:port of the SeedLink server, e.g. localhost:18000) is required");
+    return false;
+  }
+  // A list of strings, or one string with the items separated by commas (handy on a command line).
+  std::vector<std::string> items;
+  std::string joined;
+  if (pnh.getParam("streams", joined)) {
+    std::size_t at = 0;
+    for (std::size_t comma; (comma = joined.find(',', at)) != std::string::npos; at = comma + 1) items.push_back(joined.substr(at, comma - at));
+    items.push_back(joined.substr(at));
+  } else if (!pnh.getParam("streams", items)) {
+    ROS_FATAL("seedlink_bridge: ~streams (a list of NET_STA:SELECTORS, e.g. [\"CI_RIN:HN?\"], or one string "
+              "\"CI_RIN:HN?,IU_ANMO:00HN?\") is required");
+    return false;
+  }
+  try {
+    feeds::parse_host_port(server, cfg.host, cfg.port);
+    cfg.streams = feeds::parse_streams(items);
+  } catch (const std::invalid_argument& e) {
+    ROS_FATAL("seedlink_bridge: %s", e.what());
+    return false;
+  }
+  return true;
+}
+
+// The session's timeouts and reconnection backoff, each > 0 s. False after a ROS_FATAL.
+bool read_session_timing(const ::ros::NodeHandle& pnh, feeds::SessionConfig& cfg) {
+  pnh.param("connect_timeout", cfg.connect_timeout_s, cfg.connect_timeout_s);
+  pnh.param("keepalive", cfg.keepalive_s, cfg.keepalive_s);
+  pnh.param("idle_timeout", cfg.idle_timeout_s, cfg.idle_timeout_s);
+  pnh.param("record_timeout", cfg.record_timeout_s, cfg.record_timeout_s);
+  pnh.param("backoff_min", cfg.backoff_min_s, cfg.backoff_min_s);
+  pnh.param("backoff_max", cfg.backoff_max_s, cfg.backoff_max_s);
+  for (double v : {cfg.connect_timeout_s, cfg.keepalive_s, cfg.idle_timeout_s, cfg.record_timeout_s, cfg.backoff_min_s,
+                   cfg.backoff_max_s}) {
+    if (!(v > 0.0) || !std::isfinite(v)) {
+      ROS_FATAL("seedlink_bridge: ~connect_timeout, ~keepalive, ~idle_timeout, ~record_timeout, ~backoff_min and "
+                "~backoff_max must be > 0 s");
+      return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 SeedLinkBridge::SeedLinkBridge(::ros::NodeHandle nh, ::ros::NodeHandle pnh) : nh_(nh), pnh_(pnh) {}
@@ -62,43 +109,7 @@ void SeedLinkBridge::save_state() {
 bool SeedLinkBridge::init() {
   feeds::SessionConfig cfg;
   std::string server;
-  if (!pnh_.getParam("server", server)) {
-    ROS_FATAL("seedlink_bridge: ~server (host:port of the SeedLink server, e.g. localhost:18000) is required");
-    return false;
-  }
-  // A list of strings, or one string with the items separated by commas (handy on a command line).
-  std::vector<std::string> items;
-  std::string joined;
-  if (pnh_.getParam("streams", joined)) {
-    std::size_t at = 0;
-    for (std::size_t comma; (comma = joined.find(',', at)) != std::string::npos; at = comma + 1) items.push_back(joined.substr(at, comma - at));
-    items.push_back(joined.substr(at));
-  } else if (!pnh_.getParam("streams", items)) {
-    ROS_FATAL("seedlink_bridge: ~streams (a list of NET_STA:SELECTORS, e.g. [\"CI_RIN:HN?\"], or one string "
-              "\"CI_RIN:HN?,IU_ANMO:00HN?\") is required");
-    return false;
-  }
-  try {
-    feeds::parse_host_port(server, cfg.host, cfg.port);
-    cfg.streams = feeds::parse_streams(items);
-  } catch (const std::invalid_argument& e) {
-    ROS_FATAL("seedlink_bridge: %s", e.what());
-    return false;
-  }
-  pnh_.param("connect_timeout", cfg.connect_timeout_s, cfg.connect_timeout_s);
-  pnh_.param("keepalive", cfg.keepalive_s, cfg.keepalive_s);
-  pnh_.param("idle_timeout", cfg.idle_timeout_s, cfg.idle_timeout_s);
-  pnh_.param("record_timeout", cfg.record_timeout_s, cfg.record_timeout_s);
-  pnh_.param("backoff_min", cfg.backoff_min_s, cfg.backoff_min_s);
-  pnh_.param("backoff_max", cfg.backoff_max_s, cfg.backoff_max_s);
-  for (double v : {cfg.connect_timeout_s, cfg.keepalive_s, cfg.idle_timeout_s, cfg.record_timeout_s, cfg.backoff_min_s,
-                   cfg.backoff_max_s}) {
-    if (!(v > 0.0) || !std::isfinite(v)) {
-      ROS_FATAL("seedlink_bridge: ~connect_timeout, ~keepalive, ~idle_timeout, ~record_timeout, ~backoff_min and "
-                "~backoff_max must be > 0 s");
-      return false;
-    }
-  }
+  if (!read_server_and_streams(pnh_, cfg, server) || !read_session_timing(pnh_, cfg)) return false;
   bool add_gravity = true;
   pnh_.param("add_gravity", add_gravity, true);
   gravity_ = add_gravity ? core::kGravity : 0.0;
@@ -110,11 +121,20 @@ bool SeedLinkBridge::init() {
     ROS_FATAL("seedlink_bridge: ~queue_size = %d must be >= 1 (messages)", queue_size);
     return false;
   }
+  if (!init_stations(cfg.streams, frame_id, queue_size) || !init_history()) return false;
+  init_diagnostics(server);
+  if (!start_session(cfg)) return false;
+  ROS_INFO("seedlink_bridge: %zu station(s) from %s; up %s gravity", stations_.size(), server.c_str(),
+           add_gravity ? "includes +9.80665 m/s^2 of" : "excludes");
+  return true;
+}
 
-  stations_.resize(cfg.streams.size());
-  for (std::size_t i = 0; i < cfg.streams.size(); ++i) {
+bool SeedLinkBridge::init_stations(const std::vector<feeds::StreamSpec>& streams, const std::string& frame_id,
+                                   int queue_size) {
+  stations_.resize(streams.size());
+  for (std::size_t i = 0; i < streams.size(); ++i) {
     Station& s = stations_[i];
-    s.spec = cfg.streams[i];
+    s.spec = streams[i];
     const std::string name = s.spec.name();
     double gain = 0.0, azimuth = 0.0;
     bool has_gain = false, has_azimuth = false;
@@ -141,7 +161,10 @@ bool SeedLinkBridge::init() {
     s.msg.orientation_covariance[0] = -1.0;       // no orientation (REP 145)
     s.msg.angular_velocity_covariance[0] = -1.0;  // no gyroscope
   }
+  return true;
+}
 
+bool SeedLinkBridge::init_history() {
   try {
     // The rate is the records' (known at the first): the rings are sized for the highest expected.
     const double history_length = read_history_length(pnh_);
@@ -157,7 +180,10 @@ bool SeedLinkBridge::init() {
     ROS_FATAL("seedlink_bridge: ~history_length / ~history_max_rate: %s", e.what());
     return false;
   }
+  return true;
+}
 
+void SeedLinkBridge::init_diagnostics(const std::string& server) {
   diagnostics_ = std::make_unique<diagnostic_updater::Updater>(nh_, pnh_);
   diagnostics_->setHardwareID("seedlink " + server);
   diagnostics_->add("seedlink connection", this, &SeedLinkBridge::connection_diagnostics);
@@ -169,7 +195,9 @@ bool SeedLinkBridge::init() {
     diagnostics_->update();
     save_state();
   });
+}
 
+bool SeedLinkBridge::start_session(const feeds::SessionConfig& cfg) {
   session_ = std::make_unique<feeds::SeedLinkSession>(
       cfg, [this](std::size_t stream, std::uint32_t seq, const char* rec, std::size_t len) { on_record(stream, seq, rec, len); },
       [](feeds::SeedLinkSession::Level level, const std::string& what) {
@@ -193,8 +221,6 @@ bool SeedLinkBridge::init() {
     }
   }
   thread_ = std::thread([this] { session_->run(stop_); });
-  ROS_INFO("seedlink_bridge: %zu station(s) from %s; up %s gravity", stations_.size(), server.c_str(),
-           add_gravity ? "includes +9.80665 m/s^2 of" : "excludes");
   return true;
 }
 

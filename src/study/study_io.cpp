@@ -96,20 +96,20 @@ json set_json(const SetSummary& s) {
 
 namespace {
 
-// One study body (name, nu1 list, ...) of a body file. (A monitor catalogue's items are read by the
-// catalogue's own parser: load_catalogue_items().)
-void load_entry(const YAML::Node& item, std::size_t i, const std::string& path, const std::string& prefix,
-                BodyFile& out, std::set<std::string>& names) {
-  std::string where = path + ": " + prefix + "[" + std::to_string(i) + "]";
+// A body file entry's name ("body<i>" when not given); `where` names the entry in errors.
+std::string entry_name(const YAML::Node& item, std::size_t i, const std::string& where) {
   if (!item.IsMap()) throw StudyError(where + ": expected a map with width, cg_height, ...");
-  const char* name_key = "name";
   std::string name = "body" + std::to_string(i);
-  if (item[name_key]) {
-    if (!item[name_key].IsScalar() || item[name_key].Scalar().empty())
-      throw StudyError(where + ": " + name_key + ": expected a non-empty string");
-    name = item[name_key].Scalar();
+  if (item["name"]) {
+    if (!item["name"].IsScalar() || item["name"].Scalar().empty())
+      throw StudyError(where + ": name: expected a non-empty string");
+    name = item["name"].Scalar();
   }
-  where += " (" + name + "): ";
+  return name;
+}
+
+// Refuses a field the body file grammar does not know (a typo would otherwise be a silent default).
+void check_entry_fields(const YAML::Node& item, const std::string& where) {
   static const std::set<std::string> known{"name", "width", "cg_height", "nu1", "radius_of_gyration",
                                                "restitution", "mu_s", "depth", "eccentricity_y",
                                                "radius_of_gyration_y", "restitution_shift"};
@@ -121,7 +121,11 @@ void load_entry(const YAML::Node& item, std::size_t i, const std::string& path, 
       throw StudyError(where + key + ": unknown field (known: " + list + ")");
     }
   }
-  BodyParameters p;
+}
+
+// The x plane's parameters (nu1 left at its default) and the optional depth of a two-plane item.
+void read_entry_parameters(const YAML::Node& item, const std::string& where, BodyParameters& p,
+                           DepthParameters& depth) {
   for (const char* req : {"width", "cg_height"})
     if (!item[req]) throw StudyError(where + req + ": missing (required, m)");
   p.width = scalar(item["width"], where, "width");
@@ -130,7 +134,6 @@ void load_entry(const YAML::Node& item, std::size_t i, const std::string& path, 
   if (item["restitution"]) p.restitution = scalar(item["restitution"], where, "restitution");
   if (item["mu_s"]) p.mu_s = scalar(item["mu_s"], where, "mu_s");
   if (item["restitution_shift"]) p.restitution_shift = scalar(item["restitution_shift"], where, "restitution_shift");
-  DepthParameters depth;
   if (item["depth"]) depth.depth = scalar(item["depth"], where, "depth");
   if (item["eccentricity_y"]) depth.eccentricity_y = scalar(item["eccentricity_y"], where, "eccentricity_y");
   if (item["radius_of_gyration_y"])
@@ -139,8 +142,13 @@ void load_entry(const YAML::Node& item, std::size_t i, const std::string& path, 
     for (const char* y : {"eccentricity_y", "radius_of_gyration_y"})
       if (item[y]) throw StudyError(where + y + ": given without depth (the y plane needs its depth)");
   }
+}
+
+// nu1: one value (default 0.5) or a list; `nu_list` true for a list (each value becomes a body
+// named <name>_nu<value>).
+std::vector<double> read_entry_nus(const YAML::Node& item, const std::string& where, bool& nu_list) {
   std::vector<double> nus{0.5};
-  bool nu_list = false;
+  nu_list = false;
   if (const YAML::Node nu = item["nu1"]) {
     nus.clear();
     if (nu.IsSequence()) {
@@ -152,14 +160,13 @@ void load_entry(const YAML::Node& item, std::size_t i, const std::string& path, 
       nus.push_back(scalar(nu, where, "nu1"));
     }
   }
-  // Validate the geometry before computing the default radius of gyration from it.
-  {
-    BodyParameters probe = p;
-    probe.nu1 = 0.5;
-    if (const std::string e = validate(probe); !e.empty()) throw StudyError(where + e);
-    if (const std::string e = validate(depth); !e.empty()) throw StudyError(where + e);
-  }
-  if (std::isnan(p.radius_of_gyration)) p.radius_of_gyration = Body::homogeneous_radius_of_gyration(p.width, p.cg_height);
+  return nus;
+}
+
+// One body (no depth) or two-plane item (with depth) per nu1 value, checked, into `out`.
+void add_entry_bodies(const std::string& name, const std::string& where, const BodyParameters& p,
+                      const DepthParameters& depth, const std::vector<double>& nus, bool nu_list, BodyFile& out,
+                      std::set<std::string>& names) {
   for (double nu : nus) {
     BodyParameters b = p;
     b.nu1 = nu;
@@ -168,7 +175,7 @@ void load_entry(const YAML::Node& item, std::size_t i, const std::string& path, 
         where + (nu_list ? "nu1 = " + format_value(nu) + ": " : std::string());
     if (const std::string e = validate(b); !e.empty()) throw StudyError(nu_where + e);
     if (!names.insert(body_name).second)
-      throw StudyError(where + name_key + ": '" + body_name + "' used twice");
+      throw StudyError(where + "name: '" + body_name + "' used twice");
     if (!depth.given()) {
       out.bodies.push_back({body_name, b, nullptr, Plane::X, 0});
       continue;
@@ -185,6 +192,30 @@ void load_entry(const YAML::Node& item, std::size_t i, const std::string& path, 
     if (const std::string e = validate(it.y); !e.empty()) throw StudyError(nu_where + "y plane: " + e);
     out.items.push_back(std::move(it));
   }
+}
+
+// One study body (name, nu1 list, ...) of a body file. (A monitor catalogue's items are read by the
+// catalogue's own parser: load_catalogue_items().)
+void load_entry(const YAML::Node& item, std::size_t i, const std::string& path, const std::string& prefix,
+                BodyFile& out, std::set<std::string>& names) {
+  std::string where = path + ": " + prefix + "[" + std::to_string(i) + "]";
+  const std::string name = entry_name(item, i, where);
+  where += " (" + name + "): ";
+  check_entry_fields(item, where);
+  BodyParameters p;
+  DepthParameters depth;
+  read_entry_parameters(item, where, p, depth);
+  bool nu_list = false;
+  const std::vector<double> nus = read_entry_nus(item, where, nu_list);
+  // Validate the geometry before computing the default radius of gyration from it.
+  {
+    BodyParameters probe = p;
+    probe.nu1 = 0.5;
+    if (const std::string e = validate(probe); !e.empty()) throw StudyError(where + e);
+    if (const std::string e = validate(depth); !e.empty()) throw StudyError(where + e);
+  }
+  if (std::isnan(p.radius_of_gyration)) p.radius_of_gyration = Body::homogeneous_radius_of_gyration(p.width, p.cg_height);
+  add_entry_bodies(name, where, p, depth, nus, nu_list, out, names);
 }
 
 // A monitor catalogue (the node's grammar and messages, monitoring/catalogue.hpp): items without a

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <exception>
+#include <functional>
 #include <limits>
 #include <mutex>
 #include <stdexcept>
@@ -118,9 +119,32 @@ CaseResult run_case(const Body& body, const StudyRecord& rec, int polarity, bool
   return c;
 }
 
-std::vector<CaseResult> run_study(const std::vector<StudyBody>& bodies,
-                                  const std::vector<StudyRecord>& records, const StudyOptions& options) {
-  if (const std::string e = validate(options.settings); !e.empty()) throw StudyError(e);
+namespace {
+
+// The study's cases laid out for the workers: what every unit of work reads, and where it writes.
+struct StudyLayout {
+  const std::vector<StudyBody>& bodies;
+  const std::vector<StudyRecord>& records;
+  const StudyOptions& options;
+  std::vector<Body> rigid;
+  std::vector<StudyInput> inputs;
+  std::size_t per_body = 0;  // inputs per body
+  CaseRange range;
+  // A record's inputs: [first[r], first[r + 1]).
+  std::vector<std::size_t> first;
+};
+
+// Scalar unit: one body on one record's inputs, as global case indices [begin, end).
+struct ScalarUnit {
+  std::size_t body, record, begin, end;
+};
+
+// Batched unit: one record with bodies [b0, b1) as lanes.
+struct BatchUnit {
+  std::size_t record, b0, b1;
+};
+
+std::vector<Body> rigid_bodies(const std::vector<StudyBody>& bodies) {
   std::vector<Body> rigid;
   rigid.reserve(bodies.size());
   for (const auto& b : bodies) {
@@ -130,125 +154,133 @@ std::vector<CaseResult> run_study(const std::vector<StudyBody>& bodies,
       throw StudyError("body '" + b.name + "': " + e.what());
     }
   }
-  const std::vector<StudyInput> inputs = study_inputs(records, options.plan);
-  const std::size_t per_body = inputs.size();
-  const std::size_t total = bodies.size() * per_body;
-  CaseRange range = options.range;
+  return rigid;
+}
+
+// The requested case range (end max: all), checked against the `total` cases.
+CaseRange checked_range(CaseRange range, std::size_t total) {
   if (range.end == std::numeric_limits<std::size_t>::max()) range.end = total;
   if (range.begin > range.end || range.end > total)
     throw StudyError("case range [" + std::to_string(range.begin) + ", " + std::to_string(range.end) +
                      ") outside the " + std::to_string(total) + " cases");
+  return range;
+}
 
-  // Work units: (body, record) -> its contiguous inputs [first[r], first[r + 1]).
-  // Every record has at least its (polarity +1, vertical off) input, and a record's inputs are
-  // contiguous, in record order.
-  std::vector<std::size_t> first(records.size() + 1, per_body);
+// Every record has at least its (polarity +1, vertical off) input, and a record's inputs are
+// contiguous, in record order: first[r] is the index of its first.
+std::vector<std::size_t> first_inputs(const std::vector<StudyInput>& inputs, std::size_t records, std::size_t per_body) {
+  std::vector<std::size_t> first(records + 1, per_body);
   for (std::size_t i = 0; i < inputs.size(); ++i)
     if (i == 0 || inputs[i].record != inputs[i - 1].record) first[inputs[i].record] = i;
-  struct Unit {
-    std::size_t body, record, begin, end;  // global case indices
-  };
-  std::vector<Unit> units;
-  if (per_body > 0) {
-    for (std::size_t b = range.begin / per_body; b < bodies.size() && b * per_body < range.end; ++b) {
-      for (std::size_t r = 0; r < records.size(); ++r) {
-        const std::size_t lo = std::max(b * per_body + first[r], range.begin);
-        const std::size_t hi = std::min(b * per_body + first[r + 1], range.end);
-        if (lo < hi) units.push_back({b, r, lo, hi});
-      }
+  return first;
+}
+
+// Work units: (body, record) -> its contiguous inputs within the range.
+std::vector<ScalarUnit> scalar_units(const StudyLayout& s) {
+  std::vector<ScalarUnit> units;
+  if (s.per_body == 0) return units;
+  for (std::size_t b = s.range.begin / s.per_body; b < s.bodies.size() && b * s.per_body < s.range.end; ++b) {
+    for (std::size_t r = 0; r < s.records.size(); ++r) {
+      const std::size_t lo = std::max(b * s.per_body + s.first[r], s.range.begin);
+      const std::size_t hi = std::min(b * s.per_body + s.first[r + 1], s.range.end);
+      if (lo < hi) units.push_back({b, r, lo, hi});
     }
   }
+  return units;
+}
 
-  // Batched: (record, bodies [b0, b1)); the bodies of a record input step together.
+// Batched: (record, bodies [b0, b1)); the bodies of a record input step together.
+std::vector<BatchUnit> batch_units(const StudyLayout& s) {
   constexpr std::size_t kLanes = 64;
-  struct BatchUnit {
-    std::size_t record, b0, b1;
-  };
-  std::vector<BatchUnit> batch_units;
-  if (options.batch && per_body > 0 && range.begin < range.end) {
-    const std::size_t b_first = range.begin / per_body, b_last = (range.end - 1) / per_body + 1;
-    for (std::size_t r = 0; r < records.size(); ++r)
-      for (std::size_t b0 = b_first; b0 < b_last; b0 += kLanes) batch_units.push_back({r, b0, std::min(b0 + kLanes, b_last)});
-  }
-  const std::size_t unit_count = options.batch ? batch_units.size() : units.size();
+  std::vector<BatchUnit> units;
+  if (s.per_body == 0 || s.range.begin >= s.range.end) return units;
+  const std::size_t b_first = s.range.begin / s.per_body, b_last = (s.range.end - 1) / s.per_body + 1;
+  for (std::size_t r = 0; r < s.records.size(); ++r)
+    for (std::size_t b0 = b_first; b0 < b_last; b0 += kLanes) units.push_back({r, b0, std::min(b0 + kLanes, b_last)});
+  return units;
+}
 
-  std::vector<CaseResult> results(range.size());
+// One scalar unit: PSV once, then run_case() per input. Returns the number of cases run.
+std::size_t run_scalar_unit(const StudyLayout& s, const ScalarUnit& unit, std::vector<CaseResult>& results) {
+  const Body& body = s.rigid[unit.body];
+  const StudyRecord& rec = s.records[unit.record];
+  const double psv = pseudo_velocity_at(rec.corrected, rec.dt, housner_period(body));
+  for (std::size_t idx = unit.begin; idx < unit.end; ++idx) {
+    const StudyInput& in = s.inputs[idx - unit.body * s.per_body];
+    CaseResult c = run_case(body, rec, in.polarity, in.vertical, s.options.settings, psv);
+    c.index = idx;
+    c.body = unit.body;
+    c.record = unit.record;
+    results[idx - s.range.begin] = c;
+  }
+  return unit.end - unit.begin;
+}
+
+// One batched unit: PSV once per body, then each input of the record with the bodies whose case is
+// in the range as lanes. Returns the number of cases run.
+std::size_t run_batch_unit(const StudyLayout& s, const BatchUnit& unit, std::vector<CaseResult>& results) {
+  const std::size_t r = unit.record, b0 = unit.b0, b1 = unit.b1;
+  const StudyRecord& rec = s.records[r];
+  std::vector<double> psv(b1 - b0);
+  for (std::size_t b = b0; b < b1; ++b)
+    psv[b - b0] = pseudo_velocity_at(rec.corrected, rec.dt, housner_period(s.rigid[b]));
+  std::size_t count = 0;
+  std::vector<std::size_t> lanes;
+  std::vector<BodyParameters> params;
+  for (std::size_t i = s.first[r]; i < s.first[r + 1]; ++i) {
+    lanes.clear();
+    params.clear();
+    for (std::size_t b = b0; b < b1; ++b) {
+      const std::size_t idx = b * s.per_body + i;
+      if (idx >= s.range.begin && idx < s.range.end) {
+        lanes.push_back(b);
+        params.push_back(s.bodies[b].parameters);
+      }
+    }
+    if (lanes.empty()) continue;
+    const StudyInput& in = s.inputs[i];
+    const double sign = in.polarity < 0 ? -1.0 : 1.0;
+    const bool use_v = in.vertical && rec.has_vertical();
+    const std::vector<double>& ah = rec.horizontal;
+    BatchRocking batch(params, s.options.settings, s.options.trig);
+    if (!ah.empty()) {
+      batch.reset(rec.t0, sign * ah[0], use_v ? rec.vertical[0] : 0.0);
+      for (std::size_t k = 1; k < ah.size(); ++k) batch.step_all(sign * ah[k], use_v ? rec.vertical[k] : 0.0, rec.dt);
+    }
+    for (std::size_t k = 0; k < lanes.size(); ++k) {
+      const std::size_t b = lanes[k];
+      CaseResult c = case_setup(s.rigid[b], rec, in.polarity, in.vertical, psv[b - b0]);
+      c.violations = batch.violations_seen(k);
+      c.first_violation_time = batch.first_violation_time(k);
+      finish_case(c, s.rigid[b], batch.model(k));
+      c.index = b * s.per_body + i;
+      c.body = b;
+      c.record = r;
+      results[c.index - s.range.begin] = c;
+      ++count;
+    }
+  }
+  return count;
+}
+
+// Runs units [0, unit_count) on the options' threads, `run_unit(u)` returning the cases it ran; the
+// calling thread reports progress of `cases` until the workers are done. The first exception stops
+// the workers and is rethrown.
+void run_units(std::size_t unit_count, std::size_t cases, const StudyOptions& options,
+               const std::function<std::size_t(std::size_t)>& run_unit) {
   std::atomic<std::size_t> next{0}, done{0};
   std::atomic<bool> stop{false};
   std::exception_ptr error;
   std::mutex mutex;
   std::condition_variable finished_cv;
   int running = 0;
-
-  // One batched unit: PSV once per body, then each input of the record with the bodies whose case is
-  // in the range as lanes. Returns the number of cases run.
-  auto run_batch_unit = [&](std::size_t r, std::size_t b0, std::size_t b1) -> std::size_t {
-    const StudyRecord& rec = records[r];
-    std::vector<double> psv(b1 - b0);
-    for (std::size_t b = b0; b < b1; ++b)
-      psv[b - b0] = pseudo_velocity_at(rec.corrected, rec.dt, housner_period(rigid[b]));
-    std::size_t count = 0;
-    std::vector<std::size_t> lanes;
-    std::vector<BodyParameters> params;
-    for (std::size_t i = first[r]; i < first[r + 1]; ++i) {
-      lanes.clear();
-      params.clear();
-      for (std::size_t b = b0; b < b1; ++b) {
-        const std::size_t idx = b * per_body + i;
-        if (idx >= range.begin && idx < range.end) {
-          lanes.push_back(b);
-          params.push_back(bodies[b].parameters);
-        }
-      }
-      if (lanes.empty()) continue;
-      const StudyInput& in = inputs[i];
-      const double s = in.polarity < 0 ? -1.0 : 1.0;
-      const bool use_v = in.vertical && rec.has_vertical();
-      const std::vector<double>& ah = rec.horizontal;
-      BatchRocking batch(params, options.settings, options.trig);
-      if (!ah.empty()) {
-        batch.reset(rec.t0, s * ah[0], use_v ? rec.vertical[0] : 0.0);
-        for (std::size_t k = 1; k < ah.size(); ++k) batch.step_all(s * ah[k], use_v ? rec.vertical[k] : 0.0, rec.dt);
-      }
-      for (std::size_t k = 0; k < lanes.size(); ++k) {
-        const std::size_t b = lanes[k];
-        CaseResult c = case_setup(rigid[b], rec, in.polarity, in.vertical, psv[b - b0]);
-        c.violations = batch.violations_seen(k);
-        c.first_violation_time = batch.first_violation_time(k);
-        finish_case(c, rigid[b], batch.model(k));
-        c.index = b * per_body + i;
-        c.body = b;
-        c.record = r;
-        results[c.index - range.begin] = c;
-        ++count;
-      }
-    }
-    return count;
-  };
-
   auto worker = [&]() {
     try {
       for (;;) {
         if (stop.load(std::memory_order_relaxed)) break;
         const std::size_t u = next.fetch_add(1);
         if (u >= unit_count) break;
-        if (options.batch) {
-          done.fetch_add(run_batch_unit(batch_units[u].record, batch_units[u].b0, batch_units[u].b1));
-          continue;
-        }
-        const Unit& unit = units[u];
-        const Body& body = rigid[unit.body];
-        const StudyRecord& rec = records[unit.record];
-        const double psv = pseudo_velocity_at(rec.corrected, rec.dt, housner_period(body));
-        for (std::size_t idx = unit.begin; idx < unit.end; ++idx) {
-          const StudyInput& in = inputs[idx - unit.body * per_body];
-          CaseResult c = run_case(body, rec, in.polarity, in.vertical, options.settings, psv);
-          c.index = idx;
-          c.body = unit.body;
-          c.record = unit.record;
-          results[idx - range.begin] = c;
-        }
-        done.fetch_add(unit.end - unit.begin);
+        done.fetch_add(run_unit(u));
       }
     } catch (...) {
       std::lock_guard<std::mutex> lock(mutex);
@@ -259,7 +291,6 @@ std::vector<CaseResult> run_study(const std::vector<StudyBody>& bodies,
     --running;
     finished_cv.notify_all();
   };
-
   int threads = options.threads > 0 ? options.threads
                                     : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   threads = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(threads),
@@ -274,14 +305,32 @@ std::vector<CaseResult> run_study(const std::vector<StudyBody>& bodies,
       finished_cv.wait_for(lock, interval);
       if (options.progress && running > 0) {
         lock.unlock();
-        options.progress(done.load(), range.size());
+        options.progress(done.load(), cases);
         lock.lock();
       }
     }
   }
   for (auto& t : pool) t.join();
   if (error) std::rethrow_exception(error);
-  if (options.progress) options.progress(done.load(), range.size());
+  if (options.progress) options.progress(done.load(), cases);
+}
+
+}  // namespace
+
+std::vector<CaseResult> run_study(const std::vector<StudyBody>& bodies,
+                                  const std::vector<StudyRecord>& records, const StudyOptions& options) {
+  if (const std::string e = validate(options.settings); !e.empty()) throw StudyError(e);
+  StudyLayout s{bodies, records, options, rigid_bodies(bodies), study_inputs(records, options.plan), 0, {}, {}};
+  s.per_body = s.inputs.size();
+  s.range = checked_range(options.range, bodies.size() * s.per_body);
+  s.first = first_inputs(s.inputs, records.size(), s.per_body);
+  const std::vector<ScalarUnit> units = scalar_units(s);
+  const std::vector<BatchUnit> batched = options.batch ? batch_units(s) : std::vector<BatchUnit>();
+  std::vector<CaseResult> results(s.range.size());
+  if (options.batch)
+    run_units(batched.size(), s.range.size(), options, [&](std::size_t u) { return run_batch_unit(s, batched[u], results); });
+  else
+    run_units(units.size(), s.range.size(), options, [&](std::size_t u) { return run_scalar_unit(s, units[u], results); });
   return results;
 }
 

@@ -44,6 +44,8 @@ std::string y_history_path(const std::string& x_path) {
 
 }  // namespace
 
+// A table of the flags, one entry each in --help's order (a test compares --help): long, but split it
+// and the order of the help text is spread over functions.
 void add_options(CLI::App& app, CommandLine& c) {
   // c's members under the names the flags are declared with.
   std::string &record = c.record, &record_y = c.record_y, &vertical_file = c.vertical_file,
@@ -169,24 +171,24 @@ void add_options(CLI::App& app, CommandLine& c) {
                  "angular velocity)");
 }
 
-Setup resolve(const CLI::App& app, CommandLine& c) {
-  Setup s;
-  std::optional<rm::CatalogueItem>& item_entry = s.item_entry;
-  std::optional<rm::BodyParameters>& body_y = s.body_y;
+namespace {
+
+// --method, --model (checked together) and --fidelity.
+void resolve_solver(CommandLine& c) {
   rm::SolverSettings& settings = c.opt.settings;
-  rm::BodyParameters& body = c.body;
-  rm::DepthParameters& depth = c.depth;
-  const std::string &catalogue_file = c.catalogue_file, &item_id = c.item_id, &history_path = c.history_path;
-  std::string& history_y_path = c.history_y_path;
-  const int samples = c.samples;
   rm::parse_method(c.method_text, settings.method);
   rm::parse_model(c.model_text, settings.model);
   if (const std::string e = rm::validate(settings); !e.empty()) throw std::invalid_argument(e);
   rm::parse_fidelity(c.fidelity_text.c_str(), c.opt.fidelity);
-  // The body: from the flags, or a catalogue item (then no body flag: one source of truth).
+}
+
+// The body: from the flags, or a catalogue item (then no body flag: one source of truth).
+void resolve_body(const CLI::App& app, CommandLine& c, Setup& s) {
   static const char* const kBodyFlags[] = {"--width", "--cg-height", "--eccentricity", "--radius-of-gyration",
                                            "--depth", "--eccentricity-y", "--radius-of-gyration-y", "--mu-s",
                                            "--mu-k", "--restitution"};
+  std::optional<rm::CatalogueItem>& item_entry = s.item_entry;
+  const std::string &catalogue_file = c.catalogue_file, &item_id = c.item_id;
   if (!catalogue_file.empty()) {
     if (item_id.empty()) throw std::invalid_argument("--catalogue needs --item ID");
     for (const char* flag : kBodyFlags)
@@ -198,22 +200,24 @@ Setup resolve(const CLI::App& app, CommandLine& c) {
     if (item_entry->spec.input_gain != 1.0 || !item_entry->uncertain.law(rm::UncertainField::InputGain).is_fixed())
       throw std::invalid_argument(catalogue_file + ": item '" + item_id + "': input_gain: rocking_sim runs the record "
                                   "as given (scale the record instead); the monitor and rocking_experiments apply it");
-    body = item_entry->spec.body;
-    depth = item_entry->spec.depth;
+    c.body = item_entry->spec.body;
+    c.depth = item_entry->spec.depth;
   } else {
     if (!item_id.empty()) throw std::invalid_argument("--item needs --catalogue FILE");
     for (const char* flag : {"--width", "--cg-height"})
       if (app.count(flag) == 0) throw std::invalid_argument(std::string(flag) + " is required (or --catalogue and --item)");
   }
-  if (samples > 0 && !(item_entry && item_entry->uncertain.uncertain()))
+  if (c.samples > 0 && !(item_entry && item_entry->uncertain.uncertain()))
     throw std::invalid_argument("--samples needs a --catalogue item given with distributions (" +
                                 (item_entry ? "'" + item_id + "' has none" : std::string("no --catalogue")) + ")");
-  const rm::Body rigid(body);  // validates the x plane's body
+  const rm::Body rigid(c.body);  // validates the x plane's body
+}
 
-  // The y plane: asked for by --depth (NaN in DepthParameters means "not given", so an explicit
-  // --depth nan is refused here rather than silently dropping the plane).
-  const bool two_planes = s.two_planes = item_entry ? item_entry->spec.two_planes() : app.count("--depth") > 0;
-  if (two_planes && std::isnan(depth.depth))
+// The y plane: asked for by --depth (NaN in DepthParameters means "not given", so an explicit
+// --depth nan is refused here rather than silently dropping the plane).
+void resolve_y_plane(const CLI::App& app, const CommandLine& c, Setup& s) {
+  const bool two_planes = s.two_planes = s.item_entry ? s.item_entry->spec.two_planes() : app.count("--depth") > 0;
+  if (two_planes && std::isnan(c.depth.depth))
     throw rm::BodyError("invalid body: depth = nan (must be a finite length > 0 m)");
   if (!two_planes) {
     for (const char* flag : {"--record-y", "--eccentricity-y", "--radius-of-gyration-y", "--history-y"})
@@ -222,44 +226,61 @@ Setup resolve(const CLI::App& app, CommandLine& c) {
                                     " needs --depth (the item's base depth along y, m)");
   }
   if (two_planes) {
-    body_y = rm::y_plane_body(body, depth);  // throws naming depth / eccentricity_y / radius_of_gyration_y
-    (void)rm::Body(*body_y);                 // and the y body as a whole, before any file is read
+    s.body_y = rm::y_plane_body(c.body, c.depth);  // throws naming depth / eccentricity_y / radius_of_gyration_y
+    (void)rm::Body(*s.body_y);                     // and the y body as a whole, before any file is read
   }
-  if (!history_y_path.empty() && history_path.empty())
+  if (!c.history_y_path.empty() && c.history_path.empty())
     throw std::invalid_argument("--history-y needs --history");
-  // The 3-D model: a catalogue item's own description, or the box of the flags when asked for.
+}
+
+// The 3-D model: a catalogue item's own description, or the box of the flags when asked for.
+void resolve_solid(const CLI::App& app, const CommandLine& c, Setup& s) {
   rm::parse_solid_choice(c.solid_model_text, s.solid_choice);
+  const std::optional<rm::CatalogueItem>& item_entry = s.item_entry;
   if (s.solid_choice != rm::SolidChoice::Planar) {
     if (item_entry && item_entry->spec.solid) {
       s.solid_item = item_entry->spec;
     } else if (s.solid_choice == rm::SolidChoice::Solid) {
       if (item_entry)
-        throw std::invalid_argument("--solid-model 3d: item '" + item_id + "' in " + catalogue_file +
+        throw std::invalid_argument("--solid-model 3d: item '" + c.item_id + "' in " + c.catalogue_file +
                                     " has no 3-D description (base_polygon, centre_of_mass, central_inertia, mass)");
-      if (!two_planes)
+      if (!s.two_planes)
         throw std::invalid_argument("--solid-model 3d needs --depth (the box's base is --width x --depth) or a "
                                     "--catalogue item with a base_polygon");
       rm::ItemSpec box;
       box.id = "rocking_sim";
       box.sensor = box.frame = "cli";
-      box.body = body;
-      box.depth = depth;
+      box.body = c.body;
+      box.depth = c.depth;
       // the y plane's own radius of gyration: the box's y tilt is then the y plane's body exactly
-      box.solid = rm::box_base_body(body, depth.depth, depth.eccentricity_y, rm::Body(*body_y).radius_of_gyration());
+      box.solid = rm::box_base_body(c.body, c.depth.depth, c.depth.eccentricity_y, rm::Body(*s.body_y).radius_of_gyration());
       s.solid_item = box;
     }
   }
   if (!s.solid_item && app.count("--history-3d") > 0)
     throw std::invalid_argument("--history-3d needs the 3-D model (a --catalogue item with a base_polygon, or "
                                 "--solid-model 3d with --depth)");
-  const bool derived_history_y = s.derived_history_y = two_planes && !history_path.empty() && history_y_path.empty();
-  if (derived_history_y) history_y_path = y_history_path(history_path);
+}
+
+}  // namespace
+
+Setup resolve(const CLI::App& app, CommandLine& c) {
+  Setup s;
+  resolve_solver(c);
+  resolve_body(app, c, s);
+  resolve_y_plane(app, c, s);
+  resolve_solid(app, c, s);
+  const bool derived_history_y = s.derived_history_y = s.two_planes && !c.history_path.empty() && c.history_y_path.empty();
+  if (derived_history_y) c.history_y_path = y_history_path(c.history_path);
   return s;
 }
 
-Motions read_motions(CommandLine& c, bool two_planes) {
-  const std::string &record = c.record, &record_y = c.record_y, &vertical_file = c.vertical_file,
-                    &units_text = c.units_text;
+namespace {
+
+// --record's first horizontal into `horizontal`, and the vertical: the record's own (a CSV's
+// second column, a miniSEED or COSMOS station's vertical channel) or --vertical's.
+void read_x_and_vertical(CommandLine& c, rm::Component& horizontal, std::optional<rm::Component>& vertical) {
+  const std::string &record = c.record, &vertical_file = c.vertical_file, &units_text = c.units_text;
   rm::ReadOptions& options = c.options;
   const bool miniseed_options = rocking_monitor::tools::miniseed_options_given(options);
   if (units_text == "g") options.csv_units = rm::AccelUnits::G;
@@ -270,8 +291,7 @@ Motions read_motions(CommandLine& c, bool two_planes) {
     throw rm::RecordError(record + ": --gain, --sensor-azimuth and --channel-table apply to miniSEED records only; this " +
                           std::string(rm::to_string(format)) + " file states its own units and directions");
   const std::vector<rm::Component> comps = rm::read_record(record, options);
-  rm::Component horizontal = first_horizontal(comps);
-  std::optional<rm::Component> vertical;
+  horizontal = first_horizontal(comps);
   if (format == rm::RecordFormat::Csv && comps.size() > 1) vertical = comps[1];
   // A miniSEED or COSMOS file of a whole station gives its vertical channel too.
   if (format == rm::RecordFormat::MiniSeed || format == rm::RecordFormat::CosmosV2) {
@@ -289,42 +309,58 @@ Motions read_motions(CommandLine& c, bool two_planes) {
       if (comp.vertical) { pick = &comp; break; }
     vertical = *pick;
   }
+}
 
-  std::optional<rm::Component> horizontal_y;
-  if (two_planes && !record_y.empty()) {
-    const rm::RecordFormat format_y = check_units(record_y, units_text);
-    const std::vector<rm::Component> comps_y = rm::read_record(record_y, options);
-    horizontal_y = first_horizontal(comps_y);
-    if (format_y == rm::RecordFormat::Csv && comps_y.size() > 1)
-      std::cerr << "rocking_sim: note: " << record_y << ": its vertical column is not used (the "
-                << "vertical comes from --record or --vertical and is shared by both planes)\n";
-    // Both planes run on one time grid.
-    if (std::abs(horizontal_y->dt - horizontal.dt) > 1e-6 * horizontal.dt) {
-      std::ostringstream os;
-      os << "--record-y " << record_y << " has dt = " << horizontal_y->dt << " s but --record "
-         << record << " has dt = " << horizontal.dt << " s (the two horizontals must share one sample interval)";
-      throw rm::RecordError(os.str());
-    }
-    // Different lengths: the common length, and say what was left out.
-    const std::size_t nx = horizontal.accel.size(), ny = horizontal_y->accel.size();
-    if (nx != ny) {
-      rm::Component& longer = nx > ny ? horizontal : *horizontal_y;
-      const std::size_t n = std::min(nx, ny);
-      std::cerr << "rocking_sim: note: --record " << record << " has " << nx << " samples, --record-y "
-                << record_y << " " << ny << ": both planes use the common " << n << "; the last "
-                << longer.accel.size() - n << " samples of " << longer.file << " are not used\n";
-      longer.accel.resize(n);
-    }
-  } else if (two_planes) {
-    // --depth without --record-y: no horizontal input along y, only the shared vertical.
-    horizontal_y = rm::Component{};
-    horizontal_y->file = "no y horizontal";
-    horizontal_y->dt = horizontal.dt;
-    horizontal_y->t0 = horizontal.t0;
-    horizontal_y->accel.assign(horizontal.accel.size(), 0.0);
-    std::cerr << "rocking_sim: note: --depth without --record-y: the y plane sees only the vertical"
-              << (vertical ? "" : " (none given: it stays at rest)") << "\n";
+// --record-y's first horizontal, on --record's time grid: the same dt, and both cut to the common length.
+rm::Component read_y(CommandLine& c, rm::Component& horizontal) {
+  const std::string &record = c.record, &record_y = c.record_y;
+  const rm::RecordFormat format_y = check_units(record_y, c.units_text);
+  const std::vector<rm::Component> comps_y = rm::read_record(record_y, c.options);
+  rm::Component horizontal_y = first_horizontal(comps_y);
+  if (format_y == rm::RecordFormat::Csv && comps_y.size() > 1)
+    std::cerr << "rocking_sim: note: " << record_y << ": its vertical column is not used (the "
+              << "vertical comes from --record or --vertical and is shared by both planes)\n";
+  // Both planes run on one time grid.
+  if (std::abs(horizontal_y.dt - horizontal.dt) > 1e-6 * horizontal.dt) {
+    std::ostringstream os;
+    os << "--record-y " << record_y << " has dt = " << horizontal_y.dt << " s but --record "
+       << record << " has dt = " << horizontal.dt << " s (the two horizontals must share one sample interval)";
+    throw rm::RecordError(os.str());
   }
+  // Different lengths: the common length, and say what was left out.
+  const std::size_t nx = horizontal.accel.size(), ny = horizontal_y.accel.size();
+  if (nx != ny) {
+    rm::Component& longer = nx > ny ? horizontal : horizontal_y;
+    const std::size_t n = std::min(nx, ny);
+    std::cerr << "rocking_sim: note: --record " << record << " has " << nx << " samples, --record-y "
+              << record_y << " " << ny << ": both planes use the common " << n << "; the last "
+              << longer.accel.size() - n << " samples of " << longer.file << " are not used\n";
+    longer.accel.resize(n);
+  }
+  return horizontal_y;
+}
+
+// --depth without --record-y: no horizontal input along y, only the shared vertical.
+rm::Component no_y(const rm::Component& horizontal, bool has_vertical) {
+  rm::Component horizontal_y;
+  horizontal_y.file = "no y horizontal";
+  horizontal_y.dt = horizontal.dt;
+  horizontal_y.t0 = horizontal.t0;
+  horizontal_y.accel.assign(horizontal.accel.size(), 0.0);
+  std::cerr << "rocking_sim: note: --depth without --record-y: the y plane sees only the vertical"
+            << (has_vertical ? "" : " (none given: it stays at rest)") << "\n";
+  return horizontal_y;
+}
+
+}  // namespace
+
+Motions read_motions(CommandLine& c, bool two_planes) {
+  rm::Component horizontal;
+  std::optional<rm::Component> vertical;
+  read_x_and_vertical(c, horizontal, vertical);
+  std::optional<rm::Component> horizontal_y;
+  if (two_planes && !c.record_y.empty()) horizontal_y = read_y(c, horizontal);
+  else if (two_planes) horizontal_y = no_y(horizontal, vertical.has_value());
 
   std::string notice;
   Motions m;

@@ -131,119 +131,122 @@ json body_json(const rm::Body& rigid) {
           {"restitution_to_2", p2.restitution}};
 }
 
-}  // namespace
+// --fidelity contact | adaptive: the options' adaptive settings, the scene from this plane's record.
+rm::AdaptiveSettings adaptive_settings(const RunOptions& opt, const rm::GroundMotion& motion) {
+  rm::AdaptiveSettings as;
+  as.fidelity = opt.fidelity;
+  as.rocking = opt.settings;
+  as.scene = parse_scene(opt.scene_text, motion);  // "auto": this plane's own record
+  as.contact = opt.contact;
+  as.hold_time_s = opt.hold_time_s;
+  as.linearized_max_alpha = opt.linearized_max_alpha;
+  return as;
+}
 
-// One plane through its record, exactly as the single-plane tool: simulate() for --fidelity rocking,
-// the AdaptiveModel loop for contact / adaptive.
-PlaneRun run_plane(const RunOptions& opt, const rm::BodyParameters& params,
-                   const rm::GroundMotion& motion, const std::string& history_path) {
-  const rm::Body rigid(params);
+// The adaptive model's single-plane JSON: the levels, its episodes, switches, scene and cost.
+json adaptive_json(const RunOptions& opt, const rm::AdaptiveSettings& as, const FidelityRun& f, const rm::Body& rigid,
+                   const rm::GroundMotion& motion, double pga) {
+  const rm::AdaptiveOutcome& o = f.outcome;
   const rm::SolverSettings& settings = opt.settings;
-  double pga = 0.0;
-  for (double a : motion.horizontal) pga = std::max(pga, std::abs(a));
-  PlaneRun run;
-  const std::string record_line = format("record      %s (%zu samples, dt %.4g s, PGA %.3f m/s^2)",
-                                         motion.description.c_str(), motion.size(), motion.dt, pga);
-  if (opt.fidelity != rm::Fidelity::Rocking) {
-    rm::AdaptiveSettings as;
-    as.fidelity = opt.fidelity;
-    as.rocking = settings;
-    as.scene = parse_scene(opt.scene_text, motion);  // "auto": this plane's own record
-    as.contact = opt.contact;
-    as.hold_time_s = opt.hold_time_s;
-    as.linearized_max_alpha = opt.linearized_max_alpha;
-    const FidelityRun f = run_fidelity(rigid, as, motion, history_path);
-    const rm::AdaptiveOutcome& o = f.outcome;
-    run.levels = level_times(o);
-    json reasons = json::array();
-    for (const auto& sw : f.switches)
-      reasons.push_back({{"time_s", sw.time}, {"onset_time_s", sw.onset_time},
-                         {"to", rm::to_string(sw.to)}, {"reason", rm::to_string(sw.reason)}});
-    run.out = outcome_json(o);
-    run.out.update({{"final_mode", f.final_mode},
-               {"slip_episodes", o.slip_episodes},
-               {"flight_episodes", o.flight_episodes},
-               {"first_slip_time_s", nullable(o.first_slip_time)},
-               {"first_flight_time_s", nullable(o.first_flight_time)},
-               {"max_abs_slip_m", o.max_abs_slip},
-               {"method", rm::to_string(settings.method)},
-               {"model", rm::to_string(settings.model)},
-               {"fidelity", rm::to_string(opt.fidelity)},
-               {"initial_model_reason", rm::to_string(f.initial)},
-               {"sliding_ruled_out", o.sliding_ruled_out},
-               {"scene",
-                {{"source", opt.scene_text},
-                 {"horizontal_mps2", nullable_inf(as.scene.horizontal)},
-                 {"vertical_mps2", nullable_inf(as.scene.vertical)},
-                 {"required_mu", nullable_inf(f.bound.required_mu())},
-                 {"samples_outside", o.samples_outside_scene}}},
-               {"samples_rocking_model", o.samples_rocking_model},
-               {"samples_contact_model", o.samples_contact_model},
-               {"samples_linearized_model", o.samples_linearized_model},
-               {"linearized_fallbacks", o.linearized_fallbacks},
-               {"replayed_samples", o.recomputed_samples},  // samples recomputed at up switches
-               {"model_switches", o.model_switches},
-               {"switch_reasons", reasons},
-               {"steps", o.rocking_steps + o.contact_steps},
-               {"steps_rocking_model", o.rocking_steps},
-               {"steps_contact_model", o.contact_steps},
-               {"samples", o.samples},
-               {"cpu_time_s", f.cpu_time_s},
-               {"body", body_json(rigid)},
-               {"record", record_json(motion, opt.scale, pga)}});
-    auto& L = run.lines;
-    L.push_back(record_line);
-    L.push_back(format("fidelity    %s (start: %s)", rm::to_string(opt.fidelity), rm::to_string(f.initial)));
-    L.push_back(format("scene       %s: |a_h| <= %.4g, |a_v| <= %.4g m/s^2; friction needed to rule out "
-                       "sliding, slip at impact and flight: %.4g (mu_s %.4g)",
-                       opt.scene_text.c_str(), as.scene.horizontal, as.scene.vertical,
-                       f.bound.required_mu(), rigid.mu_s()));
-    L.push_back(format("result      %s, final mode %s", o.overturned ? "OVERTURNED" : "survived",
-                       f.final_mode.c_str()));
-    L.push_back(format("times       uplift %s, beyond tipping %s, committed %s, overturned %s, "
-                       "first slip %s, first flight %s",
-                       when(o.uplift_time).c_str(), when(o.beyond_tipping_time).c_str(),
-                       when(o.committed_time).c_str(), when(o.overturn_time).c_str(),
-                       when(o.first_slip_time).c_str(), when(o.first_flight_time).c_str()));
-    for (const auto& sw : f.switches)
-      L.push_back(format("switch      to %s at %.4f s (detected %.4f s): %s", rm::to_string(sw.to),
-                         sw.time, sw.onset_time, rm::to_string(sw.reason)));
-    L.push_back(format("cost        %ld rocking-model + %ld contact-model samples, %ld + %ld steps, "
-                       "%.4f s CPU",
-                       o.samples_rocking_model, o.samples_contact_model, o.rocking_steps,
-                       o.contact_steps, f.cpu_time_s));
-    return run;
-  }
+  json reasons = json::array();
+  for (const auto& sw : f.switches)
+    reasons.push_back({{"time_s", sw.time}, {"onset_time_s", sw.onset_time},
+                       {"to", rm::to_string(sw.to)}, {"reason", rm::to_string(sw.reason)}});
+  json out = outcome_json(o);
+  out.update({{"final_mode", f.final_mode},
+              {"slip_episodes", o.slip_episodes},
+              {"flight_episodes", o.flight_episodes},
+              {"first_slip_time_s", nullable(o.first_slip_time)},
+              {"first_flight_time_s", nullable(o.first_flight_time)},
+              {"max_abs_slip_m", o.max_abs_slip},
+              {"method", rm::to_string(settings.method)},
+              {"model", rm::to_string(settings.model)},
+              {"fidelity", rm::to_string(opt.fidelity)},
+              {"initial_model_reason", rm::to_string(f.initial)},
+              {"sliding_ruled_out", o.sliding_ruled_out},
+              {"scene",
+               {{"source", opt.scene_text},
+                {"horizontal_mps2", nullable_inf(as.scene.horizontal)},
+                {"vertical_mps2", nullable_inf(as.scene.vertical)},
+                {"required_mu", nullable_inf(f.bound.required_mu())},
+                {"samples_outside", o.samples_outside_scene}}},
+              {"samples_rocking_model", o.samples_rocking_model},
+              {"samples_contact_model", o.samples_contact_model},
+              {"samples_linearized_model", o.samples_linearized_model},
+              {"linearized_fallbacks", o.linearized_fallbacks},
+              {"replayed_samples", o.recomputed_samples},  // samples recomputed at up switches
+              {"model_switches", o.model_switches},
+              {"switch_reasons", reasons},
+              {"steps", o.rocking_steps + o.contact_steps},
+              {"steps_rocking_model", o.rocking_steps},
+              {"steps_contact_model", o.contact_steps},
+              {"samples", o.samples},
+              {"cpu_time_s", f.cpu_time_s},
+              {"body", body_json(rigid)},
+              {"record", record_json(motion, opt.scale, pga)}});
+  return out;
+}
 
-  const rm::SimulationResult r = rm::simulate(rigid, settings, motion, !history_path.empty());
-  if (!history_path.empty()) write_history(history_path, r);
+// The adaptive model's text summary, after the record line.
+void adaptive_lines(const RunOptions& opt, const rm::AdaptiveSettings& as, const FidelityRun& f, const rm::Body& rigid,
+                    std::vector<std::string>& L) {
+  const rm::AdaptiveOutcome& o = f.outcome;
+  L.push_back(format("fidelity    %s (start: %s)", rm::to_string(opt.fidelity), rm::to_string(f.initial)));
+  L.push_back(format("scene       %s: |a_h| <= %.4g, |a_v| <= %.4g m/s^2; friction needed to rule out "
+                     "sliding, slip at impact and flight: %.4g (mu_s %.4g)",
+                     opt.scene_text.c_str(), as.scene.horizontal, as.scene.vertical,
+                     f.bound.required_mu(), rigid.mu_s()));
+  L.push_back(format("result      %s, final mode %s", o.overturned ? "OVERTURNED" : "survived",
+                     f.final_mode.c_str()));
+  L.push_back(format("times       uplift %s, beyond tipping %s, committed %s, overturned %s, "
+                     "first slip %s, first flight %s",
+                     when(o.uplift_time).c_str(), when(o.beyond_tipping_time).c_str(),
+                     when(o.committed_time).c_str(), when(o.overturn_time).c_str(),
+                     when(o.first_slip_time).c_str(), when(o.first_flight_time).c_str()));
+  for (const auto& sw : f.switches)
+    L.push_back(format("switch      to %s at %.4f s (detected %.4f s): %s", rm::to_string(sw.to),
+                       sw.time, sw.onset_time, rm::to_string(sw.reason)));
+  L.push_back(format("cost        %ld rocking-model + %ld contact-model samples, %ld + %ld steps, "
+                     "%.4f s CPU",
+                     o.samples_rocking_model, o.samples_contact_model, o.rocking_steps,
+                     o.contact_steps, f.cpu_time_s));
+}
+
+// The pure-rocking model's single-plane JSON: simulate()'s outcome, violations and cost.
+json rocking_json(const RunOptions& opt, const rm::SimulationResult& r, const rm::Body& rigid,
+                  const rm::GroundMotion& motion, double pga) {
   const rm::RockingOutcome& o = r.outcome;
-  run.levels = level_times(o);
+  const rm::SolverSettings& settings = opt.settings;
   json violations = json::array();
   for (const auto& v : r.violations)
     violations.push_back({{"criterion", rm::to_string(v.criterion)}, {"time_s", v.time}});
-  run.out = outcome_json(o);
-  run.out.update({{"max_rotation_pivot", o.max_rotation_side},
-             {"final_mode", rm::to_string(r.final_mode)},
-             {"violations", violations},
-             {"rest_captures", o.rest_captures},
-             {"forced_rest_captures", o.forced_rest_captures},
-             {"method", rm::to_string(settings.method)},
-             {"model", rm::to_string(settings.model)},
-             {"fidelity", "rocking"},
-             {"samples_rocking_model", o.samples},
-             {"samples_contact_model", 0},
-             {"model_switches", 0},
-             {"switch_reasons", json::array()},
-             {"tol", settings.tol},
-             {"substeps", settings.substeps},
-             {"steps", o.integrator_steps},
-             {"samples", o.samples},
-             {"cpu_time_s", r.cpu_time_s},
-             {"body", body_json(rigid)},
-             {"record", record_json(motion, opt.scale, pga)}});
-  auto& L = run.lines;
-  L.push_back(record_line);
+  json out = outcome_json(o);
+  out.update({{"max_rotation_pivot", o.max_rotation_side},
+              {"final_mode", rm::to_string(r.final_mode)},
+              {"violations", violations},
+              {"rest_captures", o.rest_captures},
+              {"forced_rest_captures", o.forced_rest_captures},
+              {"method", rm::to_string(settings.method)},
+              {"model", rm::to_string(settings.model)},
+              {"fidelity", "rocking"},
+              {"samples_rocking_model", o.samples},
+              {"samples_contact_model", 0},
+              {"model_switches", 0},
+              {"switch_reasons", json::array()},
+              {"tol", settings.tol},
+              {"substeps", settings.substeps},
+              {"steps", o.integrator_steps},
+              {"samples", o.samples},
+              {"cpu_time_s", r.cpu_time_s},
+              {"body", body_json(rigid)},
+              {"record", record_json(motion, opt.scale, pga)}});
+  return out;
+}
+
+// The pure-rocking model's text summary, after the record line.
+void rocking_lines(const rm::SolverSettings& settings, const rm::SimulationResult& r, const rm::Body& rigid,
+                   std::vector<std::string>& L) {
+  const rm::RockingOutcome& o = r.outcome;
   L.push_back(format("body        B %.3f m, h %.3f m, nu1 %.3f, alpha1 %.4f rad, alpha2 %.4f rad",
                      rigid.width(), rigid.cg_height(), rigid.nu1(), rigid.pivot(1).alpha,
                      rigid.pivot(-1).alpha));
@@ -260,6 +263,33 @@ PlaneRun run_plane(const RunOptions& opt, const rm::BodyParameters& params,
     L.push_back(format("violation   %s at %.4f s (pure rocking assumption broken)",
                        rm::to_string(v.criterion), v.time));
   L.push_back(format("cost        %ld steps, %.4f s CPU", o.integrator_steps, r.cpu_time_s));
+}
+
+}  // namespace
+
+// One plane through its record, exactly as the single-plane tool: simulate() for --fidelity rocking,
+// the AdaptiveModel loop for contact / adaptive.
+PlaneRun run_plane(const RunOptions& opt, const rm::BodyParameters& params,
+                   const rm::GroundMotion& motion, const std::string& history_path) {
+  const rm::Body rigid(params);
+  double pga = 0.0;
+  for (double a : motion.horizontal) pga = std::max(pga, std::abs(a));
+  PlaneRun run;
+  run.lines.push_back(format("record      %s (%zu samples, dt %.4g s, PGA %.3f m/s^2)",
+                             motion.description.c_str(), motion.size(), motion.dt, pga));
+  if (opt.fidelity != rm::Fidelity::Rocking) {
+    const rm::AdaptiveSettings as = adaptive_settings(opt, motion);
+    const FidelityRun f = run_fidelity(rigid, as, motion, history_path);
+    run.levels = level_times(f.outcome);
+    run.out = adaptive_json(opt, as, f, rigid, motion, pga);
+    adaptive_lines(opt, as, f, rigid, run.lines);
+    return run;
+  }
+  const rm::SimulationResult r = rm::simulate(rigid, opt.settings, motion, !history_path.empty());
+  if (!history_path.empty()) write_history(history_path, r);
+  run.levels = level_times(r.outcome);
+  run.out = rocking_json(opt, r, rigid, motion, pga);
+  rocking_lines(opt.settings, r, rigid, run.lines);
   return run;
 }
 

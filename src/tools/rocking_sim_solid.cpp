@@ -4,6 +4,7 @@
 #include <cmath>
 #include <ctime>
 #include <fstream>
+#include <optional>
 #include <stdexcept>
 
 #include "rocking_monitor/csv/csv_writer.hpp"
@@ -65,49 +66,58 @@ rm::ItemMonitor::Options monitor_options(const RunOptions& opt, const rm::Ground
   return o;
 }
 
-SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidChoice choice,
-                   double bidirectional_ratio, const rm::GroundMotion& mx, const rm::GroundMotion* my,
-                   const std::string& history_path) {
-  if (!spec.solid) throw std::invalid_argument("item '" + spec.id + "' has no 3-D description");
-  rm::ItemMonitor::Options o = monitor_options(opt, mx, my);
-  o.solid = choice;
-  o.bidirectional_ratio = bidirectional_ratio;
-  rm::ItemMonitor item(spec, o);
-  const rm::Rocking3DModel& model = *item.solid();
-  auto ay = [&](std::size_t i) { return my != nullptr ? my->horizontal[i] : 0.0; };
-  auto az = [&](std::size_t i) { return mx.vertical.empty() ? 0.0 : mx.vertical[i]; };
+namespace {
 
-  std::ofstream history;
-  std::optional<rm::csv::Writer> row;
-  if (!history_path.empty()) {
-    history.open(history_path);
-    if (!history) throw std::runtime_error(history_path + ": cannot open for writing");
-    history << "time_s,ax_mps2,ay_mps2,az_mps2,model,mode,contact,tilt_rad,rotation_ratio,"
-               "qw,qx,qy,qz,wx_radps,wy_radps,wz_radps,slip_x_m,slip_y_m\n";
-    row.emplace(history);
+double y_accel(const rm::GroundMotion* my, std::size_t i) { return my != nullptr ? my->horizontal[i] : 0.0; }
+double z_accel(const rm::GroundMotion& mx, std::size_t i) { return mx.vertical.empty() ? 0.0 : mx.vertical[i]; }
+
+// --history-3d: one row per sample of the 3-D model's state (nothing when the path is empty).
+class SolidHistory {
+ public:
+  SolidHistory(const std::string& path) : path_(path) {
+    if (path.empty()) return;
+    file_.open(path);
+    if (!file_) throw std::runtime_error(path + ": cannot open for writing");
+    file_ << "time_s,ax_mps2,ay_mps2,az_mps2,model,mode,contact,tilt_rad,rotation_ratio,"
+             "qw,qx,qy,qz,wx_radps,wy_radps,wz_radps,slip_x_m,slip_y_m\n";
+    row_.emplace(file_);
   }
-  auto write_row = [&](double t, std::size_t i) {
-    if (!row) return;
+  void write(double t, std::size_t i, const rm::ItemMonitor& item, const rm::GroundMotion& mx,
+             const rm::GroundMotion* my) {
+    if (!row_) return;
+    const rm::Rocking3DModel& model = *item.solid();
     const Eigen::Quaterniond q(model.rotation());
     const Eigen::Vector3d w = model.angular_velocity();
-    row->number("%.6f", t).number("%.9g", mx.horizontal[i]).number("%.9g", ay(i)).number("%.9g", az(i));
-    row->text(item.solid_active() ? "3d" : "planar").text(rm::to_string(model.mode()));
-    row->value(std::to_string(model.contact())).number("%.12g", model.tilt()).number("%.9g", model.rotation_ratio());
-    row->number("%.12g", q.w()).number("%.12g", q.x()).number("%.12g", q.y()).number("%.12g", q.z());
-    row->number("%.12g", w.x()).number("%.12g", w.y()).number("%.12g", w.z());
+    row_->number("%.6f", t).number("%.9g", mx.horizontal[i]).number("%.9g", y_accel(my, i)).number("%.9g", z_accel(mx, i));
+    row_->text(item.solid_active() ? "3d" : "planar").text(rm::to_string(model.mode()));
+    row_->value(std::to_string(model.contact())).number("%.12g", model.tilt()).number("%.9g", model.rotation_ratio());
+    row_->number("%.12g", q.w()).number("%.12g", q.x()).number("%.12g", q.y()).number("%.12g", q.z());
+    row_->number("%.12g", w.x()).number("%.12g", w.y()).number("%.12g", w.z());
     const Eigen::Vector2d slip = model.slip();  // the centre of mass's horizontal displacement (issue 51)
-    row->number("%.12g", slip.x()).number("%.12g", slip.y());
-    row->end_row();
-  };
+    row_->number("%.12g", slip.x()).number("%.12g", slip.y());
+    row_->end_row();
+  }
+  void finish() {
+    if (file_ && !file_.flush()) throw std::runtime_error(path_ + ": write failed");
+  }
 
-  SolidRun run;
+ private:
+  std::string path_;
+  std::ofstream file_;
+  std::optional<rm::csv::Writer> row_;
+};
+
+// The item through the records, as the node steps it: the levels its alarms reach and by which
+// model into `run`. Returns when the 3-D model took over (NaN: never); `cpu` its CPU time, s.
+double step_solid(rm::ItemMonitor& item, const rm::GroundMotion& mx, const rm::GroundMotion* my,
+                  SolidHistory& history, SolidRun& run, double& cpu) {
   double taken_over = item.solid_active() ? 0.0 : std::nan("");
   const std::clock_t start = std::clock();
-  item.start(0.0, mx.horizontal.front(), ay(0), az(0), mx.dt);
+  item.start(0.0, mx.horizontal.front(), y_accel(my, 0), z_accel(mx, 0), mx.dt);
   if (item.solid_active()) taken_over = 0.0;
-  write_row(0.0, 0);
+  history.write(0.0, 0, item, mx, my);
   for (std::size_t i = 1; i < mx.size(); ++i) {
-    const rm::ItemEvents& ev = item.step(mx.horizontal[i], ay(i), az(i), mx.dt);
+    const rm::ItemEvents& ev = item.step(mx.horizontal[i], y_accel(my, i), z_accel(mx, i), mx.dt);
     const double t = static_cast<double>(i) * mx.dt;
     if (item.solid_active() && std::isnan(taken_over)) taken_over = t - mx.dt;  // at rest, before the sample
     for (int k = 0; k < ev.alarm_count; ++k) {
@@ -117,70 +127,72 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
       run.levels.time[static_cast<std::size_t>(l)] = a.time;
       run.by[static_cast<std::size_t>(l)] = item.solid_active() ? "3d" : rm::to_string(a.plane);
     }
-    write_row(t, i);
+    history.write(t, i, item, mx, my);
   }
-  const double cpu = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
-  if (history && !history.flush()) throw std::runtime_error(history_path + ": write failed");
-  run.decided = !std::isnan(taken_over);
+  cpu = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
+  return taken_over;
+}
 
+// The 3-D model's JSON block: levels, impacts, landings, sliding, support, hull, transitions, cost.
+json solid_json(const rm::Rocking3DModel& model, rm::SolidChoice choice, bool decided, double taken_over,
+                std::size_t samples, double cpu) {
   const rm::RockingOutcome& r = model.outcome();
   const rm::Rocking3DOutcome& r3 = model.outcome_3d();
-  run.out = outcome_json(r);
-  run.out.update({{"model", "rocking_3d"},
-             {"solid_model", rm::to_string(choice)},
-             {"in_charge", run.decided},
-             {"in_charge_from_s", nullable(taken_over)},
-             {"max_tilt_rad", r3.max_tilt},
-             {"edge_to_vertex", r3.edge_to_vertex},
-             {"vertex_impacts", r3.vertex_impacts},
-             {"flat_impacts", r3.flat_impacts},
-             {"edge_captures", r3.edge_captures},
-             {"max_landing_violation_m_s", r3.max_landing_violation},
-             {"max_friction_demand", r3.max_friction_demand},
-             {"slipping_landings", r3.slipping_landings},
-             {"frictional_landings", r3.frictional_landings},
-             {"landing_slides", r3.landing_slides},
-             {"pivot_slip_landings", r3.pivot_slip_landings},
-             {"unresolved_landings", r3.unresolved_landings},
-             {"max_pivot_friction_demand", r3.max_pivot_friction_demand},
-             {"pivot_slips", r3.pivot_slips},
-             {"pivot_lifts", r3.pivot_lifts},
-             {"first_pivot_slip_time_s", nullable(r3.first_pivot_slip_time)},
-             {"pivot_sticks", r3.pivot_sticks},
-             {"pivot_slip_time_s", r3.pivot_slip_time},
-             {"pivot_slip_distance_m", r3.pivot_slip_distance},
-             {"pivot_slips_not_followed", r3.pivot_slips_not_followed},
-             {"final_mode", rm::to_string(model.mode())},
-             {"final_contact", model.contact()},
-             {"final_face", model.face()},
-             {"hull_faces", model.body().contact_hull().from_hull ? static_cast<long>(model.body().contact_hull().faces.size()) : 0L},
-             {"hull_landings", r3.hull_landings},
-             {"rests_off_base", r3.rests_off_base},
-             {"slides", r3.slides},
-             {"sticks", r3.sticks},
-             {"slide_to_rock", r3.slide_to_rock},
-             {"first_slip_time_s", nullable(r3.first_slip_time)},
-             {"max_slip_m", r3.max_slip},
-             {"final_slip_m", model.slip().norm()},
-             {"max_slip_speed_m_s", r3.max_slip_speed},
-             {"max_twist_rad", r3.max_twist},
-             {"slip_time_s", r3.slip_time},
-             {"fell_off_support", r3.fell_off_support},
-             {"fell_off_time_s", nullable(r3.fell_off_time)},
-             {"support_margin_m", nullable(model.support_margin())},
-             {"transitions_total", r3.transitions},
-             {"transitions", transitions_json(model)},
-             {"samples", mx.size()},
-             {"cpu_time_s", cpu},
-             {"body", body_json(model.body())}});
-  auto& L = run.lines;
-  L.push_back(format("body        %d-vertex base, centre of mass (%.4f, %.4f, %.4f) m, smallest edge alpha "
-                     "%.4f rad", model.body().vertex_count(), model.body().centre_of_mass().x(),
-                     model.body().centre_of_mass().y(), model.body().centre_of_mass().z(), model.body().min_alpha()));
-  L.push_back(run.decided ? format("model       rocking_3d in charge from %.4f s (--solid-model %s)", taken_over,
-                                   rm::to_string(choice))
-                          : format("model       the planar pair decided (--solid-model auto: a rectangle, the "
-                                   "shaking never bidirectional at ratio %.2f)", bidirectional_ratio));
+  json out = outcome_json(r);
+  out.update({{"model", "rocking_3d"},
+              {"solid_model", rm::to_string(choice)},
+              {"in_charge", decided},
+              {"in_charge_from_s", nullable(taken_over)},
+              {"max_tilt_rad", r3.max_tilt},
+              {"edge_to_vertex", r3.edge_to_vertex},
+              {"vertex_impacts", r3.vertex_impacts},
+              {"flat_impacts", r3.flat_impacts},
+              {"edge_captures", r3.edge_captures},
+              {"max_landing_violation_m_s", r3.max_landing_violation},
+              {"max_friction_demand", r3.max_friction_demand},
+              {"slipping_landings", r3.slipping_landings},
+              {"frictional_landings", r3.frictional_landings},
+              {"landing_slides", r3.landing_slides},
+              {"pivot_slip_landings", r3.pivot_slip_landings},
+              {"unresolved_landings", r3.unresolved_landings},
+              {"max_pivot_friction_demand", r3.max_pivot_friction_demand},
+              {"pivot_slips", r3.pivot_slips},
+              {"pivot_lifts", r3.pivot_lifts},
+              {"first_pivot_slip_time_s", nullable(r3.first_pivot_slip_time)},
+              {"pivot_sticks", r3.pivot_sticks},
+              {"pivot_slip_time_s", r3.pivot_slip_time},
+              {"pivot_slip_distance_m", r3.pivot_slip_distance},
+              {"pivot_slips_not_followed", r3.pivot_slips_not_followed},
+              {"final_mode", rm::to_string(model.mode())},
+              {"final_contact", model.contact()},
+              {"final_face", model.face()},
+              {"hull_faces", model.body().contact_hull().from_hull ? static_cast<long>(model.body().contact_hull().faces.size()) : 0L},
+              {"hull_landings", r3.hull_landings},
+              {"rests_off_base", r3.rests_off_base},
+              {"slides", r3.slides},
+              {"sticks", r3.sticks},
+              {"slide_to_rock", r3.slide_to_rock},
+              {"first_slip_time_s", nullable(r3.first_slip_time)},
+              {"max_slip_m", r3.max_slip},
+              {"final_slip_m", model.slip().norm()},
+              {"max_slip_speed_m_s", r3.max_slip_speed},
+              {"max_twist_rad", r3.max_twist},
+              {"slip_time_s", r3.slip_time},
+              {"fell_off_support", r3.fell_off_support},
+              {"fell_off_time_s", nullable(r3.fell_off_time)},
+              {"support_margin_m", nullable(model.support_margin())},
+              {"transitions_total", r3.transitions},
+              {"transitions", transitions_json(model)},
+              {"samples", samples},
+              {"cpu_time_s", cpu},
+              {"body", body_json(model.body())}});
+  return out;
+}
+
+// The text lines of what happened: result, impacts, landings, sliding.
+void solid_motion_lines(const rm::Rocking3DModel& model, std::vector<std::string>& L) {
+  const rm::RockingOutcome& r = model.outcome();
+  const rm::Rocking3DOutcome& r3 = model.outcome_3d();
   L.push_back(format("result      %s, final mode %s, max tilt %.5f rad, max |theta|/alpha %.4f",
                      r.overturned ? "OVERTURNED" : "survived", rm::to_string(model.mode()), r3.max_tilt,
                      r.max_rotation_ratio));
@@ -201,6 +213,11 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
                      r3.slides, std::isnan(r3.first_slip_time) ? "-" : format("%.4f s", r3.first_slip_time).c_str(),
                      r3.sticks, r3.max_slip, model.slip().norm(), r3.max_slip_speed, r3.max_twist, r3.slip_time,
                      r3.slide_to_rock));
+}
+
+// The support's and the hull's lines, for a body that has them.
+void solid_support_and_hull_lines(const rm::Rocking3DModel& model, std::vector<std::string>& L) {
+  const rm::Rocking3DOutcome& r3 = model.outcome_3d();
   if (!model.body().parameters().support.empty())
     L.push_back(r3.fell_off_support
                     ? format("support     FELL OFF its support at %.4f s (the centre of mass passed its edge)", r3.fell_off_time)
@@ -213,6 +230,36 @@ SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidCho
                        model.mode() == rm::Mode3D::Overturned ? "its side (overturned)"
                        : model.face() == 0                     ? "its base"
                                                                : ("hull face " + std::to_string(model.face())).c_str()));
+}
+
+}  // namespace
+
+SolidRun run_solid(const RunOptions& opt, const rm::ItemSpec& spec, rm::SolidChoice choice,
+                   double bidirectional_ratio, const rm::GroundMotion& mx, const rm::GroundMotion* my,
+                   const std::string& history_path) {
+  if (!spec.solid) throw std::invalid_argument("item '" + spec.id + "' has no 3-D description");
+  rm::ItemMonitor::Options o = monitor_options(opt, mx, my);
+  o.solid = choice;
+  o.bidirectional_ratio = bidirectional_ratio;
+  rm::ItemMonitor item(spec, o);
+  const rm::Rocking3DModel& model = *item.solid();
+  SolidHistory history(history_path);
+  SolidRun run;
+  double cpu = 0.0;
+  const double taken_over = step_solid(item, mx, my, history, run, cpu);
+  history.finish();
+  run.decided = !std::isnan(taken_over);
+  run.out = solid_json(model, choice, run.decided, taken_over, mx.size(), cpu);
+  auto& L = run.lines;
+  L.push_back(format("body        %d-vertex base, centre of mass (%.4f, %.4f, %.4f) m, smallest edge alpha "
+                     "%.4f rad", model.body().vertex_count(), model.body().centre_of_mass().x(),
+                     model.body().centre_of_mass().y(), model.body().centre_of_mass().z(), model.body().min_alpha()));
+  L.push_back(run.decided ? format("model       rocking_3d in charge from %.4f s (--solid-model %s)", taken_over,
+                                   rm::to_string(choice))
+                          : format("model       the planar pair decided (--solid-model auto: a rectangle, the "
+                                   "shaking never bidirectional at ratio %.2f)", bidirectional_ratio));
+  solid_motion_lines(model, L);
+  solid_support_and_hull_lines(model, L);
   transition_lines(model, L);
   L.push_back(format("cost        %zu samples, %.4f s CPU", mx.size(), cpu));
   return run;

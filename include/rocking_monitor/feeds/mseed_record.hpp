@@ -40,6 +40,10 @@ class MseedDecoder {
   static bool supported_encoding(int encoding);
 
  private:
+  // decode()'s passes: the header (length, blockette 1000, encoding) into out.encoding, then the data.
+  Result unpack_header(const char* record, std::size_t length, DecodedRecord& out);
+  Result unpack_data(const char* record, std::size_t length);
+
   void* msr_ = nullptr;       ///< MSRecord*, reused between records
   std::vector<char> buffer_;  ///< libmseed unpacks in place (byte swapping): a private copy
   std::string error_;

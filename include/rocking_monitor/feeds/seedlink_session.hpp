@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "rocking_monitor/feeds/stream_list.hpp"
+#include "rocking_monitor/feeds/tcp_connection.hpp"
 
 namespace rocking_monitor::feeds {
 
@@ -87,6 +88,22 @@ class SeedLinkSession {
   /// One connection: false when it ended by `stop`.
   bool session_once(const std::atomic<bool>& stop, bool& got_data);
   void note_error(const std::string& raw);
+  // session_once()'s steps. Those returning std::optional<bool>: nullopt to go on, else session_once()'s
+  // answer (false: ended by `stop`).
+  /// The answer to a failed network step: false when `stop` ended it, else the error is noted and true.
+  bool failed(const TcpConnection& tcp, TcpConnection::Status s, const std::string& where, const std::string& during);
+  /// Sends a command and, with `reply`, reads its one-line answer.
+  TcpConnection::Status command(TcpConnection& tcp, const std::string& cmd, bool reply, std::string& line) const;
+  std::optional<bool> greet(TcpConnection& tcp, const std::string& where, std::string& org);  ///< HELLO
+  /// STATION, SELECT and DATA of each stream (`accepted` counts those the server took), then END.
+  std::optional<bool> request_streams(TcpConnection& tcp, const std::string& where, std::size_t& accepted);
+  std::optional<bool> request_stream(TcpConnection& tcp, const std::string& where, std::size_t i, bool& accepted);
+  void note_connected(const std::string& where, std::size_t accepted, const std::string& org);
+  /// The packet loop until the connection ends: keep-alives, timeouts, framing.
+  bool stream_packets(TcpConnection& tcp, const std::string& where, bool& got_data);
+  /// A data packet's record to its stream's handler, when requested and in sequence.
+  void hand_on(const char* record, std::uint32_t sequence, std::vector<bool>& seen_this_connection,
+               const std::string& where, bool& got_data);
   /// Whether the stream's packet `sequence` (record start `time_us`) is handed on; counts and says
   /// why not, or that the server renumbered. `first` marks the stream's first packet of a connection.
   bool accept_sequence(std::size_t stream, std::uint32_t sequence, std::optional<std::int64_t> time_us, bool first,

@@ -61,6 +61,11 @@ class GroundMotionPlayer {
  private:
   bool wait_until_wall(std::int64_t steady_ns);  ///< false on shutdown
   bool wait_until_ros(const ros::Time& t);       ///< false on shutdown
+  // run()'s steps: /clock (sim time) and ~wait_for_subscribers, false on shutdown; one sample's
+  // messages and history; the end's log, ~finished and linger.
+  bool wait_to_start(bool sim);
+  void publish_sample(std::size_t i, const ros::Time& stamp);
+  void report_end(const Result& r, double wall);
 
   PlayerConfig config_;
   core::SensorFrameMotion motion_;

@@ -158,6 +158,24 @@ class RockingMonitor {
   };
 
   bool load_parameters();
+  // load_parameters()'s checks, in order: false after a ROS_FATAL naming the parameter.
+  bool check_scene_and_ensemble(double scene_h, double scene_v, int substeps);
+  bool resolve_threads();
+  bool parse_solver_choices(const std::string& method, const std::string& model, const std::string& fidelity,
+                            const std::string& solid);
+  bool parse_baseline_mode(const std::string& baseline);
+  bool check_positive_parameters() const;
+  // init()'s steps, in order (load_catalogue false after a ROS_FATAL).
+  bool load_catalogue(XmlRpc::XmlRpcValue& sensors, XmlRpc::XmlRpcValue& items, Catalogue& cat);
+  void add_sensors(const Catalogue& cat);
+  void add_items(const Catalogue& cat);
+  static geometry_msgs::TransformStamped pose_transform(const CatalogueItem& entry);
+  void publish_static_poses(tf2_msgs::TFMessage& statics);
+  void advertise_outputs(const XmlRpc::XmlRpcValue& sensors, const XmlRpc::XmlRpcValue& items);
+  void add_diagnostics();
+  void subscribe_sensors();
+  void start_timers();
+  void log_startup() const;
   void on_imu(std::size_t sensor, const ::ros::MessageEvent<sensor_msgs::Imu const>& msg);
   void on_accel(std::size_t sensor, const ::ros::MessageEvent<geometry_msgs::AccelStamped const>& msg);
   void update_overload(Sensor& s);

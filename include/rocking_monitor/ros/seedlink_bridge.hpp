@@ -52,6 +52,11 @@ class SeedLinkBridge {
     std::uint64_t reported_problems = 0;  // problem count at the last report (WARN while it grows)
   };
 
+  // init()'s steps, in order; the bool ones are false after a ROS_FATAL naming the parameter.
+  bool init_stations(const std::vector<feeds::StreamSpec>& streams, const std::string& frame_id, int queue_size);
+  bool init_history();  ///< ~history_length, ~history_max_rate
+  void init_diagnostics(const std::string& server);
+  bool start_session(const feeds::SessionConfig& cfg);  ///< resumes from ~state_file, starts the thread
   void on_record(std::size_t stream, std::uint32_t sequence, const char* record, std::size_t length);
   /// Writes ~state_file when a last sequence number changed since the last write.
   void save_state();
