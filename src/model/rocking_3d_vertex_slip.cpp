@@ -120,8 +120,33 @@ void Rocking3DModel::begin_slip(const GroundInput3& in, double tau) {
   const Eigen::Vector2d fh = f.head<2>();
   slip_dir_ = starting_slip_direction(in, tau, fh.norm() > 0.0 ? Eigen::Vector2d(-fh / fh.norm()) : Eigen::Vector2d::UnitX());
   ys_ << y_, pivot_world_.x(), pivot_world_.y(), 0.0, 0.0;
+  if (slip_presses_neighbour(in, tau)) {
+    // The slip would drive a base point lying on the floor into it (the body turning onto an edge:
+    // slide-rock on an edge, not modelled): held, for the rest of the sample, counted.
+    ++outcome3_.pivot_slips_not_followed;
+    slip_switches_ = kMaxSlipSwitches;
+    pivot_outside_cone_ = true;
+    return;
+  }
   pivot_slipping_ = true;
   slip_stepper_.invalidate();
+}
+
+// Whether a hull vertex on the floor beside the pivot would move down, the pivot starting to slip.
+bool Rocking3DModel::slip_presses_neighbour(const GroundInput3& in, double tau) const {
+  Eigen::Vector3d w_dot;
+  Eigen::Vector2d u_dot;
+  slip_accelerations(in, tau, ys_, slip_dir_, w_dot, u_dot);
+  const Eigen::Matrix3d r = vertex_rotation(y_);
+  const Eigen::Vector3d w = y_.tail<3>();
+  const double eps = 3.0 * floor_tol_;
+  for (int i : hull().neighbours[static_cast<std::size_t>(contact_)]) {
+    const Eigen::Vector3d d = r * (hv(i).position - hv(contact_).position);
+    if (d.z() > eps) continue;
+    const double v = w.cross(d).z(), a = (w_dot.cross(d) + w.cross(w.cross(d))).z();
+    if (v < 0.0 || (v == 0.0 && a < 0.0) || (std::abs(v) < 1e-12 && a < 0.0)) return true;
+  }
+  return false;
 }
 
 // The stop event's reference at a step's start: the slip's velocity, or from a standstill its direction.

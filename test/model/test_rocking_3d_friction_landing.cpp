@@ -133,7 +133,7 @@ TEST(FrictionLanding, BidirectionalTakatoriOnEccentricCabinets) {
   }
   std::printf("[ measure ] %ld landings, %ld decided by friction: %ld slid on flat, %ld with a slipping pivot, %ld "
               "unresolved\n", landings, frictional, slides, pivots, unresolved);
-  // Measured: 414 landings, 315 decided by friction (demand up to 31, on corners): 3 slid on flat, 312
+  // Measured: 256 landings, 157 decided by friction (demand up to 31, on corners): 2 slid on flat, 155
   // with a slipping pivot (the sticking answer followed after the landing; a vertex then slide-rocks
   // where its reaction leaves the cone), 0 unresolved. (Before slide-rock on vertices: 192 landings, 96
   // by friction: a slipping corner lands more often, at lower speeds.)

@@ -360,6 +360,7 @@ class Rocking3DModel {
   Eigen::Vector2d starting_slip_direction(const GroundInput3& in, double t, const Eigen::Vector2d& guess) const;
   void slip_rhs(const GroundInput3& in, double t, const Vec11& y, Vec11& dy) const;
   void begin_slip(const GroundInput3& in, double tau);
+  bool slip_presses_neighbour(const GroundInput3& in, double tau) const;
   double slip_end(const GroundInput3& in, double t0, double t1, double t_tol, bool& lifts) const;
   void end_slip(const GroundInput3& in, double tau, bool lifts);
   void hold_slip(const GroundInput3& in, double tau);
