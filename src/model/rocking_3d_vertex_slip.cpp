@@ -32,10 +32,11 @@ double Rocking3DModel::slip_accelerations(const GroundInput3& in, double t, cons
   const Eigen::Vector3d c = r * hv(contact_).to_centre;
   const Eigen::Vector3d w = y.segment<3>(4);
   const Eigen::Vector3d d(-mu_k() * dir.x(), -mu_k() * dir.y(), 1.0);
-  const Eigen::Matrix3d j = r * body_.central_inertia_per_mass() * r.transpose();
-  const Eigen::Matrix3d j_inv = r * central_inverse_ * r.transpose();
-  const Eigen::Vector3d a = j_inv * (-c).cross(d);        // w' per unit lambda
-  const Eigen::Vector3d b = -j_inv * w.cross(j * w);      // w' without it
+  // (the inertia turned by r applied as r J r^T x: matrix-vector products only, the per-stage cost)
+  const Eigen::Matrix3d& jb = body_.central_inertia_per_mass();
+  const Eigen::Vector3d jw = r * (jb * (r.transpose() * w));
+  const Eigen::Vector3d a = r * (central_inverse_ * (r.transpose() * (-c).cross(d)));  // w' per unit lambda
+  const Eigen::Vector3d b = -(r * (central_inverse_ * (r.transpose() * w.cross(jw))));  // w' without it
   const Eigen::Vector3d centripetal = w.cross(w.cross(c));
   const Eigen::Vector3d g = gravity_and_inertia(in.at(t));
   const double coefficient = a.cross(c).z() - 1.0;
