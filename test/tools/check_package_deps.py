@@ -55,6 +55,7 @@ ROSDEP_KEY = {
     'tf2-tools': 'tf2_tools',
     'topic-tools': 'topic_tools',
     'libcurl4-openssl-dev': 'libcurl-dev',
+    'libssl-dev': 'openssl',  # OpenSSL's libcrypto (issue 52's HMAC); rosdep's key for it
 }
 
 # Installed but never declared, and why: no ROS package declares these.
