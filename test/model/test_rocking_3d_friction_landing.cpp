@@ -27,15 +27,7 @@ SolverSettings landing_settings() {
 }
 
 // A uniform box: base b x d centred on the origin, height 2h (centre of mass h up).
-BaseBodyParameters friction_box(double b, double d, double h, double mu) {
-  BaseBodyParameters p;
-  p.centre_of_mass = {0.0, 0.0, h};
-  p.base = {{-b / 2, -d / 2}, {b / 2, -d / 2}, {b / 2, d / 2}, {-b / 2, d / 2}};
-  p.central_inertia = Eigen::Vector3d((d * d + 4 * h * h) / 12, (b * b + 4 * h * h) / 12, (b * b + d * d) / 12).asDiagonal();
-  p.mu_s = mu;
-  p.mu_k = mu;
-  return p;
-}
+BaseBodyParameters friction_box(double b, double d, double h, double mu) { return testing::uniform_box(b, d, h, mu, mu); }
 
 // A squat box rocking back onto its base, no shaking, friction 0.1: at the landing the new edge
 // cannot take the tangential impulse that rocking on it would need, so the whole base lands and

@@ -24,15 +24,9 @@ SolverSettings pivot_settings() {
   return s;
 }
 
-// A uniform box: base b x d centred on the origin, centre of mass h up.
+// A uniform box (mu_k finite where mu_s is not given).
 BaseBodyParameters pivot_box(double b, double d, double h, double mu) {
-  BaseBodyParameters p;
-  p.centre_of_mass = {0.0, 0.0, h};
-  p.base = {{-b / 2, -d / 2}, {b / 2, -d / 2}, {b / 2, d / 2}, {-b / 2, d / 2}};
-  p.central_inertia = Eigen::Vector3d((d * d + 4 * h * h) / 12, (b * b + 4 * h * h) / 12, (b * b + d * d) / 12).asDiagonal();
-  p.mu_s = mu;
-  p.mu_k = std::min(mu, 0.5);
-  return p;
+  return testing::uniform_box(b, d, h, mu, std::min(mu, 0.5));
 }
 
 struct Onsets {

@@ -29,13 +29,7 @@ SolverSettings slide_settings() {
 
 // A cabinet-like box (the issue's): base b x d centred on the origin, centre of mass h up.
 BaseBodyParameters slide_box(double b, double d, double h, double mu_s, double mu_k) {
-  BaseBodyParameters p;
-  p.centre_of_mass = {0.0, 0.0, h};
-  p.base = {{-b / 2, -d / 2}, {b / 2, -d / 2}, {b / 2, d / 2}, {-b / 2, d / 2}};
-  p.central_inertia = Eigen::Vector3d((d * d + 4 * h * h) / 12, (b * b + 4 * h * h) / 12, (b * b + d * d) / 12).asDiagonal();
-  p.mu_s = mu_s;
-  p.mu_k = mu_k;
-  return p;
+  return testing::uniform_box(b, d, h, mu_s, mu_k);
 }
 
 // The exact 1-D reference: a block on a floor with Coulomb friction under a(t) linear in each sample.

@@ -29,6 +29,17 @@ inline constexpr bool kUnderSanitizers = true;
 inline constexpr bool kUnderSanitizers = false;
 #endif
 
+/// A uniform box: base b x d centred on the origin, centre of mass h up (height 2h), friction mu_s, mu_k.
+inline BaseBodyParameters uniform_box(double b, double d, double h, double mu_s, double mu_k) {
+  BaseBodyParameters p;
+  p.centre_of_mass = {0.0, 0.0, h};
+  p.base = {{-b / 2, -d / 2}, {b / 2, -d / 2}, {b / 2, d / 2}, {-b / 2, d / 2}};
+  p.central_inertia = Eigen::Vector3d((d * d + 4 * h * h) / 12, (b * b + 4 * h * h) / 12, (b * b + d * d) / 12).asDiagonal();
+  p.mu_s = mu_s;
+  p.mu_k = mu_k;
+  return p;
+}
+
 /// A homogeneous regular hexagonal prism (circumradius a, length along y) lying on a rectangular
 /// side: the base is that side, the hull its 12 corners (a body whose hull rolls, issue 40).
 inline BaseBodyParameters hexagonal_prism(double a, double length) {
