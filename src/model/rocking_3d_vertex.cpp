@@ -99,6 +99,106 @@ void Rocking3DModel::enter_edge_from_pose(int face, int edge, const Eigen::Matri
   dopri5_.invalidate();
 }
 
+// The first touchdown of a hull vertex beside the pivot inside the step [t0, t1], on the dense output
+// `rot`, probed at kVertexProbes so that a grazing dip inside the step is not missed (up[k]: the
+// rotation's vertical row at probe k, once for all vertices); +inf and touching -1 if none.
+template <class Rot>
+double Rocking3DModel::touchdown_in_step(const Rot& rot, const Vec7& y0, const Eigen::Vector3d* up, double t0,
+                                         double t1, double t_tol, int& touching) const {
+  const BaseVertex& pivot = hv(contact_);
+  const double eps = 3.0 * floor_tol_;  // (a landing's set is within floor_tol_ of the floor, seen from any of its points within 2 floor_tol_)
+  const double sink = 10.0 * floor_tol_;  // an unarmed vertex this far below the floor touches down
+  auto height = [&](const Vec7& y, int i) { return (vertex_rotation(y) * (hv(i).position - pivot.position)).z(); };
+  double t_event = std::numeric_limits<double>::infinity();
+  touching = -1;
+  for (int i : hull().neighbours[static_cast<std::size_t>(contact_)]) {
+    const Eigen::Vector3d offset = hv(i).position - pivot.position;
+    double ta = t0, za = up[0].dot(offset);
+    for (int k = 1; k <= kVertexProbes; ++k) {
+      const double tb = k == kVertexProbes ? t1 : t0 + (t1 - t0) * k / kVertexProbes;
+      const double zb = up[k].dot(offset);
+      const bool armed = armed_[i] || za > eps;
+      // An unarmed vertex that sinks clearly below the floor is a touchdown too (the pivot
+      // turned the wrong way for the vertex it left): resolved as an impact.
+      if ((armed && zb <= 0.0 && za > 0.0) || zb < -sink) {
+        auto z_at = [&](double t) { return height(rot(t), i); };
+        double te = ta;
+        if (za > 0.0) {
+          te = bracketed_root(z_at, ta, tb, za, zb, t_tol);
+        } else {
+          // An unarmed vertex below the floor: it may have hopped up and come back inside the
+          // probe interval (a hop lower than the arming height): then the touchdown is where it
+          // came back through the floor, after the top of the hop.
+          double t_top = t0, z_top = height(y0, i);
+          constexpr int kScan = 16;
+          for (int m = 1; m <= kScan; ++m) {
+            const double tm = t0 + (tb - t0) * m / kScan;
+            const double zm = z_at(tm);
+            if (zm > z_top) { z_top = zm; t_top = tm; }
+          }
+          if (z_top > 0.0) te = bracketed_root(z_at, t_top, tb, z_top, zb, t_tol);
+        }
+        if (te < t_event) {
+          t_event = te;
+          touching = i;
+        }
+        break;
+      }
+      ta = tb;
+      za = zb;
+    }
+  }
+  return t_event;
+}
+
+// The first event inside the step: a touchdown (Impact, `touching`) or the overturn, at t_event; up_end:
+// the rotation's vertical row at the step's end (arming).
+template <class Rot>
+Rocking3DModel::Event Rocking3DModel::vertex_event_in_step(const Rot& rot, const Vec7& y0, const Vec7& y1, double t0,
+                                                           double t1, double t_tol, int& touching, double& t_event,
+                                                           Eigen::Vector3d& up_end) const {
+  Eigen::Vector3d up[kVertexProbes + 1];
+  for (int k = 0; k <= kVertexProbes; ++k) {
+    const Vec7 yk = k == 0 ? y0 : k == kVertexProbes ? y1 : rot(t0 + (t1 - t0) * k / kVertexProbes);
+    up[k] = vertex_rotation(yk).row(2).transpose();
+  }
+  up_end = up[kVertexProbes];
+  t_event = touchdown_in_step(rot, y0, up, t0, t1, t_tol, touching);
+  Event event = touching >= 0 ? Event::Impact : Event::None;
+  const double cos_over = std::cos(body_.overturn_angle());
+  const double c1 = vertex_rotation(y1)(2, 2) - cos_over;
+  if (c1 <= 0.0) {
+    const double c0 = vertex_rotation(y0)(2, 2) - cos_over;
+    const double te = c0 > 0.0 ? bracketed_root([&](double t) { return vertex_rotation(rot(t))(2, 2) - cos_over; },
+                                                 t0, t1, c0, c1, t_tol)
+                               : t0;
+    if (te < t_event) {
+      t_event = te;
+      event = Event::Overturn;
+    }
+  }
+  return event;
+}
+
+// A turning point of the centre of mass in [t0, t_stop] (before any event): the peak of the rotation
+// ratio, located on the dense output as the planar model locates omega = 0.
+template <class Rot>
+void Rocking3DModel::note_vertex_peak(const Rot& rot, const Vec7& y0, const Vec7& y_stop, double t0, double t_stop,
+                                      double t_tol) {
+  const double g0 = rise_rate(y0), g1 = rise_rate(y_stop);
+  if (!(g0 > 0.0 && g1 <= 0.0)) return;
+  const double tp = bracketed_root([&](double t) { return rise_rate(rot(t)); }, t0, t_stop, g0, g1, t_tol);
+  Vec7 yp = rot(tp);
+  yp.head<4>().normalize();
+  const double ratio = ratio_of(yp);
+  report_.peak_ratio = std::max(report_.peak_ratio, ratio);
+  if (ratio > outcome_.max_rotation_ratio) {
+    outcome_.max_rotation_ratio = ratio;
+    outcome_.max_rotation_side = contact_ + 1;
+  }
+  outcome3_.max_tilt = std::max(outcome3_.max_tilt, std::acos(std::clamp(vertex_rotation(yp)(2, 2), -1.0, 1.0)));
+}
+
 // Steps the motion on a vertex (state: the sticking pivot's q, omega; or the slipping pivot's q, omega,
 // pivot, velocity) to the first touchdown, overturn, or a slip beginning or ending (switched: the other
 // stepper goes on from tau).
@@ -109,14 +209,7 @@ Rocking3DModel::Event Rocking3DModel::vertex_motion(Dopri5Vector<N>& stepper, Ei
                                                     bool& switched) {
   using State = Eigen::Matrix<double, N, 1>;
   const double t_tol = 1e-12 * std::max(sample_dt_, 1e-6);
-  const BaseVertex& pivot = hv(contact_);
-  const std::vector<int>& candidates = hull().neighbours[static_cast<std::size_t>(contact_)];
-  const double eps = 3.0 * floor_tol_;  // (a landing's set is within floor_tol_ of the floor, seen from any of its points within 2 floor_tol_)
-  const double sink = 10.0 * floor_tol_;  // an unarmed vertex this far below the floor touches down
-  const double cos_over = std::cos(body_.overturn_angle());
-  auto height = [&](const Vec7& y, int i) {
-    return (vertex_rotation(y) * (hv(i).position - pivot.position)).z();
-  };
+  const double eps = 3.0 * floor_tol_;
   // the rotation's part of the dense output
   auto rot = [&](double t) { return Vec7(stepper.eval(t).template head<7>()); };
   auto settle = [&](const State& y) {
@@ -130,129 +223,45 @@ Rocking3DModel::Event Rocking3DModel::vertex_motion(Dopri5Vector<N>& stepper, Ei
     report_.integrator_steps += stepper.step(f, tau, state, tau_end, settings_.tol, atol);
     const double t0 = stepper.t0(), t1 = stepper.t1();
     const Vec7 y1 = stepper.y1().template head<7>();
-    // The first touchdown of an armed vertex or the overturn inside the step, on the dense
-    // output, probed at quarter steps so that a grazing dip inside the step is not missed.
-    double t_event = std::numeric_limits<double>::infinity();
-    Event event = Event::None;
-    touching = -1;
-    constexpr int kProbes = 4;
-    // The vertical row of the rotation at each probe, once for all vertices (a vertex's height is
-    // its dot product with the vertex's offset from the pivot).
-    Eigen::Vector3d up[kProbes + 1];
-    for (int k = 0; k <= kProbes; ++k) {
-      const Vec7 yk = k == 0 ? y0 : k == kProbes ? y1 : rot(t0 + (t1 - t0) * k / kProbes);
-      up[k] = vertex_rotation(yk).row(2).transpose();
-    }
-    for (int i : candidates) {
-      const Eigen::Vector3d offset = hv(i).position - pivot.position;
-      double ta = t0, za = up[0].dot(offset);
-      for (int k = 1; k <= kProbes; ++k) {
-        const double tb = k == kProbes ? t1 : t0 + (t1 - t0) * k / kProbes;
-        const double zb = up[k].dot(offset);
-        const bool armed = armed_[i] || za > eps;
-        // An unarmed vertex that sinks clearly below the floor is a touchdown too (the pivot
-        // turned the wrong way for the vertex it left): resolved as an impact.
-        if ((armed && zb <= 0.0 && za > 0.0) || zb < -sink) {
-          auto z_at = [&](double t) { return height(rot(t), i); };
-          double te = ta;
-          if (za > 0.0) {
-            te = bracketed_root(z_at, ta, tb, za, zb, t_tol);
-          } else {
-            // An unarmed vertex below the floor: it may have hopped up and come back inside the
-            // probe interval (a hop lower than the arming height): then the touchdown is where it
-            // came back through the floor, after the top of the hop.
-            double t_top = t0, z_top = height(y0, i);
-            constexpr int kScan = 16;
-            for (int m = 1; m <= kScan; ++m) {
-              const double tm = t0 + (tb - t0) * m / kScan;
-              const double zm = z_at(tm);
-              if (zm > z_top) { z_top = zm; t_top = tm; }
-            }
-            if (z_top > 0.0) te = bracketed_root(z_at, t_top, tb, z_top, zb, t_tol);
-          }
-          if (te < t_event) {
-            t_event = te;
-            event = Event::Impact;
-            touching = i;
-          }
-          break;
-        }
-        ta = tb;
-        za = zb;
-      }
-    }
-    {
-      const double c1 = vertex_rotation(y1)(2, 2) - cos_over;
-      if (c1 <= 0.0) {
-        const double c0 = vertex_rotation(y0)(2, 2) - cos_over;
-        const double te = c0 > 0.0 ? bracketed_root(
-                                         [&](double t) { return vertex_rotation(rot(t))(2, 2) - cos_over; },
-                                         t0, t1, c0, c1, t_tol)
-                                   : t0;
-        if (te < t_event) {
-          t_event = te;
-          event = Event::Overturn;
-        }
-      }
-    }
-    {
-      // A turning point of the centre of mass inside the step (before any event): the peak of the
-      // rotation ratio, located on the dense output as the planar model locates omega = 0.
-      const double t_stop = event == Event::None ? t1 : t_event;
-      const double g0 = rise_rate(y0);
-      const Vec7 y_stop = event == Event::None ? y1 : rot(t_stop);
-      const double g1 = rise_rate(y_stop);
-      if (g0 > 0.0 && g1 <= 0.0) {
-        const double tp = bracketed_root([&](double t) { return rise_rate(rot(t)); }, t0, t_stop,
-                                         g0, g1, t_tol);
-        Vec7 yp = rot(tp);
-        yp.head<4>().normalize();
-        const double ratio = ratio_of(yp);
-        report_.peak_ratio = std::max(report_.peak_ratio, ratio);
-        if (ratio > outcome_.max_rotation_ratio) {
-          outcome_.max_rotation_ratio = ratio;
-          outcome_.max_rotation_side = contact_ + 1;
-        }
-        outcome3_.max_tilt = std::max(outcome3_.max_tilt, std::acos(std::clamp(vertex_rotation(yp)(2, 2), -1.0, 1.0)));
-      }
-    }
-    {
-      // A slip beginning (sticking) or ending (slipping) before the step's end or event: from there on
-      // the other stepper.
-      const double t_stop = event == Event::None ? t1 : t_event;
-      bool lifts = false;
-      double t_switch;
-      if constexpr (N == 7) t_switch = watch_pivot(in, t0, t_stop, t_tol);
-      else t_switch = slip_end(in, t0, t_stop, t_tol, lifts);
-      // Bounded work: a slip that needs more than kMaxSlipSteps steps in one sample (the 2-D law near
-      // zero speed can be stiff) is held from the step's end, counted.
-      if constexpr (N == 11) {
-        if (!std::isfinite(t_switch) && ++slip_steps_ > kMaxSlipSteps) {
-          settle(stepper.y1());
-          stepper.invalidate();
-          tau = t1;
-          note_ratio();
-          hold_slip(in, tau);
-          switched = true;
-          return Event::None;
-        }
-      }
-      if (std::isfinite(t_switch)) {
-        settle(stepper.eval(t_switch));
+    double t_event;
+    Eigen::Vector3d up_end;
+    const Event event = vertex_event_in_step(rot, y0, y1, t0, t1, t_tol, touching, t_event, up_end);
+    const double t_stop = event == Event::None ? t1 : t_event;
+    note_vertex_peak(rot, y0, event == Event::None ? y1 : rot(t_stop), t0, t_stop, t_tol);
+    // A slip beginning (sticking) or ending (slipping) before the step's end or event: from there on
+    // the other stepper.
+    bool lifts = false;
+    double t_switch;
+    if constexpr (N == 7) t_switch = watch_pivot(in, t0, t_stop, t_tol);
+    else t_switch = slip_end(in, t0, t_stop, t_tol, lifts);
+    // Bounded work: a slip that needs more than kMaxSlipSteps steps in one sample (the 2-D law near
+    // zero speed can be stiff) is held from the step's end, counted.
+    if constexpr (N == 11) {
+      if (!std::isfinite(t_switch) && ++slip_steps_ > kMaxSlipSteps) {
+        settle(stepper.y1());
         stepper.invalidate();
-        tau = t_switch;
+        tau = t1;
         note_ratio();
-        if constexpr (N == 7) begin_slip(in, tau);
-        else end_slip(in, tau, lifts);
+        hold_slip(in, tau);
         switched = true;
         return Event::None;
       }
     }
+    if (std::isfinite(t_switch)) {
+      settle(stepper.eval(t_switch));
+      stepper.invalidate();
+      tau = t_switch;
+      note_ratio();
+      if constexpr (N == 7) begin_slip(in, tau);
+      else end_slip(in, tau, lifts);
+      switched = true;
+      return Event::None;
+    }
     if (event == Event::None) {
       settle(stepper.y1());
       tau = t1;
-      for (int i : candidates)
-        if (!armed_[i] && up[kProbes].dot(hv(i).position - pivot.position) > eps) armed_[i] = true;
+      for (int i : hull().neighbours[static_cast<std::size_t>(contact_)])
+        if (!armed_[i] && up_end.dot(hv(i).position - hv(contact_).position) > eps) armed_[i] = true;
       note_ratio();
       continue;
     }

@@ -366,6 +366,15 @@ class Rocking3DModel {
   void hold_slip(const GroundInput3& in, double tau);
   void sync_slip();
   void aim_slip_ref();
+  static constexpr int kVertexProbes = 4;
+  template <class Rot>
+  double touchdown_in_step(const Rot& rot, const Vec7& y0, const Eigen::Vector3d* up, double t0, double t1,
+                           double t_tol, int& touching) const;
+  template <class Rot>
+  Event vertex_event_in_step(const Rot& rot, const Vec7& y0, const Vec7& y1, double t0, double t1, double t_tol,
+                             int& touching, double& t_event, Eigen::Vector3d& up_end) const;
+  template <class Rot>
+  void note_vertex_peak(const Rot& rot, const Vec7& y0, const Vec7& y_stop, double t0, double t_stop, double t_tol);
   template <int N, class Rhs>
   Event vertex_motion(Dopri5Vector<N>& stepper, Eigen::Matrix<double, N, 1>& state, const Rhs& f,
                       const Eigen::Matrix<double, N, 1>& atol, const GroundInput3& in, double& tau,
