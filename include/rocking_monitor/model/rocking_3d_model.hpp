@@ -392,6 +392,7 @@ class Rocking3DModel {
   void slide_to_event(double tau, double t_start);
   void slide_rhs(const GroundInput3& in, double t, const Vec6& y, Vec6& dy) const;
   Eigen::Vector2d slide_friction(const GroundInput3& in, double t, const Vec6& y, double& torque) const;
+  Eigen::Vector2d lift_friction(const GroundInput3& in, double t, const Vec6& y) const;
   double slide_lift(const GroundInput3& in, double t, const Vec6& y) const;
   double support_margin_of(const Vec6& y) const;
   void slide_to_edge(const GroundInput3& in, double tau);
