@@ -237,7 +237,9 @@ TEST(MoreauJeanFriction, ABoxRockingOnASlippingCornerFallsWhenTheReferenceFalls)
         } else {
           EXPECT_NEAR(core.max_tilt, ref.max_tilt, 0.1 * ref.max_tilt);
         }
-        if (mu < 0.45 && amp > 0.6) EXPECT_GT(core.pivot_slip_time, 0.1);  // slide-rock dominated
+        if (mu < 0.45 && amp > 0.6) {
+          EXPECT_GT(core.pivot_slip_time, 0.1);  // slide-rock dominated
+        }
       }
 }
 
