@@ -7,6 +7,7 @@
 #include <mutex>
 
 #include "rocking_monitor/notify/channels.hpp"
+#include "rocking_monitor/notify/mail_text.hpp"
 #include "rocking_monitor/notify/redact.hpp"
 #include "rocking_monitor/safe_text.hpp"
 
@@ -58,40 +59,6 @@ size_t on_read(char* buffer, size_t size, size_t n, void* user) {
   std::memcpy(buffer, u->text.data() + u->at, k);
   u->at += k;
   return k;
-}
-
-bool ascii(const std::string& s) {
-  return std::all_of(s.begin(), s.end(), [](unsigned char ch) { return ch < 128; });
-}
-
-// RFC 2047 encoded word for a non-ASCII subject (a description with accents).
-std::string header_text(const std::string& s) {
-  if (ascii(s)) return s;
-  static const char* b64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  size_t i = 0;
-  for (; i + 2 < s.size(); i += 3) {
-    const unsigned v = (unsigned char)s[i] << 16 | (unsigned char)s[i + 1] << 8 | (unsigned char)s[i + 2];
-    out += {b64[v >> 18], b64[(v >> 12) & 63], b64[(v >> 6) & 63], b64[v & 63]};
-  }
-  if (i + 1 == s.size()) {
-    const unsigned v = (unsigned char)s[i] << 16;
-    out += {b64[v >> 18], b64[(v >> 12) & 63], '=', '='};
-  } else if (i + 2 == s.size()) {
-    const unsigned v = (unsigned char)s[i] << 16 | (unsigned char)s[i + 1] << 8;
-    out += {b64[v >> 18], b64[(v >> 12) & 63], b64[(v >> 6) & 63], '='};
-  }
-  return "=?UTF-8?B?" + out + "?=";
-}
-
-std::string crlf(const std::string& text) {
-  std::string out;
-  out.reserve(text.size() + text.size() / 40);
-  for (char ch : text) {
-    if (ch == '\n') out += "\r\n";
-    else if (ch != '\r') out += ch;
-  }
-  return out;
 }
 
 class CurlChannel : public Channel {
@@ -173,10 +140,7 @@ class SmtpChannel : public CurlChannel {
     std::tm tm{};
     gmtime_r(&now, &tm);
     std::strftime(date, sizeof date, "%a, %d %b %Y %H:%M:%S +0000", &tm);
-    return crlf(std::string("Date: ") + date + "\nFrom: " + config_.from + "\nTo: " + m.to +
-                "\nSubject: " + header_text(m.subject) + "\nMessage-ID: <" + m.id + "@rocking-monitor>" +
-                "\nMIME-Version: 1.0\nContent-Type: text/plain; charset=utf-8\nContent-Transfer-Encoding: 8bit" +
-                "\nX-Rocking-Monitor-Recipient: " + m.recipient + "\n\n" + m.body);
+    return mail_text({date, config_.from, m.to, m.subject, m.id, m.recipient, m.body});
   }
 };
 

@@ -65,6 +65,7 @@ def main():
                 msg = email.message_from_bytes(envelope.content, policy=email.policy.default)
                 append(a.log, {'id': msg['Message-ID'], 'to': envelope.rcpt_tos, 'from': envelope.mail_from,
                                'subject': str(msg['Subject']), 'body': msg.get_content(),
+                               'headers': list(msg.keys()), 'content_type': msg.get_content_type(),
                                'tls': session.ssl is not None, 'authenticated': bool(session.authenticated)})
                 return '250 OK queued'
 
