@@ -83,6 +83,7 @@ class CurlChannel : public Channel {
     curl_easy_setopt(curl_, CURLOPT_CONNECTTIMEOUT_MS, static_cast<long>(config_.timeout * 1000));
     curl_easy_setopt(curl_, CURLOPT_SSL_VERIFYPEER, config_.verify_tls ? 1L : 0L);
     curl_easy_setopt(curl_, CURLOPT_SSL_VERIFYHOST, config_.verify_tls ? 2L : 0L);
+    if (!config_.ca_file.empty()) curl_easy_setopt(curl_, CURLOPT_CAINFO, config_.ca_file.c_str());
     curl_easy_setopt(curl_, CURLOPT_VERBOSE, 1L);  // the debug function keeps the server's last reply
     curl_easy_setopt(curl_, CURLOPT_DEBUGFUNCTION, on_debug);
     curl_easy_setopt(curl_, CURLOPT_DEBUGDATA, reply);
