@@ -154,6 +154,8 @@ if(CPP_HTTPLIB_FOUND)
       add_rostest(test/ros/dashboard_browser.test DEPENDENCIES dashboard monitor)
       # the same page with an item the 3-D model decides (its detail, tilt and "3d" alarms)
       add_rostest(test/ros/dashboard_browser_3d.test DEPENDENCIES dashboard monitor)
+      # hostile text (<script>, <img onerror>) from the catalogue and the topics shown as text, never run
+      add_rostest(test/ros/dashboard_escaping.test DEPENDENCIES dashboard)
     else()
       message(STATUS "chromium not found: the dashboard's browser test (test/ros/dashboard_browser.test) is not run")
     endif()

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <stdexcept>
 
 namespace rocking_monitor::feeds {
@@ -15,6 +17,11 @@ std::int64_t floor_div(std::int64_t a, std::int64_t b) {
   return q;
 }
 
+constexpr std::int64_t kNone = std::numeric_limits<std::int64_t>::min();
+
+// The same sample value, bit for bit: a repeat (NaN equals NaN here, -0 is not 0: the records' own bytes).
+bool same_value(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
 }  // namespace
 
 StationMerger::StationMerger(double gain, double azimuth_deg, bool numbered_azimuth_given, std::size_t capacity)
@@ -24,6 +31,18 @@ StationMerger::StationMerger(double gain, double azimuth_deg, bool numbered_azim
   for (int c = 0; c < 3; ++c) {
     values_[c].assign(capacity_, 0.0);
     present_[c].assign(capacity_, 0);
+    stored_[c].assign(capacity_, kNone);
+  }
+  conflict_.assign(capacity_, 0);
+}
+
+void StationMerger::note_overlap(int c, std::int64_t index, double value) {
+  const std::size_t k = ring(index);
+  if (stored_[c][k] != index || same_value(values_[c][k], value)) return;  // a repeat, or the first is gone
+  ++counters_.overlap_conflicts;
+  if (index >= out_ && conflict_[k] == 0) {  // not out yet: it goes out marked
+    conflict_[k] = 1;
+    ++counters_.conflicts_marked;
   }
 }
 
@@ -39,6 +58,8 @@ bool StationMerger::settle(bool force, const Emit& emit) {
     s.time_ns = time_us(out_) * 1000;
     const std::size_t k = ring(out_);
     s.enu = frame_.to_enu(values_[0][k], values_[1][k], values_[2][k]);
+    s.conflict = conflict_[k] != 0;
+    conflict_[k] = 0;
     if (emitted_any_ && out_ != last_emitted_ + 1) ++counters_.output_gaps;
     emitted_any_ = true;
     last_emitted_ = out_;
@@ -51,6 +72,7 @@ bool StationMerger::settle(bool force, const Emit& emit) {
   }
   if (dead || force) {
     for (int c = 0; c < 3; ++c) present_[c][ring(out_)] = 0;
+    conflict_[ring(out_)] = 0;
     ++counters_.incomplete;
     ++out_;
     return true;
@@ -101,6 +123,7 @@ void StationMerger::add(const DecodedRecord& r, const Emit& emit) {
     const std::int64_t index = first + static_cast<std::int64_t>(i);
     if (index < head_[c]) {
       ++counters_.overlap_samples;
+      note_overlap(c, index, r.samples[i]);
       continue;
     }
     head_[c] = index + 1;
@@ -112,6 +135,7 @@ void StationMerger::add(const DecodedRecord& r, const Emit& emit) {
     while (index - out_ >= static_cast<std::int64_t>(capacity_)) settle(true, emit);
     values_[c][ring(index)] = r.samples[i];
     present_[c][ring(index)] = 1;
+    stored_[c][ring(index)] = index;
   }
   while (out_ < std::max({head_[0], head_[1], head_[2]}) && settle(false, emit)) {
   }

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "rocking_monitor/json_text.hpp"
+#include "rocking_monitor/safe_text.hpp"
 
 namespace rocking_monitor::notify {
 
@@ -167,12 +168,22 @@ OutMessage compose_group(const NotifyConfig& config, const RecipientConfig& reci
   return m;
 }
 
+std::string mqtt_topic_level(const std::string& text) {
+  // An alarm from a topic may carry any bytes (a catalogue's ids are names, issue 54). A topic
+  // separator or wildcard would name other topics, NUL and invalid UTF-8 make the broker refuse the
+  // publication (MQTT 3.1.1 section 4.7.3: every retry refused too), other control characters
+  // garble a subscriber's display: each becomes '_'. Invalid UTF-8 first becomes U+FFFD.
+  std::string level = valid_utf8(text);
+  std::replace_if(level.begin(), level.end(), [](char ch) {
+    const auto c = static_cast<unsigned char>(ch);
+    return ch == '/' || ch == '+' || ch == '#' || c < 0x20 || c == 0x7F;
+  }, '_');
+  return level.empty() ? "_" : level;  // "prefix//COMMITTED" would be a level nobody subscribes to by name
+}
+
 std::vector<OutMessage> compose_mqtt(const ChannelConfig& channel, const RecipientConfig& recipient,
                                      const OutboxAlarm& alarm, int state_level) {
-  // An item id with a topic separator or wildcard would name other topics: those characters become '_'.
-  std::string item = alarm.alarm.item;
-  std::replace_if(item.begin(), item.end(), [](char ch) { return ch == '/' || ch == '+' || ch == '#'; }, '_');
-  const std::string base = channel.topic_prefix + "/" + item + "/";
+  const std::string base = channel.topic_prefix + "/" + mqtt_topic_level(alarm.alarm.item) + "/";
   OutMessage level;
   level.recipient = recipient.name;
   level.channel = channel.name;

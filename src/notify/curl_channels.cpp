@@ -7,6 +7,7 @@
 #include <mutex>
 
 #include "rocking_monitor/notify/channels.hpp"
+#include "rocking_monitor/notify/mail_text.hpp"
 #include "rocking_monitor/notify/redact.hpp"
 #include "rocking_monitor/safe_text.hpp"
 
@@ -60,40 +61,6 @@ size_t on_read(char* buffer, size_t size, size_t n, void* user) {
   return k;
 }
 
-bool ascii(const std::string& s) {
-  return std::all_of(s.begin(), s.end(), [](unsigned char ch) { return ch < 128; });
-}
-
-// RFC 2047 encoded word for a non-ASCII subject (a description with accents).
-std::string header_text(const std::string& s) {
-  if (ascii(s)) return s;
-  static const char* b64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  size_t i = 0;
-  for (; i + 2 < s.size(); i += 3) {
-    const unsigned v = (unsigned char)s[i] << 16 | (unsigned char)s[i + 1] << 8 | (unsigned char)s[i + 2];
-    out += {b64[v >> 18], b64[(v >> 12) & 63], b64[(v >> 6) & 63], b64[v & 63]};
-  }
-  if (i + 1 == s.size()) {
-    const unsigned v = (unsigned char)s[i] << 16;
-    out += {b64[v >> 18], b64[(v >> 12) & 63], '=', '='};
-  } else if (i + 2 == s.size()) {
-    const unsigned v = (unsigned char)s[i] << 16 | (unsigned char)s[i + 1] << 8;
-    out += {b64[v >> 18], b64[(v >> 12) & 63], b64[(v >> 6) & 63], '='};
-  }
-  return "=?UTF-8?B?" + out + "?=";
-}
-
-std::string crlf(const std::string& text) {
-  std::string out;
-  out.reserve(text.size() + text.size() / 40);
-  for (char ch : text) {
-    if (ch == '\n') out += "\r\n";
-    else if (ch != '\r') out += ch;
-  }
-  return out;
-}
-
 class CurlChannel : public Channel {
  public:
   explicit CurlChannel(const ChannelConfig& c) : config_(c) {
@@ -116,6 +83,7 @@ class CurlChannel : public Channel {
     curl_easy_setopt(curl_, CURLOPT_CONNECTTIMEOUT_MS, static_cast<long>(config_.timeout * 1000));
     curl_easy_setopt(curl_, CURLOPT_SSL_VERIFYPEER, config_.verify_tls ? 1L : 0L);
     curl_easy_setopt(curl_, CURLOPT_SSL_VERIFYHOST, config_.verify_tls ? 2L : 0L);
+    if (!config_.ca_file.empty()) curl_easy_setopt(curl_, CURLOPT_CAINFO, config_.ca_file.c_str());
     curl_easy_setopt(curl_, CURLOPT_VERBOSE, 1L);  // the debug function keeps the server's last reply
     curl_easy_setopt(curl_, CURLOPT_DEBUGFUNCTION, on_debug);
     curl_easy_setopt(curl_, CURLOPT_DEBUGDATA, reply);
@@ -173,10 +141,7 @@ class SmtpChannel : public CurlChannel {
     std::tm tm{};
     gmtime_r(&now, &tm);
     std::strftime(date, sizeof date, "%a, %d %b %Y %H:%M:%S +0000", &tm);
-    return crlf(std::string("Date: ") + date + "\nFrom: " + config_.from + "\nTo: " + m.to +
-                "\nSubject: " + header_text(m.subject) + "\nMessage-ID: <" + m.id + "@rocking-monitor>" +
-                "\nMIME-Version: 1.0\nContent-Type: text/plain; charset=utf-8\nContent-Transfer-Encoding: 8bit" +
-                "\nX-Rocking-Monitor-Recipient: " + m.recipient + "\n\n" + m.body);
+    return mail_text({date, config_.from, m.to, m.subject, m.id, m.recipient, m.body});
   }
 };
 

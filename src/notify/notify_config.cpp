@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cmath>
 #include <fstream>
 #include <regex>
@@ -13,6 +14,7 @@
 
 #include "rocking_monitor/notify/notify_alarm.hpp"
 #include "rocking_monitor/notify/redact.hpp"
+#include "rocking_monitor/private_files.hpp"
 
 namespace rocking_monitor::notify {
 
@@ -84,12 +86,66 @@ bool valid_address(const std::string& a) {
   return std::regex_match(a, re);
 }
 
+// A relative path in the configuration is relative to the configuration file's folder.
+std::string beside(const std::string& config_file, const std::string& path) {
+  if (path.empty() || path[0] == '/') return path;
+  const auto slash = config_file.rfind('/');
+  return slash == std::string::npos ? path : config_file.substr(0, slash + 1) + path;
+}
+
+// The channel's password (issue 52 item 5): from `password_file` (mode 0600 or stricter, one line),
+// `password_env` (an environment variable's value) or, said at every start, `password` inline;
+// at most one of them.
+void parse_password(const Ctx& c, const YAML::Node& n, const std::string& f, ChannelConfig& ch,
+                    std::vector<std::string>& warnings) {
+  const char* keys[] = {"password", "password_file", "password_env"};
+  std::string given;
+  for (const char* k : keys)
+    if (n[k].IsDefined()) {
+      if (!given.empty()) c.fail(n[k], f + "." + k, std::string("give one of password, password_file, password_env, not ") + given + " too");
+      given = k;
+    }
+  if (given == "password") {
+    ch.password = c.get<std::string>(n, "password", f + ".password", "");
+    warnings.push_back(c.file + ": " + f + ".password: inline in the configuration: prefer password_file (mode 0600) or password_env");
+  } else if (given == "password_file") {
+    const std::string path = beside(c.file, c.get<std::string>(n, "password_file", f + ".password_file", ""));
+    std::string text, error;
+    if (!read_private_file(path, "password file", 4096, text, error)) c.fail(n["password_file"], f + ".password_file", error);
+    if (!text.empty() && text.back() == '\n') text.pop_back();  // the one line's end, as an editor writes it
+    if (!text.empty() && text.back() == '\r') text.pop_back();
+    if (text.empty()) c.fail(n["password_file"], f + ".password_file", "password file '" + path + "' is empty");
+    if (text.find_first_of("\r\n") != std::string::npos)
+      c.fail(n["password_file"], f + ".password_file", "password file '" + path + "' has more than one line");
+    ch.password = text;
+  } else if (given == "password_env") {
+    const std::string var = c.get<std::string>(n, "password_env", f + ".password_env", "");
+    const char* value = var.empty() ? nullptr : std::getenv(var.c_str());
+    if (value == nullptr || *value == '\0')
+      c.fail(n["password_env"], f + ".password_env", "environment variable '" + var + "' is not set or empty");
+    ch.password = value;
+  }
+}
+
+// TLS settings of an smtp or webhook channel: ca_file must be readable now (not at the first alarm);
+// verify_tls false is said at every start.
+void parse_tls(const Ctx& c, const YAML::Node& n, const std::string& f, ChannelConfig& ch,
+               std::vector<std::string>& warnings) {
+  ch.verify_tls = c.get<bool>(n, "verify_tls", f + ".verify_tls", true);
+  ch.ca_file = beside(c.file, c.get<std::string>(n, "ca_file", f + ".ca_file", ""));
+  if (!ch.ca_file.empty() && !std::ifstream(ch.ca_file))
+    c.fail(n["ca_file"], f + ".ca_file", "cannot read '" + ch.ca_file + "'");
+  if (!ch.verify_tls)
+    warnings.push_back(c.file + ": " + f + ".verify_tls: false: the server's certificate is not checked, so anyone "
+                       "between here and the server can read and change the alarms");
+}
+
 std::string url_scheme(const std::string& url) {
   const auto pos = url.find("://");
   return pos == std::string::npos ? std::string() : url.substr(0, pos);
 }
 
-ChannelConfig parse_channel(const Ctx& c, const std::string& name, const YAML::Node& n) {
+ChannelConfig parse_channel(const Ctx& c, const std::string& name, const YAML::Node& n, std::vector<std::string>& warnings) {
   const std::string f = "channels." + name;
   ChannelConfig ch;
   ch.name = name;
@@ -97,21 +153,23 @@ ChannelConfig parse_channel(const Ctx& c, const std::string& name, const YAML::N
   const std::string type = c.get<std::string>(n, "type", f + ".type", "");
   if (type == "smtp") {
     ch.type = ChannelType::Smtp;
-    c.known_keys(n, f, {"type", "url", "from", "starttls", "username", "password", "verify_tls", "timeout"});
+    c.known_keys(n, f, {"type", "url", "from", "starttls", "username", "password", "password_file", "password_env",
+                        "verify_tls", "ca_file", "timeout"});
   } else if (type == "webhook") {
     ch.type = ChannelType::Webhook;
-    c.known_keys(n, f, {"type", "url", "verify_tls", "timeout"});
+    c.known_keys(n, f, {"type", "url", "verify_tls", "ca_file", "timeout"});
   } else if (type == "mqtt") {
     ch.type = ChannelType::Mqtt;
-    c.known_keys(n, f, {"type", "host", "port", "topic_prefix", "client_id", "qos", "retain", "username", "password", "timeout"});
+    c.known_keys(n, f, {"type", "host", "port", "topic_prefix", "client_id", "qos", "retain", "username", "password",
+                        "password_file", "password_env", "timeout"});
   } else {
     c.fail(n["type"].IsDefined() ? n["type"] : n, f + ".type",
            type.empty() ? "missing (smtp, webhook or mqtt)" : "unknown channel type '" + type + "' (smtp, webhook or mqtt)");
   }
   ch.timeout = c.positive(n, "timeout", f + ".timeout", ch.timeout);
   ch.username = c.get<std::string>(n, "username", f + ".username", "");
-  ch.password = c.get<std::string>(n, "password", f + ".password", "");
-  ch.verify_tls = c.get<bool>(n, "verify_tls", f + ".verify_tls", true);
+  parse_password(c, n, f, ch, warnings);
+  if (ch.type != ChannelType::Mqtt) parse_tls(c, n, f, ch, warnings);  // MQTT here is without TLS (docs/notify.md)
   if (ch.type == ChannelType::Smtp || ch.type == ChannelType::Webhook) {
     ch.url = c.get<std::string>(n, "url", f + ".url", "");
     const std::string scheme = url_scheme(ch.url);
@@ -229,7 +287,7 @@ NotifyConfig parse_notify_config(const std::string& yaml, const std::string& fil
     c.fail(channels.IsDefined() ? channels : root, "channels", "missing or empty: name at least one channel (type smtp, webhook or mqtt)");
   for (const auto& kv : channels) {
     const auto name = kv.first.as<std::string>();
-    cfg.channels.emplace(name, parse_channel(c, name, kv.second));
+    cfg.channels.emplace(name, parse_channel(c, name, kv.second, cfg.warnings));
   }
   const YAML::Node recipients = root["recipients"];
   if (!recipients.IsDefined() || !recipients.IsSequence() || recipients.size() == 0)

@@ -60,6 +60,7 @@ bool AlarmNotifier::init() {
   try {
     notify::NotifyConfig config = notify::load_notify_config(config_path);
     if (pnh_.param("check_hosts", true)) notify::check_hosts(config);
+    for (const auto& w : config.warnings) ROS_WARN("alarm_notifier: %s", w.c_str());  // every start (issue 52)
     notifier_ = std::make_unique<notify::Notifier>(std::move(config), outbox, notify::make_channel, wall_now());
   } catch (const std::exception& e) {
     ROS_FATAL("alarm_notifier: %s", e.what());

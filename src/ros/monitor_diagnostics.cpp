@@ -34,6 +34,11 @@ void RockingMonitor::sensor_diagnostics(std::size_t i, diagnostic_updater::Diagn
   else if (dropped + rejected > 0 || c.gaps > 0 || pc.rejected > 0 || s.lost_in_transport > 0)
     st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "samples dropped, rejected, lost or gaps");
   else st.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
+  // Beside whatever else holds (stale, overload): two sources feed the stream, and a person must find
+  // the second (issue 52 item 3). mergeSummary keeps both messages at ERROR, replaces a lower one.
+  if (s.conflicting > 0)
+    st.mergeSummary(diagnostic_msgs::DiagnosticStatus::ERROR,
+                    "samples marked conflicting by the bridge (two sources disagree): not stepped, gaps in their place");
   st.add("topic", s.spec.topic);
   st.add("received", s.received);
   st.add("accepted", c.accepted);
@@ -43,6 +48,8 @@ void RockingMonitor::sensor_diagnostics(std::size_t i, diagnostic_updater::Diagn
   st.add("rejected non-finite", s.rejected_nonfinite);
   st.add("rejected beyond max_abs_acceleration", s.rejected_limit);
   st.add("data gaps (not bridged)", c.gaps);
+  st.add("conflicting samples (marked by the bridge), not stepped", s.conflicting);
+  st.add("last conflicting sample (stamp)", s.last_conflicting_stamp.toSec());
   st.add("longest gap (s)", c.longest_gap);
   st.add("resets (time jumped back)", s.resets);
   st.add("rejected implausible stamp", pc.rejected);

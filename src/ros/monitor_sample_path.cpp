@@ -13,13 +13,31 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "rocking_monitor/feeds/conflict_mark.hpp"
+
 namespace rocking_monitor::live {
 
 void RockingMonitor::on_imu(std::size_t sensor, const ::ros::MessageEvent<sensor_msgs::Imu const>& e) {
   const sensor_msgs::ImuConstPtr& m = e.getConstMessage();
   sensors_[sensor].backlog_s = queue_wait(e.getReceiptTime());
+  if (feeds::conflict_marked(m->linear_acceleration_covariance)) return skip_conflicting(sensor, m->header);
   on_sample(sensor, m->header,
             Eigen::Vector3d(m->linear_acceleration.x, m->linear_acceleration.y, m->linear_acceleration.z));
+}
+
+// Issue 52 item 3: a sample the bridge marked as conflicting (two sources gave its sequence number
+// different values; docs/inputs.md) is not ground motion anyone vouches for. It is not stepped: its
+// place is a gap, which the next sample treats as any gap (bridged within ~max_gap, else frozen;
+// issue 19). It counts as received, so the gap's accounting does not call it lost in transport.
+void RockingMonitor::skip_conflicting(std::size_t si, const std_msgs::Header& header) {
+  Sensor& s = sensors_[si];
+  ++s.received;
+  ++s.conflicting;
+  s.last_conflicting_stamp = header.stamp;
+  ROS_ERROR_THROTTLE(5.0, "rocking_monitor: sensor '%s': sample stamped %.6f marked as conflicting by its bridge "
+                     "(two sources disagree): not stepped, a gap in its place (%lu so far)", s.spec.name.c_str(),
+                     header.stamp.toSec(), static_cast<unsigned long>(s.conflicting));
+  if (s.conflicting == 1) diagnostics_->force_update();  // the first one at once; the rest at the updater's rate
 }
 
 void RockingMonitor::on_accel(std::size_t sensor, const ::ros::MessageEvent<geometry_msgs::AccelStamped const>& e) {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "rocking_monitor/constants.hpp"
+#include "rocking_monitor/feeds/conflict_mark.hpp"
 #include "rocking_monitor/feeds/sequence_state.hpp"
 #include "rocking_monitor/feeds/tcp_connection.hpp"
 
@@ -248,8 +249,13 @@ void SeedLinkBridge::on_record(std::size_t stream, std::uint32_t /*sequence*/, c
     s.msg.linear_acceleration.x = m.enu[0];
     s.msg.linear_acceleration.y = m.enu[1];
     s.msg.linear_acceleration.z = m.enu[2] + gravity_;
-    // Kept before it is published: a subscriber asking later finds whatever it did not receive.
-    if (history_) history_->push(s.history, s.msg.header.stamp, s.msg.linear_acceleration.x, s.msg.linear_acceleration.y,
+    // A channel sent this time again with another value (overlapping records, issue 52): the first
+    // values, marked as the UDP bridge marks its conflicts (docs/inputs.md); the variance stays 0
+    // ("unknown", REP 145) otherwise.
+    feeds::mark_conflicting(s.msg.linear_acceleration_covariance, m.conflict, 0.0);
+    // Kept before it is published: a subscriber asking later finds whatever it did not receive. Not a
+    // conflicting one: a monitor catching up meets the gap the live one met.
+    if (history_ && !m.conflict) history_->push(s.history, s.msg.header.stamp, s.msg.linear_acceleration.x, s.msg.linear_acceleration.y,
                                  s.msg.linear_acceleration.z);
     s.pub.publish(s.msg);
     const double latency = static_cast<double>(static_cast<std::int64_t>(::ros::WallTime::now().toNSec()) - m.time_ns) * 1e-9;
@@ -307,6 +313,10 @@ void SeedLinkBridge::station_diagnostics(std::size_t i, diagnostic_updater::Diag
   if (m.samples_out == 0) st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no sample published yet");
   else if (problems != s.reported_problems) st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "new data problems (see counts)");
   else st.summary(diagnostic_msgs::DiagnosticStatus::OK, "publishing");
+  // Two sources, or a broken digitiser, on one stream (issue 52): an ERROR for good, beside the rest.
+  if (m.overlap_conflicts > 0)
+    st.mergeSummary(diagnostic_msgs::DiagnosticStatus::ERROR,
+                    std::to_string(m.overlap_conflicts) + " samples sent again with other values (overlapping records; first kept)");
   s.reported_problems = problems;
   const auto seq = session_->last_sequence(i);
   char hex[16] = "none";
@@ -329,6 +339,8 @@ void SeedLinkBridge::station_diagnostics(std::size_t i, diagnostic_updater::Diag
   st.add("gap samples", m.gap_samples);
   st.add("overlaps", m.overlaps);
   st.add("overlap samples", m.overlap_samples);
+  st.add("overlap conflicts (other values; first kept)", m.overlap_conflicts);
+  st.add("conflicts marked on the published sample (variance inf)", m.conflicts_marked);
   st.add("incomplete times dropped", m.incomplete);
   st.add("late samples dropped", m.late_samples);
   st.add("breaks in published times", m.output_gaps);

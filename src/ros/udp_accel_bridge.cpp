@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "rocking_monitor/constants.hpp"
+#include "rocking_monitor/feeds/conflict_mark.hpp"
 #include "rocking_monitor/feeds/datagram_key.hpp"
 
 namespace rocking_monitor::live {
@@ -282,10 +283,11 @@ void UdpAccelBridge::publish_ready(const ros::Time& arrival) {
     msg_.linear_acceleration.z = s.accel[2] + (add_gravity_ ? core::kGravity : 0.0);
     // A conflicting sample (issue 52) keeps its values but says they are not to be trusted:
     // infinite variance (docs/inputs.md); REP 145's -1 would say "no data" and discard them.
-    const double variance = s.conflict ? std::numeric_limits<double>::infinity() : accel_variance_;
-    for (int k = 0; k < 3; ++k) msg_.linear_acceleration_covariance[4 * k] = variance;
+    feeds::mark_conflicting(msg_.linear_acceleration_covariance, s.conflict, accel_variance_);
     // Kept before it is published: a subscriber asking later finds whatever it did not receive.
-    if (history_) history_->push(0, msg_.header.stamp, msg_.linear_acceleration.x, msg_.linear_acceleration.y,
+    // Not a conflicting one: the history has no mark, and a monitor catching up from it should meet
+    // the gap the live monitor met (it does not step on the sample either).
+    if (history_ && !s.conflict) history_->push(0, msg_.header.stamp, msg_.linear_acceleration.x, msg_.linear_acceleration.y,
                                  msg_.linear_acceleration.z);
     imu_pub_.publish(msg_);
     ++published_;

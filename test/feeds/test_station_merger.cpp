@@ -82,9 +82,53 @@ TEST(StationMerger, GapsDropTheTimesOneChannelMissesAndOverlapsAreNotRepeated) {
   EXPECT_EQ(k.gap_samples, 3u);
   EXPECT_EQ(k.overlaps, 1u);
   EXPECT_EQ(k.overlap_samples, 4u);
+  EXPECT_EQ(k.overlap_conflicts, 0u) << "the repeated samples carry the same values";
   EXPECT_EQ(k.incomplete, 3u);
   EXPECT_EQ(k.output_gaps, 1u);
   EXPECT_EQ(k.samples_out, 20u);
+}
+
+// Issue 52 item 3: a record that overlaps an earlier one with other samples is a conflict, not a
+// repeat. The first values are kept; times still waiting for the other channels go out marked, times
+// already out are counted only (they cannot be taken back).
+TEST(StationMerger, AnOverlapWithOtherValuesIsAConflictTheFirstKept) {
+  StationMerger m(1.0, 0.0, false);
+  Collect c;
+  for (int ch = 0; ch < 3; ++ch) m.add(record(ch == 0 ? "HNN" : ch == 1 ? "HNE" : "HNZ", ch, 0, 10), c.emit());
+  ASSERT_EQ(c.out.size(), 10u);
+  m.add(record("HNZ", 2, 10, 10), c.emit());  // Z runs ahead to 19: times 10..19 wait for N and E
+  DecodedRecord other = record("HNZ", 2, 5, 10);  // Z again from 5 to 14 with other values at 8..11
+  for (std::size_t k = 3; k < 7; ++k) other.samples[k] += 0.5;
+  m.add(other, c.emit());
+  m.add(record("HNN", 0, 10, 10), c.emit());
+  m.add(record("HNE", 1, 10, 10), c.emit());
+  ASSERT_EQ(c.out.size(), 20u);
+  for (std::int64_t i = 0; i < 20; ++i) {
+    const MergedSample& s = c.out[static_cast<std::size_t>(i)];
+    EXPECT_EQ(s.enu[2], value(2, i)) << "time " << i << ": the first value is kept";
+    EXPECT_EQ(s.conflict, i == 10 || i == 11) << "time " << i;
+  }
+  const MergerCounters& k = m.counters();
+  EXPECT_EQ(k.overlaps, 1u);
+  EXPECT_EQ(k.overlap_samples, 10u);
+  EXPECT_EQ(k.overlap_conflicts, 4u) << "8 and 9 already out, 10 and 11 waiting";
+  EXPECT_EQ(k.conflicts_marked, 2u);
+}
+
+// The ring's slot of a time given up long ago holds another time's value: an overlap reaching back
+// that far cannot be compared and is no conflict (nor a false one).
+TEST(StationMerger, AnOverlapBeyondTheRingIsNotCompared) {
+  StationMerger m(1.0, 0.0, false, 16);
+  Collect c;
+  for (std::int64_t first = 0; first < 40; first += 8)  // records shorter than the ring, in step
+    for (int ch = 0; ch < 3; ++ch) m.add(record(ch == 0 ? "HNN" : ch == 1 ? "HNE" : "HNZ", ch, first, 8), c.emit());
+  ASSERT_EQ(c.out.size(), 40u);
+  DecodedRecord old = record("HNZ", 2, 0, 40);
+  for (double& v : old.samples) v += 1.0;  // every value differs, but 0..23 are no longer held
+  m.add(old, c.emit());
+  EXPECT_EQ(m.counters().overlap_samples, 40u);
+  EXPECT_EQ(m.counters().overlap_conflicts, 16u) << "only the 16 times the ring still holds";
+  EXPECT_EQ(m.counters().conflicts_marked, 0u);
 }
 
 TEST(StationMerger, NumberedHorizontalsTurnByTheAzimuth) {

@@ -5,7 +5,7 @@ appended to LOG as one JSON line and fsync'd before the server acknowledges it, 
 the server accepted. Prints "ready PORT" when it listens.
 
   servers.py smtp|http PORT LOG [--die-at N] [--reject TEXT] [--fail-first K]
-             [--starttls CERT KEY] [--login USER:PASSWORD]
+             [--starttls CERT KEY] [--login USER:PASSWORD] [--tls CERT KEY]
 
 --die-at N      the N-th message (counting from 1 over this process's life) kills the server before
                 it is stored or acknowledged: a crash in the middle of a delivery
@@ -13,6 +13,7 @@ the server accepted. Prints "ready PORT" when it listens.
 --fail-first K  HTTP: answer the first K POSTs with 503 and a reason in the body
 --starttls      SMTP: require STARTTLS with this certificate and key before anything else
 --login         SMTP: require AUTH (LOGIN or PLAIN) with this user and password (after STARTTLS)
+--tls           HTTP: HTTPS with this certificate and key (a webhook over TLS)
 """
 import argparse
 import email
@@ -42,6 +43,7 @@ def main():
     p.add_argument('--fail-first', type=int, default=0)
     p.add_argument('--starttls', nargs=2, metavar=('CERT', 'KEY'))
     p.add_argument('--login', default='')
+    p.add_argument('--tls', nargs=2, metavar=('CERT', 'KEY'))
     a = p.parse_args()
     seen = [0]
 
@@ -65,6 +67,7 @@ def main():
                 msg = email.message_from_bytes(envelope.content, policy=email.policy.default)
                 append(a.log, {'id': msg['Message-ID'], 'to': envelope.rcpt_tos, 'from': envelope.mail_from,
                                'subject': str(msg['Subject']), 'body': msg.get_content(),
+                               'headers': list(msg.keys()), 'content_type': msg.get_content_type(),
                                'tls': session.ssl is not None, 'authenticated': bool(session.authenticated)})
                 return '250 OK queued'
 
@@ -116,6 +119,11 @@ def main():
 
     HTTPServer.allow_reuse_address = True
     server = HTTPServer(('127.0.0.1', a.port), Hook)
+    if a.tls:
+        import ssl
+        context = ssl.SSLContext(ssl.PROTOCOL_TLS_SERVER)
+        context.load_cert_chain(*a.tls)
+        server.socket = context.wrap_socket(server.socket, server_side=True)
     print('ready', a.port, flush=True)
     server.serve_forever()
 

@@ -1,6 +1,11 @@
 // The notifier's routing configuration: the shipped example parses to what its comments say, and each
 // kind of bad value is one error naming the file, the line and the field.
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 
 #include "rocking_monitor/notify/notify_config.hpp"
 #include "rocking_monitor/notify/notify_alarm.hpp"
@@ -101,4 +106,67 @@ TEST(NotifyConfig, UnknownHostIsAnErrorNamingTheField) {
     EXPECT_EQ(std::string(e.what()).rfind("notify.yaml: channels.bms.host: host 'no-such-broker.invalid' not found", 0), 0u) << e.what();
   }
   EXPECT_NO_THROW(check_hosts(parse_notify_config(kGood, "notify.yaml")));
+}
+
+// Issue 52 item 5: a password comes from a file only its owner can read, or from the environment;
+// inline it works but is said at every start, as verify_tls: false is. Each refusal names the file,
+// the line and the field, and says why.
+TEST(NotifyConfig, PasswordsFromAPrivateFileOrTheEnvironment) {
+  const std::string dir = ::testing::TempDir() + "notify_secrets_" + std::to_string(::getpid());
+  std::filesystem::create_directories(dir);
+  const std::string secret = dir + "/smtp_password", open_secret = dir + "/open_password";
+  std::ofstream(secret) << "s3cret word\n";
+  std::ofstream(open_secret) << "s3cret\n";
+  std::filesystem::permissions(secret, std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
+  std::filesystem::permissions(open_secret, std::filesystem::perms::owner_read | std::filesystem::perms::owner_write |
+                                                std::filesystem::perms::group_read | std::filesystem::perms::others_read);
+  const std::string mail = "from: monitor@museum.example}";
+  const std::string config = dir + "/notify.yaml";  // relative paths are beside the configuration
+  auto parsed = [&](const std::string& keys) { return parse_notify_config(replaced(kGood, mail, "from: monitor@museum.example, " + keys + "}"), config); };
+
+  EXPECT_EQ(parsed("username: m, password_file: " + secret).channels.at("mail").password, "s3cret word");
+  EXPECT_EQ(parsed("username: m, password_file: smtp_password").channels.at("mail").password, "s3cret word");
+  EXPECT_TRUE(parsed("password_file: smtp_password").warnings.empty());
+  ::setenv("ROCKING_TEST_SMTP_PASSWORD", "from the environment", 1);
+  EXPECT_EQ(parsed("password_env: ROCKING_TEST_SMTP_PASSWORD").channels.at("mail").password, "from the environment");
+  const NotifyConfig inline_password = parsed("password: typed");
+  EXPECT_EQ(inline_password.channels.at("mail").password, "typed");
+  ASSERT_EQ(inline_password.warnings.size(), 1u);
+  EXPECT_EQ(inline_password.warnings[0], config + ": channels.mail.password: inline in the configuration: prefer "
+                                          "password_file (mode 0600) or password_env");
+
+  auto refusal = [&](const std::string& keys) {
+    try {
+      parsed(keys);
+    } catch (const NotifyConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  EXPECT_EQ(refusal("password_file: " + open_secret), config + ":5: channels.mail.password_file: password file '" +
+                                                          open_secret + "' is accessible to group or others (mode 0644): chmod 600 it");
+  EXPECT_EQ(refusal("password_file: missing"), config + ":5: channels.mail.password_file: password file '" + dir +
+                                                   "/missing': No such file or directory");
+  ::unsetenv("ROCKING_TEST_NO_SUCH_VARIABLE");
+  EXPECT_EQ(refusal("password_env: ROCKING_TEST_NO_SUCH_VARIABLE"),
+            config + ":5: channels.mail.password_env: environment variable 'ROCKING_TEST_NO_SUCH_VARIABLE' is not set or empty");
+  EXPECT_EQ(refusal("password: a, password_file: smtp_password"),
+            config + ":5: channels.mail.password_file: give one of password, password_file, password_env, not password too");
+  std::ofstream(secret) << "two\nlines\n";
+  EXPECT_EQ(refusal("password_file: smtp_password"),
+            config + ":5: channels.mail.password_file: password file '" + secret + "' has more than one line");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(NotifyConfig, VerifyTlsFalseIsSaidAndAMissingCaFileRefused) {
+  const NotifyConfig c = parse_notify_config(replaced(kGood, "url: \"http://127.0.0.1:8080/hook\"",
+                                                      "url: \"https://127.0.0.1:8443/hook\", verify_tls: false"),
+                                             "notify.yaml");
+  EXPECT_FALSE(c.channels.at("chat").verify_tls);
+  ASSERT_EQ(c.warnings.size(), 1u);
+  EXPECT_EQ(c.warnings[0], "notify.yaml: channels.chat.verify_tls: false: the server's certificate is not checked, so "
+                           "anyone between here and the server can read and change the alarms");
+  EXPECT_TRUE(parse_notify_config(kGood, "notify.yaml").warnings.empty());
+  EXPECT_EQ(error_of(replaced(kGood, "url: \"http://127.0.0.1:8080/hook\"", "url: \"https://h:1/x\", ca_file: /no/such/ca.pem")),
+            "notify.yaml:6: channels.chat.ca_file: cannot read '/no/such/ca.pem'");
 }

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <algorithm>
 #include <set>
 
 #include "rocking_monitor/notify/channels.hpp"
@@ -103,6 +104,46 @@ TEST_F(NotifyServers, DeliversToEachChannel) {
   const auto got = sub.got();
   EXPECT_EQ(got.at("store/vase_1/state").back(), "COMMITTED");
   EXPECT_EQ(nlohmann::json::parse(got.at("store/vase_1/COMMITTED").back())["item"], "vase_1");
+}
+
+// Issue 52 item 6: an alarm from a topic may carry any text. A CR/LF in its item id must not add an
+// e-mail header (a Bcc, a Content-Type) nor end the headers early; "\r\n.\r\n" in the text must not end
+// SMTP's DATA early; '/' and a line end must not add MQTT topic levels. Through real servers: what
+// Python's e-mail parser and a subscriber see.
+TEST_F(NotifyServers, TextFromAnAlarmAddsNoHeaderNoTopicLevelAndDoesNotEndTheMail) {
+  auto smtp = start_server("smtp", smtp_port, smtp_log);
+  auto http = start_server("http", http_port, http_log);
+  auto broker = start_mosquitto(mqtt_port, dir);
+  Notifier n(config(), dir + "/outbox.jsonl", make_channel, wall());
+  const std::string item = "vase_1\r\nBcc: intruder@evil.example\r\nContent-Type: text/html\r\n\r\n<b>x";
+  NotifyAlarm a = alarm(item, kCommitted, 100.0, 1);
+  a.description = "<script>alert(1)</script>\r\n.\r\nafter the dot";
+  const double t0 = wall();
+  n.accept(a, t0);
+  ASSERT_EQ(n.tick(t0), "");
+  ASSERT_TRUE(wait_for([&] { return read_log(smtp_log).size() == 1 && read_log(http_log).size() == 1; }));
+  const auto mail = read_log(smtp_log)[0];
+  EXPECT_EQ(mail["to"], nlohmann::json::array({"curator@test.example"}));
+  EXPECT_EQ(mail["headers"], nlohmann::json::array({"Date", "From", "To", "Subject", "Message-ID", "MIME-Version",
+                                                    "Content-Type", "Content-Transfer-Encoding",
+                                                    "X-Rocking-Monitor-Recipient"}));
+  EXPECT_EQ(mail["content_type"], "text/plain");
+  EXPECT_EQ(mail["subject"],
+            "[Test store] 1 item COMMITTED: vase_1  Bcc: intruder@evil.example  Content-Type: text/html    <b>x");
+  std::string body = mail["body"];
+  body.erase(std::remove(body.begin(), body.end(), '\r'), body.end());  // the parser keeps SMTP's CRLF
+  EXPECT_NE(body.find("<script>alert(1)</script>\n.\nafter the dot"), std::string::npos) << body;
+  EXPECT_NE(body.find("Dashboard: http://127.0.0.1:8080/"), std::string::npos) << "the mail ended early:\n" << body;
+  const auto hook = read_log(http_log)[0];
+  EXPECT_EQ(hook["alarms"][0]["item"], item) << "JSON carries the text as it is, escaped";
+  ASSERT_TRUE(n.wait_idle(20));
+  MqttRecorder sub(mqtt_port, "store/#");
+  ASSERT_TRUE(wait_for([&] { return sub.got().size() == 2; }));
+  const std::string level = "vase_1__Bcc: intruder@evil.example__Content-Type: text_html____<b>x";
+  const auto got = sub.got();
+  EXPECT_EQ(got.count("store/" + level + "/state"), 1u);
+  EXPECT_EQ(got.count("store/" + level + "/COMMITTED"), 1u);
+  for (const auto& [topic, payloads] : got) EXPECT_EQ(std::count(topic.begin(), topic.end(), '/'), 2) << topic;
 }
 
 TEST_F(NotifyServers, ServerKilledMidDeliveryAndRestartedGetsEveryMessageOnce) {
@@ -276,4 +317,48 @@ TEST_F(NotifyServers, StartTlsAndLogin) {
   EXPECT_EQ(mail["tls"], true);
   EXPECT_EQ(mail["authenticated"], true);
   EXPECT_EQ(mail["subject"], "[rocking monitor] 1 item COMMITTED: vase_1");
+}
+
+// Issue 52 item 5: TLS checked against a certificate authority the test makes (openssl): the HTTPS
+// webhook and SMTP STARTTLS deliver with the CA that signed the server's certificate in ca_file, and
+// refuse with a clear error under another CA (nothing reaches the server).
+TEST_F(NotifyServers, TlsIsCheckedAgainstTheCaFile) {
+  const std::string ca = dir + "/ca.pem", other_ca = dir + "/other_ca.pem", cert = dir + "/server.pem", key = dir + "/server.key";
+  std::ofstream(dir + "/san.ext") << "subjectAltName=IP:127.0.0.1\n";
+  const std::string q = " >/dev/null 2>&1 && ";
+  const std::string make =
+      "cd " + dir + " && openssl req -x509 -newkey rsa:2048 -nodes -subj '/CN=rocking test CA' -days 1 -keyout ca.key -out ca.pem" + q +
+      "openssl req -x509 -newkey rsa:2048 -nodes -subj '/CN=another CA' -days 1 -keyout other_ca.key -out other_ca.pem" + q +
+      "openssl req -newkey rsa:2048 -nodes -subj /CN=127.0.0.1 -keyout server.key -out server.csr" + q +
+      "openssl x509 -req -in server.csr -CA ca.pem -CAkey ca.key -CAcreateserial -days 1 -extfile san.ext -out server.pem >/dev/null 2>&1";
+  ASSERT_EQ(std::system(make.c_str()), 0) << make;
+  auto http = start_server("http", http_port, http_log, {"--tls", cert, key});
+  auto smtp = start_server("smtp", smtp_port, smtp_log, {"--starttls", cert, key});
+  auto yaml = [&](const std::string& ca_file) {
+    return "channels:\n  hook: {type: webhook, url: 'https://127.0.0.1:" + std::to_string(http_port) + "/hook', ca_file: " +
+           ca_file + ", timeout: 5}\n  mail: {type: smtp, url: 'smtp://127.0.0.1:" + std::to_string(smtp_port) +
+           "', from: monitor@test.example, starttls: true, ca_file: " + ca_file + ", timeout: 5}\n"
+           "retry: {initial: 0.02, max: 0.1}\nrecipients:\n  - {name: ops, channel: hook}\n"
+           "  - {name: curator, channel: mail, to: curator@test.example}\n";
+  };
+  {
+    const NotifyConfig c = parse_notify_config(yaml(other_ca), "tls.yaml");
+    EXPECT_TRUE(c.warnings.empty());
+    Notifier n(c, dir + "/outbox_other.jsonl", make_channel, 1000.0);
+    n.accept(alarm("vase_1", kCommitted, 100.0, 1), 1000.0);
+    ASSERT_EQ(n.tick(1000.0), "");
+    ASSERT_TRUE(wait_for([&] { return !channel_error(n, "hook").empty() && !channel_error(n, "mail").empty(); }));
+    for (const char* ch : {"hook", "mail"}) {
+      EXPECT_NE(channel_error(n, ch).find("SSL certificate problem"), std::string::npos) << channel_error(n, ch);
+      std::printf("[ refused  ] %s\n", channel_error(n, ch).c_str());
+    }
+    EXPECT_TRUE(read_log(http_log).empty());
+    EXPECT_TRUE(read_log(smtp_log).empty());
+  }
+  Notifier n(parse_notify_config(yaml(ca), "tls.yaml"), dir + "/outbox.jsonl", make_channel, 1000.0);
+  n.accept(alarm("vase_1", kCommitted, 100.0, 1), 1000.0);
+  ASSERT_EQ(n.tick(1000.0), "");
+  ASSERT_TRUE(wait_for([&] { return read_log(http_log).size() == 1 && read_log(smtp_log).size() == 1; }));
+  EXPECT_EQ(read_log(http_log)[0]["alarms"][0]["item"], "vase_1");
+  EXPECT_EQ(read_log(smtp_log)[0]["tls"], true);
 }

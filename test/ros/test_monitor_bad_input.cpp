@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/Imu.h>
@@ -27,6 +28,7 @@ class BadInput : public ::testing::Test {
         "/rocking_monitor/states", 1000, [this](const rocking_monitor::RockingStateArray::ConstPtr& m) {
           last_states_ = *m;
           ++states_;
+          if (!m->items.empty()) stepped_.insert(std::llround(m->items[0].input_stamp.toSec() * 1e6));
         });
     diag_sub_ = nh_.subscribe<diagnostic_msgs::DiagnosticArray>(
         "/diagnostics", 100, [this](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
@@ -51,8 +53,12 @@ class BadInput : public ::testing::Test {
 
   // Publishes one reading (ground acceleration ax plus gravity on z) stamped t; /clock advances by
   // 10 ms per reading whatever the stamps do (a sensor with its own clock).
-  void sample(double t, double ax, double z = 9.80665) {
+  // `conflicting`: marked as a bridge marks a sample two sources disagreed on (issue 52 item 3,
+  // docs/inputs.md): the linear acceleration's variance +inf.
+  void sample(double t, double ax, double z = 9.80665, bool conflicting = false) {
     sensor_msgs::Imu m;
+    if (conflicting)
+      for (int k = 0; k < 3; ++k) m.linear_acceleration_covariance[4 * k] = std::numeric_limits<double>::infinity();
     if (t > 0.0) m.header.stamp.fromSec(t);
     m.header.frame_id = "accelerometer";
     m.linear_acceleration.x = ax;
@@ -103,6 +109,7 @@ class BadInput : public ::testing::Test {
   ros::Subscriber states_sub_, diag_sub_;
   rocking_monitor::RockingStateArray last_states_;
   int states_ = 0;
+  std::set<long long> stepped_;  // input stamps (us) item "good" was stepped at, from ~states
   ros::Time diag_stamp_;  // newest /diagnostics stamp: the node's clock when it published them
   // The node's clock runs ahead of the sensor's stamps (an own clock): stamps more than ~max_future
   // ahead of it would be rejected as implausible (issue 19).
@@ -201,3 +208,45 @@ TEST_F(BadInput, AGapIsNotBridgedTheItemsContinueFromTheirState) {
 }  // namespace
 
 // main(): test/support/rostest_main.cpp
+
+// A sample the bridge marked as conflicting (issue 52 item 3: two sources gave its sequence number
+// different values) is not stepped: its place is a gap, treated as any gap. Here the marked samples
+// push at 2 g: stepped, the 0.3 s run would overturn the 0.4 x 0.8 m box (AGapIsNotBridged...'s
+// numbers); treated as a gap, the box stays at rest on the real (quiet) samples around them.
+TEST_F(BadInput, AConflictingSampleIsNotSteppedItsPlaceIsAGap) {
+  double t = 200.0;  // a new time base (confirmed after ~rebase_samples): the items continue
+  for (int i = 0; i < 200; ++i, t += 0.01) sample(t, 0.0);
+  ASSERT_NO_FATAL_FAILURE(settle(t - 0.01));
+  const std::string s = "rocking_monitor: sensor floor samples";
+  ASSERT_TRUE(status_.count(s)) << "no diagnostics";
+  EXPECT_EQ(value(s, "conflicting samples (marked by the bridge), not stepped"), "0");
+  const long gaps0 = std::stol(value(s, "data gaps (not bridged)")), lost0 = std::stol(value(s, "lost in transport"));
+  const long received0 = std::stol(value(s, "received"));
+  ASSERT_EQ(last_states_.items.size(), 2u);
+  ASSERT_EQ(last_states_.items[0].mode, rocking_monitor::RockingState::REST) << "the box must be at rest to begin";
+  const auto impacts0 = last_states_.items[0].impacts;
+  std::vector<double> marked;
+  marked.push_back(t);
+  sample(t, 20.0, 9.80665, true);  // one within the stream: a 20 ms step across it (< ~max_gap), as a lost one
+  for (int i = 0; i < 10; ++i) sample(t += 0.01, 0.0);
+  for (int i = 0; i < 30; ++i) {  // 0.3 s of them: a gap longer than ~max_gap, the items frozen through it
+    marked.push_back(t += 0.01);
+    sample(t, 20.0, 9.80665, true);
+  }
+  for (int i = 0; i < 100; ++i) sample(t += 0.01, 0.0);
+  ASSERT_NO_FATAL_FAILURE(settle(t));
+
+  for (double m : marked) EXPECT_EQ(stepped_.count(std::llround(m * 1e6)), 0u) << "stepped on the marked sample at " << m;
+  EXPECT_EQ(stepped_.count(std::llround(t * 1e6)), 1u) << "the test's record of stepped stamps misses the last";
+  ASSERT_EQ(last_states_.items.size(), 2u);
+  EXPECT_EQ(last_states_.items[0].mode, rocking_monitor::RockingState::REST)
+      << "the marked 2 g samples moved the box: they were stepped on";
+  EXPECT_EQ(last_states_.items[0].impacts, impacts0);
+  EXPECT_EQ(value(s, "conflicting samples (marked by the bridge), not stepped"), "31");
+  EXPECT_NEAR(std::stod(value(s, "last conflicting sample (stamp)")), marked.back(), 1e-6);
+  EXPECT_EQ(std::stol(value(s, "data gaps (not bridged)")) - gaps0, 1) << "the 0.31 s without a stepped sample";
+  EXPECT_EQ(std::stol(value(s, "lost in transport")) - lost0, 0) << "the marked samples arrived: not lost";
+  EXPECT_EQ(std::stol(value(s, "received")) - received0, 141);
+  EXPECT_EQ(status_[s].level, diagnostic_msgs::DiagnosticStatus::ERROR) << status_[s].message;
+  EXPECT_NE(status_[s].message.find("conflicting"), std::string::npos) << status_[s].message;
+}

@@ -3,7 +3,9 @@
 // Merges the three channels of one station, which arrive in separate records and out of step, into
 // samples (t, east, north, up) on their common sample times. A sample goes out only when all three
 // channels have it; times one channel skipped (a gap) are dropped for all and counted. Samples a
-// channel sends twice (an overlap) are counted and dropped. Channels and their order are fixed by
+// channel sends twice (an overlap) are counted and dropped; sent again with another value they are a
+// conflict (issue 52 item 3): the first value kept, counted, and a sample not yet emitted goes out
+// marked (MergedSample::conflict). Channels and their order are fixed by
 // the first records: the first location + band/instrument code seen for each slot (N/1, E/2, Z).
 //
 // Times are kept as integer sample indices on the station's sampling grid (the first record's
@@ -24,6 +26,7 @@ namespace rocking_monitor::feeds {
 struct MergedSample {
   std::int64_t time_ns = 0;  ///< data time, ns since the epoch (UTC)
   std::array<double, 3> enu{};  ///< ground acceleration east, north, up, m/s^2 (station frame)
+  bool conflict = false;  ///< a channel sent this time again with another value before it went out (first kept)
 };
 
 struct MergerCounters {
@@ -32,6 +35,8 @@ struct MergerCounters {
   std::uint64_t gap_samples = 0;     ///< samples missing in those gaps (per channel, summed)
   std::uint64_t overlaps = 0;        ///< times a channel's record started before its last sample's end
   std::uint64_t overlap_samples = 0; ///< samples received twice (dropped)
+  std::uint64_t overlap_conflicts = 0;  ///< of those, with another value than the first (issue 52; first kept)
+  std::uint64_t conflicts_marked = 0;   ///< sample times with a conflict found before they went out: emitted marked
   std::uint64_t incomplete = 0;      ///< sample times dropped because a channel never had them
   std::uint64_t output_gaps = 0;     ///< breaks in the emitted times (a sample time skipped)
   std::uint64_t foreign_records = 0; ///< records of other channels (orientation, band or location)
@@ -63,12 +68,19 @@ class StationMerger {
   std::int64_t time_us(std::int64_t index) const { return phase_us_ + index * period_us_; }
   /// Emits or drops the sample at out_; false when it must wait for more records.
   bool settle(bool force, const Emit& emit);
+  /// Channel c sent sample `index` again (an overlap) with `value`: a conflict when the ring still
+  /// holds the first and the two differ.
+  void note_overlap(int c, std::int64_t index, double value);
 
   StationFrame frame_;
   bool azimuth_given_;
   std::size_t capacity_;
   std::array<std::vector<double>, 3> values_;
   std::array<std::vector<std::uint8_t>, 3> present_;
+  // The sample index whose value each slot holds (kNone: none): an overlap is compared only with its
+  // own first value, never with an older time's that the slot held before. 8 B per slot and channel.
+  std::array<std::vector<std::int64_t>, 3> stored_;
+  std::vector<std::uint8_t> conflict_;  ///< per slot: a conflict was found for this time before it went out
   std::array<std::string, 3> channels_;
   std::array<std::string, 3> locations_;
   std::array<bool, 3> started_{};

@@ -24,6 +24,10 @@ std::string iso_utc(double seconds_since_1970);
 OutMessage compose_group(const NotifyConfig& config, const RecipientConfig& recipient,
                          const std::vector<const OutboxAlarm*>& alarms);
 
+/// One MQTT topic level from outside text (an item id): valid UTF-8 (U+FFFD for bad bytes), and '/', '+',
+/// '#' and control characters (NUL included) as '_'; empty as "_". Cannot name another topic or be refused.
+std::string mqtt_topic_level(const std::string& text);
+
 /// An mqtt recipient's publications for one alarm: <prefix>/<item>/<level> (the alarm as JSON) and
 /// <prefix>/<item>/state (the highest level reached, `state_level`), both retained when the channel says so.
 /// A probability alarm: <prefix>/<item>/probability/<level> only.

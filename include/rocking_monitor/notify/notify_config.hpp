@@ -29,7 +29,9 @@ struct ChannelConfig {
   std::string from;             ///< envelope and From: address
   bool starttls = false;        ///< require STARTTLS (smtp://); smtps:// is TLS from the start
   std::string username, password;  ///< SMTP AUTH LOGIN/PLAIN (empty: none); MQTT username/password
+                                   ///< (from `password`, `password_file` or `password_env`)
   bool verify_tls = true;       ///< check the server's certificate
+  std::string ca_file;          ///< smtp, webhook: PEM certificates to check the server's against (empty: the system's)
   // mqtt
   std::string host;
   int port = 1883;
@@ -64,6 +66,8 @@ struct NotifyConfig {
   std::size_t max_items_listed = 50;  ///< per level in one message; the rest are counted ("and 120 more")
   std::map<std::string, ChannelConfig> channels;
   std::vector<RecipientConfig> recipients;
+  /// Said at every start, not refused (issue 52 item 5): verify_tls false, a password inline.
+  std::vector<std::string> warnings;
   const ChannelConfig& channel_of(const RecipientConfig& r) const { return channels.at(r.channel); }
 };
 

@@ -126,6 +126,10 @@ class RockingMonitor {
     Eigen::Vector3d first_a = Eigen::Vector3d::Zero();
     double dt_nominal = 0.0;
     std::uint64_t received = 0, rejected_nonfinite = 0, rejected_limit = 0, zero_stamps = 0, resets = 0;
+    // Issue 52 item 3: samples the bridge marked as conflicting (infinite variance), not stepped: a
+    // gap at their place; the last one's stamp for /diagnostics.
+    std::uint64_t conflicting = 0;
+    ::ros::Time last_conflicting_stamp;
     double last_processing_s = 0.0, max_processing_s = 0.0, total_processing_s = 0.0, mean_dt = 0.0;
     std::uint64_t processed = 0;
     ::ros::Time last_stamp;
@@ -178,6 +182,7 @@ class RockingMonitor {
   void log_startup() const;
   void on_imu(std::size_t sensor, const ::ros::MessageEvent<sensor_msgs::Imu const>& msg);
   void on_accel(std::size_t sensor, const ::ros::MessageEvent<geometry_msgs::AccelStamped const>& msg);
+  void skip_conflicting(std::size_t sensor, const std_msgs::Header& header);
   void update_overload(Sensor& s);
   static double queue_wait(const ::ros::Time& receipt);
   bool shedding_states() const;
