@@ -44,6 +44,16 @@ foreach(tool rocking_sim rocking_study record_to_bag rocking_accuracy rocking_be
   endif()
 endforeach()
 
+# --help byte for byte as test/tools/expected/<tool>.help (issue 53: the mains are parse + run).
+foreach(tool rocking_study rocking_experiments rocking_accuracy)
+  if(TARGET ${tool})
+    add_test(NAME cli.${tool}.help_unchanged
+             COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/help_unchanged.sh $<TARGET_FILE:${tool}>
+                     ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/expected/${tool}.help ${ROCKING_RECORDS_DIR})
+    set_tests_properties(cli.${tool}.help_unchanged PROPERTIES TIMEOUT 60)
+  endif()
+endforeach()
+
 # The study writes the same bytes as before the layout change (needs the shared records).
 if(TARGET rocking_study)
   add_test(NAME study.small_grid_byte_identical
