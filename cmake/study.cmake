@@ -2,11 +2,17 @@
 #
 # The ROS-free study logic is the core layer rocking_monitor_study (src/study/, cmake/layers.cmake).
 
-add_executable(rocking_study ${CMAKE_CURRENT_SOURCE_DIR}/src/tools/rocking_study.cpp)
+# src/tools/rocking_study.cpp parses the flags and runs one job; the parts, one job per file: the
+# flags, the inputs, the study, --fragility, --merge, writing a file.
+add_executable(rocking_study
+  src/tools/rocking_study.cpp src/tools/study_options.cpp src/tools/study_inputs.cpp
+  src/tools/study_cases_job.cpp src/tools/study_fragility_job.cpp src/tools/study_merge_job.cpp
+  src/tools/study_output_files.cpp)
 target_link_libraries(rocking_study PRIVATE rocking_monitor_core CLI11::CLI11)
 target_compile_definitions(rocking_study PRIVATE ROCKING_RECORDS_DIR="${ROCKING_RECORDS_DIR}")
 target_compile_options(rocking_study PRIVATE -Wall -Wextra -Wpedantic)
-set_target_properties(rocking_study PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_TOOL_DIR})
+# compiled as one unity source, so CLI11 (header only) and the core's headers are compiled once
+set_target_properties(rocking_study PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_TOOL_DIR} UNITY_BUILD ON)
 
 if(BUILD_TESTING)
   # test/study/test_study*.cpp are globbed into core_tests; they also exercise the YAML/JSON part.
