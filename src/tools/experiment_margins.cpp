@@ -7,6 +7,7 @@
 #include <string>
 
 #include "experiment_run.hpp"
+#include "progress_meter.hpp"
 
 namespace rocking_monitor::tools::experiments {
 
@@ -47,13 +48,16 @@ int run_margins(const Run& run) {
   mf << "test,specimen,member,measured_overturned,peak_table_accel_mps2,margin_scale,censored,chaotic,"
         "grid_outcomes,bracket_lo,bracket_hi,runs\n";
   MarginTally tally;
-  for (const auto& file : run.files) {
-    const auto test = rm::read_table_test(file);
+  ProgressMeter progress("tests", run.options.quiet);
+  progress.update(0, run.files.size());
+  for (std::size_t i = 0; i < run.files.size(); ++i) {
+    const auto test = rm::read_table_test(run.files[i]);
     const auto row = run.outcomes.by_test.find(test.number);
     for (const auto& sp : run.specimens) {
       const int measured = row == run.outcomes.by_test.end() ? -1 : row->second[sp.column];
       for (std::size_t k = 0; k < sp.members.size(); ++k) mf << margin_line(run, test, sp, k, measured, tally);
     }
+    progress.update(i + 1, run.files.size());
   }
   if (!mf.flush()) throw std::runtime_error(path + ": write failed");
   std::printf("rocking_experiments: %ld margins (%zu tests) written to %s: %ld chaotic (not monotone on the "

@@ -12,6 +12,7 @@
 
 #include "experiment_run.hpp"
 #include "experiment_scores.hpp"
+#include "progress_meter.hpp"
 
 namespace rocking_monitor::tools::experiments {
 
@@ -102,12 +103,15 @@ void report(const Run& run, const PredictionLog& log) {
 int run_predictions(const Run& run) {
   std::ofstream table = open_table(run.options.out);
   PredictionLog log;
-  for (const auto& file : run.files) {
-    const auto test = rm::read_table_test(file);
+  ProgressMeter progress("tests", run.options.quiet);
+  progress.update(0, run.files.size());
+  for (std::size_t i = 0; i < run.files.size(); ++i) {
+    const auto test = rm::read_table_test(run.files[i]);
     const auto row = run.outcomes.by_test.find(test.number);
     for (const auto& s : run.specimens)
       predict_specimen(run, test, row != run.outcomes.by_test.end() ? std::optional<int>(row->second[s.column])
                                                                      : std::nullopt, s, table, log);
+    progress.update(i + 1, run.files.size());
   }
   report(run, log);
   if (table && !table.flush()) throw std::runtime_error(run.options.out + ": write failed");

@@ -43,6 +43,7 @@ void add_options(CLI::App& app, Options& o) {
   app.add_option("--margin-grid", o.search.grid, "scales run on the grid, log-spaced (default 9: steps of sqrt 2)");
   app.add_option("--margin-bisections", o.search.bisections, "halvings of ln s inside the grid step where it "
                  "first overturns (default 5)");
+  app.add_flag("--quiet", o.quiet, "No progress bar (there is one only when stderr is a terminal)");
 }
 
 }  // namespace rocking_monitor::tools::experiments

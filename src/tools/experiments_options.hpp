@@ -29,6 +29,7 @@ struct Options {
   std::string margins;
   core::MarginSearch search;
   std::vector<double> margin_range{core::MarginSearch{}.lo, core::MarginSearch{}.hi};
+  bool quiet = false;  ///< no progress on a terminal (there is none off one)
 };
 
 /// Declares every flag on `app`, bound to `o`, in --help's order.

@@ -3,7 +3,7 @@
 // study_io.hpp (YAML bodies, JSON summary): parse the flags, then run one job. See docs/study.md.
 // The parts, one job each: study_options.* (the flags), study_inputs.cpp (solver, bodies, records),
 // study_cases_job.cpp (the study), study_fragility_job.cpp (--fragility), study_merge_job.cpp
-// (--merge), study_output_files.* and study_progress.hpp.
+// (--merge), study_output_files.*; progress_meter.* (shared with the other long tools).
 #include <iostream>
 
 #include <CLI/CLI.hpp>

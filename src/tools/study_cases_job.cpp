@@ -11,9 +11,9 @@
 #include <sstream>
 #include <thread>
 
+#include "progress_meter.hpp"
 #include "study_jobs.hpp"
 #include "study_output_files.hpp"
-#include "study_progress.hpp"
 
 namespace fs = std::filesystem;
 
@@ -85,12 +85,12 @@ void plan_item_cases(const Options& o, const Inputs& in, Plan& plan) {
 
 Results run_cases(const Options& o, const Inputs& in, Plan& plan) {
   Results r;
-  ProgressBar bar(!o.quiet);
+  ProgressMeter bar("cases", o.quiet);
   plan.options.progress = [&bar](std::size_t done, std::size_t n) { bar(done, n); };
   const auto t0 = std::chrono::steady_clock::now();
   r.cases = st::run_study(in.bodies, in.records.records, plan.options);
   if (!in.items.empty()) {
-    ProgressBar item_bar(!o.quiet);
+    ProgressMeter item_bar("item cases", o.quiet);
     plan.item_options.progress = [&item_bar](std::size_t done, std::size_t n) { item_bar(done, n); };
     r.items = st::run_item_study(in.items, in.records.records, plan.pairs, plan.item_options);
   }
