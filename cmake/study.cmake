@@ -72,6 +72,11 @@ if(BUILD_TESTING)
   add_test(NAME fragility_experiments_synthetic
            COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/test_fragility_experiments.py)
   set_tests_properties(fragility_experiments_synthetic PROPERTIES TIMEOUT 120)
+  # scripts/progress_bar.py (issue 53): the scripts' tqdm bar only on a terminal (a pseudo-terminal
+  # here), never off one, none with --quiet.
+  add_test(NAME scripts.progress_bar_only_on_a_terminal
+           COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/test_progress_bar.py)
+  set_tests_properties(scripts.progress_bar_only_on_a_terminal PROPERTIES TIMEOUT 60)
 endif()
 
 if(BUILD_TESTING)
