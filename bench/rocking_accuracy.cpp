@@ -2,7 +2,7 @@
 // integrators (issue 6). Writes CSV files that scripts/plot_performance.py turns into the charts
 // of docs/performance/ (run everything with `bash scripts/make_performance_charts.sh`).
 //
-//   rocking_accuracy [--out DIR] [--records DIR] [--jobs N] [--quick] [--batch-lanes N]
+//   rocking_accuracy [--out DIR] [--records DIR] [--jobs N] [--quick] [--quiet] [--batch-lanes N]
 //                    [work-precision] [overturn] [stability]     (default: all three)
 //                    [policy]    the accuracy policy of fast paths (issue 28): prints its table,
 //                                writes accuracy_policy.csv, exit status 1 when a fast path fails it
@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
   std::string records = rb::records_dir();
   int jobs = 2;
   std::size_t batch_lanes = 128;
-  bool quick = false;
+  bool quick = false, quiet = false;
   std::vector<std::string> parts;
   CLI::App app{"rocking_accuracy: work-precision, overturn-agreement and stability-map tables (docs/performance)",
                 "rocking_accuracy"};
@@ -48,6 +48,7 @@ int main(int argc, char** argv) {
   app.add_option("--records", records, "Strong-motion records directory")->default_val(records);
   app.add_option("--jobs", jobs, "Worker threads")->default_val(jobs)->check(CLI::PositiveNumber);
   app.add_flag("--quick", quick, "Fewer cases (a smoke run)");
+  app.add_flag("--quiet", quiet, "No progress bar (there is one only when stderr is a terminal)");
   app.add_option("--batch-lanes", batch_lanes,
                  "Identical lanes of the batch engine in work-precision (cost per lane-step)")
       ->default_val(batch_lanes)
@@ -66,14 +67,14 @@ int main(int argc, char** argv) {
     } else if (p == "planar-vs-3d") {
       planar_vs_3d(out, records, quick);
     } else if (p == "overturn") {
-      overturn_agreement(out, records, jobs, quick);
+      overturn_agreement(out, records, jobs, quick, quiet);
     } else if (p == "policy") {
-      if (accuracy_policy(out, records, jobs, quick) != 0) {
+      if (accuracy_policy(out, records, jobs, quick, quiet) != 0) {
         status = 1;
         std::fprintf(stderr, "rocking_accuracy: error: a fast path fails the accuracy policy (FAIL lines above)\n");
       }
     } else {
-      stability_maps(out, jobs, quick);
+      stability_maps(out, jobs, quick, quiet);
     }
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::fprintf(stderr, "rocking_accuracy: %s written to %s in %.0f s\n", p.c_str(), out.c_str(), s);

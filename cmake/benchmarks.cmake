@@ -20,7 +20,7 @@ add_executable(rocking_accuracy bench/rocking_accuracy.cpp  # the CLI; one file 
                bench/accuracy/stability_maps.cpp bench/accuracy/planar_vs_3d.cpp bench/accuracy/accuracy_policy.cpp)
 target_include_directories(rocking_accuracy PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/bench ${CMAKE_CURRENT_SOURCE_DIR}/test/support
                            ${CMAKE_CURRENT_SOURCE_DIR}/src/tools)
-target_link_libraries(rocking_accuracy PRIVATE rocking_monitor_core CLI11::CLI11)
+target_link_libraries(rocking_accuracy PRIVATE rocking_monitor_core rocking_tool_progress CLI11::CLI11)
 target_compile_definitions(rocking_accuracy PRIVATE ROCKING_RECORDS_DIR="${ROCKING_RECORDS_DIR}")
 target_compile_options(rocking_accuracy PRIVATE -Wall -Wextra)
 set_target_properties(rocking_accuracy PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_TOOL_DIR})

@@ -3,6 +3,8 @@
 catkin_install_python(PROGRAMS scripts/rocking_report DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 # The redundant pair's "one alarm" rule, imported by rocking_report and monitor_table.py from beside them.
 install(FILES scripts/alarm_dedup.py DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+# rocking_report's parts (issue 53), imported from beside it as alarm_dedup.py is.
+install(DIRECTORY scripts/event_report DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION} FILES_MATCHING PATTERN "*.py")
 if(CATKIN_ENABLE_TESTING)
   # No ROS master: bad input is one error line; the spectrum and the Housner periods from independent sources.
   add_test(NAME report.bad_input_is_one_error_line

@@ -17,7 +17,7 @@ if(BUILD_TESTING)
     list(APPEND ROCKING_CORE_TESTS ${tests})
   endforeach()
   # command-line tests with their own executables (they need rocking_study / ROS tools)
-  list(FILTER ROCKING_CORE_TESTS EXCLUDE REGEX "/test_(study_cli|record_to_bag|record_to_mseed)\\.cpp$")
+  list(FILTER ROCKING_CORE_TESTS EXCLUDE REGEX "/test_(study_cli|record_to_bag|record_to_mseed|progress_meter)\\.cpp$")
   # test/support/record_writers.cpp: the record-format writers (also the fuzzer's seeds, cmake/fuzz.cmake)
   add_executable(core_tests ${ROCKING_CORE_TESTS} ${CMAKE_CURRENT_SOURCE_DIR}/test/support/record_writers.cpp)
   target_link_libraries(core_tests PRIVATE rocking_monitor_core GTest::gtest_main

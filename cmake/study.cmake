@@ -2,11 +2,23 @@
 #
 # The ROS-free study logic is the core layer rocking_monitor_study (src/study/, cmake/layers.cmake).
 
-add_executable(rocking_study ${CMAKE_CURRENT_SOURCE_DIR}/src/tools/rocking_study.cpp)
-target_link_libraries(rocking_study PRIVATE rocking_monitor_core CLI11::CLI11)
+# src/tools/rocking_study.cpp parses the flags and runs one job; the parts, one job per file: the
+# flags, the inputs, the study, --fragility, --merge, writing a file.
+# The long tools' progress display (done / total, rate, time left; on a terminal only): rocking_study,
+# rocking_experiments and rocking_accuracy link it.
+add_library(rocking_tool_progress STATIC src/tools/progress_meter.cpp)
+target_compile_options(rocking_tool_progress PRIVATE -Wall -Wextra -Wpedantic)
+target_include_directories(rocking_tool_progress PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/src/tools)
+
+add_executable(rocking_study
+  src/tools/rocking_study.cpp src/tools/study_options.cpp src/tools/study_inputs.cpp
+  src/tools/study_cases_job.cpp src/tools/study_fragility_job.cpp src/tools/study_merge_job.cpp
+  src/tools/study_output_files.cpp)
+target_link_libraries(rocking_study PRIVATE rocking_monitor_core rocking_tool_progress CLI11::CLI11)
 target_compile_definitions(rocking_study PRIVATE ROCKING_RECORDS_DIR="${ROCKING_RECORDS_DIR}")
 target_compile_options(rocking_study PRIVATE -Wall -Wextra -Wpedantic)
-set_target_properties(rocking_study PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_TOOL_DIR})
+# compiled as one unity source, so CLI11 (header only) and the core's headers are compiled once
+set_target_properties(rocking_study PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_TOOL_DIR} UNITY_BUILD ON)
 
 if(BUILD_TESTING)
   # test/study/test_study*.cpp are globbed into core_tests; they also exercise the YAML/JSON part.
@@ -24,13 +36,25 @@ if(BUILD_TESTING)
   target_include_directories(study_cli_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/test/support)
   add_dependencies(study_cli_tests rocking_study)
   gtest_discover_tests(study_cli_tests DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 900)
+  # The progress display's line and when it draws (test/tools/test_progress_meter.cpp); the tools'
+  # own output off a terminal, on a pseudo-terminal and with --quiet: test/tools/progress_only_on_a_terminal.sh.
+  add_executable(progress_meter_tests ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/test_progress_meter.cpp)
+  target_link_libraries(progress_meter_tests PRIVATE rocking_tool_progress GTest::gtest_main)
+  gtest_discover_tests(progress_meter_tests DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 60)
 endif()
 
 # rocking_experiments: the real shaking-table experiments (issue 20, docs/validation.md).
-add_executable(rocking_experiments ${CMAKE_CURRENT_SOURCE_DIR}/src/tools/rocking_experiments.cpp)
-target_link_libraries(rocking_experiments PRIVATE rocking_monitor_core CLI11::CLI11)
+# src/tools/rocking_experiments.cpp parses the flags and runs one job; the parts, one job per file:
+# the flags, the shared setup, specimens, histories, predicting and scoring, margins.
+add_executable(rocking_experiments
+  src/tools/rocking_experiments.cpp src/tools/experiments_options.cpp
+  src/tools/experiment_run.cpp src/tools/experiment_specimens.cpp
+  src/tools/experiment_histories.cpp src/tools/experiment_predictions.cpp
+  src/tools/experiment_scores.cpp src/tools/experiment_margins.cpp)
+target_link_libraries(rocking_experiments PRIVATE rocking_monitor_core rocking_tool_progress CLI11::CLI11)
 target_compile_options(rocking_experiments PRIVATE -Wall -Wextra -Wpedantic)
-set_target_properties(rocking_experiments PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_TOOL_DIR})
+# compiled as one unity source, so CLI11 (header only) and the core's headers are compiled once
+set_target_properties(rocking_experiments PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_TOOL_DIR} UNITY_BUILD ON)
 
 if(BUILD_TESTING)
   # rocking_geometry.py (issue 20) on closed forms: box, off-centre hollow, box turned about z; the
@@ -48,6 +72,11 @@ if(BUILD_TESTING)
   add_test(NAME fragility_experiments_synthetic
            COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/test_fragility_experiments.py)
   set_tests_properties(fragility_experiments_synthetic PROPERTIES TIMEOUT 120)
+  # scripts/progress_bar.py (issue 53): the scripts' tqdm bar only on a terminal (a pseudo-terminal
+  # here), never off one, none with --quiet.
+  add_test(NAME scripts.progress_bar_only_on_a_terminal
+           COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/test_progress_bar.py)
+  set_tests_properties(scripts.progress_bar_only_on_a_terminal PROPERTIES TIMEOUT 60)
 endif()
 
 if(BUILD_TESTING)

@@ -44,6 +44,26 @@ foreach(tool rocking_sim rocking_study record_to_bag rocking_accuracy rocking_be
   endif()
 endforeach()
 
+# --help byte for byte as test/tools/expected/<tool>.help (issue 53: the mains are parse + run).
+foreach(tool rocking_study rocking_experiments rocking_accuracy)
+  if(TARGET ${tool})
+    add_test(NAME cli.${tool}.help_unchanged
+             COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/help_unchanged.sh $<TARGET_FILE:${tool}>
+                     ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/expected/${tool}.help ${ROCKING_RECORDS_DIR})
+    set_tests_properties(cli.${tool}.help_unchanged PROPERTIES TIMEOUT 60)
+  endif()
+endforeach()
+
+# The long tools' progress: only on a terminal (a pseudo-terminal from script(1)), never with --quiet,
+# never off a terminal (issue 53; src/tools/progress_meter.*).
+if(TARGET rocking_study AND TARGET rocking_experiments AND TARGET rocking_accuracy)
+  add_test(NAME tools.progress_only_on_a_terminal
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/progress_only_on_a_terminal.sh ${ROCKING_TOOL_DIR}
+                   ${ROCKING_EXPERIMENTS_DIR}/granite_pbr ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/granite_specimens.yaml
+                   ${ROCKING_RECORDS_DIR})
+  set_tests_properties(tools.progress_only_on_a_terminal PROPERTIES TIMEOUT 120 SKIP_RETURN_CODE 77)
+endif()
+
 # The study writes the same bytes as before the layout change (needs the shared records).
 if(TARGET rocking_study)
   add_test(NAME study.small_grid_byte_identical

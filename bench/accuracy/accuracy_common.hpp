@@ -22,6 +22,7 @@
 
 #include "bench_common.hpp"
 #include "command_line.hpp"
+#include "progress_meter.hpp"
 #include "rocking_monitor/model/batch_rocking.hpp"
 #include "rocking_monitor/model/rocking_3d_model.hpp"
 #include "rocking_monitor/physics/principal_planes.hpp"
@@ -300,10 +301,17 @@ inline std::string fmt(double x) {
 }
 
 // ------------------------------------------------------------------ parallel map
-inline void parallel_for(std::size_t n, int jobs, const std::function<void(std::size_t)>& f) {
-  std::atomic<std::size_t> next{0};
+// f(0) .. f(n-1) on `jobs` threads; progress (if any) counts the finished ones.
+inline void parallel_for(std::size_t n, int jobs, const std::function<void(std::size_t)>& f,
+                         rocking_monitor::tools::ProgressMeter* progress = nullptr) {
+  std::atomic<std::size_t> next{0}, done{0};
+  if (progress) progress->update(0, n);
   auto worker = [&] {
-    for (std::size_t i = next++; i < n; i = next++) f(i);
+    for (std::size_t i = next++; i < n; i = next++) {
+      f(i);
+      const std::size_t d = ++done;
+      if (progress) progress->update(d, n);
+    }
   };
   std::vector<std::thread> pool;
   for (int j = 1; j < jobs; ++j) pool.emplace_back(worker);

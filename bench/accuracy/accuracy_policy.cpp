@@ -122,7 +122,7 @@ std::vector<PolicyCase> policy_cases(const std::string& input, const GroundMotio
 
 /// Prints the policy table; returns 1 when a fast path decides a converged case wrongly where the
 /// scalar tol-1e-8 run decides it right (or the exact batch differs from the scalar run at all).
-int accuracy_policy(const std::string& out_dir, const std::string& records, int jobs, bool quick) {
+int accuracy_policy(const std::string& out_dir, const std::string& records, int jobs, bool quick, bool quiet) {
   struct Job {
     std::string file;
     double scale;
@@ -145,7 +145,7 @@ int accuracy_policy(const std::string& out_dir, const std::string& records, int 
   const std::vector<NamedBody> study = study_bodies();
   const std::vector<BodyParameters> random = rb::catalogue(quick ? 40 : 150, 28);
   std::vector<std::vector<PolicyCase>> results(jobs_list.size());
-  std::atomic<int> done{0};
+  rocking_monitor::tools::ProgressMeter progress("inputs", quiet);
   parallel_for(jobs_list.size(), jobs, [&](std::size_t i) {
     const Job& j = jobs_list[i];
     try {
@@ -168,9 +168,7 @@ int accuracy_policy(const std::string& out_dir, const std::string& records, int 
       if (std::string(e.what()).find("no horizontal component") == std::string::npos)
         std::fprintf(stderr, "rocking_accuracy: skipping %s: %s\n", j.file.c_str(), e.what());
     }
-    const int d = ++done;
-    if (d % 50 == 0) std::fprintf(stderr, "policy: %d / %zu inputs\n", d, jobs_list.size());
-  });
+  }, &progress);
   PolicyCounts c;
   long cases = 0, converged = 0;
   std::vector<std::string> chaotic, failures;

@@ -9,7 +9,7 @@ namespace rb = rocking_monitor::bench;
 using namespace rocking_monitor::core;  // NOLINT(google-build-using-namespace): as in every bench file
 
 void overturn_agreement(const std::string& out_dir, const std::string& records, int jobs,
-                        bool quick) {
+                        bool quick, bool quiet) {
   std::vector<std::string> files = rb::at2_files(records);
   if (files.empty()) {
     std::fprintf(stderr, "rocking_accuracy: no .AT2 records under %s: overturn agreement skipped\n",
@@ -27,7 +27,7 @@ void overturn_agreement(const std::string& out_dir, const std::string& records, 
   for (const std::string& f : files)
     for (double s : {1.0, 2.0}) jobs_list.push_back({f, s});
   std::vector<std::string> rows(jobs_list.size());
-  std::atomic<int> done{0};
+  rocking_monitor::tools::ProgressMeter progress("record runs", quiet);
   parallel_for(jobs_list.size(), jobs, [&](std::size_t i) {
     std::ostringstream os;
     try {
@@ -62,9 +62,7 @@ void overturn_agreement(const std::string& out_dir, const std::string& records, 
         std::fprintf(stderr, "rocking_accuracy: skipping %s: %s\n", jobs_list[i].file.c_str(), e.what());
     }
     rows[i] = os.str();
-    const int d = ++done;
-    if (d % 50 == 0) std::fprintf(stderr, "overturn: %d / %zu record runs\n", d, jobs_list.size());
-  });
+  }, &progress);
   std::ofstream os(out_dir + "/overturn_agreement.csv");
   os << "record,scale,sample_rate_hz,body,model,method,label,param,overturned,ref_overturned,"
         "max_ratio,ref_max_ratio,impacts,ref_impacts,nonlinear_ref_overturned\n";

@@ -50,7 +50,7 @@ struct MapCell {
 /// The stability maps: every method against the nonlinear reference over body p (and alpha) and
 /// the step size (rk4: feed interval / substeps; dopri5: tolerance at a fine and a coarse feed;
 /// analytic: alpha, since it is exact for the linearized model at any step).
-void stability_maps(const std::string& out_dir, int jobs, bool quick) {
+void stability_maps(const std::string& out_dir, int jobs, bool quick, bool quiet) {
   const std::vector<double> ps = quick ? std::vector<double>{1, 4, 16, 64}
                                        : std::vector<double>{1, 1.5, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64};
   const std::vector<double> alphas_deg =
@@ -85,6 +85,7 @@ void stability_maps(const std::string& out_dir, int jobs, bool quick) {
       }
     }
   }
+  rocking_monitor::tools::ProgressMeter reference_progress("references", quiet);
   parallel_for(bodies.size(), jobs, [&](std::size_t i) {
     MapBody& b = bodies[i];
     const BodyParameters body = rb::rectangle_with(b.p, b.alpha);
@@ -111,7 +112,7 @@ void stability_maps(const std::string& out_dir, int jobs, bool quick) {
         b.ref_pulses.push_back(reference_run(body, ModelKind::Nonlinear, b.pulses.back(), 0.0));
       }
     }
-  });
+  }, &reference_progress);
   std::fprintf(stderr, "stability: %zu references done\n", bodies.size());
 
   std::vector<MapCell> cells;
@@ -135,7 +136,7 @@ void stability_maps(const std::string& out_dir, int jobs, bool quick) {
   }
 
   std::vector<std::string> rows(cells.size());
-  std::atomic<int> done{0};
+  rocking_monitor::tools::ProgressMeter progress("cells", quiet);
   parallel_for(cells.size(), jobs, [&](std::size_t i) {
     const MapCell& c = cells[i];
     const MapBody& b = bodies[c.body];
@@ -190,9 +191,7 @@ void stability_maps(const std::string& out_dir, int jobs, bool quick) {
        << ',' << max_impacts << ',' << ref.max_impacts << ',' << max_steps << ','
        << fmt(b.free.dt * static_cast<double>(b.free.size() - 1)) << '\n';
     rows[i] = os.str();
-    const int d = ++done;
-    if (d % 200 == 0) std::fprintf(stderr, "stability: %d / %zu cells\n", d, cells.size());
-  });
+  }, &progress);
   std::ofstream os(out_dir + "/stability_map.csv");
   os << "method,label,param,model,ref_model,feed_hz,h,p,alpha_deg,p_h,impacts,ref_impacts,"
         "err_impact_s,energy_gain,ref_energy_gain,rest_time,ref_rest_time,rest_captures,"

@@ -254,6 +254,9 @@ class Pipeline(unittest.TestCase):
     def test_recovers_the_setting_that_made_the_outcomes(self):
         rc, err, s = self.run_main()
         self.assertEqual(rc, 0, err)
+        # stderr is not a terminal here: no progress bar in it (issue 53, scripts/progress_bar.py)
+        self.assertNotIn("\r", err)
+        self.assertNotIn("calibrate_experiments: grid points", err)  # the bar's label
         # SP1 has no stated centre and a box's contact does not depend on the tolerance: 2 distinct
         # points (the runtime settings); SP2: 2 centres x 2 runtimes; the 500 mm shift is refused.
         self.assertEqual(s["specimens"]["SP1"]["grid_points"], 2)

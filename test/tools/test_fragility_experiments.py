@@ -165,6 +165,9 @@ class Pipeline(unittest.TestCase):
                    "--out-dir", os.path.join(d, "out"), "--write-catalogue", os.path.join(d, "frag.yaml"), "--members", "40"]
             r = subprocess.run(cmd, capture_output=True, text=True, env=env)
             self.assertEqual(r.returncode, 0, r.stderr)
+            # stderr is a pipe, not a terminal: no progress bar in it (issue 53, scripts/progress_bar.py)
+            self.assertNotIn("\r", r.stderr)
+            self.assertNotIn("fragility_experiments: members", r.stderr)
             self.assertEqual(len(read(os.path.join(d, "count")).split()), 3)  # SP1 once, SP2 twice
             self.assertIn("members [3]", r.stdout)
             self.assertIn("members [1, 1]", r.stdout)
