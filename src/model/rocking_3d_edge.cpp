@@ -71,10 +71,78 @@ double Rocking3DModel::end_rise(int edge, double theta, double omega, const Eige
   return w_dot.cross(fb().vertex(other).position - v.position).z();
 }
 
+// The step's peak and the tipping angle crossed (located by scan_step on the dense output).
+void Rocking3DModel::note_edge_peaks(const StepEvents& ev, double alpha) {
+  if (ev.has_peak) {
+    report_.peak_ratio = std::max(report_.peak_ratio, ev.peak_abs_theta / alpha);
+    if (ev.peak_abs_theta / alpha > outcome_.max_rotation_ratio) {
+      outcome_.max_rotation_ratio = ev.peak_abs_theta / alpha;
+      outcome_.max_rotation_side = contact_ + 1;
+    }
+    outcome3_.max_tilt = std::max(outcome3_.max_tilt, ev.peak_abs_theta);
+  }
+  if (ev.tipping_crossed && !outcome_.beyond_tipping) {
+    outcome_.beyond_tipping = true;
+    outcome_.beyond_tipping_time = t_ + ev.t_tipping;
+    report_.beyond_tipping_entered = true;
+  }
+}
+
+// < 0 when one end lets go: its reaction would have to pull (f < 0) AND, pivoting on the other end
+// alone, it rises (the vertex mode's own acceleration of it, > 0). With sticking contacts the two
+// tests can disagree (the end's friction force is released too); then the edge holds, which keeps
+// the modes from chattering. `stays`: the end that keeps touching.
+double Rocking3DModel::edge_lift_margin(const GroundInput3& in, const RockingOde& ode, double t, double theta,
+                                        double omega, int& stays) const {
+  const BaseEdge& edge = fb().edge(contact_);
+  const Eigen::Vector3d a_fp = to_footprint(in.at(t));
+  double f_a, f_b;
+  endpoint_reactions(contact_, theta, omega, ode.angular_acceleration(t, theta), a_fp, f_a, f_b);
+  stays = f_b < f_a ? edge.a : edge.b;
+  if (!(f_a + f_b > 0.0)) return 1.0;
+  const double f = std::min(f_a, f_b);
+  if (f >= 0.0) return f;
+  return std::max(f, -end_rise(contact_, theta, omega, a_fp, stays));
+}
+
+// One end of the edge lifting (the corner wobble begins) in the step that ends at t_end_step (the
+// step's end or its first event): checked there, located on the dense output; the edge's state is
+// put at the lift, `lift_vertex` the end that keeps touching. Bounded: after kMaxLiftsPerSample
+// lifts in one sample the edge holds for the rest of it (a body whose end neither holds nor lifts
+// consistently, where the real one slips: flagged by the count, never a loop without time advancing).
+bool Rocking3DModel::edge_lifts(const GroundInput3& in, const RockingOde& ode, double t_start, double th_start,
+                                double om_start, double t_end_step, double t_tol, double& tau, int& lift_vertex) {
+  if (lifts_ >= kMaxLiftsPerSample) return false;
+  double th, om;
+  dopri5_.eval(t_end_step, th, om);
+  int stays = -1;
+  const double m1 = edge_lift_margin(in, ode, t_end_step, th, om, stays);
+  if (!(m1 < 0.0)) return false;
+  ++lifts_;
+  auto f = [&](double t) {
+    double a, b;
+    dopri5_.eval(t, a, b);
+    int s;
+    return edge_lift_margin(in, ode, t, a, b, s);
+  };
+  const double f0 = f(dopri5_.t0());
+  const double t_lift = f0 > 0.0 ? bracketed_root(f, dopri5_.t0(), t_end_step, f0, m1, t_tol) : dopri5_.t0();
+  if (t_lift > t_start) {
+    dopri5_.single_step(ode, t_start, th_start, om_start, t_lift - t_start, theta_, omega_);
+  } else {
+    theta_ = th_start;
+    omega_ = om_start;
+  }
+  dopri5_.invalidate();
+  tau = t_lift;
+  edge_lift_margin(in, ode, t_lift, theta_, omega_, stays);
+  lift_vertex = stays;  // the end that keeps touching: the new vertex pivot
+  return true;
+}
+
 Rocking3DModel::Event Rocking3DModel::advance_edge(const GroundInput3& in, double& tau, double tau_end,
                                                    int& lift_vertex) {
-  const BaseEdge& edge = fb().edge(contact_);
-  const Pivot& pv = edge.pivot;
+  const Pivot& pv = fb().edge(contact_).pivot;
   // The rotation that ends the edge's motion on the far side: the face across lying flat (a hull)
   // or the side (the overturn angle, about a base edge).
   const double fold = fc().fold[static_cast<std::size_t>(contact_)];
@@ -90,21 +158,8 @@ Rocking3DModel::Event Rocking3DModel::advance_edge(const GroundInput3& in, doubl
         [this](double t, double& th, double& om) { dopri5_.eval(t, th, om); }, 1, pv.alpha,
         limit, dopri5_.t0(), dopri5_.t1(), theta_, omega_, dopri5_.theta1(),
         dopri5_.omega1(), t_tol);
-    if (ev.has_peak) {
-      report_.peak_ratio = std::max(report_.peak_ratio, ev.peak_abs_theta / pv.alpha);
-      if (ev.peak_abs_theta / pv.alpha > outcome_.max_rotation_ratio) {
-        outcome_.max_rotation_ratio = ev.peak_abs_theta / pv.alpha;
-        outcome_.max_rotation_side = contact_ + 1;
-      }
-      outcome3_.max_tilt = std::max(outcome3_.max_tilt, ev.peak_abs_theta);
-    }
-    if (ev.tipping_crossed && !outcome_.beyond_tipping) {
-      outcome_.beyond_tipping = true;
-      outcome_.beyond_tipping_time = t_ + ev.t_tipping;
-      report_.beyond_tipping_entered = true;
-    }
-    // One end of the edge lifting (the corner wobble begins): checked at the step's end, located
-    // on the dense output, before the step's own events when it comes first.
+    note_edge_peaks(ev, pv.alpha);
+    // The step's own events; an end lifting before the first of them comes first.
     double t_end_step = dopri5_.t1();
     Event terminal = Event::None;
     if (ev.terminal == StepEvents::Terminal::Impact) { terminal = Event::Impact; t_end_step = ev.t_event; }
@@ -114,52 +169,7 @@ Rocking3DModel::Event Rocking3DModel::advance_edge(const GroundInput3& in, doubl
       t_end_step = ev.t_event;
     }
     if (ev.terminal == StepEvents::Terminal::Degenerate) { tau = dopri5_.t1(); return Event::Degenerate; }
-    {
-      double th, om;
-      dopri5_.eval(t_end_step, th, om);
-      // < 0 when one end lets go: its reaction would have to pull (f < 0) AND, pivoting on the other
-      // end alone, it rises (the vertex mode's own acceleration of it, > 0). With sticking contacts
-      // the two tests can disagree (the end's friction force is released too); then the edge holds,
-      // which keeps the modes from chattering.
-      auto lift_margin = [&](double t, double theta, double omega, int& stays) {
-        const Eigen::Vector3d a_fp = to_footprint(in.at(t));
-        double f_a, f_b;
-        endpoint_reactions(contact_, theta, omega, ode.angular_acceleration(t, theta), a_fp, f_a, f_b);
-        stays = f_b < f_a ? edge.a : edge.b;
-        if (!(f_a + f_b > 0.0)) return 1.0;
-        const double f = std::min(f_a, f_b);
-        if (f >= 0.0) return f;
-        return std::max(f, -end_rise(contact_, theta, omega, a_fp, stays));
-      };
-      int stays = -1;
-      // Bounded: after kMaxLiftsPerSample lifts in one sample the edge holds for the rest of it (a
-      // body whose end neither holds nor lifts consistently, where the real one slips: flagged by
-      // the count in the outcome, never a loop without time advancing).
-      const double m1 = lifts_ < kMaxLiftsPerSample ? lift_margin(t_end_step, th, om, stays) : 1.0;
-      if (m1 < 0.0) {
-        ++lifts_;
-        auto f = [&](double t) {
-          double a, b;
-          dopri5_.eval(t, a, b);
-          int s;
-          return lift_margin(t, a, b, s);
-        };
-        const double f0 = f(dopri5_.t0());
-        const double t_lift = f0 > 0.0 ? bracketed_root(f, dopri5_.t0(), t_end_step, f0, m1, t_tol)
-                                       : dopri5_.t0();
-        if (t_lift > t_start) {
-          dopri5_.single_step(ode, t_start, th_start, om_start, t_lift - t_start, theta_, omega_);
-        } else {
-          theta_ = th_start;
-          omega_ = om_start;
-        }
-        dopri5_.invalidate();
-        tau = t_lift;
-        lift_margin(t_lift, theta_, omega_, stays);
-        lift_vertex = stays;  // the end that keeps touching: the new vertex pivot
-        return Event::Lift;
-      }
-    }
+    if (edge_lifts(in, ode, t_start, th_start, om_start, t_end_step, t_tol, tau, lift_vertex)) return Event::Lift;
     if (terminal == Event::None) {
       watch_pivot(in, dopri5_.t0(), dopri5_.t1(), t_tol);
       theta_ = dopri5_.theta1();

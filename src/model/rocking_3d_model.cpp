@@ -259,6 +259,35 @@ void Rocking3DModel::apply_rest_samples(double t, const Eigen::Vector3d& a, doub
 
 // ---------------------------------------------------------------- the sample
 
+// COMMITTED at the sample's end (t_ + dt; t_ is advanced after).
+void Rocking3DModel::note_committed(double dt) {
+  // About a base edge with no hull face before the side, COMMITTED has the planar closed form; on a
+  // hull face or an edge whose face across lies flat before the side, passing the edge is a landing
+  // on that face, not an overturn: looked ahead as on a corner.
+  const bool closed_form = mode_ == Mode3D::Edge && face_ == 0 && !(fc().fold[static_cast<std::size_t>(contact_)] < body_.overturn_angle());
+  if (closed_form && !outcome_.committed) {
+    const OverturnMargin m = overturn_margin(fb().edge(contact_).pivot, 1, ModelKind::Nonlinear, theta_, omega_);
+    if (m.committed) {
+      outcome_.committed = true;
+      outcome_.committed_time = t_ + dt;
+      report_.committed_entered = true;
+    }
+  } else if ((mode_ == Mode3D::Vertex || mode_ == Mode3D::Edge) && !closed_form && !outcome_.committed && probe_ &&
+             t_ + dt - last_probe_t_ >= kProbeInterval &&
+             margin().committed) {
+    last_probe_t_ = t_ + dt;
+    if (falls_if_shaking_stops(t_ + dt)) {
+      outcome_.committed = true;
+      outcome_.committed_time = t_ + dt;
+      report_.committed_entered = true;
+    }
+  } else if (mode_ == Mode3D::Overturned && !outcome_.committed) {
+    outcome_.committed = true;
+    outcome_.committed_time = outcome_.overturn_time;
+    report_.committed_entered = true;
+  }
+}
+
 const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
   if (!(dt > 0.0) || !std::isfinite(dt) || !a.allFinite())
     throw std::invalid_argument("Rocking3DModel::step: dt must be finite and > 0 and the acceleration finite");
@@ -317,31 +346,7 @@ const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
       break;
     }
   }
-  // About a base edge with no hull face before the side, COMMITTED has the planar closed form; on a
-  // hull face or an edge whose face across lies flat before the side, passing the edge is a landing
-  // on that face, not an overturn: looked ahead as on a corner.
-  const bool closed_form = mode_ == Mode3D::Edge && face_ == 0 && !(fc().fold[static_cast<std::size_t>(contact_)] < body_.overturn_angle());
-  if (closed_form && !outcome_.committed) {
-    const OverturnMargin m = overturn_margin(fb().edge(contact_).pivot, 1, ModelKind::Nonlinear, theta_, omega_);
-    if (m.committed) {
-      outcome_.committed = true;
-      outcome_.committed_time = t_ + dt;
-      report_.committed_entered = true;
-    }
-  } else if ((mode_ == Mode3D::Vertex || mode_ == Mode3D::Edge) && !closed_form && !outcome_.committed && probe_ &&
-             t_ + dt - last_probe_t_ >= kProbeInterval &&
-             margin().committed) {
-    last_probe_t_ = t_ + dt;
-    if (falls_if_shaking_stops(t_ + dt)) {
-      outcome_.committed = true;
-      outcome_.committed_time = t_ + dt;
-      report_.committed_entered = true;
-    }
-  } else if (mode_ == Mode3D::Overturned && !outcome_.committed) {
-    outcome_.committed = true;
-    outcome_.committed_time = outcome_.overturn_time;
-    report_.committed_entered = true;
-  }
+  note_committed(dt);
   t_ += dt;
   a_prev_ = a;
   ++outcome_.samples;

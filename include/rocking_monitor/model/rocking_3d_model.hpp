@@ -46,6 +46,9 @@
 
 namespace rocking_monitor::core {
 
+struct StepEvents;  // integrate/event_location.hpp
+struct RockingOde;  // physics/dynamics.hpp
+
 enum class Mode3D : std::uint8_t { Rest, Edge, Vertex, Overturned, Slide };
 const char* to_string(Mode3D mode);
 
@@ -287,6 +290,12 @@ class Rocking3DModel {
                           const Eigen::Vector3d& a_footprint, double& fa, double& fb) const;
   double end_rise(int edge, double theta, double omega, const Eigen::Vector3d& a_footprint, int stays) const;
   Event advance_edge(const GroundInput3& in, double& tau, double tau_end, int& lift_vertex);
+  void note_edge_peaks(const StepEvents& ev, double alpha);
+  void note_committed(double dt);
+  double edge_lift_margin(const GroundInput3& in, const RockingOde& ode, double t, double theta, double omega,
+                          int& stays) const;
+  bool edge_lifts(const GroundInput3& in, const RockingOde& ode, double t_start, double th_start, double om_start,
+                  double t_end_step, double t_tol, double& tau, int& lift_vertex);
   Event advance_vertex(const GroundInput3& in, double& tau, double tau_end, int& touching);
   void enter_vertex_from_edge(int vertex);
   void enter_vertex(int vertex, const Eigen::Vector3d& pivot_world, const Eigen::Matrix3d& rotation,
