@@ -22,10 +22,14 @@ set_target_properties(rocking_records_ros PROPERTIES POSITION_INDEPENDENT_CODE O
 # default of record_to_bag --records-dir and the player's ~records_dir
 target_compile_definitions(rocking_records_ros PRIVATE ROCKING_DEFAULT_RECORDS_DIR="${ROCKING_RECORDS_DIR}")
 
-add_executable(record_to_bag src/tools/record_to_bag.cpp)
+# record_to_bag.cpp parses the flags (record_to_bag_options.*) and runs one job; --list and --all in
+# record_to_bag_directory.cpp, the bag and CSV in record_to_bag_writing.*.
+add_executable(record_to_bag src/tools/record_to_bag.cpp src/tools/record_to_bag_options.cpp
+                             src/tools/record_to_bag_directory.cpp src/tools/record_to_bag_writing.cpp)
 target_link_libraries(record_to_bag PRIVATE rocking_records_ros CLI11::CLI11)
 target_compile_options(record_to_bag PRIVATE -Wall -Wextra)
-set_target_properties(record_to_bag PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_TOOL_DIR})
+# one unity source: CLI11 and the ROS headers compiled once
+set_target_properties(record_to_bag PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_TOOL_DIR} UNITY_BUILD ON)
 
 add_executable(ground_motion_player src/ros/ground_motion_player_node.cpp)
 target_link_libraries(ground_motion_player PRIVATE rocking_records_ros)

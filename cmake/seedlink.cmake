@@ -1,8 +1,11 @@
 # Issue 18, SeedLink half: record_to_mseed (tool), seedlink_bridge (node) and their rostests.
-add_executable(record_to_mseed src/tools/record_to_mseed.cpp)
+# record_to_mseed.cpp parses the flags (record_to_mseed_options.*) and runs the one job (record_to_mseed_run.cpp).
+add_executable(record_to_mseed src/tools/record_to_mseed.cpp src/tools/record_to_mseed_options.cpp
+                               src/tools/record_to_mseed_run.cpp)
 target_link_libraries(record_to_mseed PRIVATE rocking_monitor_core CLI11::CLI11)
 target_compile_options(record_to_mseed PRIVATE -Wall -Wextra)
-set_target_properties(record_to_mseed PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_TOOL_DIR})
+# one unity source: CLI11 (header only) compiled once
+set_target_properties(record_to_mseed PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${ROCKING_TOOL_DIR} UNITY_BUILD ON)
 if(BUILD_TESTING)
   add_test(NAME cli.record_to_mseed.unknown_flag_is_one_error_line
            COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/unknown_flag.sh record_to_mseed $<TARGET_FILE:record_to_mseed>)

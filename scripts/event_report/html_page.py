@@ -82,9 +82,9 @@ def render_journal(journal, w):
       'sample (the items table shows them too, without criteria).</p>')
 
 
-def render(data, catalogue=None, title=None, ended=None):
-    import numpy as np
-    items, t_first = summarise_items(data)
+def catalogue_marks(data, catalogue, items):
+    """The catalogue's items (their descriptions into items), their Housner periods to mark on the
+    spectrum and the notes about what could not be marked."""
     entries = {}
     cat_items = (catalogue or data.get('catalogue') or {}).get('items') if (catalogue or data.get('catalogue')) else None
     marks, notes = [], []
@@ -100,15 +100,11 @@ def render(data, catalogue=None, title=None, ended=None):
     for i, e in entries.items():
         if i in items and not items[i]['description']:
             items[i]['description'] = str(e.get('description', ''))
-    sensor_topics = list(data['sensors'])
-    gms = {t: ground_motion(s) for t, s in data['sensors'].items() if len(s['t']) > 1}
-    # The monitor's clock: seconds since the first sample (from its alarms; else the first input stamp).
-    if t_first is None:
-        t_first = min([g['t'][0] for g in gms.values()] or [data['states'][0].header.stamp.to_sec()])
-    sensors_h, catalogue_h, proc = health(data)
+    return marks, notes
 
-    out = []
-    w = out.append
+
+def render_head(w, data, items, notes, title, ended):
+    """The title, the banner of the items that overturned or committed, and the notes."""
     name = title or 'Post-event report'
     w('<!DOCTYPE html><html lang="en"><head><meta charset="utf-8"><title>%s</title><style>%s</style></head><body>'
       % (html.escape(name), CSS))
@@ -134,86 +130,65 @@ def render(data, catalogue=None, title=None, ended=None):
     if data.get('no_alarm_topic'):
         w('<p class="note">Note: the bag has no <code>%s/alarms</code>: alarm times are missing.</p>' % html.escape(data['monitor']))
 
-    # ---- the event
+
+def render_event(w, data, gms, t_first, marks, items):
+    """The event: each sensor's timing, peaks, input and spectrum."""
     w('<h2 id="event-section">The event</h2>')
     if not gms:
         w('<p class="note">The bag holds no sensor input (sensor_msgs/Imu or geometry_msgs/AccelStamped): '
           'no ground-motion figures.</p>')
     for topic, gm in gms.items():
-        start, end = gm['start'], gm['end']
-        w('<h3>Sensor <code>%s</code> (%s)</h3>' % (html.escape(topic), data['sensors'][topic]['type']))
-        w('<table id="event"><tr><th>first sample</th><td>%s</td></tr>' % utc(gm['t'][0]))
-        if start is not None:
-            w('<tr><th>shaking starts</th><td data-start="%.6f">%s (%s s after the first sample)</td></tr>'
-              % (start - t_first, utc(start), fmt(start - t_first)))
-            w('<tr><th>duration</th><td data-duration="%.6f">%s s (first to last sample with |a| ≥ %.2f m/s²)</td></tr>'
-              % (end - start, fmt(end - start, 2), QUIET_THRESHOLD))
-        else:
-            w('<tr><th>shaking</th><td>never above %.2f m/s²</td></tr>' % QUIET_THRESHOLD)
-        w('<tr><th>samples</th><td>%d at %.1f Hz over %.2f s</td></tr></table>'
-          % (len(gm['t']), 1.0 / gm['dt'] if gm['dt'] > 0 else 0.0, gm['t'][-1] - gm['t'][0]))
-        w('<table id="peaks"><tr><th>component (sensor axes)</th><th>PGA, m/s²</th><th>PGA, g</th><th>PGV, m/s</th></tr>')
-        for k, comp in enumerate(('x (horizontal)', 'y (horizontal)', 'z (vertical)')):
-            w('<tr data-component="%s"><td>%s</td><td class="num" data-pga="%.6f">%.3f</td><td class="num">%.3f</td>'
-              '<td class="num" data-pgv="%.6f">%.3f</td></tr>' % ('xyz'[k], comp, gm['pga'][k], gm['pga'][k],
-                                                                  gm['pga'][k] / G, gm['pgv'][k], gm['pgv'][k]))
-        w('</table>')
-        w(figure_input(gm, t_first, start, end))
-        shown = [m for m in marks if items.get(m[0], {}).get('left_rest') or len(marks) <= 24][:60]
-        fig, spectra = figure_spectrum(gm, shown)
-        w('<p class="note">5 %%-damped pseudo-acceleration response spectrum of each horizontal (exact '
-          'Nigam-Jennings recursion, input linear between samples, over the whole recording); dotted lines: '
-          'each item\'s Housner period T = 2π/p (the pivot with the smaller tipping angle), numbered as in '
-          'the table below%s.</p>' % ('' if len(shown) == len(marks) else '; only the items that moved are marked'))
-        w(fig)
-        if shown:
-            w('<table id="periods"><tr><th>#</th><th>item</th><th>plane</th><th>Housner period T, s</th>'
-              '<th>p, rad/s</th><th>PSA(T) of that plane\'s horizontal, m/s²</th><th>PSV(T), m/s</th></tr>')
-            for k, (item, plane, T) in enumerate(shown):
-                psa = spectra[plane].get(T)
-                w('<tr><td>%d</td><td>%s</td><td>%s</td><td class="num">%.3f</td><td class="num">%.3f</td>'
-                  '<td class="num">%s</td><td class="num">%s</td></tr>'
-                  % (k + 1, html.escape(item), plane, T, 2 * math.pi / T, fmt(psa), fmt(None if psa is None else psa * T / (2 * math.pi))))
-            w('</table><p class="note">Sensor axes; an item yawed in its catalogue pose sees a rotated '
-              'component (the monitor rotates each sample into the item\'s frame).</p>')
+        render_sensor(w, data, topic, gm, t_first, marks, items)
 
-    # ---- the items
+
+def render_sensor(w, data, topic, gm, t_first, marks, items):
+    """One sensor's part of the event: timing, peaks, the input and the spectrum with the items' periods."""
+    start, end = gm['start'], gm['end']
+    w('<h3>Sensor <code>%s</code> (%s)</h3>' % (html.escape(topic), data['sensors'][topic]['type']))
+    w('<table id="event"><tr><th>first sample</th><td>%s</td></tr>' % utc(gm['t'][0]))
+    if start is not None:
+        w('<tr><th>shaking starts</th><td data-start="%.6f">%s (%s s after the first sample)</td></tr>'
+          % (start - t_first, utc(start), fmt(start - t_first)))
+        w('<tr><th>duration</th><td data-duration="%.6f">%s s (first to last sample with |a| ≥ %.2f m/s²)</td></tr>'
+          % (end - start, fmt(end - start, 2), QUIET_THRESHOLD))
+    else:
+        w('<tr><th>shaking</th><td>never above %.2f m/s²</td></tr>' % QUIET_THRESHOLD)
+    w('<tr><th>samples</th><td>%d at %.1f Hz over %.2f s</td></tr></table>'
+      % (len(gm['t']), 1.0 / gm['dt'] if gm['dt'] > 0 else 0.0, gm['t'][-1] - gm['t'][0]))
+    w('<table id="peaks"><tr><th>component (sensor axes)</th><th>PGA, m/s²</th><th>PGA, g</th><th>PGV, m/s</th></tr>')
+    for k, comp in enumerate(('x (horizontal)', 'y (horizontal)', 'z (vertical)')):
+        w('<tr data-component="%s"><td>%s</td><td class="num" data-pga="%.6f">%.3f</td><td class="num">%.3f</td>'
+          '<td class="num" data-pgv="%.6f">%.3f</td></tr>' % ('xyz'[k], comp, gm['pga'][k], gm['pga'][k],
+                                                              gm['pga'][k] / G, gm['pgv'][k], gm['pgv'][k]))
+    w('</table>')
+    w(figure_input(gm, t_first, start, end))
+    shown = [m for m in marks if items.get(m[0], {}).get('left_rest') or len(marks) <= 24][:60]
+    fig, spectra = figure_spectrum(gm, shown)
+    w('<p class="note">5 %%-damped pseudo-acceleration response spectrum of each horizontal (exact '
+      'Nigam-Jennings recursion, input linear between samples, over the whole recording); dotted lines: '
+      'each item\'s Housner period T = 2π/p (the pivot with the smaller tipping angle), numbered as in '
+      'the table below%s.</p>' % ('' if len(shown) == len(marks) else '; only the items that moved are marked'))
+    w(fig)
+    if shown:
+        w('<table id="periods"><tr><th>#</th><th>item</th><th>plane</th><th>Housner period T, s</th>'
+          '<th>p, rad/s</th><th>PSA(T) of that plane\'s horizontal, m/s²</th><th>PSV(T), m/s</th></tr>')
+        for k, (item, plane, T) in enumerate(shown):
+            psa = spectra[plane].get(T)
+            w('<tr><td>%d</td><td>%s</td><td>%s</td><td class="num">%.3f</td><td class="num">%.3f</td>'
+              '<td class="num">%s</td><td class="num">%s</td></tr>'
+              % (k + 1, html.escape(item), plane, T, 2 * math.pi / T, fmt(psa), fmt(None if psa is None else psa * T / (2 * math.pi))))
+        w('</table><p class="note">Sensor axes; an item yawed in its catalogue pose sees a rotated '
+          'component (the monitor rotates each sample into the item\'s frame).</p>')
+
+
+def render_items(w, items):
+    """The items table and its legend."""
     w('<h2 id="items-section">Items</h2>')
     w('<table id="items"><tr><th>item</th><th>outcome x</th><th>outcome y</th><th>max θ/α x</th><th>max θ/α y</th>'
       '<th>beyond tipping, s</th><th>committed, s</th><th>overturned, s</th><th>warning lead time, s</th>'
       '<th>predicted by</th><th>not predicted by</th></tr>')
     for i, it in items.items():
-        a = it['alarms']
-        top = a.get('OVERTURNED') or a.get('COMMITTED') or a.get('BEYOND_TIPPING')
-        sd = it.get('solid')
-        cells = ['<td title="%s"><b>%s</b>%s%s</td>' % (html.escape(it['description']), html.escape(i),
-                 '' if it['p_overturned'] is None else '<br><span class="note">P(overturned) %.2f [%.2f, %.2f], %d members</span>' % it['p_overturned'],
-                 '' if sd is None else '<br><span class="note" data-solid-max-ratio="%.6f" data-solid-max-tilt="%.6f">'
-                 '3-D model deciding: max tilt %.3f rad (θ/α %.2f), turned about %s</span>'
-                 % (sd['max_ratio'], sd['max_tilt'], sd['max_tilt'], sd['max_ratio'],
-                    html.escape(', '.join(list(sd['contacts'])[:6]) or 'nothing (stayed flat)'))) + support_line(sd)]
-        for plane in ('x', 'y'):
-            mode = it['final'].get(plane)
-            cells.append('<td class="%s" data-outcome-%s="%s">%s</td>' % (mode or '', plane, mode or '',
-                                                                       (mode or '–').lower().replace('_', ' ')))
-        for plane in ('x', 'y'):
-            cells.append('<td class="num">%s</td>' % (fmt(it['max'][plane], 2) if plane == 'x' or it['planes'] == 2 else '–'))
-        for level in ('BEYOND_TIPPING', 'COMMITTED', 'OVERTURNED'):
-            al = a.get(level)
-            if al:
-                cause = CAUSE_WORDS.get(al['cause'])
-                cells.append('<td class="num" data-level="%s" data-time="%.6f" data-plane="%s" data-cause="%s" title="%s">'
-                             '%s (%s)%s</td>' % (level, al['time'], al['plane'], al['cause'], utc(al['utc']),
-                                                 fmt(al['time']), al['plane'], '<br>' + cause if cause else ''))
-            else:
-                cells.append('<td class="num" data-level="%s">–</td>' % level)
-        lt = lead_time(it)
-        cells.append('<td class="num" data-lead="%s">%s</td>' % ('' if lt is None else '%.6f' % lt, fmt(lt)))
-        cells.append('<td data-predicted="%s">%s</td>' % (','.join(top['predicted_by']) if top else '',
-                                                           ', '.join(top['predicted_by']) or 'none' if top else '–'))
-        cells.append('<td data-not-predicted="%s">%s</td>' % (','.join(top['not_predicted_by']) if top else '',
-                                                               ', '.join(top['not_predicted_by']) or 'none' if top else '–'))
-        w('<tr data-item="%s" data-outcome="%s">%s</tr>' % (html.escape(i), it['final'].get('item', ''), ''.join(cells)))
+        w(item_row(i, it))
     w('</table><p class="note">Outcome: each plane\'s mode at the end of the recording (x: rocking across the '
       'width, y: across the depth). Max θ/α over the recorded <code>~states</code> (at the monitor\'s '
       '<code>state_rate</code>; 0 records every sample). Alarm times: seconds since the first sample, with the '
@@ -224,10 +199,44 @@ def render(data, catalogue=None, title=None, ended=None):
       '(docs/report.md). Lead time: OVERTURNED minus COMMITTED. Criteria: '
       'the screening criteria of that plane that had and had not predicted the item\'s highest alarm.</p>')
 
-    if data.get('journal') is not None:
-        render_journal(data['journal'], w)
 
-    # ---- theta/alpha per item
+def item_row(i, it):
+    """One item's row of the items table."""
+    a = it['alarms']
+    top = a.get('OVERTURNED') or a.get('COMMITTED') or a.get('BEYOND_TIPPING')
+    sd = it.get('solid')
+    cells = ['<td title="%s"><b>%s</b>%s%s</td>' % (html.escape(it['description']), html.escape(i),
+             '' if it['p_overturned'] is None else '<br><span class="note">P(overturned) %.2f [%.2f, %.2f], %d members</span>' % it['p_overturned'],
+             '' if sd is None else '<br><span class="note" data-solid-max-ratio="%.6f" data-solid-max-tilt="%.6f">'
+             '3-D model deciding: max tilt %.3f rad (θ/α %.2f), turned about %s</span>'
+             % (sd['max_ratio'], sd['max_tilt'], sd['max_tilt'], sd['max_ratio'],
+                html.escape(', '.join(list(sd['contacts'])[:6]) or 'nothing (stayed flat)'))) + support_line(sd)]
+    for plane in ('x', 'y'):
+        mode = it['final'].get(plane)
+        cells.append('<td class="%s" data-outcome-%s="%s">%s</td>' % (mode or '', plane, mode or '',
+                                                                   (mode or '–').lower().replace('_', ' ')))
+    for plane in ('x', 'y'):
+        cells.append('<td class="num">%s</td>' % (fmt(it['max'][plane], 2) if plane == 'x' or it['planes'] == 2 else '–'))
+    for level in ('BEYOND_TIPPING', 'COMMITTED', 'OVERTURNED'):
+        al = a.get(level)
+        if al:
+            cause = CAUSE_WORDS.get(al['cause'])
+            cells.append('<td class="num" data-level="%s" data-time="%.6f" data-plane="%s" data-cause="%s" title="%s">'
+                         '%s (%s)%s</td>' % (level, al['time'], al['plane'], al['cause'], utc(al['utc']),
+                                             fmt(al['time']), al['plane'], '<br>' + cause if cause else ''))
+        else:
+            cells.append('<td class="num" data-level="%s">–</td>' % level)
+    lt = lead_time(it)
+    cells.append('<td class="num" data-lead="%s">%s</td>' % ('' if lt is None else '%.6f' % lt, fmt(lt)))
+    cells.append('<td data-predicted="%s">%s</td>' % (','.join(top['predicted_by']) if top else '',
+                                                       ', '.join(top['predicted_by']) or 'none' if top else '–'))
+    cells.append('<td data-not-predicted="%s">%s</td>' % (','.join(top['not_predicted_by']) if top else '',
+                                                           ', '.join(top['not_predicted_by']) or 'none' if top else '–'))
+    return ('<tr data-item="%s" data-outcome="%s">%s</tr>' % (html.escape(i), it['final'].get('item', ''), ''.join(cells)))
+
+
+def render_rotations(w, items, t_first):
+    """theta/alpha(t) of the items that moved, the most severe first."""
     moving = sorted((it for it in items.values() if it['left_rest']), key=severity, reverse=True)
     w('<h2 id="rotation-section">Rotation of the items that moved</h2>')
     if not moving:
@@ -241,7 +250,9 @@ def render(data, catalogue=None, title=None, ended=None):
     still = len(items) - len(moving)
     w('<p class="note">%d of %d items stayed at rest throughout.</p>' % (still, len(items)))
 
-    # ---- health
+
+def render_health(w, gms, t_first, sensors_h, catalogue_h, proc):
+    """The monitor's health during the event, from its /diagnostics, and the bag's own gaps."""
     w('<h2 id="health-section">The monitor\'s health during the event</h2>')
     if not sensors_h:
         w('<p class="note">No <code>/diagnostics</code> from the monitor in the bag.</p>')
@@ -268,5 +279,25 @@ def render(data, catalogue=None, title=None, ended=None):
     if catalogue_h:
         w('<p class="note">Catalogue: %s items, %s alarms published, fidelity %s, method %s.</p>'
           % tuple(html.escape(str(catalogue_h.get(k, '?'))) for k in ('items', 'alarms published', 'fidelity', 'method')))
+
+
+def render(data, catalogue=None, title=None, ended=None):
+    """The whole page, section by section, as one string."""
+    items, t_first = summarise_items(data)
+    marks, notes = catalogue_marks(data, catalogue, items)
+    gms = {t: ground_motion(s) for t, s in data['sensors'].items() if len(s['t']) > 1}
+    # The monitor's clock: seconds since the first sample (from its alarms; else the first input stamp).
+    if t_first is None:
+        t_first = min([g['t'][0] for g in gms.values()] or [data['states'][0].header.stamp.to_sec()])
+    sensors_h, catalogue_h, proc = health(data)
+    out = []
+    w = out.append
+    render_head(w, data, items, notes, title, ended)
+    render_event(w, data, gms, t_first, marks, items)
+    render_items(w, items)
+    if data.get('journal') is not None:
+        render_journal(data['journal'], w)
+    render_rotations(w, items, t_first)
+    render_health(w, gms, t_first, sensors_h, catalogue_h, proc)
     w('</body></html>')
     return '\n'.join(out)
