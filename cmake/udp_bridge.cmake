@@ -14,7 +14,7 @@ if(CATKIN_ENABLE_TESTING)
   # Issue 52 item 2: ~key_file; no tag, a wrong key, a flipped bit and replays: 0 published, counted.
   add_rostest(test/ros/udp_authenticated.test DEPENDENCIES udp_accel_bridge)
   # Issue 52 item 3: a conflict keeps the first sample, is ERROR, and marks a held sample (variance inf).
-  add_rostest(test/ros/udp_conflicts.test DEPENDENCIES udp_accel_bridge)
+  add_rostest(test/ros/udp_conflicts.test DEPENDENCIES udp_accel_bridge monitor)
   # Live == offline: the record through bridge and monitor equals rocking_sim on the files.
   add_rostest(test/ros/shaking_table_live_offline.test DEPENDENCIES udp_accel_bridge monitor rocking_sim)
 endif()

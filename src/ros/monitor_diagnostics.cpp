@@ -49,7 +49,7 @@ void RockingMonitor::sensor_diagnostics(std::size_t i, diagnostic_updater::Diagn
   st.add("rejected beyond max_abs_acceleration", s.rejected_limit);
   st.add("data gaps (not bridged)", c.gaps);
   st.add("conflicting samples (marked by the bridge), not stepped", s.conflicting);
-  st.add("last conflicting sample (stamp)", s.last_conflicting_stamp.toSec());
+  st.add("last conflicting sample (stamp)", std::to_string(s.last_conflicting_stamp.toSec()));  // to the microsecond
   st.add("longest gap (s)", c.longest_gap);
   st.add("resets (time jumped back)", s.resets);
   st.add("rejected implausible stamp", pc.rejected);

@@ -10,12 +10,14 @@ import socket
 import struct
 import subprocess
 import threading
+import time
 import unittest
 
 import roslib.packages
 import rospy
 import rostest
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
+from rocking_monitor.msg import RockingStateArray
 from sensor_msgs.msg import Imu
 
 WAIT_S = 30.0  # a condition wait's bound on a loaded machine, never a verdict by itself
@@ -49,13 +51,20 @@ class ConflictsTest(unittest.TestCase):
     def setUp(self):
         self.cond = threading.Condition()
         self.imu = []
+        self.published = []  # (stamp ns, marked) of every Imu, in order
         self.diag = None
+        self.monitor = None  # the monitor's status of its sensor
+        self.stepped = set()  # input stamps the monitor stepped its box at (~states)
         self.subs = [rospy.Subscriber('/conflict/imu', Imu, self.on_imu, queue_size=1000),
-                     rospy.Subscriber('/diagnostics', DiagnosticArray, self.on_diag, queue_size=100)]
+                     rospy.Subscriber('/diagnostics', DiagnosticArray, self.on_diag, queue_size=100),
+                     rospy.Subscriber('/rocking_monitor/states', RockingStateArray, self.on_states, queue_size=1000)]
 
     def on_imu(self, msg):
         with self.cond:
             self.imu.append((msg.header.seq, msg.linear_acceleration.x, tuple(msg.linear_acceleration_covariance)))
+            # (stamp ns, marked): the stamps as ints (rospy.Time hashes by identity); header.seq is
+            # the publisher's own count, not the datagram's sequence number
+            self.published.append((msg.header.stamp.to_nsec(), math.isinf(msg.linear_acceleration_covariance[0])))
             self.cond.notify_all()
 
     def on_diag(self, msg):
@@ -63,6 +72,13 @@ class ConflictsTest(unittest.TestCase):
             for st in msg.status:
                 if st.name.startswith('conflict:'):
                     self.diag = (st.level, st.message, {kv.key: kv.value for kv in st.values})
+                if st.name == 'rocking_monitor: sensor table samples':
+                    self.monitor = (st.level, st.message, {kv.key: kv.value for kv in st.values})
+            self.cond.notify_all()
+
+    def on_states(self, msg):
+        with self.cond:
+            self.stepped.update(s.input_stamp.to_nsec() for s in msg.items if not s.input_stamp.is_zero())
             self.cond.notify_all()
 
     def wait_for(self, what, predicate):
@@ -100,6 +116,46 @@ class ConflictsTest(unittest.TestCase):
         self.assertEqual(values['last conflict (sequence)'], '0')
         self.assertEqual(values['duplicates (dropped)'], '1')
         self.assertEqual(values['published'], '3')
+        s.close()
+
+    def test_monitor_does_not_step_on_the_marked_sample(self):
+        """The monitor on the bridge's stream (its side of item 3): the marked sample is counted, not
+        stepped, and its status is ERROR; the samples around it are stepped."""
+        self.wait_for('the monitor', lambda: self.monitor is not None)
+        s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+        dest = ('127.0.0.1', self.port)
+        received = lambda: int(self.monitor[2].get('received', '0'))
+        seq = 100  # after the other test's numbers, or the first ever: the bridge takes either
+        give_up = time.time() + WAIT_S  # a hang, not a verdict
+        while True:  # in-order samples until the monitor has one: it is connected (a condition, not a delay)
+            s.sendto(v1(seq, 0.0), dest)
+            seq += 1
+            with self.cond:
+                if self.cond.wait_for(lambda: received() >= 1, timeout=2.0):
+                    break
+            self.assertLess(time.time(), give_up, 'the monitor never received a sample: %s' % (self.monitor,))
+        s.sendto(v1(seq, 0.0), dest)       # stepped
+        s.sendto(v1(seq + 2, 3.0), dest)   # held: seq + 1 is missing
+        s.sendto(v1(seq + 2, -3.0), dest)  # a conflict with the held sample: published marked
+        s.sendto(v1(seq + 1, 0.0), dest)   # releases seq + 1 and the marked seq + 2
+        s.sendto(v1(seq + 3, 0.0), dest)   # the sample after it
+        # the marked sample and the one after it published, the one after it stepped, and the monitor's
+        # diagnostics naming the marked one (the monitor also saw the other test's conflict)
+        marked = lambda: [t for t, m in self.published if m]
+        after = lambda: [t for t, m in self.published if marked() and t > marked()[0]]
+        named = lambda: abs(float(self.monitor[2]['last conflicting sample (stamp)']) - marked()[0] * 1e-9) < 1e-5
+        self.wait_for('the monitor to step the sample after the marked one and name the marked one',
+                      lambda: len(marked()) == 1 and after() and after()[0] in self.stepped and named())
+        with self.cond:
+            level, message, values = self.monitor
+            stepped, published = set(self.stepped), sorted(self.published)
+        k = [i for i, (_, m) in enumerate(published) if m][0]
+        self.assertNotIn(published[k][0], stepped, 'the monitor stepped on the marked sample')
+        self.assertIn(published[k - 1][0], stepped, 'the sample before it was not stepped')
+        self.assertIn(published[k + 1][0], stepped)
+        self.assertEqual(level, DiagnosticStatus.ERROR, message)
+        self.assertIn('samples marked conflicting by the bridge', message)
+        self.assertGreaterEqual(int(values['conflicting samples (marked by the bridge), not stepped']), 1)
         s.close()
 
 
