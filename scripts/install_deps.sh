@@ -20,6 +20,7 @@ packages=(
   libbullet-dev libsiconos-numerics-dev
   libcurl4-openssl-dev libmosquitto-dev mosquitto python3-aiosmtpd
   libssl-dev  # OpenSSL libcrypto: HMAC-SHA256 of authenticated datagrams (udp_accel_bridge ~key_file)
+  openssl     # the openssl command: the notifier's TLS tests make their certificates (priority optional: not in a minimal image)
 )
 
 missing=()
