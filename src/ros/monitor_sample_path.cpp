@@ -284,18 +284,18 @@ void RockingMonitor::replay_held(std::size_t si, const std_msgs::Header& header)
   }
 }
 
-void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header, const Eigen::Vector3d& reading,
-                                 std::chrono::steady_clock::time_point wall_start) {
-  Sensor& s = sensors_[si];
-  double dt = 0.0;
+// The sample's stamp against the sensor's last: false for a duplicate or out-of-order one (dropped);
+// a jump back restarts the sensor's items, a gap is skipped (issue 19). `dt`: between the stamps, s.
+bool RockingMonitor::admit_stamp(Sensor& s, const std_msgs::Header& header, core::SampleTiming::Verdict& verdict,
+                                 double& dt) {
   using V = core::SampleTiming::Verdict;
-  const V verdict = s.timing.classify(header.stamp.toSec(), dt);
+  verdict = s.timing.classify(header.stamp.toSec(), dt);
   switch (verdict) {
     case V::Duplicate:
     case V::OutOfOrder:
       ROS_WARN_THROTTLE(5.0, "rocking_monitor: sensor '%s': %s stamp %.6f dropped (last %.6f)", s.spec.name.c_str(),
                         verdict == V::Duplicate ? "duplicate" : "out-of-order", header.stamp.toSec(), s.timing.last_stamp());
-      return;
+      return false;
     case V::BackwardJump:
       ++s.resets;
       ROS_WARN("rocking_monitor: sensor '%s': time jumped back to %.3f s: restarting its %zu items",
@@ -320,78 +320,54 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
     }
     default: break;
   }
-  if (verdict == V::First || verdict == V::BackwardJump) {
-    s.epoch = header.stamp;
-    s.last_t = 0.0;
-    s.frozen_s = 0.0;  // the items start afresh
-  }
-  const double stamp_dt = dt;  // between the stamps, s (a gap's full length)
-  const double t = (header.stamp - s.epoch).toSec();
-  if (verdict == V::Accept || verdict == V::AcceptGap) {
-    dt = t - s.last_t;
-    s.last_t = t;
-  }
-  s.frame = s.spec.frame_id.empty() ? header.frame_id : s.spec.frame_id;
-  const Eigen::Vector3d a = s.baseline.remove(reading, dt);
-  track_quiet(s, a, header.stamp);
-  if (s.topic_diag) s.topic_diag->tick(header.stamp);
-  s.last_stamp = header.stamp;
-  if (verdict == V::First || verdict == V::BackwardJump) {
-    s.have_first = true;
-    s.first_t = t;
-    s.first_a = a;
-    return;
-  }
-  if (s.have_first) {
-    s.dt_nominal = dt;
-    start_items(s, s.first_t, s.first_a);
-    s.have_first = false;
-    s.batch.reset();
-  }
-  if (!s.batch) rebuild_batch(s);  // allocates: only after a (re)start
-  s.mean_dt = s.mean_dt == 0.0 ? dt : 0.99 * s.mean_dt + 0.01 * dt;
-  {
-    // Lost in transport: whole periods missing at the nominal rate, from the stamps alone.
-    if (stamp_dt > 0.0 && (s.min_dt == 0.0 || stamp_dt < s.min_dt)) s.min_dt = stamp_dt;
-    const double period = nominal_period(s);
-    // Samples that arrived but were not stepped (rejected, dropped: counted as such) are not lost.
-    const long arrived = static_cast<long>(s.received - s.received_at_last_step) - 1;
-    const long missing = (period > 0.0 ? std::lround(stamp_dt / period) - 1 : 0) - std::max(0L, arrived);
-    if (missing > 0) s.lost_in_transport += static_cast<std::uint64_t>(missing);
-  }
-  // Serial: items still waiting for their transform, or starting late, are not stepped. Once all
-  // step, that stays so until the batch is rebuilt: the check (a cache miss per item) is skipped.
-  if (!s.all_ready) {
-    bool all = true;
-    for (std::size_t k = 0; k < s.items.size(); ++k) {
-      Item& it = items_[s.items[k]];
-      if (it.ready) it.stamp = s.stepped_stamp;  // keeps its last step's stamp while not ready
-      it.ready = false;
-      s.in_ready[k] = 0;
-      if (!it.has_rotation && !lookup_rotation(it, s.frame)) {
-        ++it.samples_without_transform;
-        all = false;
-        continue;
-      }
-      if (!it.monitor->started()) {  // its transform arrived late: start now
-        const Eigen::Vector3d ai = it.rotation * a;
-        const Eigen::Vector3d gi = it.entry.spec.input_gain * ai;  // the nominal item's scale; members their own
-        it.monitor->start(t, gi.x(), gi.y(), gi.z(), s.dt_nominal);
-        if (it.ensemble) it.ensemble->start(t, ai.x(), ai.y(), ai.z(), s.dt_nominal);
-        it.stamp = header.stamp;
-        s.batch->refresh(k);
-        all = false;
-        continue;
-      }
-      it.ready = true;
-      s.in_ready[k] = 1;
-      s.rotations[k] = it.rotation;
+  return true;
+}
+
+// Lost in transport: whole periods missing at the nominal rate, from the stamps alone.
+void RockingMonitor::count_lost_in_transport(Sensor& s, double stamp_dt) {
+  if (stamp_dt > 0.0 && (s.min_dt == 0.0 || stamp_dt < s.min_dt)) s.min_dt = stamp_dt;
+  const double period = nominal_period(s);
+  // Samples that arrived but were not stepped (rejected, dropped: counted as such) are not lost.
+  const long arrived = static_cast<long>(s.received - s.received_at_last_step) - 1;
+  const long missing = (period > 0.0 ? std::lround(stamp_dt / period) - 1 : 0) - std::max(0L, arrived);
+  if (missing > 0) s.lost_in_transport += static_cast<std::uint64_t>(missing);
+}
+
+// Serial: items still waiting for their transform, or starting late, are not stepped. Once all
+// step, that stays so until the batch is rebuilt: the check (a cache miss per item) is skipped.
+void RockingMonitor::ready_items(Sensor& s, double t, const Eigen::Vector3d& a, const ::ros::Time& stamp) {
+  bool all = true;
+  for (std::size_t k = 0; k < s.items.size(); ++k) {
+    Item& it = items_[s.items[k]];
+    if (it.ready) it.stamp = s.stepped_stamp;  // keeps its last step's stamp while not ready
+    it.ready = false;
+    s.in_ready[k] = 0;
+    if (!it.has_rotation && !lookup_rotation(it, s.frame)) {
+      ++it.samples_without_transform;
+      all = false;
+      continue;
     }
-    s.all_ready = all;
+    if (!it.monitor->started()) {  // its transform arrived late: start now
+      const Eigen::Vector3d ai = it.rotation * a;
+      const Eigen::Vector3d gi = it.entry.spec.input_gain * ai;  // the nominal item's scale; members their own
+      it.monitor->start(t, gi.x(), gi.y(), gi.z(), s.dt_nominal);
+      if (it.ensemble) it.ensemble->start(t, ai.x(), ai.y(), ai.z(), s.dt_nominal);
+      it.stamp = stamp;
+      s.batch->refresh(k);
+      all = false;
+      continue;
+    }
+    it.ready = true;
+    s.in_ready[k] = 1;
+    s.rotations[k] = it.rotation;
   }
-  // Items are independent: step them in parallel when ~threads > 1 (results do not depend on it).
-  // The batch defers item-samples that change nothing reported (at rest, overturned, or rocking without
-  // an event: docs/performance.md), exactly.
+  s.all_ready = all;
+}
+
+// Items are independent: step them in parallel when ~threads > 1 (results do not depend on it).
+// The batch defers item-samples that change nothing reported (at rest, overturned, or rocking without
+// an event: docs/performance.md), exactly.
+void RockingMonitor::step_items(Sensor& s, const Eigen::Vector3d& a, double dt) {
   std::atomic<std::uint64_t> deferred{0};
   auto step_range = [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
@@ -424,8 +400,10 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
     step_range(0, s.items.size());
   }
   s.deferred += deferred.load();
-  s.stepped_stamp = header.stamp;  // the input stamp of every ready item (input_stamp())
-  // Serial: publish what happened, in catalogue order (an Item is touched only when it has events).
+}
+
+// Serial: publish what happened, in catalogue order (an Item is touched only when it has events).
+void RockingMonitor::publish_sample_events(Sensor& s, const ::ros::Time& stamp) {
   criteria_wanted_ = criteria_pub_.getNumSubscribers() > 0;
   for (std::size_t k = 0; k < s.items.size(); ++k) {
     if (!s.in_ready[k]) continue;
@@ -433,12 +411,16 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
     // event counts was a cache miss per item on this (serial) path.
     const std::uint8_t f = s.batch->event_flags(k);
     if ((criteria_wanted_ && (f & core::MonitorBatch::kHasChanges)) || (f & core::MonitorBatch::kHasAlarms))
-      publish_events(items_[s.items[k]], s.batch->events(k), header.stamp);
+      publish_events(items_[s.items[k]], s.batch->events(k), stamp);
     if (!s.has_ensembles) continue;
     Item& it = items_[s.items[k]];
-    if (it.ensemble && it.ensemble->events().count > 0) publish_crossings(it, it.ensemble->events(), header.stamp);
+    if (it.ensemble && it.ensemble->events().count > 0) publish_crossings(it, it.ensemble->events(), stamp);
   }
   publish_pending_alarms();  // one fsync of the journal, then the sample's alarms
+}
+
+// The sample's accounting (processing time, lag, overload), the event's end, the snapshot and the states.
+void RockingMonitor::finish_sample(Sensor& s, const ::ros::Time& stamp, std::chrono::steady_clock::time_point wall_start) {
   s.last_processing_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   s.max_processing_s = std::max(s.max_processing_s, s.last_processing_s);
   s.total_processing_s += s.last_processing_s;
@@ -447,7 +429,7 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
   s.received_at_last_step = s.received;
   // Lag: how much later than its best so far this sample is stepped (node clock - stamp, minus its
   // minimum): a sensor clock offset from the node's (own clock, epoch records) is no lag.
-  const double offset = (s.last_input_clock - header.stamp).toSec();
+  const double offset = (s.last_input_clock - stamp).toSec();
   if (s.last_input_clock.isZero() || catching_up_) {
     // No clock yet (sim time before the first /clock): no lag to measure.
   } else if (!s.have_min_offset || offset < s.min_offset_s) {
@@ -457,12 +439,12 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
   s.lag_s = s.have_min_offset && !catching_up_ ? offset - s.min_offset_s : 0.0;
   s.max_lag_s = std::max(s.max_lag_s, s.lag_s);
   if (!catching_up_) update_overload(s);  // history samples are old by design: no overload from their age
-  check_event_end(header.stamp);  // issue 29: the shaking stopped: the event ends, its levels re-armed
+  check_event_end(stamp);  // issue 29: the shaking stopped: the event ends, its levels re-armed
   // Issue 29: a state snapshot every ~snapshot_period of input time, spaced further for a catalogue
   // that takes long to encode (~snapshot_max_load); encoded now, written by the writer's thread.
-  if (snapshot_writer_ && (last_snapshot_stamp_.isZero() || header.stamp < last_snapshot_stamp_ ||
-                           (header.stamp - last_snapshot_stamp_).toSec() >= snapshot_interval_))
-    take_snapshot(header.stamp);
+  if (snapshot_writer_ && (last_snapshot_stamp_.isZero() || stamp < last_snapshot_stamp_ ||
+                           (stamp - last_snapshot_stamp_).toSec() >= snapshot_interval_))
+    take_snapshot(stamp);
   if (state_rate_ == 0.0) {
     // A state per sample unless overloaded for long: then 1 Hz of the node's clock.
     if (!shedding_states() || last_shed_states_.isZero() || (s.last_input_clock - last_shed_states_).toSec() >= 1.0 ||
@@ -473,6 +455,51 @@ void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header,
       ++shed_states_;
     }
   }
+}
+
+void RockingMonitor::step_sample(std::size_t si, const std_msgs::Header& header, const Eigen::Vector3d& reading,
+                                 std::chrono::steady_clock::time_point wall_start) {
+  Sensor& s = sensors_[si];
+  double dt = 0.0;
+  using V = core::SampleTiming::Verdict;
+  V verdict;
+  if (!admit_stamp(s, header, verdict, dt)) return;
+  if (verdict == V::First || verdict == V::BackwardJump) {
+    s.epoch = header.stamp;
+    s.last_t = 0.0;
+    s.frozen_s = 0.0;  // the items start afresh
+  }
+  const double stamp_dt = dt;  // between the stamps, s (a gap's full length)
+  const double t = (header.stamp - s.epoch).toSec();
+  if (verdict == V::Accept || verdict == V::AcceptGap) {
+    dt = t - s.last_t;
+    s.last_t = t;
+  }
+  s.frame = s.spec.frame_id.empty() ? header.frame_id : s.spec.frame_id;
+  const Eigen::Vector3d a = s.baseline.remove(reading, dt);
+  track_quiet(s, a, header.stamp);
+  if (s.topic_diag) s.topic_diag->tick(header.stamp);
+  s.last_stamp = header.stamp;
+  if (verdict == V::First || verdict == V::BackwardJump) {
+    s.have_first = true;
+    s.first_t = t;
+    s.first_a = a;
+    return;
+  }
+  if (s.have_first) {
+    s.dt_nominal = dt;
+    start_items(s, s.first_t, s.first_a);
+    s.have_first = false;
+    s.batch.reset();
+  }
+  if (!s.batch) rebuild_batch(s);  // allocates: only after a (re)start
+  s.mean_dt = s.mean_dt == 0.0 ? dt : 0.99 * s.mean_dt + 0.01 * dt;
+  count_lost_in_transport(s, stamp_dt);
+  if (!s.all_ready) ready_items(s, t, a, header.stamp);
+  step_items(s, a, dt);
+  s.stepped_stamp = header.stamp;  // the input stamp of every ready item (input_stamp())
+  publish_sample_events(s, header.stamp);
+  finish_sample(s, header.stamp, wall_start);
 }
 
 }  // namespace rocking_monitor::live

@@ -189,6 +189,13 @@ class RockingMonitor {
   void on_sample(std::size_t sensor, const std_msgs::Header& header, const Eigen::Vector3d& reading);
   void step_sample(std::size_t sensor, const std_msgs::Header& header, const Eigen::Vector3d& reading,
                    std::chrono::steady_clock::time_point wall_start);
+  // step_sample's steps (monitor_sample_path.cpp)
+  bool admit_stamp(Sensor& s, const std_msgs::Header& header, core::SampleTiming::Verdict& verdict, double& dt);
+  void count_lost_in_transport(Sensor& s, double stamp_dt);
+  void ready_items(Sensor& s, double t, const Eigen::Vector3d& a, const ::ros::Time& stamp);
+  void step_items(Sensor& s, const Eigen::Vector3d& a, double dt);
+  void publish_sample_events(Sensor& s, const ::ros::Time& stamp);
+  void finish_sample(Sensor& s, const ::ros::Time& stamp, std::chrono::steady_clock::time_point wall_start);
   void replay_held(std::size_t sensor, const std_msgs::Header& header);
   bool restamp_suspects(std::size_t sensor, const std_msgs::Header& header);
   static double nominal_period(const Sensor& s);
