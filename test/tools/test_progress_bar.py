@@ -12,6 +12,22 @@ sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
 from progress_bar import add_quiet_flag, progress_bar  # noqa: E402
 
 
+def read_all(master):
+    """Everything the pty holds once its writer has closed. One os.read returns only what has
+    arrived so far (CI saw the first redraw alone), so read until the pty reports its end
+    (EIO on Linux once the slave is closed and drained)."""
+    chunks = []
+    while True:
+        try:
+            chunk = os.read(master, 65536)
+        except OSError:
+            break
+        if not chunk:
+            break
+        chunks.append(chunk)
+    return b"".join(chunks).decode()
+
+
 def draw(stream, quiet=False):
     """Runs a 3-step bar with sys.stderr set to stream."""
     old = sys.stderr
@@ -35,7 +51,7 @@ class ProgressBar(unittest.TestCase):
         try:
             with open(slave, "w", closefd=True) as tty:
                 draw(tty)
-            text = os.read(master, 65536).decode()
+            text = read_all(master)
         finally:
             os.close(master)
         self.assertIn("demo: members", text)
@@ -46,8 +62,8 @@ class ProgressBar(unittest.TestCase):
         try:
             with open(slave, "w", closefd=True) as tty:
                 draw(tty, quiet=True)
-                tty.write("end\n")  # something to read, so the read below does not block
-            text = os.read(master, 65536).decode()
+                tty.write("end\n")
+            text = read_all(master)
         finally:
             os.close(master)
         self.assertEqual(text.strip(), "end")
