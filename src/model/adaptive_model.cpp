@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -53,6 +54,7 @@ const char* to_string(SwitchReason r) {
     case SwitchReason::NearLiftOff: return "rocking reaction near lift-off";
     case SwitchReason::RestHeld: return "contact model at rest for the hold time";
     case SwitchReason::RockHeld: return "pure rocking (sticking pivot) for the hold time";
+    case SwitchReason::SharedFrictionCone: return "the planar pair's shared friction cone exceeded";
   }
   return "unknown";
 }
@@ -221,6 +223,31 @@ double AdaptiveModel::slip() const {
   return active_ == ActiveModel::Contact ? contact_.slip() : rock_slip_;
 }
 
+double AdaptiveModel::slip_velocity() const {
+  if (active_ != ActiveModel::Contact) return 0.0;
+  const ContactMode m = contact_.mode();
+  return m == ContactMode::Slide || m == ContactMode::SlideRock ? contact_.slip_velocity() : 0.0;
+}
+
+double AdaptiveModel::friction_demand(double ax, double ay) const {
+  auto ratio = [](double rx, double ry) {
+    return ry > 0.0 ? std::abs(rx) / ry : std::numeric_limits<double>::infinity();
+  };
+  if (mode() == ContactMode::Overturned) return 0.0;  // the item is down: nothing left to hold
+  if (active_ == ActiveModel::Rocking && rocking_model().mode() == Mode::Rocking) {
+    const ContactReaction r = rocking_model().reaction();
+    return ratio(r.rx, r.ry);
+  }
+  // At rest (or on the contact model, whose rocking reaction is not kept): the ground's demand
+  // on a base that follows it, per unit mass.
+  return ratio(ax, ay + kGravity);
+}
+
+void AdaptiveModel::set_friction_share(double share) {
+  contact_.set_friction_share(share);  // checks the range
+  share_ = contact_.friction_share();
+}
+
 void AdaptiveModel::record(double time, ActiveModel to, SwitchReason reason, double onset) {
   ++outcome_.model_switches;
   report_.switched = true;
@@ -337,10 +364,11 @@ SwitchReason AdaptiveModel::check_rocking(const RockingModel& rock, const StepRe
   if (has(Criterion::SlideFromRest)) return SwitchReason::SlideFromRest;
   if (has(Criterion::SlideAtUplift)) return SwitchReason::SlideAtUplift;
   if (has(Criterion::SlideWhileRocking)) return SwitchReason::SlideWhileRocking;
+  if (share_ < 1.0 && shared_cone_exceeded(rock)) return SwitchReason::SharedFrictionCone;
   // Under the scene guarantee the exact criteria above cannot fire (sliding_bound()); they are
   // still checked so that a broken assumption is never missed, but the early margins are not.
-  if (scene_guarantee_) return SwitchReason::None;
-  const double mu = body_.mu_s();
+  if (scene_guarantee_ && share_ == 1.0) return SwitchReason::None;  // (it assumes the whole budget)
+  const double mu = share_ == 1.0 ? body_.mu_s() : body_.mu_s() * share_;
   if (!std::isinf(mu)) {
     if (r.impacts > 0 && mu < bound_.impact)  // the larger corner's sticking-impact demand
       return SwitchReason::SlipAtImpact;
@@ -354,6 +382,19 @@ SwitchReason AdaptiveModel::check_rocking(const RockingModel& rock, const StepRe
     if (rock.reaction().ry < settings_.lift_off_margin * kGravity) return SwitchReason::NearLiftOff;
   }
   return SwitchReason::None;
+}
+
+// The rocking tier's own criteria use the whole mu_s; with a share of it (the planar pair's other
+// plane slides, or demands friction too) the sample end is checked against mu_s x share. Found, the
+// sample is recomputed by the contact model, which locates the onset inside it.
+bool AdaptiveModel::shared_cone_exceeded(const RockingModel& rock) const {
+  const double mu = body_.mu_s() * share_;
+  if (rock.mode() == Mode::Rocking) {
+    const ContactReaction r = rock.reaction();
+    return std::abs(r.rx) > mu * std::max(r.ry, 0.0);
+  }
+  if (rock.mode() == Mode::Rest) return std::abs(rock.last_ax()) > mu * std::max(rock.last_ay() + kGravity, 0.0);
+  return false;
 }
 
 // A linearized-tier sample stands only if it stayed in small rotation and nothing happened that
@@ -517,7 +558,8 @@ const AdaptiveReport& AdaptiveModel::step(double ax, double ay, double dt) {
     // Back only from REST or ROCK, whatever the hold time (a zero hold must not hand back a body in
     // SLIDE-ROCK or FLIGHT: it would restart upright at rest).
     const ContactMode m = contact_.mode();
-    if (m != ContactMode::Rest && m != ContactMode::Rock) {
+    // Nor while the pair shares the friction budget: the rocking tier assumes all of it.
+    if ((m != ContactMode::Rest && m != ContactMode::Rock) || share_ < 1.0) {
       hold_ = 0.0;
     } else if ((hold_ += dt) >= settings_.hold_time_s) {
       switch_down(m == ContactMode::Rest ? SwitchReason::RestHeld : SwitchReason::RockHeld, ax, ay);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "rocking_monitor/integrate/event_location.hpp"
 
@@ -38,8 +39,20 @@ ContactModel::ContactModel(const Body& body, const ContactSettings& settings)
   mu_s_ = body_.mu_s();
   mu_k_ = std::isnan(body_.parameters().mu_k) ? mu_s_ : body_.parameters().mu_k;
   if (mu_k_ > mu_s_) throw std::invalid_argument("ContactModel: mu_k must not exceed mu_s");
+  mu_s_body_ = mu_s_;
+  mu_k_body_ = mu_k_;
   ig2_ = body_.radius_of_gyration() * body_.radius_of_gyration();
   reset(0.0);
+}
+
+void ContactModel::set_friction_share(double share) {
+  if (!(share >= 0.0 && share <= 1.0))
+    throw std::invalid_argument("ContactModel::set_friction_share: " + std::to_string(share) + " is not in [0, 1]");
+  if (std::isinf(mu_s_body_)) return;  // no friction given: nothing to share
+  share_ = share;
+  // (share 1 gives the body's own coefficients bit for bit: one component alone is today's answer)
+  mu_s_ = share == 1.0 ? mu_s_body_ : mu_s_body_ * share;
+  mu_k_ = share == 1.0 ? mu_k_body_ : mu_k_body_ * share;
 }
 
 void ContactModel::save(Saved& out) const {

@@ -48,6 +48,7 @@ bool parse_solid_choice(const std::string& text, SolidChoice& choice) {
 ItemMonitor::ItemMonitor(const ItemSpec& spec, const Options& options) : spec_(checked(spec)) {
   planes_[0] = std::make_unique<PlaneMonitor>(spec_.body, options);
   if (spec_.two_planes()) planes_[1] = std::make_unique<PlaneMonitor>(y_plane_body(spec_.body, spec_.depth), options);
+  shares_friction_ = planes_[1] && planes_[0]->models_friction() && planes_[1]->models_friction();
   if (spec_.solid && options.solid != SolidChoice::Planar) {
     SolverSettings s = options.solver;
     s.method = Method::Dopri5;  // the 3-D model's only integrator
@@ -138,6 +139,7 @@ const ItemEvents& ItemMonitor::step_planes(double ax, double ay, double az, doub
       solid_active_ = true;
     }
   }
+  share_friction(ax, ay, az, dt, planes, model_done);
   const PlaneEvents* ev[kPlaneCount] = {nullptr, nullptr};
   if (planes & 1u) {
     ev[0] = (model_done & 1u) ? &planes_[0]->step_after_model(ax, az) : &planes_[0]->step(ax, az, dt);
@@ -204,6 +206,23 @@ const ItemEvents& ItemMonitor::step_planes(double ax, double ay, double az, doub
     out.plane = first_plane;
   }
   return events_;
+}
+
+FrictionShare ItemMonitor::friction_share_now(double ax, double ay, double az, double dt) const {
+  const double x0[2] = {last_input_[0][0], last_input_[0][1]}, y0[2] = {last_input_[1][0], last_input_[1][1]};
+  const double x1[2] = {ax, az}, y1[2] = {ay, az};
+  return friction_share(*planes_[0]->adaptive(), *planes_[1]->adaptive(), x0, y0, x1, y1, dt);
+}
+
+// Before a sample: every plane's share of the budget from the state at its start. A plane the batch
+// deferred (not in `planes`), or one whose model it stepped (`model_done`), was below the engaging
+// demand with nothing slipping (MonitorBatch keeps an engaged item's planes stepping together): the
+// whole budget, as without the batch.
+void ItemMonitor::share_friction(double ax, double ay, double az, double dt, unsigned planes, unsigned model_done) {
+  if (!shares_friction_) return;
+  const unsigned all = (1u << kPlaneCount) - 1;
+  const FrictionShare f = planes == all && model_done == 0 ? friction_share_now(ax, ay, az, dt) : FrictionShare{};
+  for (int p = 0; p < kPlaneCount; ++p) planes_[p]->set_friction_share(f.share[p]);
 }
 
 bool ItemMonitor::solid_takes_over() const {

@@ -79,7 +79,9 @@ void MonitorBatch::refresh_planes(std::size_t k, unsigned planes) {
       pl.cs[i] = linear ? 1.0 : pv.cos_alpha;  // uplift_function(): linearized cos -> 1, sin -> alpha
       pl.sn[i] = linear ? pv.alpha : pv.sin_alpha;
     }
-    pl.mu = body.mu_s();
+    // Sharing one budget (friction_share.hpp), a plane is deferred only below the engaging demand:
+    // the item then stays not engaged, and its planes may be deferred each on its own.
+    pl.mu = item.shares_friction_ ? body.mu_s() * kShareEngage : body.mu_s();
     pl.overturned = (adaptive != nullptr ? adaptive->mode() : pm.contact_mode()) == ContactMode::Overturned;
     const SceneEnvelope scene = adaptive != nullptr ? adaptive->settings().scene : SceneEnvelope{};
     pl.scene_h = scene.horizontal;
@@ -91,6 +93,11 @@ void MonitorBatch::refresh_planes(std::size_t k, unsigned planes) {
     pl.ax_prev = item.last_input_[p][0];
     pl.ay_prev = item.last_input_[p][1];
     if (pl.rocking) mirror_rocking(k, p, *adaptive);
+  }
+  if (item_ok && item.friction_engaged()) {
+    // Engaged, the planes share the budget: both step, every sample (a deferred plane's pending
+    // samples, rocking or at rest, are applied as they are by sync_planes first).
+    for (int p = 0; p < lane.planes; ++p) lane.plane[p].eligible = false;
   }
   const bool second = lane.planes > 1 && lane.plane[1].eligible;
   if (lane.solid < 0) {
@@ -158,7 +165,7 @@ void MonitorBatch::mirror_rocking(std::size_t k, int p, const AdaptiveModel& a) 
   // As BatchRocking::refresh_mirror: the model just stepped (or was set up); read once here.
   const std::size_t r = kPlaneCount * k + static_cast<std::size_t>(p);
   const RockingModel& m = a.nonlinear_model();
-  const double mu = m.body().mu_s();
+  const double mu = items_[k]->shares_friction_ ? m.body().mu_s() * kShareEngage : m.body().mu_s();  // (refresh_planes)
   BatchRocking::Lanes& l = rk_;
   l.vr[r] = 1.0;
   BatchRocking::mirror_rocking(l, r, m);

@@ -209,6 +209,9 @@ void PlaneMonitor::report_switch(SwitchReason reason, bool to_contact) {
     case SwitchReason::SlideWhileRocking:
     case SwitchReason::SlipAtImpact:
     case SwitchReason::FrictionNearLimit: id = CriterionId::SlideWhileRocking; break;
+    case SwitchReason::SharedFrictionCone:  // from rest the base slides, else the pivot
+      id = adaptive_->mode() == ContactMode::Slide ? CriterionId::SlideFromRest : CriterionId::SlideWhileRocking;
+      break;
     default: id = last_switch_criterion_; break;  // switch down: clear what switched up
   }
   if (to_contact) last_switch_criterion_ = id;

@@ -254,7 +254,7 @@ void visit(V& v, ContactModel::Saved& s) {
   });
 }
 
-constexpr int kSwitchReasons = static_cast<int>(SwitchReason::RockHeld) + 1;
+constexpr int kSwitchReasons = static_cast<int>(SwitchReason::SharedFrictionCone) + 1;
 constexpr int kActiveModels = static_cast<int>(ActiveModel::Contact) + 1;
 
 template <class V>

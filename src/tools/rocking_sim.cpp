@@ -31,13 +31,20 @@ int main(int argc, char** argv) {
     const sim::Setup s = sim::resolve(app, c);
     const sim::Motions m = sim::read_motions(c, s.two_planes);
 
-    const sim::PlaneRun x = sim::run_plane(c.opt, c.body, m.x, c.history_path);
-    std::optional<sim::PlaneRun> y;
-    if (s.body_y) y = sim::run_plane(c.opt, *s.body_y, *m.y, c.history_y_path);
+    // Two planes with friction share one budget (docs/model.md), as the node steps them.
+    std::optional<sim::PlaneRun> x, y;
+    if (s.body_y && sim::planes_share_friction(c.opt, c.body)) {
+      auto pair = sim::run_plane_pair(c.opt, c.body, *s.body_y, m.x, *m.y, c.history_path, c.history_y_path);
+      x = std::move(pair.first);
+      y = std::move(pair.second);
+    } else {
+      x = sim::run_plane(c.opt, c.body, m.x, c.history_path);
+      if (s.body_y) y = sim::run_plane(c.opt, *s.body_y, *m.y, c.history_y_path);
+    }
     if (s.derived_history_y)  // said once it is written, so a failed run still prints one error line
       std::cerr << "rocking_sim: note: the y plane's history is in " << c.history_y_path
                 << " (--history-y to choose)\n";
-    const rm::ItemVerdict item = rm::combine(x.levels, y ? &y->levels : nullptr);
+    const rm::ItemVerdict item = rm::combine(x->levels, y ? &y->levels : nullptr);
     std::optional<sim::SolidRun> solid;
     if (s.solid_item)
       solid = sim::run_solid(c.opt, *s.solid_item, s.solid_choice, c.bidirectional_ratio, m.x, m.y ? &*m.y : nullptr,
@@ -46,7 +53,7 @@ int main(int argc, char** argv) {
     if (c.samples > 0)
       ensemble = sim::run_ensemble(c.opt, s.item_entry->uncertain, c.samples, c.ensemble_seed, c.alarm_probability,
                                    m.x, m.y ? &*m.y : nullptr);
-    sim::print_result(c.as_json, x, y ? &*y : nullptr, item, s.item_entry ? &*s.item_entry : nullptr,
+    sim::print_result(c.as_json, *x, y ? &*y : nullptr, item, s.item_entry ? &*s.item_entry : nullptr,
                       ensemble ? &*ensemble : nullptr, solid ? &*solid : nullptr);
     return 0;
   } catch (const std::exception& e) {

@@ -13,6 +13,7 @@
 
 #include "rocking_monitor/csv/csv_writer.hpp"
 #include "rocking_monitor/json_text.hpp"
+#include "rocking_monitor/monitoring/friction_share.hpp"
 #include "rocking_monitor/monitoring/simulation.hpp"
 #include "rocking_monitor/physics/criteria.hpp"
 #include "rocking_sim_ensemble.hpp"
@@ -58,41 +59,83 @@ struct FidelityRun {
 
 json nullable_inf(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
-FidelityRun run_fidelity(const rm::Body& body, const rm::AdaptiveSettings& settings,
-                         const rm::GroundMotion& motion, const std::string& history_path) {
-  rm::AdaptiveModel model(body, settings);
-  std::ofstream hist;
-  if (!history_path.empty()) {
-    hist.open(history_path);
-    if (!hist) throw std::runtime_error(history_path + ": cannot open for writing");
-    hist << "time_s,ax_mps2,ay_mps2,model,mode,pivot,theta_rad,omega_radps,slip_m\n";
+// One plane's AdaptiveModel over its record, and its history file (--history, --history-y).
+class FidelityPlane {
+ public:
+  FidelityPlane(const rm::Body& body, const rm::AdaptiveSettings& settings, const rm::GroundMotion& motion,
+                const std::string& history_path)
+      : model_(body, settings), motion_(motion), path_(history_path), writer_(hist_) {
+    if (path_.empty()) return;
+    hist_.open(path_);
+    if (!hist_) throw std::runtime_error(path_ + ": cannot open for writing");
+    hist_ << "time_s,ax_mps2,ay_mps2,model,mode,pivot,theta_rad,omega_radps,slip_m\n";
   }
-  auto ay = [&](std::size_t i) { return motion.vertical.empty() ? 0.0 : motion.vertical[i]; };
-  rm::csv::Writer writer(hist);
-  auto row = [&](std::size_t i) {
-    if (!hist.is_open()) return;
-    writer.number("%.6f", model.time()).number("%.9g", motion.horizontal[i]);
-    writer.number("%.9g", ay(i)).text(rm::to_string(model.active())).text(model.mode_name());
-    writer.value(std::to_string(model.side())).number("%.12g", model.theta());
-    writer.number("%.12g", model.omega()).number("%.12g", model.slip());
-    writer.end_row();
-  };
-  const std::clock_t start = std::clock();  // CPU time, as simulate()
-  model.reset(0.0, motion.horizontal.front(), ay(0));
-  row(0);
-  for (std::size_t i = 1; i < motion.size(); ++i) {
-    model.step(motion.horizontal[i], ay(i), motion.dt);
+  rm::AdaptiveModel& model() { return model_; }
+  double horizontal(std::size_t i) const { return motion_.horizontal[i]; }
+  double vertical(std::size_t i) const { return motion_.vertical.empty() ? 0.0 : motion_.vertical[i]; }
+  double dt() const { return motion_.dt; }
+  void start() {
+    model_.reset(0.0, horizontal(0), vertical(0));
+    row(0);
+  }
+  void step(std::size_t i) {
+    const std::clock_t t0 = std::clock();  // CPU time, as simulate()
+    model_.step(horizontal(i), vertical(i), motion_.dt);
+    cpu_ += std::clock() - t0;
     row(i);
   }
-  FidelityRun r;
-  r.cpu_time_s = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
-  r.outcome = model.outcome();
-  r.final_mode = model.mode_name();
-  r.switches = model.switches();
-  r.initial = model.initial_reason();
-  r.bound = model.sliding_bound();
-  if (hist.is_open() && !hist) throw std::runtime_error(history_path + ": write failed");
-  return r;
+  FidelityRun finish() {
+    FidelityRun r;
+    r.cpu_time_s = static_cast<double>(cpu_) / CLOCKS_PER_SEC;
+    r.outcome = model_.outcome();
+    r.final_mode = model_.mode_name();
+    r.switches = model_.switches();
+    r.initial = model_.initial_reason();
+    r.bound = model_.sliding_bound();
+    if (hist_.is_open() && !hist_) throw std::runtime_error(path_ + ": write failed");
+    return r;
+  }
+
+ private:
+  void row(std::size_t i) {
+    if (!hist_.is_open()) return;
+    writer_.number("%.6f", model_.time()).number("%.9g", horizontal(i));
+    writer_.number("%.9g", vertical(i)).text(rm::to_string(model_.active())).text(model_.mode_name());
+    writer_.value(std::to_string(model_.side())).number("%.12g", model_.theta());
+    writer_.number("%.12g", model_.omega()).number("%.12g", model_.slip());
+    writer_.end_row();
+  }
+  rm::AdaptiveModel model_;
+  const rm::GroundMotion& motion_;
+  std::string path_;
+  std::ofstream hist_;
+  rm::csv::Writer writer_;
+  std::clock_t cpu_ = 0;
+};
+
+FidelityRun run_fidelity(const rm::Body& body, const rm::AdaptiveSettings& settings,
+                         const rm::GroundMotion& motion, const std::string& history_path) {
+  FidelityPlane plane(body, settings, motion, history_path);
+  plane.start();
+  for (std::size_t i = 1; i < motion.size(); ++i) plane.step(i);
+  return plane.finish();
+}
+
+// The two planes in step, sharing one friction budget (monitoring/friction_share.hpp), as the node's
+// ItemMonitor steps them: before each sample the shares from both planes' states at its start.
+std::pair<FidelityRun, FidelityRun> run_fidelity_pair(FidelityPlane& x, FidelityPlane& y, std::size_t samples) {
+  x.start();
+  y.start();
+  for (std::size_t i = 1; i < samples; ++i) {
+    const double x0[2] = {x.horizontal(i - 1), x.vertical(i - 1)}, y0[2] = {y.horizontal(i - 1), y.vertical(i - 1)};
+    const double x1[2] = {x.horizontal(i), x.vertical(i)}, y1[2] = {y.horizontal(i), y.vertical(i)};
+    const rm::FrictionShare f = rm::friction_share(x.model(), y.model(), x0, y0, x1, y1, x.dt());
+    x.model().set_friction_share(f.share[0]);
+    y.model().set_friction_share(f.share[1]);
+    x.step(i);
+    y.step(i);
+  }
+  return {x.finish(), y.finish()};
 }
 
 std::string when(double t) { return std::isnan(t) ? std::string("never") : std::to_string(t) + " s"; }
@@ -269,28 +312,67 @@ void rocking_lines(const rm::SolverSettings& settings, const rm::SimulationResul
 
 // One plane through its record, exactly as the single-plane tool: simulate() for --fidelity rocking,
 // the AdaptiveModel loop for contact / adaptive.
+namespace {
+
+double record_pga(const rm::GroundMotion& motion) {
+  double pga = 0.0;
+  for (double a : motion.horizontal) pga = std::max(pga, std::abs(a));
+  return pga;
+}
+
+std::string record_line(const rm::GroundMotion& motion, double pga) {
+  return format("record      %s (%zu samples, dt %.4g s, PGA %.3f m/s^2)", motion.description.c_str(), motion.size(),
+                motion.dt, pga);
+}
+
+// A plane's lines and JSON from its adaptive run.
+PlaneRun adaptive_plane(const RunOptions& opt, const rm::AdaptiveSettings& as, const FidelityRun& f,
+                        const rm::Body& rigid, const rm::GroundMotion& motion) {
+  PlaneRun run;
+  const double pga = record_pga(motion);
+  run.lines.push_back(record_line(motion, pga));
+  run.levels = level_times(f.outcome);
+  run.out = adaptive_json(opt, as, f, rigid, motion, pga);
+  adaptive_lines(opt, as, f, rigid, run.lines);
+  return run;
+}
+
+}  // namespace
+
 PlaneRun run_plane(const RunOptions& opt, const rm::BodyParameters& params,
                    const rm::GroundMotion& motion, const std::string& history_path) {
   const rm::Body rigid(params);
-  double pga = 0.0;
-  for (double a : motion.horizontal) pga = std::max(pga, std::abs(a));
-  PlaneRun run;
-  run.lines.push_back(format("record      %s (%zu samples, dt %.4g s, PGA %.3f m/s^2)",
-                             motion.description.c_str(), motion.size(), motion.dt, pga));
   if (opt.fidelity != rm::Fidelity::Rocking) {
     const rm::AdaptiveSettings as = adaptive_settings(opt, motion);
-    const FidelityRun f = run_fidelity(rigid, as, motion, history_path);
-    run.levels = level_times(f.outcome);
-    run.out = adaptive_json(opt, as, f, rigid, motion, pga);
-    adaptive_lines(opt, as, f, rigid, run.lines);
-    return run;
+    return adaptive_plane(opt, as, run_fidelity(rigid, as, motion, history_path), rigid, motion);
   }
+  const double pga = record_pga(motion);
+  PlaneRun run;
+  run.lines.push_back(record_line(motion, pga));
   const rm::SimulationResult r = rm::simulate(rigid, opt.settings, motion, !history_path.empty());
   if (!history_path.empty()) write_history(history_path, r);
   run.levels = level_times(r.outcome);
   run.out = rocking_json(opt, r, rigid, motion, pga);
   rocking_lines(opt.settings, r, rigid, run.lines);
   return run;
+}
+
+bool planes_share_friction(const RunOptions& opt, const rm::BodyParameters& x) {
+  return opt.fidelity != rm::Fidelity::Rocking && !std::isinf(rm::Body(x).mu_s());
+}
+
+std::pair<PlaneRun, PlaneRun> run_plane_pair(const RunOptions& opt, const rm::BodyParameters& x,
+                                             const rm::BodyParameters& y, const rm::GroundMotion& mx,
+                                             const rm::GroundMotion& my, const std::string& history_x,
+                                             const std::string& history_y) {
+  if (mx.size() != my.size())  // (read_motions puts both on one grid: the common length, dt within 1e-6)
+    throw std::invalid_argument("the two planes' records differ in length: " +
+                                std::to_string(mx.size()) + " and " + std::to_string(my.size()) + " samples");
+  const rm::Body bx(x), by(y);
+  const rm::AdaptiveSettings ax = adaptive_settings(opt, mx), ay = adaptive_settings(opt, my);
+  FidelityPlane px(bx, ax, mx, history_x), py(by, ay, my, history_y);
+  const auto [fx, fy] = run_fidelity_pair(px, py, mx.size());
+  return {adaptive_plane(opt, ax, fx, bx, mx), adaptive_plane(opt, ay, fy, by, my)};
 }
 
 void print_result(bool as_json, const PlaneRun& x, const PlaneRun* y, const rm::ItemVerdict& item,

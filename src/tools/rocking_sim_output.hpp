@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rocking_monitor/physics/item_verdict.hpp"
@@ -51,6 +52,15 @@ std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
 // the AdaptiveModel loop for contact / adaptive.
 PlaneRun run_plane(const RunOptions& opt, const rm::BodyParameters& params,
                    const rm::GroundMotion& motion, const std::string& history_path);
+/// Whether an item's two planes share one friction budget (the adaptive or contact model with a
+/// friction coefficient): then run_plane_pair, as the node steps them.
+bool planes_share_friction(const RunOptions& opt, const rm::BodyParameters& x);
+/// The x and y planes stepped together under one friction budget (monitoring/friction_share.hpp); the
+/// records of equal length and interval (std::invalid_argument otherwise).
+std::pair<PlaneRun, PlaneRun> run_plane_pair(const RunOptions& opt, const rm::BodyParameters& x,
+                                             const rm::BodyParameters& y, const rm::GroundMotion& mx,
+                                             const rm::GroundMotion& my, const std::string& history_x,
+                                             const std::string& history_y);
 
 /// Prints the answer: with --json one object (the top level is the x plane's single-plane output, then
 /// "planes", "item", "solid" and "ensemble"); else the planes' lines ([x]/[y] with two), the 3-D

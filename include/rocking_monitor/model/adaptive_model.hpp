@@ -43,6 +43,8 @@ enum class SwitchReason : std::uint8_t {
   NearLiftOff,              ///< up: R_y < lift_off_margin g at a sample end while rocking (early, safe)
   RestHeld,                 ///< down: ContactModel at REST for hold_time
   RockHeld,                 ///< down: ContactModel in pure ROCK (sticking pivot) for hold_time
+  SharedFrictionCone,       ///< up: the planar pair's shared budget (mu_s x share) exceeded at a
+                            ///< sample end (monitoring/friction_share.hpp)
 };
 const char* to_string(SwitchReason reason);
 
@@ -182,6 +184,17 @@ class AdaptiveModel {
   double theta() const;
   double omega() const;
   double slip() const;  ///< m, horizontal displacement of the base (constant while rocking)
+  /// m/s: the base's (or the slipping pivot's) velocity on the floor; 0 while the pivot sticks.
+  double slip_velocity() const;
+  /// |R_x| / R_y (dimensionless): the friction coefficient the sticking base or pivot needs now,
+  /// with (ax, ay) the ground's acceleration at this instant (m/s^2); +inf without a normal force.
+  double friction_demand(double ax, double ay) const;
+  /// The planar pair's shared friction budget (issue 51 part 4): from the next step() on, the
+  /// friction this plane may use is mu_s x share, share in [0, 1] (1: today's model, bit for bit).
+  /// Below 1 the rocking tier is checked against it at every sample end (SharedFrictionCone, the
+  /// sample then recomputed by the contact model) and the contact model is kept (no down switch).
+  void set_friction_share(double share);
+  double friction_share() const { return share_; }
   double time() const { return t_; }
   const AdaptiveOutcome& outcome() const { return outcome_; }
   /// Which of its models the next step() runs: 0 the nonlinear rocking model, 1 the linearized
@@ -254,6 +267,7 @@ class AdaptiveModel {
                           int side0, ContactMode mode0);
   void contact_step(double ax, double ay, double dt);
   SwitchReason check_rocking(const RockingModel& m, const StepReport& r) const;
+  bool shared_cone_exceeded(const RockingModel& rock) const;
   const RockingModel& rocking_model() const { return lin_active_ ? lin_ : rock_; }
   bool linearized_sample_stands(const StepReport& r) const;
   bool linearized_step(double ax, double ay, double dt, const RockStart& start);
@@ -279,6 +293,7 @@ class AdaptiveModel {
   double t_ = 0.0, ax_prev_ = 0.0, ay_prev_ = 0.0;
   double hold_ = 0.0;
   double rock_slip_ = 0.0;  // slip while RockingModel runs (constant)
+  double share_ = 1.0;      // the planar pair's share of the friction budget (set every sample)
   std::vector<SwitchRecord> switches_;  // capacity max_switch_records, reserved
   AdaptiveReport report_;
   AdaptiveOutcome outcome_;

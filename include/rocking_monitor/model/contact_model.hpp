@@ -125,6 +125,11 @@ class ContactModel {
   /// (x'^2 + y'^2 + i_g^2 omega^2)/2 + g y, J/kg.
   double energy() const;
   double mu_k() const { return mu_k_; }
+  /// The planar pair's shared friction budget (issue 51 part 4, monitoring/friction_share.hpp):
+  /// from the next step() on, mu_s and mu_k are the body's times `share` in [0, 1] (1: the body's
+  /// own, exactly). The pair sets it before every sample from its state, so it is not saved.
+  void set_friction_share(double share);
+  double friction_share() const { return share_; }
   const ContactReport& last_report() const { return report_; }
   const ContactOutcome& outcome() const { return outcome_; }
   const Body& body() const { return body_; }
@@ -160,6 +165,7 @@ class ContactModel {
   Body body_;
   ContactSettings settings_;
   double mu_s_ = 0.0, mu_k_ = 0.0, ig2_ = 0.0;
+  double mu_s_body_ = 0.0, mu_k_body_ = 0.0, share_ = 1.0;  // the body's own, and the pair's share
   ContactMode mode_ = ContactMode::Rest;
   int side_ = 0;
   int sigma_ = 0;        // slip direction of the base / pivot (+1: +x relative to the ground)

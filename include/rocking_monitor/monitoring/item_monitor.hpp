@@ -6,6 +6,7 @@
 #include "rocking_monitor/model/rocking_3d_model.hpp"
 #include "rocking_monitor/monitoring/item_modes.hpp"
 #include "rocking_monitor/monitoring/item_spec.hpp"
+#include "rocking_monitor/monitoring/friction_share.hpp"
 #include "rocking_monitor/monitoring/plane_monitor.hpp"
 
 namespace rocking_monitor::core {
@@ -95,7 +96,16 @@ class ItemMonitor {
   // Auto: whether the 3-D model takes over at the next step with the running peaks as they are (the
   // item at rest and the shaking bidirectional).
   bool solid_takes_over() const;
+  // The pair's one friction budget (friction_share.hpp): the shares for the next sample (its end's
+  // input (ax, ay, az), dt later) from the planes' states, and whether the planes are engaged (then
+  // both must step; it depends on the state at the sample's start alone).
+  FrictionShare friction_share_now(double ax, double ay, double az, double dt) const;
+  void share_friction(double ax, double ay, double az, double dt, unsigned planes, unsigned model_done);
+  bool friction_engaged() const {
+    return shares_friction_ && friction_share_now(last_input_[0][0], last_input_[1][0], last_input_[1][1], 0.0).engaged;
+  }
   ItemSpec spec_;
+  bool shares_friction_ = false;  // two planes that both model friction
   std::array<std::unique_ptr<PlaneMonitor>, kPlaneCount> planes_;
   std::array<bool, 3> alarmed_{};  // BEYOND_TIPPING, COMMITTED, OVERTURNED reached by the item
   std::array<bool, 3> marked_{};   // levels marked alarmed by mark_alarmed: kept by start()

@@ -100,6 +100,10 @@ class PlaneMonitor {
   OverturnMargin margin() const;
   long impacts() const;
   double slip() const;                 ///< m, base displacement relative to the floor
+  /// Whether this plane models friction (the adaptive model with a finite mu_s): the pair may share it.
+  bool models_friction() const { return adaptive_ && !std::isinf(model_.body().mu_s()); }
+  /// The pair's share of mu_s from the next step on (friction_share.hpp); no effect without friction.
+  void set_friction_share(double share) { if (models_friction()) adaptive_->set_friction_share(share); }
   ContactMode contact_mode() const;    ///< REST, SLIDE, ROCK, SLIDE_ROCK, FLIGHT, OVERTURNED
   const char* active_model() const;    ///< "rocking" or "contact"
   const Body& body() const { return model_.body(); }
