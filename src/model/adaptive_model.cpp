@@ -234,12 +234,17 @@ double AdaptiveModel::friction_demand(double ax, double ay) const {
     return ry > 0.0 ? std::abs(rx) / ry : std::numeric_limits<double>::infinity();
   };
   if (mode() == ContactMode::Overturned) return 0.0;  // the item is down: nothing left to hold
+  // Rocking on a sticking pivot: its reaction, the same on either tier (the pair's shares must not
+  // depend on which model runs the plane).
   if (active_ == ActiveModel::Rocking && rocking_model().mode() == Mode::Rocking) {
     const ContactReaction r = rocking_model().reaction();
     return ratio(r.rx, r.ry);
   }
-  // At rest (or on the contact model, whose rocking reaction is not kept): the ground's demand
-  // on a base that follows it, per unit mass.
+  if (active_ == ActiveModel::Contact && contact_.mode() == ContactMode::Rock) {
+    const ContactReaction r = contact_.rock_reaction();
+    return ratio(r.rx, r.ry);
+  }
+  // At rest: the ground's demand on a base that follows it, per unit mass.
   return ratio(ax, ay + kGravity);
 }
 

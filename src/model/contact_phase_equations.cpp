@@ -74,6 +74,15 @@ void ContactModel::derivative(const GroundInput& in, double tau, const State& s,
   }
 }
 
+ContactReaction ContactModel::rock_reaction() const {
+  const Pivot& pv = body_.pivot(side_);
+  GroundInput in;
+  in.ax0 = ax_prev_;
+  in.ay0 = ay_prev_;
+  const RockingOde ode{&pv, side_, ModelKind::Nonlinear, in};
+  return rocking_reaction(pv, side_, x_[2], x_[3], ode.angular_acceleration(0.0, x_[2]), ax_prev_, ay_prev_);
+}
+
 bool ContactModel::rock_friction_ok(const GroundInput& in, double tau, int side, double& rx) const {
   const Pivot& pv = body_.pivot(side);
   const RockingOde ode{&pv, side, ModelKind::Nonlinear, in};

@@ -125,6 +125,9 @@ class ContactModel {
   /// (x'^2 + y'^2 + i_g^2 omega^2)/2 + g y, J/kg.
   double energy() const;
   double mu_k() const { return mu_k_; }
+  /// In ROCK: the ground's reaction on the sticking pivot now (per unit mass, m/s^2), with the last
+  /// input; as RockingModel::reaction() gives it for the same state (the nonlinear equation).
+  ContactReaction rock_reaction() const;
   /// The planar pair's shared friction budget (issue 51 part 4, monitoring/friction_share.hpp):
   /// from the next step() on, mu_s and mu_k are the body's times `share` in [0, 1] (1: the body's
   /// own, exactly). The pair sets it before every sample from its state, so it is not saved.
