@@ -42,7 +42,7 @@ void set_limits(httplib::Server& server, int keep_alive_timeout_s, int keep_aliv
     const bool reads_body = req.method == "POST" || req.method == "PUT" || req.method == "PATCH" || req.method == "PRI";
     if (req.has_header("Transfer-Encoding") || (reads_body && !req.has_header("Content-Length"))) {
       res.status = 411;  // Length Required: a body's size must be known before it is read
-      res.set_content("the dashboard takes no request bodies; a body needs Content-Length\n", "text/plain");
+      res.set_content("a request body needs Content-Length (its size is checked before it is read)\n", "text/plain");
       return httplib::Server::HandlerResponse::Handled;
     }
     return httplib::Server::HandlerResponse::Unhandled;
