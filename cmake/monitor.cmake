@@ -146,6 +146,8 @@ if(CPP_HTTPLIB_FOUND)
     add_dependencies(test_dashboard dashboard monitor)
     add_rostest(test/ros/dashboard_restart.test DEPENDENCIES dashboard monitor)
     add_rostest(test/ros/dashboard_ensemble.test DEPENDENCIES test_dashboard)
+    # Issue 54: idle connections and oversize or unsized bodies do not starve the page (Python, raw sockets).
+    add_rostest(test/ros/dashboard_limits.test DEPENDENCIES dashboard)
     # The page in a real browser (Debian chromium, scripts/install_deps.sh); skipped with a notice without it.
     find_program(CHROMIUM_EXECUTABLE chromium)
     if(CHROMIUM_EXECUTABLE)

@@ -38,4 +38,6 @@ endif()
 
 if(catkin_FOUND AND CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/seedlink_bridge_bad_params.test DEPENDENCIES seedlink_bridge)
+  # Issue 52 item 3: an overlapping record with other samples through the test server (the bundled pulse).
+  add_rostest(test/ros/seedlink_conflict.test DEPENDENCIES seedlink_bridge record_to_mseed)
 endif()

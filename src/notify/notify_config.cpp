@@ -127,7 +127,7 @@ void parse_password(const Ctx& c, const YAML::Node& n, const std::string& f, Cha
   }
 }
 
-// TLS settings of an smtp or webhook channel: ca_file must be readable now (not at the first alarm);
+// TLS settings of an smtp or webhook channel, or an mqtt one with tls: true: ca_file must be readable now (not at the first alarm);
 // verify_tls false is said at every start.
 void parse_tls(const Ctx& c, const YAML::Node& n, const std::string& f, ChannelConfig& ch,
                std::vector<std::string>& warnings) {
@@ -161,7 +161,7 @@ ChannelConfig parse_channel(const Ctx& c, const std::string& name, const YAML::N
   } else if (type == "mqtt") {
     ch.type = ChannelType::Mqtt;
     c.known_keys(n, f, {"type", "host", "port", "topic_prefix", "client_id", "qos", "retain", "username", "password",
-                        "password_file", "password_env", "timeout"});
+                        "password_file", "password_env", "timeout", "tls", "verify_tls", "ca_file"});
   } else {
     c.fail(n["type"].IsDefined() ? n["type"] : n, f + ".type",
            type.empty() ? "missing (smtp, webhook or mqtt)" : "unknown channel type '" + type + "' (smtp, webhook or mqtt)");
@@ -169,7 +169,13 @@ ChannelConfig parse_channel(const Ctx& c, const std::string& name, const YAML::N
   ch.timeout = c.positive(n, "timeout", f + ".timeout", ch.timeout);
   ch.username = c.get<std::string>(n, "username", f + ".username", "");
   parse_password(c, n, f, ch, warnings);
-  if (ch.type != ChannelType::Mqtt) parse_tls(c, n, f, ch, warnings);  // MQTT here is without TLS (docs/notify.md)
+  if (ch.type == ChannelType::Mqtt) {
+    // MQTT is plain unless tls: true; a CA or verify_tls without it would look checked and not be.
+    ch.tls = c.get<bool>(n, "tls", f + ".tls", false);
+    for (const char* k : {"verify_tls", "ca_file"})
+      if (!ch.tls && n[k].IsDefined()) c.fail(n[k], f + "." + k, "only with tls: true (this channel is plain MQTT)");
+  }
+  if (ch.type != ChannelType::Mqtt || ch.tls) parse_tls(c, n, f, ch, warnings);
   if (ch.type == ChannelType::Smtp || ch.type == ChannelType::Webhook) {
     ch.url = c.get<std::string>(n, "url", f + ".url", "");
     const std::string scheme = url_scheme(ch.url);
@@ -190,7 +196,7 @@ ChannelConfig parse_channel(const Ctx& c, const std::string& name, const YAML::N
     ch.host = c.get<std::string>(n, "host", f + ".host", "");
     if (ch.host.empty() || ch.host.find_first_of(" /:") != std::string::npos)
       c.fail(n["host"], f + ".host", ch.host.empty() ? "missing (the broker's host name or address)" : "bad host '" + ch.host + "'");
-    ch.port = c.get<int>(n, "port", f + ".port", 1883);
+    ch.port = c.get<int>(n, "port", f + ".port", ch.tls ? 8883 : 1883);
     if (ch.port < 1 || ch.port > 65535) c.fail(n["port"], f + ".port", "must be 1..65535, got " + std::to_string(ch.port));
     ch.topic_prefix = c.get<std::string>(n, "topic_prefix", f + ".topic_prefix", ch.topic_prefix);
     if (ch.topic_prefix.empty() || ch.topic_prefix.find_first_of("+#") != std::string::npos || ch.topic_prefix.back() == '/')

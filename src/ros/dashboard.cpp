@@ -155,7 +155,7 @@ void Dashboard::load_catalogue() {
 }
 
 bool Dashboard::init() {
-  if (!load_parameters()) return false;
+  if (!load_parameters() || !load_server_limits()) return false;
   load_catalogue();
   read_journal();
   if (!start_server()) return false;

@@ -7,13 +7,63 @@
 #include <httplib.h>
 
 namespace rocking_monitor::live {
+namespace {
+
+// An integer parameter within [lo, hi]; false (after a ROS_FATAL naming it, its unit and its range)
+// when it has another type or lies outside.
+bool int_param(const ::ros::NodeHandle& pnh, const char* name, int lo, int hi, const char* unit, int& out) {
+  XmlRpc::XmlRpcValue v;
+  if (pnh.getParam(name, v)) {
+    if (v.getType() != XmlRpc::XmlRpcValue::TypeInt) {
+      ROS_FATAL("dashboard: parameter ~%s has the wrong type (expected an integer, %s)", name, unit);
+      return false;
+    }
+    out = static_cast<int>(v);
+  }
+  if (out < lo || out > hi) {
+    ROS_FATAL("dashboard: ~%s = %d %s must be in [%d, %d]", name, out, unit, lo, hi);
+    return false;
+  }
+  return true;
+}
+
+// Issue 54: no client may hold a pool thread or memory without bound. cpp-httplib 0.11.4 (Debian 12)
+// gives each connection one pool thread while it is open, so idle keep-alive connections are closed
+// after keep_alive_timeout_s. It checks Content-Length bodies against the payload limit (413, the
+// body discarded as read, never stored), but reads a chunked body, or a POST without a length until the
+// peer closes, into memory without any limit: those are refused before the library reads them.
+void set_limits(httplib::Server& server, int keep_alive_timeout_s, int keep_alive_max_requests, int read_timeout_s,
+                int max_request_body_bytes) {
+  server.set_keep_alive_timeout(keep_alive_timeout_s);
+  server.set_keep_alive_max_count(static_cast<std::size_t>(keep_alive_max_requests));
+  server.set_read_timeout(read_timeout_s, 0);
+  server.set_payload_max_length(static_cast<std::size_t>(max_request_body_bytes));
+  server.set_pre_routing_handler([](const httplib::Request& req, httplib::Response& res) {
+    const bool reads_body = req.method == "POST" || req.method == "PUT" || req.method == "PATCH" || req.method == "PRI";
+    if (req.has_header("Transfer-Encoding") || (reads_body && !req.has_header("Content-Length"))) {
+      res.status = 411;  // Length Required: a body's size must be known before it is read
+      res.set_content("a request body needs Content-Length (its size is checked before it is read)\n", "text/plain");
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    return httplib::Server::HandlerResponse::Unhandled;
+  });
+}
+
+}  // namespace
+
+bool Dashboard::load_server_limits() {
+  return int_param(pnh_, "keep_alive_timeout_s", 1, 3600, "s", keep_alive_timeout_s_) &&
+         int_param(pnh_, "keep_alive_max_requests", 1, 100000, "requests", keep_alive_max_requests_) &&
+         int_param(pnh_, "read_timeout_s", 1, 3600, "s", read_timeout_s_) &&
+         int_param(pnh_, "max_request_body_bytes", 0, 64 << 20, "bytes", max_request_body_bytes_);
+}
 
 bool Dashboard::start_server() {
   server_ = std::make_unique<httplib::Server>();
   // Each SSE stream holds one thread for its lifetime: room for max_clients_ streams plus page loads.
   const std::size_t threads = static_cast<std::size_t>(max_clients_) + 4;
   server_->new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
-  server_->set_keep_alive_max_count(100);
+  set_limits(*server_, keep_alive_timeout_s_, keep_alive_max_requests_, read_timeout_s_, max_request_body_bytes_);
 
   auto asset = [](const char* body, const char* type) {
     return [body, type](const httplib::Request&, httplib::Response& res) {

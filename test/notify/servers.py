@@ -5,13 +5,14 @@ appended to LOG as one JSON line and fsync'd before the server acknowledges it, 
 the server accepted. Prints "ready PORT" when it listens.
 
   servers.py smtp|http PORT LOG [--die-at N] [--reject TEXT] [--fail-first K]
-             [--starttls CERT KEY] [--login USER:PASSWORD] [--tls CERT KEY]
+             [--starttls CERT KEY] [--smtps CERT KEY] [--login USER:PASSWORD] [--tls CERT KEY]
 
 --die-at N      the N-th message (counting from 1 over this process's life) kills the server before
                 it is stored or acknowledged: a crash in the middle of a delivery
 --reject TEXT   SMTP: refuse every recipient containing TEXT with 550 (a permanent error with a reason)
 --fail-first K  HTTP: answer the first K POSTs with 503 and a reason in the body
 --starttls      SMTP: require STARTTLS with this certificate and key before anything else
+--smtps         SMTP: TLS from the first byte (smtps://) with this certificate and key
 --login         SMTP: require AUTH (LOGIN or PLAIN) with this user and password (after STARTTLS)
 --tls           HTTP: HTTPS with this certificate and key (a webhook over TLS)
 """
@@ -44,6 +45,7 @@ def main():
     p.add_argument('--starttls', nargs=2, metavar=('CERT', 'KEY'))
     p.add_argument('--login', default='')
     p.add_argument('--tls', nargs=2, metavar=('CERT', 'KEY'))
+    p.add_argument('--smtps', nargs=2, metavar=('CERT', 'KEY'))
     a = p.parse_args()
     seen = [0]
 
@@ -68,7 +70,7 @@ def main():
                 append(a.log, {'id': msg['Message-ID'], 'to': envelope.rcpt_tos, 'from': envelope.mail_from,
                                'subject': str(msg['Subject']), 'body': msg.get_content(),
                                'headers': list(msg.keys()), 'content_type': msg.get_content_type(),
-                               'tls': session.ssl is not None, 'authenticated': bool(session.authenticated)})
+                               'tls': session.ssl is not None or server.transport.get_extra_info('ssl_object') is not None, 'authenticated': bool(session.authenticated)})
                 return '250 OK queued'
 
         options = {}
@@ -77,6 +79,11 @@ def main():
             context = ssl.create_default_context(ssl.Purpose.CLIENT_AUTH)
             context.load_cert_chain(*a.starttls)
             options.update(tls_context=context, require_starttls=True)
+        if a.smtps:  # TLS from the first byte (smtps://, port 465's way), no STARTTLS
+            import ssl
+            context = ssl.SSLContext(ssl.PROTOCOL_TLS_SERVER)
+            context.load_cert_chain(*a.smtps)
+            options.update(ssl_context=context)
         if a.login:
             from aiosmtpd.smtp import AuthResult
             user, password = a.login.split(':', 1)

@@ -146,6 +146,21 @@ inline std::unique_ptr<Process> start_mosquitto(int port, const std::string& dir
   return p;
 }
 
+/// mosquitto with a plain listener on `port` (the test's subscriber) and a TLS one on `tls_port` under
+/// `cert` and `key` (the notifier's), in `dir`. Waits until both ports answer.
+inline std::unique_ptr<Process> start_mosquitto_tls(int port, int tls_port, const std::string& dir, const std::string& cert,
+                                                    const std::string& key) {
+  const std::string conf = dir + "/mosquitto_tls.conf";
+  std::ofstream(conf) << "per_listener_settings false\nallow_anonymous true\nlog_dest none\n"
+                      << (::geteuid() == 0 ? "user root\n" : "")
+                      << "listener " << port << " 127.0.0.1\n"
+                      << "listener " << tls_port << " 127.0.0.1\ncertfile " << cert << "\nkeyfile " << key << "\n";
+  auto p = std::make_unique<Process>(std::vector<std::string>{"/usr/sbin/mosquitto", "-c", conf}, false);
+  if (!wait_for([&] { return port_open(port) && port_open(tls_port); }))
+    throw std::runtime_error("mosquitto did not start on " + std::to_string(port) + " and " + std::to_string(tls_port));
+  return p;
+}
+
 /// The JSON lines of a server log (what the server accepted). Only complete lines: the server may
 /// be writing the last one while the test reads (a cut line was a parse error, found in a CI run);
 /// the tests poll, so it is read whole the next time.

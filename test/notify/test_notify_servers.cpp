@@ -319,11 +319,11 @@ TEST_F(NotifyServers, StartTlsAndLogin) {
   EXPECT_EQ(mail["subject"], "[rocking monitor] 1 item COMMITTED: vase_1");
 }
 
-// Issue 52 item 5: TLS checked against a certificate authority the test makes (openssl): the HTTPS
-// webhook and SMTP STARTTLS deliver with the CA that signed the server's certificate in ca_file, and
-// refuse with a clear error under another CA (nothing reaches the server).
-TEST_F(NotifyServers, TlsIsCheckedAgainstTheCaFile) {
-  const std::string ca = dir + "/ca.pem", other_ca = dir + "/other_ca.pem", cert = dir + "/server.pem", key = dir + "/server.key";
+namespace {
+
+// A certificate authority made for the test (openssl) in dir: ca.pem signed server.pem (key server.key)
+// for 127.0.0.1; other_ca.pem is another CA, which did not. Whether the command succeeded.
+bool make_test_ca(const std::string& dir) {
   std::ofstream(dir + "/san.ext") << "subjectAltName=IP:127.0.0.1\n";
   const std::string q = " >/dev/null 2>&1 && ";
   const std::string make =
@@ -331,7 +331,17 @@ TEST_F(NotifyServers, TlsIsCheckedAgainstTheCaFile) {
       "openssl req -x509 -newkey rsa:2048 -nodes -subj '/CN=another CA' -days 1 -keyout other_ca.key -out other_ca.pem" + q +
       "openssl req -newkey rsa:2048 -nodes -subj /CN=127.0.0.1 -keyout server.key -out server.csr" + q +
       "openssl x509 -req -in server.csr -CA ca.pem -CAkey ca.key -CAcreateserial -days 1 -extfile san.ext -out server.pem >/dev/null 2>&1";
-  ASSERT_EQ(std::system(make.c_str()), 0) << make;
+  return std::system(make.c_str()) == 0;
+}
+
+}  // namespace
+
+// Issue 52 item 5: TLS checked against a certificate authority the test makes (openssl): the HTTPS
+// webhook and SMTP STARTTLS deliver with the CA that signed the server's certificate in ca_file, and
+// refuse with a clear error under another CA (nothing reaches the server).
+TEST_F(NotifyServers, TlsIsCheckedAgainstTheCaFile) {
+  const std::string ca = dir + "/ca.pem", other_ca = dir + "/other_ca.pem", cert = dir + "/server.pem", key = dir + "/server.key";
+  ASSERT_TRUE(make_test_ca(dir));
   auto http = start_server("http", http_port, http_log, {"--tls", cert, key});
   auto smtp = start_server("smtp", smtp_port, smtp_log, {"--starttls", cert, key});
   auto yaml = [&](const std::string& ca_file) {
@@ -361,4 +371,97 @@ TEST_F(NotifyServers, TlsIsCheckedAgainstTheCaFile) {
   ASSERT_TRUE(wait_for([&] { return read_log(http_log).size() == 1 && read_log(smtp_log).size() == 1; }));
   EXPECT_EQ(read_log(http_log)[0]["alarms"][0]["item"], "vase_1");
   EXPECT_EQ(read_log(smtp_log)[0]["tls"], true);
+}
+
+// Issue 52 item 5, the two paths left: smtps:// (TLS from the first byte, aiosmtpd with an SSL context)
+// and MQTT over TLS (mosquitto's TLS listener), under the test's CA. Another CA is refused with the
+// TLS library's reason and nothing reaches either server; the right one delivers.
+TEST_F(NotifyServers, SmtpsAndMqttOverTlsAreCheckedAgainstTheCaFile) {
+  const std::string ca = dir + "/ca.pem", other_ca = dir + "/other_ca.pem", cert = dir + "/server.pem", key = dir + "/server.key";
+  ASSERT_TRUE(make_test_ca(dir));
+  const int tls_port = free_port();
+  auto smtp = start_server("smtp", smtp_port, smtp_log, {"--smtps", cert, key});
+  auto broker = start_mosquitto_tls(mqtt_port, tls_port, dir, cert, key);
+  MqttRecorder rec(mqtt_port, "store/#");  // over the plain listener: what the broker received
+  auto yaml = [&](const std::string& ca_file, const std::string& outbox) {
+    return "channels:\n  mail: {type: smtp, url: 'smtps://127.0.0.1:" + std::to_string(smtp_port) +
+           "', from: monitor@test.example, ca_file: " + ca_file + ", timeout: 5}\n"
+           "  bms: {type: mqtt, host: 127.0.0.1, port: " + std::to_string(tls_port) + ", tls: true, ca_file: " + ca_file +
+           ", topic_prefix: store, client_id: " + outbox + ", timeout: 5}\n"
+           "retry: {initial: 0.02, max: 0.1}\nrecipients:\n  - {name: curator, channel: mail, to: curator@test.example}\n"
+           "  - {name: building, channel: bms}\n";
+  };
+  {
+    const NotifyConfig c = parse_notify_config(yaml(other_ca, "other"), "tls.yaml");
+    EXPECT_TRUE(c.warnings.empty());
+    Notifier n(c, dir + "/outbox_other.jsonl", make_channel, 1000.0);
+    n.accept(alarm("vase_1", kCommitted, 100.0, 1), 1000.0);
+    ASSERT_EQ(n.tick(1000.0), "");
+    ASSERT_TRUE(wait_for([&] { return !channel_error(n, "mail").empty() && !channel_error(n, "bms").empty(); }));
+    EXPECT_NE(channel_error(n, "mail").find("SSL certificate problem"), std::string::npos) << channel_error(n, "mail");
+    EXPECT_NE(channel_error(n, "bms").find("certificate verify failed"), std::string::npos) << channel_error(n, "bms");
+    for (const char* ch : {"mail", "bms"}) std::printf("[ refused  ] %s\n", channel_error(n, ch).c_str());
+    EXPECT_TRUE(read_log(smtp_log).empty());
+  }
+  Notifier n(parse_notify_config(yaml(ca, "right"), "tls.yaml"), dir + "/outbox.jsonl", make_channel, 1000.0);
+  n.accept(alarm("vase_1", kCommitted, 100.0, 1), 1000.0);
+  ASSERT_EQ(n.tick(1000.0), "");
+  ASSERT_TRUE(wait_for([&] { return read_log(smtp_log).size() == 1 && rec.got().count("store/vase_1/state") == 1; }));
+  EXPECT_EQ(read_log(smtp_log)[0]["tls"], true);
+  EXPECT_EQ(rec.got()["store/vase_1/state"], std::vector<std::string>{"COMMITTED"}) << "the wrong CA's attempt published nothing";
+  EXPECT_EQ(channel_error(n, "bms"), "");
+}
+
+// MQTT's verify_tls: false: TLS without checking (the test's CA is in no system store), said at start.
+TEST_F(NotifyServers, MqttOverTlsWithoutVerificationDeliversAndWarns) {
+  const std::string cert = dir + "/server.pem", key = dir + "/server.key";
+  ASSERT_TRUE(make_test_ca(dir));
+  const int tls_port = free_port();
+  auto broker = start_mosquitto_tls(mqtt_port, tls_port, dir, cert, key);
+  MqttRecorder rec(mqtt_port, "store/#");
+  const NotifyConfig c = parse_notify_config(
+      "channels:\n  bms: {type: mqtt, host: 127.0.0.1, port: " + std::to_string(tls_port) +
+          ", tls: true, verify_tls: false, topic_prefix: store, timeout: 5}\n"
+          "retry: {initial: 0.02, max: 0.1}\nrecipients:\n  - {name: building, channel: bms}\n",
+      "tls.yaml");
+  ASSERT_EQ(c.warnings.size(), 1u);
+  EXPECT_NE(c.warnings[0].find("verify_tls: false"), std::string::npos) << c.warnings[0];
+  {  // and without tls: true it is plain MQTT: verify_tls there is refused, not silently ignored
+    const std::string plain = "channels:\n  bms: {type: mqtt, host: 127.0.0.1, verify_tls: false}\n"
+                              "recipients:\n  - {name: building, channel: bms}\n";
+    try {
+      parse_notify_config(plain, "plain.yaml");
+      ADD_FAILURE() << "verify_tls without tls accepted";
+    } catch (const std::exception& e) {
+      EXPECT_NE(std::string(e.what()).find("only with tls: true"), std::string::npos) << e.what();
+    }
+  }
+  Notifier n(c, dir + "/outbox.jsonl", make_channel, 1000.0);
+  n.accept(alarm("vase_1", kCommitted, 100.0, 1), 1000.0);
+  ASSERT_EQ(n.tick(1000.0), "");
+  ASSERT_TRUE(wait_for([&] { return rec.got().count("store/vase_1/state") == 1; }));
+}
+
+// The host name is checked too: a certificate from the right CA but issued for another name is refused.
+TEST_F(NotifyServers, MqttOverTlsRefusesACertificateForAnotherHost) {
+  ASSERT_TRUE(make_test_ca(dir));
+  std::ofstream(dir + "/other.ext") << "subjectAltName=DNS:other.example\n";
+  const std::string make = "cd " + dir + " && openssl req -newkey rsa:2048 -nodes -subj /CN=other.example -keyout other.key "
+                           "-out other.csr >/dev/null 2>&1 && openssl x509 -req -in other.csr -CA ca.pem -CAkey ca.key "
+                           "-CAcreateserial -days 1 -extfile other.ext -out other.pem >/dev/null 2>&1";
+  ASSERT_EQ(std::system(make.c_str()), 0) << make;
+  const int tls_port = free_port();
+  auto broker = start_mosquitto_tls(mqtt_port, tls_port, dir, dir + "/other.pem", dir + "/other.key");
+  MqttRecorder rec(mqtt_port, "store/#");
+  Notifier n(parse_notify_config("channels:\n  bms: {type: mqtt, host: 127.0.0.1, port: " + std::to_string(tls_port) +
+                                     ", tls: true, ca_file: " + dir + "/ca.pem, topic_prefix: store, timeout: 5}\n"
+                                     "retry: {initial: 0.02, max: 0.1}\nrecipients:\n  - {name: building, channel: bms}\n",
+                                 "tls.yaml"),
+             dir + "/outbox.jsonl", make_channel, 1000.0);
+  n.accept(alarm("vase_1", kCommitted, 100.0, 1), 1000.0);
+  ASSERT_EQ(n.tick(1000.0), "");
+  ASSERT_TRUE(wait_for([&] { return !channel_error(n, "bms").empty(); }));
+  EXPECT_NE(channel_error(n, "bms").find("host name verification failed"), std::string::npos) << channel_error(n, "bms");
+  std::printf("[ refused  ] %s\n", channel_error(n, "bms").c_str());
+  EXPECT_TRUE(rec.got().empty());
 }

@@ -23,6 +23,8 @@ Faults for the bridge's tests:
   --realtime       release each record at its own end time (data time = wall time), for latency
   --inject-at N    before packet N (this run only): one malformed header ("SL" + non-hex) and the
                    previous packet again under its old sequence number (a wrong sequence number)
+  --conflict-at N  packet N of the first station is a copy of the record before it with every sample
+                   1000 counts larger (int32 records only): an overlap with other values, on every run
 """
 import argparse
 import calendar
@@ -63,7 +65,20 @@ def record_info(rec):
     return net, sta, chan, start, start + nsamp / rate
 
 
-def load(paths, unknown_at):
+def conflicting_copy(rec):
+    """The record with every int32 sample 1000 counts larger: same channel and times, other values."""
+    if rec[52] != 3:
+        sys.exit('--conflict-at needs int32 records (record_to_mseed --encoding int32), not encoding %d' % rec[52])
+    nsamp = struct.unpack('>H', rec[30:32])[0]
+    begin = struct.unpack('>H', rec[44:46])[0]
+    order = '>' if rec[53] == 1 else '<'  # blockette 1000's word order
+    samples = struct.unpack(order + '%di' % nsamp, rec[begin:begin + 4 * nsamp])
+    out = bytearray(rec)
+    out[begin:begin + 4 * nsamp] = struct.pack(order + '%di' % nsamp, *(v + 1000 for v in samples))
+    return bytes(out)
+
+
+def load(paths, unknown_at, conflict_at=0):
     """Packets in serving order: dicts with station key, seq, record, release offset (s of data)."""
     packets, seqs = [], {}
     first_key = None
@@ -81,6 +96,10 @@ def load(paths, unknown_at):
                 bad[52] = 99  # blockette 1000's encoding byte (libmseed puts 1000 at offset 48)
                 seqs[key] = seqs.get(key, 0) + 1
                 packets.append(dict(key=key, seq=seqs[key], record=bytes(bad), end=packets[-1]['end']))
+            if key == first_key and conflict_at and seqs.get(key, 0) + 1 == conflict_at:
+                seqs[key] = seqs.get(key, 0) + 1
+                packets.append(dict(key=key, seq=seqs[key], record=conflicting_copy(packets[-1]['record']),
+                                    end=packets[-1]['end']))
             seqs[key] = seqs.get(key, 0) + 1
             packets.append(dict(key=key, seq=seqs[key], record=rec, end=end))
     t0 = min(p['end'] for p in packets)
@@ -200,9 +219,10 @@ def main():
                     help='release each record at its end data time (wall clock), as a live recorder sends it')
     ap.add_argument('--unknown-at', type=int, default=0)
     ap.add_argument('--inject-at', type=int, default=0)
+    ap.add_argument('--conflict-at', type=int, default=0)
     ap.add_argument('files', nargs='+')
     args = ap.parse_args()
-    packets = load(args.files, args.unknown_at)
+    packets = load(args.files, args.unknown_at, args.conflict_at)
     signal.signal(signal.SIGTERM, lambda *_: sys.exit(0))
     srv = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
     srv.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)

@@ -31,10 +31,11 @@ struct ChannelConfig {
   std::string username, password;  ///< SMTP AUTH LOGIN/PLAIN (empty: none); MQTT username/password
                                    ///< (from `password`, `password_file` or `password_env`)
   bool verify_tls = true;       ///< check the server's certificate
-  std::string ca_file;          ///< smtp, webhook: PEM certificates to check the server's against (empty: the system's)
+  std::string ca_file;          ///< PEM certificates to check the server's against (empty: the system's)
   // mqtt
   std::string host;
-  int port = 1883;
+  int port = 1883;              ///< 8883 with tls (MQTT's TLS port)
+  bool tls = false;             ///< MQTT over TLS (verify_tls and ca_file as for smtp and webhook)
   std::string topic_prefix = "rocking_monitor";
   std::string client_id = "rocking_monitor_notifier";
   int qos = 1;                  ///< 1 or 2 (0 would not be acknowledged, so never known delivered)

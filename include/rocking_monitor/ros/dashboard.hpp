@@ -127,6 +127,8 @@ class Dashboard {
   static nlohmann::json alarm_json(const OverturnAlarm& a);
 
   // ---- HTTP server (dashboard_http.cpp)
+  /// ~keep_alive_timeout_s, ~keep_alive_max_requests, ~read_timeout_s, ~max_request_body_bytes (issue 54).
+  bool load_server_limits();
   bool start_server();
   void stop_server();
 
@@ -149,6 +151,11 @@ class Dashboard {
   std::string pair_;  // ~pair: the other monitor of a redundant pair (launch/monitor_pair.launch); "" = none
   double update_rate_ = 10.0;  // Hz, at most 10: deltas to the page
   int max_clients_ = 8;        // SSE connections at once (each holds one HTTP thread)
+  // Issue 54: what one client may hold. A connection, idle or not, holds one pool thread.
+  int keep_alive_timeout_s_ = 5;       // s without a new request before an idle connection is closed
+  int keep_alive_max_requests_ = 100;  // requests on one connection before it is closed
+  int read_timeout_s_ = 5;             // s a receive may wait mid-request (per receive: no whole-request deadline)
+  int max_request_body_bytes_ = 0;     // bytes; the dashboard takes no bodies: any larger one is 413
   std::string url_;
   std::string sensor_topic_;  // ~sensor_topic; empty: the first sensor of the monitor's catalogue
   std::string sensor_type_ = "imu";  // ~sensor_type with ~sensor_topic: imu | accel
