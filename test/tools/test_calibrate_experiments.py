@@ -337,6 +337,12 @@ class UrdfCentre(unittest.TestCase):
                                                  "com": ["stated", "homogeneous", "urdf"]}}}, "g")
         self.assertEqual(sorted({geo["com"] for geo, _ in g["points"]["SP2"]}), ["homogeneous", "stated", "urdf"])
         self.assertEqual(len(g["points"]["SP2"]), 6)
+        # the grid file of docs/validation.md's run: SP2 on the azimuth grid with the three centres
+        path = os.path.join(HERE, "..", "..", "config", "calibration_grid_3d_azimuth_sp2_urdf.json")
+        g = ce.parse_grid(ce.load_grid_file(path), path)
+        self.assertEqual(list(g["points"]), ["SP2"])
+        self.assertEqual(len(g["points"]["SP2"]), 6 * 3 * 12)
+        self.assertEqual(sum(geo["com"] == "urdf" for geo, _ in g["points"]["SP2"]), 6 * 12)
         a = ce.parser().parse_args(["--granite", "d", "--experiments", "x", "--cache-dir", "c", "--out-dir", "o",
                                     "--com", "stated", "homogeneous", "urdf"])
         self.assertEqual(ce.grid_from_flags(a)["specimens"]["SP2"]["com"], ["stated", "homogeneous", "urdf"])
