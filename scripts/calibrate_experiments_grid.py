@@ -9,6 +9,9 @@ import shlex
 
 from calibrate_experiments_fit import CalibrationError
 
+# A specimen's centre of mass on the grid: the data's stated one, the homogeneous mesh's, or the one the
+# Virtual Shake Robot's URDF simulates (rocking_geometry.py --urdf-com; SP2: the stated one's opposite)
+COM_CANDIDATES = ("stated", "homogeneous", "urdf")
 
 
 # ================================================================ the grid
@@ -71,8 +74,8 @@ def parse_grid(doc, where="grid"):
         if not isinstance(tols, list) or not tols or not all(isinstance(t, (int, float)) and t >= 0 for t in tols):
             raise CalibrationError(f"{w}: contact_tolerance_mm: a non-empty list of numbers >= 0")
         coms = s.get("com", ["stated"])
-        if not isinstance(coms, list) or not coms or not all(c in ("stated", "homogeneous") for c in coms):
-            raise CalibrationError(f"{w}: com: a non-empty list of 'stated' / 'homogeneous'")
+        if not isinstance(coms, list) or not coms or not all(c in COM_CANDIDATES for c in coms):
+            raise CalibrationError(f"{w}: com: a non-empty list of 'stated' / 'homogeneous' / 'urdf'")
         shifts = s.get("com_shift_mm", [[0, 0]])
         if not isinstance(shifts, list) or not shifts or not all(
                 isinstance(d, list) and len(d) == 2 and all(isinstance(x, (int, float)) for x in d) for d in shifts):

@@ -108,6 +108,14 @@ GRANITE = {
     "SP2": {"mesh": "specimens/SP2.obj.gz", "quaternion": (0.0, 0.0, 0.0, 1.0),
             "mass": 353.802, "com": (-0.033, 0.029, 0.001)},
 }
+# The centre of mass the Virtual Shake Robot's PyBullet model simulates (--urdf-com), mesh frame, m. SP2's
+# sp2.urdf (HEAD 9f239e7) loads this very mesh (final_sp2_1.obj, the same bytes as specimens/SP2.obj.gz)
+# at scale 1, rpy 0, with its visual/collision origin at xyz (-0.033, 0.029, 0.001) and the inertial
+# origin at 0: the mesh sits at that offset from the centre of mass, so the centre is at minus it in
+# the mesh frame. (The offset is the centroid of an older, uncentred copy of the scan, in cm and turned
+# by 54 deg about z; docs/validation.md, "SP2's third centre of mass".) SP1's sp1.urdf has both origins
+# at 0 on the principal-frame mesh, whose centroid is the origin: the homogeneous centre.
+URDF_COM = {"SP1": None, "SP2": (0.033, -0.029, -0.001)}
 
 
 def plot_outline(path, title, placed, g):
@@ -150,19 +158,24 @@ def plot_outline(path, title, placed, g):
     plt.close(fig)
 
 
-def specimen_specs(homogeneous=False, names=None):
-    """GRANITE, optionally every centre of mass homogeneous and only the named specimens."""
+def specimen_specs(homogeneous=False, names=None, urdf_com=False):
+    """GRANITE, optionally every centre of mass homogeneous (or the URDF's, URDF_COM) and only the
+    named specimens."""
+    if homogeneous and urdf_com:
+        raise GeometryError("--homogeneous and --urdf-com: one centre of mass at a time")
     names = list(GRANITE) if not names else list(names)
     for n in names:
         if n not in GRANITE:
             raise GeometryError(f"--specimen {n}: not one of {', '.join(GRANITE)}")
-    return {n: dict(GRANITE[n], com=None if homogeneous else GRANITE[n]["com"]) for n in names}
+    def com(n):
+        return None if homogeneous else URDF_COM[n] if urdf_com else GRANITE[n]["com"]
+    return {n: dict(GRANITE[n], com=com(n)) for n in names}
 
 
 def granite(directory, tolerance, plot_dir=None, settle_on_hull=True, homogeneous=False,
-            com_shift=None, names=None, planar_only=False):
+            com_shift=None, names=None, planar_only=False, urdf_com=False):
     entries, results = [], {}
-    for name, spec in specimen_specs(homogeneous, names).items():
+    for name, spec in specimen_specs(homogeneous, names, urdf_com).items():
         v, f = read_obj(os.path.join(directory, spec["mesh"]))
         try:
             g, placed = rocking_geometry(v, f, quaternion_matrix(*spec["quaternion"]), spec["mass"],
@@ -182,7 +195,7 @@ def granite(directory, tolerance, plot_dir=None, settle_on_hull=True, homogeneou
 
 def granite_ensemble(directory, members, seed, tolerance, max_tilt_deg=5.0, tol_range=(5e-4, 2e-3),
                      restitution_spread=0.05, mu_range=(0.5, 0.8), homogeneous=False, com_shift=None,
-                     names=None, planar_only=False):
+                     names=None, planar_only=False, urdf_com=False):
     """Members of each specimen's geometric uncertainty, member 0 the nominal (granite()): the
     placement tilted by up to max_tilt_deg about a random horizontal axis (the configuration's
     orientation is itself uncertain) then settled, the contact tolerance log-uniform in tol_range,
@@ -197,7 +210,7 @@ def granite_ensemble(directory, members, seed, tolerance, max_tilt_deg=5.0, tol_
     rng_e = np.random.default_rng([seed, 1])
     rng_mu = np.random.default_rng([seed, 2])
     entries, refused = [], 0
-    for name, spec in specimen_specs(homogeneous, names).items():
+    for name, spec in specimen_specs(homogeneous, names, urdf_com).items():
         v, f = read_obj(os.path.join(directory, spec["mesh"]))
         q = quaternion_matrix(*spec["quaternion"])
         for k in range(members):
@@ -267,6 +280,10 @@ def main(argv=None):
     ap.add_argument("--no-settle", action="store_true", help="with --granite: use the placement as given")
     ap.add_argument("--homogeneous", action="store_true",
                     help="with --granite: the mesh's own centre of mass for every specimen")
+    ap.add_argument("--urdf-com", action="store_true",
+                    help="with --granite: the centre of mass the Virtual Shake Robot's URDF simulates "
+                         "(SP2: (+0.033, -0.029, -0.001) m in the mesh frame, the stated one's opposite; "
+                         "SP1: the homogeneous)")
     ap.add_argument("--specimen", action="append", metavar="NAME",
                     help="with --granite: only this specimen (repeatable; default all)")
     ap.add_argument("--com-shift", nargs=2, type=float, metavar=("DX", "DY"),
@@ -294,8 +311,8 @@ def main(argv=None):
     global WRITE_HULL
     WRITE_HULL = not a.no_hull
     try:
-        if not a.granite and (a.homogeneous or a.specimen):
-            raise GeometryError("--homogeneous and --specimen need --granite DIR")
+        if not a.granite and (a.homogeneous or a.urdf_com or a.specimen):
+            raise GeometryError("--homogeneous, --urdf-com and --specimen need --granite DIR")
         if a.granite:
             if a.ensemble > 0:
                 if not 0.0 <= a.restitution_spread <= 1.0:
@@ -306,13 +323,15 @@ def main(argv=None):
                     a.granite, a.ensemble, a.seed, a.contact_tolerance,
                     restitution_spread=a.restitution_spread,
                     mu_range=None if a.no_friction else tuple(a.mu_s), homogeneous=a.homogeneous,
-                    com_shift=a.com_shift, names=a.specimen, planar_only=a.planar_only)
+                    com_shift=a.com_shift, names=a.specimen, planar_only=a.planar_only,
+                    urdf_com=a.urdf_com)
                 results = {}
                 print(f"rocking_geometry: {len(entries)} members written, {refused} refused",
                       file=sys.stderr)
             else:
                 results, entries = granite(a.granite, a.contact_tolerance, a.plot_dir, not a.no_settle,
-                                           a.homogeneous, a.com_shift, a.specimen, a.planar_only)
+                                           a.homogeneous, a.com_shift, a.specimen, a.planar_only,
+                                           a.urdf_com)
         elif a.mesh:
             import scan_entry  # noqa: E402  (beside this script)
             g, placed, notes = scan_entry.scan_geometry(

@@ -326,6 +326,95 @@ class Pipeline(unittest.TestCase):
             ce.read_table(table, "SP1")
 
 
+class UrdfCentre(unittest.TestCase):
+    """SP2's third centre of mass (issue 51): the one the Virtual Shake Robot's sp2.urdf simulates,
+    (+0.033, -0.029, -0.001) m in the mesh frame, the stated one's opposite, is offered on the grid
+    like the other two and chosen inside the folds like them."""
+
+    def test_offered_on_the_grid_and_the_command_line(self):
+        self.assertEqual(ce.COM_CANDIDATES, ("stated", "homogeneous", "urdf"))
+        g = ce.parse_grid({"specimens": {"SP2": {"contact_tolerance_mm": [1, 2],
+                                                 "com": ["stated", "homogeneous", "urdf"]}}}, "g")
+        self.assertEqual(sorted({geo["com"] for geo, _ in g["points"]["SP2"]}), ["homogeneous", "stated", "urdf"])
+        self.assertEqual(len(g["points"]["SP2"]), 6)
+        # the grid file of docs/validation.md's run: SP2 on the azimuth grid with the three centres
+        path = os.path.join(HERE, "..", "..", "config", "calibration_grid_3d_azimuth_sp2_urdf.json")
+        g = ce.parse_grid(ce.load_grid_file(path), path)
+        self.assertEqual(list(g["points"]), ["SP2"])
+        self.assertEqual(len(g["points"]["SP2"]), 6 * 3 * 12)
+        self.assertEqual(sum(geo["com"] == "urdf" for geo, _ in g["points"]["SP2"]), 6 * 12)
+        a = ce.parser().parse_args(["--granite", "d", "--experiments", "x", "--cache-dir", "c", "--out-dir", "o",
+                                    "--com", "stated", "homogeneous", "urdf"])
+        self.assertEqual(ce.grid_from_flags(a)["specimens"]["SP2"]["com"], ["stated", "homogeneous", "urdf"])
+
+    def test_rocking_geometry_gets_the_urdf_centre_standing_as_placed(self):
+        geo = {"contact_tolerance_m": 0.002, "com": "urdf", "com_shift_m": [0.0, 0.0]}
+        args = ce.geometry_args("data", "SP2", geo, [])
+        self.assertIn("--urdf-com", args)
+        self.assertIn("--no-settle", args)  # settling would lay SP2 on its side: the tests began upright
+        self.assertNotIn("--homogeneous", args)
+        for com in ("stated", "homogeneous"):  # the other two unchanged: settled, as before
+            self.assertNotIn("--no-settle", ce.geometry_args("data", "SP2", dict(geo, com=com), []))
+        import rocking_geometry as rg
+        urdf, stated = rg.specimen_specs(urdf_com=True), rg.specimen_specs()
+        self.assertEqual(urdf["SP2"]["com"], (0.033, -0.029, -0.001))
+        self.assertEqual(urdf["SP2"]["com"], tuple(-c for c in stated["SP2"]["com"]))
+        self.assertIsNone(urdf["SP1"]["com"])  # sp1.urdf: the principal-frame mesh's own centre
+        with self.assertRaises(rg.GeometryError):
+            rg.specimen_specs(homogeneous=True, urdf_com=True)
+
+    def test_real_sp2_stands_on_the_urdf_centre_only_from_1_5_mm(self):
+        granite = os.path.join(HERE, "..", "..", "..", "shared", "experiments", "granite_pbr")
+        if not os.path.isfile(os.path.join(granite, "specimens", "SP2.obj.gz")):
+            self.skipTest("../shared/experiments/granite_pbr not here")
+        import subprocess
+        tool = os.path.join(HERE, "..", "..", "scripts", "rocking_geometry.py")
+        for tol, rc in ((0.001, 2), (0.0015, 0)):
+            geo = {"contact_tolerance_m": tol, "com": "urdf", "com_shift_m": [0.0, 0.0]}
+            r = subprocess.run(["/usr/bin/python3", tool] + ce.geometry_args(granite, "SP2", geo, []),
+                               capture_output=True, text=True)
+            self.assertEqual(r.returncode, rc, r.stderr)
+            if rc:
+                self.assertIn("centre of mass (x, y = 0.033, -0.029 m) is not over the base", r.stderr)
+            else:
+                self.assertIn("centre_of_mass: [0.033, -0.029,", r.stdout)
+
+    def test_pipeline_gives_the_urdf_centre_its_own_grid_point(self):
+        with tempfile.TemporaryDirectory() as d:
+            data = os.path.join(d, "granite")
+            os.makedirs(os.path.join(data, "specimens"))
+            os.makedirs(os.path.join(data, "tests"))
+            write_box_obj_gz(os.path.join(data, "specimens", "SP1_pca.obj.gz"), (-0.2, -0.15, -0.3), (0.2, 0.15, 0.3))
+            write_box_obj_gz(os.path.join(data, "specimens", "SP2.obj.gz"), (-0.2, -0.25, -0.3), (0.2, 0.25, 0.3))
+            with open(os.path.join(data, "outcomes.csv"), "w") as fh:
+                fh.write("test,sp1_overturned,sp2_overturned\n")
+                for t in range(1, 41):
+                    open(os.path.join(data, "tests", f"Test{t:03d}.csv"), "w").close()
+                    fh.write(f"{t},{t % 2},{t % 3 == 0:d}\n")
+            stub = os.path.join(d, "stub")
+            with open(stub, "w") as fh:
+                fh.write(STUB)
+            os.chmod(stub, 0o755)
+            grid = os.path.join(d, "grid.json")
+            with open(grid, "w") as fh:
+                json.dump({"specimens": {"SP2": {"contact_tolerance_mm": [1], "com": ["stated", "homogeneous", "urdf"]}},
+                           "geometry_args": ["--planar-only"]}, fh)
+            err = io.StringIO()
+            with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+                rc = ce.main(["--granite", data, "--experiments", stub, "--grid", grid, "--folds", "4",
+                              "--cache-dir", os.path.join(d, "cache"), "--out-dir", os.path.join(d, "out"),
+                              "--python", "/usr/bin/python3"])
+            self.assertEqual(rc, 0, err.getvalue())
+            with open(os.path.join(d, "out", "summary.json")) as fh:
+                s = json.load(fh)["specimens"]["SP2"]
+            # three centres, three models (the box carries all three): the URDF's is a point of its own
+            self.assertEqual(s["grid_points"], 3)
+            self.assertEqual([p["geometry"]["com"] for p in s["points"]], ["stated", "homogeneous", "urdf"])
+            self.assertEqual(s["points"][2]["setting"], "tol 1 mm, com urdf, defaults")
+            self.assertEqual(len(s["cv_map_per_fold"]), 4)  # chosen inside each fold like the others
+            self.assertTrue(all(0 <= k < 3 for k in s["cv_map_per_fold"]))
+
+
 def csvreader(fh):
     import csv
     return csv.DictReader(fh)
