@@ -12,7 +12,8 @@ if(catkin_FOUND)
   catkin_install_python(PROGRAMS scripts/rocking_catalogue scripts/rocking_geometry.py
                         DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
   # imported by the two above from beside them
-  install(FILES scripts/rocking_geometry_solid.py scripts/mesh_input.py scripts/scan_entry.py scripts/scan_figure.py scripts/catalogue_table.py DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+  install(FILES scripts/rocking_geometry_solid.py scripts/mesh_input.py scripts/scan_entry.py scripts/scan_figure.py scripts/catalogue_table.py
+                scripts/progress_bar.py DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 endif()
 
 if(BUILD_TESTING)

@@ -45,7 +45,7 @@ foreach(tool rocking_sim rocking_study record_to_bag rocking_accuracy rocking_be
 endforeach()
 
 # --help byte for byte as test/tools/expected/<tool>.help (issue 53: the mains are parse + run).
-foreach(tool rocking_study rocking_experiments rocking_accuracy record_to_mseed record_to_bag)
+foreach(tool rocking_sim rocking_study rocking_experiments rocking_accuracy record_to_mseed record_to_bag)
   if(TARGET ${tool})
     add_test(NAME cli.${tool}.help_unchanged
              COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/tools/help_unchanged.sh $<TARGET_FILE:${tool}>

@@ -20,6 +20,9 @@ class _NoBar:
     def update(self, n=1):
         pass
 
+    def set_postfix_str(self, s=""):
+        pass
+
     def close(self):
         pass
 

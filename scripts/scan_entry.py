@@ -53,24 +53,17 @@ def largest_face_rotation(vertices, faces, com, tolerance):
 
 def scan_geometry(path, mass=1.0, tolerance=1e-3, com=None, unit="auto", up=None, floor="auto",
                   keep_slab=False, cap_tolerance=None, quaternion=None, settle=False, com_shift=None,
-                  keep_mesh=False):
+                  keep_mesh=False, progress=None):
     """(g, placed, notes): rocking_geometry's result for the mesh file at `path`, the placed vertices
     (floor frame) and the statements of what was decided. com: measured centre of mass in the mesh's
-    frame, metres (after the unit conversion)."""
+    frame, metres (after the unit conversion). progress: called with each of STAGES as it begins
+    (rocking_catalogue's bar: a big scan takes a minute, most of it in the surface check)."""
+    begin = progress or (lambda stage: None)
     if unit != "auto" and unit not in mi.UNITS:
         raise mi.GeometryError(f"unit '{unit}': one of auto, {', '.join(mi.UNITS)}")
     if up is not None and up not in AXES:
         raise mi.GeometryError(f"up axis '{up}': one of {', '.join(AXES)}")
-    v, f, notes = mi.read_mesh(path)
-    scale, note = mi.unit_scale(v, f, unit, path)
-    notes.append(note)
-    v = v * scale
-    size = float(np.ptp(v[np.unique(f)], axis=0).max())
-    v, f, dropped = mi.merge_vertices(v, f, 1e-9 * max(size, 1.0))
-    if not len(f):
-        raise mi.GeometryError(f"{path}: degenerate: every triangle has zero area (a line or a point)")
-    if dropped:
-        notes.append(f"{dropped} degenerate triangles (zero area or a repeated vertex) dropped")
+    v, f, notes = _read_in_metres(path, unit, begin)
     if floor == "auto":
         floor = "given" if quaternion is not None else "lowest"
     if up is None:
@@ -78,6 +71,7 @@ def scan_geometry(path, mass=1.0, tolerance=1e-3, com=None, unit="auto", up=None
     start = (rg.quaternion_matrix(*quaternion) if quaternion is not None
              else rotation_onto(AXES[up], (0, 0, 1)))
     removed = f[:0]
+    begin(STAGES[2])
     if not keep_slab:
         keep, note = mi.find_slab(v, f, start.T @ np.array([0.0, 0, 1]))
         notes.append(note)
@@ -86,10 +80,12 @@ def scan_geometry(path, mass=1.0, tolerance=1e-3, com=None, unit="auto", up=None
     v_all = v
     used, f = np.unique(f, return_inverse=True)  # only the vertices of faces: the floor is theirs
     v, f = v[used], f.reshape(-1, 3)
+    begin(STAGES[3])
     loops, unchecked = mi.check_solid(v, f, path)
     if unchecked:
         notes.append("self-intersection not checked: too many candidate triangle pairs")
     vc, fc = mi.cap_loops(v, f, loops)
+    begin(STAGES[4])
     try:
         volume, com_mesh, _ = rg.mass_properties(vc, fc)
     except mi.GeometryError:  # exactly zero
@@ -103,18 +99,8 @@ def scan_geometry(path, mass=1.0, tolerance=1e-3, com=None, unit="auto", up=None
     else:
         notes.append("closed surface")
     c0 = com_mesh if com is None else np.asarray(com, float)
-    if floor == "given":
-        rotation, do_settle = start, settle
-        why = "floor: the placement as given (--quaternion)" + (", settled" if settle else "")
-    elif floor == "lowest":
-        rotation, do_settle = start, True
-        why = f"floor: the convex-hull face nearest to straight down along -{up} that carries the centre of mass"
-    elif floor == "largest":
-        rotation, area = largest_face_rotation(vc, fc, c0, tolerance)
-        do_settle = True
-        why = f"floor: the largest convex-hull face carrying the centre of mass ({area:.4g} m^2)"
-    else:
-        raise mi.GeometryError(f"--floor {floor}: one of auto, lowest, largest, given")
+    rotation, do_settle, why = _floor_choice(floor, start, settle, up, vc, fc, c0, tolerance)
+    begin(STAGES[5])
     g, placed = rg.rocking_geometry(vc, fc, rotation, mass, tolerance, com, do_settle, com_shift)
     notes.append(why + (f", turned {g['settle_angle_deg']:.3g} deg onto it" if do_settle else ""))
     height = float(placed[:, 2].max())
@@ -131,12 +117,49 @@ def scan_geometry(path, mass=1.0, tolerance=1e-3, com=None, unit="auto", up=None
     g["open_edges"] = len(mi.edge_report(fc)[2])  # 0: every hole was capped
     g["notes"] = notes
     g["size"] = np.ptp(placed, axis=0).tolist()
+    begin(STAGES[6])
     g["convex_hull"] = convex_hull_3d(placed[np.unique(fc)])
     if keep_mesh:  # for pictures (not JSON): the capped mesh and the removed slab, floor frame
         r, floor_z = np.array(g["rotation"]), float((vc @ np.array(g["rotation"]).T)[:, 2].min())
         g["_mesh"] = {"vertices": placed, "faces": fc, "caps": len(fc) - len(f),
                       "removed": v_all[removed] @ r.T - [0.0, 0.0, floor_z]}
     return g, placed, notes
+
+
+def _floor_choice(floor, start, settle, up, vc, fc, c0, tolerance):
+    """(rotation, settle onto it, the note saying why) for --floor given | lowest | largest."""
+    if floor == "given":
+        return start, settle, "floor: the placement as given (--quaternion)" + (", settled" if settle else "")
+    if floor == "lowest":
+        return start, True, (f"floor: the convex-hull face nearest to straight down along -{up} that carries "
+                              "the centre of mass")
+    if floor == "largest":
+        rotation, area = largest_face_rotation(vc, fc, c0, tolerance)
+        return rotation, True, f"floor: the largest convex-hull face carrying the centre of mass ({area:.4g} m^2)"
+    raise mi.GeometryError(f"--floor {floor}: one of auto, lowest, largest, given")
+
+
+# scan_geometry's steps in order, as its progress callback names them.
+STAGES = ("reading", "merging vertices", "floor slab", "checking the surface", "mass properties",
+          "placing on the floor", "convex hull")
+
+
+def _read_in_metres(path, unit, begin):
+    """(vertices in metres, faces, notes): the file read, its unit settled, coincident vertices merged
+    and degenerate triangles dropped."""
+    begin(STAGES[0])
+    v, f, notes = mi.read_mesh(path)
+    scale, note = mi.unit_scale(v, f, unit, path)
+    notes.append(note)
+    v = v * scale
+    begin(STAGES[1])
+    size = float(np.ptp(v[np.unique(f)], axis=0).max())
+    v, f, dropped = mi.merge_vertices(v, f, 1e-9 * max(size, 1.0))
+    if not len(f):
+        raise mi.GeometryError(f"{path}: degenerate: every triangle has zero area (a line or a point)")
+    if dropped:
+        notes.append(f"{dropped} degenerate triangles (zero area or a repeated vertex) dropped")
+    return v, f, notes
 
 
 def convex_hull_3d(points):

@@ -37,6 +37,9 @@ MonitorBatch::MonitorBatch(std::vector<ItemMonitor*> items) : items_(std::move(i
 
 void MonitorBatch::refresh(std::size_t k) { refresh_planes(k, (1u << kPlaneCount) - 1); }
 
+// What an item's lanes must hold again after the item stepped (or at the start): for each plane
+// given, whether it may defer its next sample and, if so, what the quiet test reads; then the item as
+// a whole (with a 3-D description: the 3-D model's lane too).
 void MonitorBatch::refresh_planes(std::size_t k, unsigned planes) {
   const ItemMonitor& item = *items_[k];
   Lane& lane = lanes_[k];
@@ -52,46 +55,9 @@ void MonitorBatch::refresh_planes(std::size_t k, unsigned planes) {
     if (!rk_.vr.empty()) rk_.vr[kPlaneCount * k + static_cast<std::size_t>(p)] = 0.0;
     const AdaptiveModel* adaptive = pm.adaptive_.get();
     if (adaptive != nullptr) pl.model_hint = adaptive->prefetch_hint();
-    bool ok = item_ok && pm.started_ && pm.intensity_ && pm.intensity_->lane_eligible();
-    if (adaptive != nullptr) {
-      // Rocking lanes for items without a 3-D description (those are deferred as a whole only).
-      pl.rocking = ok && lane.solid < 0 && adaptive->rocking_deferrable() &&
-                   adaptive->nonlinear_model().settings().tol == rk_tol_;
-      ok = ok && (pl.rocking || adaptive->rest_deferrable());
-    } else {
-      // Pure rocking: at rest with no validity criterion standing (a stale one is cleared by a step).
-      ok = ok && (pm.model_.mode() == Mode::Rest ||
-                  (pm.model_.mode() == Mode::Overturned && pm.model_.outcome().committed)) &&
-           !pm.slid_at_uplift_;
-      for (CriterionId id : {CriterionId::FreeFlight, CriterionId::SlideFromRest, CriterionId::SlideAtUplift,
-                             CriterionId::SlideWhileRocking})
-        ok = ok && !pm.exceeded_[static_cast<int>(id)];
-    }
-    pl.eligible = ok;
-    if (!ok) continue;
-    // From the adaptive model when there is one (just stepped, in cache): the same body and solver
-    // as the plane's, whose own model_ and options_ are then cold (perf: half of this function's time).
-    const Body& body = adaptive != nullptr ? adaptive->body() : pm.model_.body();
-    const ModelKind kind = adaptive != nullptr ? adaptive->settings().rocking.model : pm.options_.solver.model;
-    const bool linear = kind == ModelKind::Linearized;
-    for (int i = 0; i < 2; ++i) {
-      const Pivot& pv = body.pivot(i == 0 ? 1 : -1);
-      pl.cs[i] = linear ? 1.0 : pv.cos_alpha;  // uplift_function(): linearized cos -> 1, sin -> alpha
-      pl.sn[i] = linear ? pv.alpha : pv.sin_alpha;
-    }
-    // Sharing one budget (friction_share.hpp), a plane is deferred only below the engaging demand:
-    // the item then stays not engaged, and its planes may be deferred each on its own.
-    pl.mu = item.shares_friction_ ? body.mu_s() * kShareEngage : body.mu_s();
-    pl.overturned = (adaptive != nullptr ? adaptive->mode() : pm.contact_mode()) == ContactMode::Overturned;
-    const SceneEnvelope scene = adaptive != nullptr ? adaptive->settings().scene : SceneEnvelope{};
-    pl.scene_h = scene.horizontal;
-    pl.scene_v = scene.vertical;
-    // The inputs the model interpolates from (the item's last step, as the plane saw it) and its
-    // clock (AdaptiveModel resets its rocking model at its own time on every switch down).
-    pl.t = adaptive != nullptr ? adaptive->time() : pm.model_.time();
-    pm.intensity_->to_lane(pl.intensity);
-    pl.ax_prev = item.last_input_[p][0];
-    pl.ay_prev = item.last_input_[p][1];
+    pl.eligible = plane_deferrable(item_ok && pm.started_, pm, lane.solid, pl);
+    if (!pl.eligible) continue;
+    copy_plane_state(item, p, pl);
     if (pl.rocking) mirror_rocking(k, p, *adaptive);
   }
   if (item_ok && item.friction_engaged()) {
@@ -104,6 +70,57 @@ void MonitorBatch::refresh_planes(std::size_t k, unsigned planes) {
     lane.eligible = lane.plane[0].eligible || second;  // each plane on its own
     return;
   }
+  refresh_solid(item, lane, second);
+}
+
+bool MonitorBatch::plane_deferrable(bool started, const PlaneMonitor& pm, int solid, PlaneLane& pl) const {
+  const AdaptiveModel* adaptive = pm.adaptive_.get();
+  bool ok = started && pm.intensity_ && pm.intensity_->lane_eligible();
+  if (adaptive != nullptr) {
+    // Rocking lanes for items without a 3-D description (those are deferred as a whole only).
+    pl.rocking = ok && solid < 0 && adaptive->rocking_deferrable() &&
+                 adaptive->nonlinear_model().settings().tol == rk_tol_;
+    return ok && (pl.rocking || adaptive->rest_deferrable());
+  }
+  // Pure rocking: at rest with no validity criterion standing (a stale one is cleared by a step).
+  ok = ok && (pm.model_.mode() == Mode::Rest ||
+              (pm.model_.mode() == Mode::Overturned && pm.model_.outcome().committed)) &&
+       !pm.slid_at_uplift_;
+  for (CriterionId id : {CriterionId::FreeFlight, CriterionId::SlideFromRest, CriterionId::SlideAtUplift,
+                         CriterionId::SlideWhileRocking})
+    ok = ok && !pm.exceeded_[static_cast<int>(id)];
+  return ok;
+}
+
+void MonitorBatch::copy_plane_state(const ItemMonitor& item, int p, PlaneLane& pl) {
+  const PlaneMonitor& pm = *item.planes_[p];
+  const AdaptiveModel* adaptive = pm.adaptive_.get();
+  // From the adaptive model when there is one (just stepped, in cache): the same body and solver
+  // as the plane's, whose own model_ and options_ are then cold (perf: half of this function's time).
+  const Body& body = adaptive != nullptr ? adaptive->body() : pm.model_.body();
+  const ModelKind kind = adaptive != nullptr ? adaptive->settings().rocking.model : pm.options_.solver.model;
+  const bool linear = kind == ModelKind::Linearized;
+  for (int i = 0; i < 2; ++i) {
+    const Pivot& pv = body.pivot(i == 0 ? 1 : -1);
+    pl.cs[i] = linear ? 1.0 : pv.cos_alpha;  // uplift_function(): linearized cos -> 1, sin -> alpha
+    pl.sn[i] = linear ? pv.alpha : pv.sin_alpha;
+  }
+  // Sharing one budget (friction_share.hpp), a plane is deferred only below the engaging demand:
+  // the item then stays not engaged, and its planes may be deferred each on its own.
+  pl.mu = item.shares_friction_ ? body.mu_s() * kShareEngage : body.mu_s();
+  pl.overturned = (adaptive != nullptr ? adaptive->mode() : pm.contact_mode()) == ContactMode::Overturned;
+  const SceneEnvelope scene = adaptive != nullptr ? adaptive->settings().scene : SceneEnvelope{};
+  pl.scene_h = scene.horizontal;
+  pl.scene_v = scene.vertical;
+  // The inputs the model interpolates from (the item's last step, as the plane saw it) and its
+  // clock (AdaptiveModel resets its rocking model at its own time on every switch down).
+  pl.t = adaptive != nullptr ? adaptive->time() : pm.model_.time();
+  pm.intensity_->to_lane(pl.intensity);
+  pl.ax_prev = item.last_input_[p][0];
+  pl.ay_prev = item.last_input_[p][1];
+}
+
+void MonitorBatch::refresh_solid(const ItemMonitor& item, Lane& lane, bool second) {
   // With a 3-D description, as a whole: every plane, and the 3-D model (or the bidirectional test).
   SolidLane& sl = solids_[static_cast<std::size_t>(lane.solid)];
   const Rocking3DModel& solid = *item.solid();

@@ -42,20 +42,14 @@ std::string y_history_path(const std::string& x_path) {
   return x_path.substr(0, dot) + "_y" + x_path.substr(dot);
 }
 
-}  // namespace
+// The flags by group, each group's flags in --help's order; add_options calls the groups in that
+// order too (a test compares --help byte for byte).
 
-// A table of the flags, one entry each in --help's order (a test compares --help): long, but split it
-// and the order of the help text is spread over functions.
-void add_options(CLI::App& app, CommandLine& c) {
-  // c's members under the names the flags are declared with.
+// The record(s): the x input, the y input, a separate vertical, CSV units, miniSEED, --scale.
+void add_record_options(CLI::App& app, CommandLine& c) {
   std::string &record = c.record, &record_y = c.record_y, &vertical_file = c.vertical_file,
-              &units_text = c.units_text, &history_path = c.history_path, &history_y_path = c.history_y_path,
-              &method_text = c.method_text, &model_text = c.model_text;
+              &units_text = c.units_text;
   RunOptions& opt = c.opt;
-  rm::BodyParameters& body = c.body;
-  rm::DepthParameters& depth = c.depth;
-  rm::SolverSettings& settings = opt.settings;
-  bool& as_json = c.as_json;
   app.add_option("--record", record,
                  "Ground acceleration along the item's x: PEER .AT2 (g), SCEC .bbp, USGS .smc, or "
                  "CSV/whitespace rows 'time_s accel' or 'time_s accel_h accel_v' (units from --units)")
@@ -69,6 +63,10 @@ void add_options(CLI::App& app, CommandLine& c) {
       ->check(CLI::IsMember({"g", "m/s2", "cm/s2"}));
   rocking_monitor::tools::add_miniseed_options(app, c.options);
   app.add_option("--scale", opt.scale, "Multiply the ground acceleration by S")->default_val(1.0);
+}
+
+// A catalogue item instead of the body flags, and its ensemble (--samples).
+void add_catalogue_options(CLI::App& app, CommandLine& c) {
   std::string &catalogue_file = c.catalogue_file, &item_id = c.item_id;
   int& samples = c.samples;
   std::uint64_t& ensemble_seed = c.ensemble_seed;
@@ -87,6 +85,12 @@ void add_options(CLI::App& app, CommandLine& c) {
   app.add_option("--alarm-probability", alarm_probability,
                  "--samples: report when P(level) first reaches this (the node's ~alarm_probability)")
       ->default_val(alarm_probability)->check(CLI::Range(1e-9, 1.0));
+}
+
+// The body from the flags: the x plane, the y plane (--depth) and friction.
+void add_body_options(CLI::App& app, CommandLine& c) {
+  rm::BodyParameters& body = c.body;
+  rm::DepthParameters& depth = c.depth;
   app.add_option("--width", body.width, "Base width B along x, m (required without --catalogue)");
   app.add_option("--cg-height", body.cg_height, "Height h of the centre of mass, m (required without --catalogue)");
   app.add_option("--eccentricity", body.nu1,
@@ -106,6 +110,11 @@ void add_options(CLI::App& app, CommandLine& c) {
   app.add_option("--mu-s", body.mu_s, "Static friction coefficient (default: not checked)");
   app.add_option("--mu-k", body.mu_k,
                  "Kinetic friction coefficient for --fidelity contact|adaptive (default mu_s)");
+}
+
+// Which model runs (--fidelity) and the adaptive switch's settings.
+void add_fidelity_options(CLI::App& app, CommandLine& c) {
+  RunOptions& opt = c.opt;
   // adaptive by default: the cheapest valid model per sample; without --mu-s it is the pure-rocking
   // model (until free flight), so only items given a friction coefficient can see the contact model.
   std::string& fidelity_text = c.fidelity_text;
@@ -135,6 +144,13 @@ void add_options(CLI::App& app, CommandLine& c) {
                  "Scene envelope for the adaptive pre-check (docs/fidelity.md): auto = each plane's "
                  "record's own peak |a_h|, |a_v| (the whole scene is known offline); unknown; or H,V in m/s^2")
       ->default_val(opt.scene_text);
+}
+
+// Impacts and the integrator.
+void add_solver_options(CLI::App& app, CommandLine& c) {
+  std::string &method_text = c.method_text, &model_text = c.model_text;
+  rm::BodyParameters& body = c.body;
+  rm::SolverSettings& settings = c.opt.settings;
   app.add_option("--restitution", body.restitution,
                  "Measured angular-velocity ratio at impact, overrides eq. 34");
   app.add_option("--model", model_text, "nonlinear | linearized")
@@ -146,6 +162,12 @@ void add_options(CLI::App& app, CommandLine& c) {
   app.add_option("--tol", settings.tol, "dopri5 relative tolerance")->default_val(settings.tol);
   app.add_option("--substeps", settings.substeps, "rk4 sub-steps per input sample")
       ->default_val(settings.substeps);
+}
+
+// What is written: the histories and --json.
+void add_output_options(CLI::App& app, CommandLine& c) {
+  std::string &history_path = c.history_path, &history_y_path = c.history_y_path;
+  bool& as_json = c.as_json;
   app.add_option("--history", history_path,
                  "Write the time history (CSV) to this file; with --depth it holds the x plane (same "
                  "columns as without) and the y plane goes to --history-y");
@@ -153,6 +175,10 @@ void add_options(CLI::App& app, CommandLine& c) {
                  "With --depth and --history: the y plane's history (default: the --history name "
                  "with _y before its extension, h.csv -> h_y.csv)");
   app.add_flag("--json", as_json, "Print one JSON object instead of a text summary");
+}
+
+// The 3-D model: when it runs, and its history.
+void add_solid_options(CLI::App& app, CommandLine& c) {
   app.add_option("--solid-model", c.solid_model_text,
                  "The 3-D model (docs/rocking_3d.md), as the node's ~solid_model: auto (default: a "
                  "--catalogue item with an oblique or irregular base_polygon runs it; a rectangle when "
@@ -169,6 +195,19 @@ void add_options(CLI::App& app, CommandLine& c) {
   app.add_option("--history-3d", c.history_3d_path,
                  "With the 3-D model: its time history (CSV: tilt, contact, orientation quaternion, "
                  "angular velocity)");
+}
+
+}  // namespace
+
+// Declares every flag, group by group, in --help's order.
+void add_options(CLI::App& app, CommandLine& c) {
+  add_record_options(app, c);
+  add_catalogue_options(app, c);
+  add_body_options(app, c);
+  add_fidelity_options(app, c);
+  add_solver_options(app, c);
+  add_output_options(app, c);
+  add_solid_options(app, c);
 }
 
 namespace {

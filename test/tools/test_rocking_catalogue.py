@@ -233,6 +233,32 @@ class FromScan(unittest.TestCase):
             self.assertIn("open elsewhere than at its base", r.stderr)
             self.assertFalse(os.path.exists(out + "2"))
 
+    def test_progress_only_on_a_terminal(self):
+        """from-scan's stage bar (issue 53): off a terminal stderr is the --quiet run's, byte for byte;
+        on a pseudo-terminal it reaches all of scan_geometry's stages; --quiet draws nothing there."""
+        sys.path.insert(0, HERE)
+        import test_mesh_input as tm
+        from test_progress_bar import read_all
+        with tempfile.TemporaryDirectory() as tmp:
+            v, f, *_ = tm.case_cylinder()
+            scan = tm.write(os.path.join(tmp, "jar.ply"), v, f, "ply")
+            args = ["from-scan", scan, "--id", "jar", "--mass", "3", "--out", os.path.join(tmp, "c.yaml")]
+            piped, quiet = run(*args), run(*args, "--quiet")
+            self.assertEqual((piped.returncode, quiet.returncode), (0, 0), piped.stderr)
+            self.assertEqual(piped.stderr, quiet.stderr)
+            self.assertNotIn("\r", piped.stderr)
+            for extra, drawn in (([], True), (["--quiet"], False)):
+                master, slave = os.openpty()
+                try:
+                    r = subprocess.run([sys.executable, TOOL, *args, *extra], stderr=slave,
+                                       stdout=subprocess.DEVNULL, env=ENV)
+                    os.close(slave)
+                    text = read_all(master)
+                finally:
+                    os.close(master)
+                self.assertEqual(r.returncode, 0, text)
+                self.assertEqual("from-scan jar.ply" in text and "7/7" in text, drawn, text)
+
 
 if __name__ == "__main__":
     unittest.main(verbosity=2)

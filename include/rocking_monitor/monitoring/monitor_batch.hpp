@@ -177,6 +177,13 @@ class MonitorBatch {
   // Its model's part: the plane's intensity steps in full (a sample that raises a running maximum).
   void defer_rocking_model(PlaneLane& pl, std::size_t r, double x1, double y1, double dt);
   void refresh_planes(std::size_t k, unsigned planes);  // refresh() of these planes
+  // refresh_planes()' steps. Whether plane pm may defer its next sample (started: the item and the
+  // plane; solid: the item's SolidLane or -1); sets pl.rocking.
+  bool plane_deferrable(bool started, const PlaneMonitor& pm, int solid, PlaneLane& pl) const;
+  // An eligible plane's lane: its uplift and slip tests, scene, clock, intensity and last input.
+  static void copy_plane_state(const ItemMonitor& item, int p, PlaneLane& pl);
+  // An item with a 3-D description: whether it may defer as a whole and, if so, its SolidLane.
+  void refresh_solid(const ItemMonitor& item, Lane& lane, bool second);
 
   static const ItemEvents kNoEvents;
   std::vector<ItemMonitor*> items_;
