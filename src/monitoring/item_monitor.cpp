@@ -130,8 +130,7 @@ const ItemEvents& ItemMonitor::step_planes(double ax, double ay, double az, doub
   events_.change_count = 0;
   events_.alarm_count = 0;
   if (solid_ && !solid_active_) {
-    // Auto: the 3-D model takes over at rest once the shaking is bidirectional; until then it only
-    // needs the time and the last input (reset below when it takes over).
+    // Auto: the 3-D model takes over at rest once the shaking is bidirectional (reset when it does).
     peak_x_ = std::max(peak_x_, std::abs(ax));
     peak_y_ = std::max(peak_y_, std::abs(ay));
     if (solid_takes_over()) {
