@@ -159,27 +159,7 @@ const ItemEvents& ItemMonitor::step_planes(double ax, double ay, double az, doub
   t_ += dt;
   last_a_ = Eigen::Vector3d(ax, ay, az);
   if (solid_active_) {
-    // The 3-D model decides the item's levels (reported in the x plane's slot).
-    const RockingOutcome& o = solid_->outcome();
-    const bool tipped = o.beyond_tipping, committed = o.committed, overturned = o.overturned;
-    solid_->step(last_a_, dt);
-    auto alarm = [&](ItemMode level, bool before, bool now, double time) {
-      const int l = level_index(level);
-      if (before || !now || alarmed_[l]) return;
-      alarmed_[l] = true;
-      AlarmEvent& a = events_.alarms[events_.alarm_count++];
-      a.level = level;
-      // Sliding past the support's edge is the model's other way to overturn (rocking_3d.md "Supports
-      // that end"): OVERTURNED, and COMMITTED at the same instant; the cause tells it from rocking over.
-      const Rocking3DOutcome& o3 = solid_->outcome_3d();
-      a.cause = o3.fell_off_support && time >= o3.fell_off_time ? AlarmCause::FellOffSupport : AlarmCause::Rocking;
-      a.plane = Plane::X;
-      a.time = time;
-      a.rotation_ratio = solid_->rotation_ratio();
-    };
-    alarm(ItemMode::BeyondTipping, tipped, o.beyond_tipping, o.beyond_tipping_time);
-    alarm(ItemMode::Committed, committed, o.committed, o.committed_time);
-    alarm(ItemMode::Overturned, overturned, o.overturned, o.overturn_time);
+    step_solid(dt);
     return events_;
   }
   // Item-level alarms: each level once, from the plane that reached it first in this sample (tie: x).
@@ -205,6 +185,30 @@ const ItemEvents& ItemMonitor::step_planes(double ax, double ay, double az, doub
     out.plane = first_plane;
   }
   return events_;
+}
+
+// The 3-D model's sample: it decides the item's levels (reported in the x plane's slot).
+void ItemMonitor::step_solid(double dt) {
+  const RockingOutcome& o = solid_->outcome();
+  const bool tipped = o.beyond_tipping, committed = o.committed, overturned = o.overturned;
+  solid_->step(last_a_, dt);
+  auto alarm = [&](ItemMode level, bool before, bool now, double time) {
+    const int l = level_index(level);
+    if (before || !now || alarmed_[l]) return;
+    alarmed_[l] = true;
+    AlarmEvent& a = events_.alarms[events_.alarm_count++];
+    a.level = level;
+    // Sliding past the support's edge is the model's other way to overturn (rocking_3d.md "Supports
+    // that end"): OVERTURNED, and COMMITTED at the same instant; the cause tells it from rocking over.
+    const Rocking3DOutcome& o3 = solid_->outcome_3d();
+    a.cause = o3.fell_off_support && time >= o3.fell_off_time ? AlarmCause::FellOffSupport : AlarmCause::Rocking;
+    a.plane = Plane::X;
+    a.time = time;
+    a.rotation_ratio = solid_->rotation_ratio();
+  };
+  alarm(ItemMode::BeyondTipping, tipped, o.beyond_tipping, o.beyond_tipping_time);
+  alarm(ItemMode::Committed, committed, o.committed, o.committed_time);
+  alarm(ItemMode::Overturned, overturned, o.overturned, o.overturn_time);
 }
 
 FrictionShare ItemMonitor::friction_share_now(double ax, double ay, double az, double dt) const {

@@ -288,6 +288,66 @@ void MonitorBatch::prefetch_models(std::size_t k) const {
   }
 }
 
+// The block's rocking candidates: stepped together by the vector kernel (a few are not worth a
+// kernel block of 16: they step in full); a quiet sample is deferred, any other goes back to its
+// item's planes to step (added to `busy`).
+void MonitorBatch::settle_rocking(std::uint32_t* rix, std::size_t nr, StreamingIntensity::Lane* const* rnext,
+                                  const bool* grows, const double* ax, const double* ay, const double* az, double dt,
+                                  std::size_t* busy, std::size_t& n, std::size_t& deferred) {
+  const bool kernel = nr >= 4;
+  if (kernel) {
+    const std::size_t padded = (nr + batch_detail::kBlock - 1) / batch_detail::kBlock * batch_detail::kBlock;
+    for (std::size_t i = nr; i < padded; ++i) rix[i] = rix[nr - 1];  // the same lane again: same results
+    batch_detail::rocking_sample(rk_, rix, padded, dt, rk_tol_, true);
+  }
+  for (std::size_t i = 0; i < nr; ++i) {
+    const std::size_t r = rix[i], k = r / kPlaneCount;
+    const int p = static_cast<int>(r % kPlaneCount);
+    Lane& lane = lanes_[k];
+    PlaneLane& pl = lane.plane[p];
+    // AdaptiveModel::maybe_enter_linearized: below the ratio the next step() changes tier.
+    if (kernel && rk_.clean[r] && rk_.end_clear[r] && std::abs(rk_.theta_out[r]) / rk_.alpha[r] > pl.lin_ratio) {
+      if (!grows[i]) {
+        defer_rocking(pl, r, *rnext[i], p == 0 ? ax[k] : ay[k], az[k], dt);
+        summary_due_[k] = 1;
+      } else {
+        // The model's sample is the kernel's, kept as a deferred one (the sync before the item
+        // steps applies it); the plane then steps only its running intensity and screening
+        // criteria (PlaneMonitor::step_after_model), which the new maximum may change.
+        defer_rocking_model(pl, r, p == 0 ? ax[k] : ay[k], az[k], dt);
+        lane.model_done |= 1u << p;
+        if (lane.busy == 0) busy[n++] = k;
+        lane.busy |= 1u << p;
+      }
+    } else {
+      if (lane.busy == 0) busy[n++] = k;  // its first plane to step
+      lane.busy |= 1u << p;
+    }
+    lane.candidates &= ~(1u << p);
+    if (lane.candidates == 0 && lane.busy == 0) ++deferred;  // the item's last candidate: all deferred
+  }
+}
+
+// The block's items that step (their planes in lane.busy), their objects prefetched a few ahead.
+void MonitorBatch::step_busy(const std::size_t* busy, std::size_t n, const double* ax, const double* ay,
+                             const double* az, double dt) {
+  for (std::size_t j = 0; j < std::min<std::size_t>(n, 6); ++j) prefetch_item(busy[j]);
+  for (std::size_t j = 0; j < std::min<std::size_t>(n, 4); ++j) prefetch_planes(busy[j]);
+  for (std::size_t j = 0; j < std::min<std::size_t>(n, 2); ++j) prefetch_models(busy[j]);
+  for (std::size_t j = 0; j < n; ++j) {
+    if (j + 6 < n) prefetch_item(busy[j + 6]);
+    if (j + 4 < n) prefetch_planes(busy[j + 4]);
+    if (j + 2 < n) prefetch_models(busy[j + 2]);
+    const std::size_t k = busy[j];
+    const unsigned planes = lanes_[k].busy;
+    sync_planes(k, planes);
+    const ItemEvents& ev = items_[k]->step_planes(ax[k], ay[k], az[k], dt, planes, lanes_[k].model_done);
+    event_flags_[k] = static_cast<std::uint8_t>((ev.change_count > 0 ? kHasChanges : 0) | (ev.alarm_count > 0 ? kHasAlarms : 0));
+    lanes_[k].stepped = true;
+    refresh_planes(k, planes);
+  }
+}
+
 std::size_t MonitorBatch::step(std::size_t begin, std::size_t end, const double* ax, const double* ay,
                                const double* az, double dt, const std::uint8_t* active) {
   std::size_t deferred = 0;
@@ -351,57 +411,8 @@ std::size_t MonitorBatch::step(std::size_t begin, std::size_t end, const double*
       if (planes_busy != 0) busy[n++] = k;
       else if (lane.candidates == 0) ++deferred;
     }
-    // The candidates: a quiet rocking sample is deferred, any other goes back to its item's planes to
-    // step (a few lanes are not worth a kernel block of 16: they step in full).
-    if (nr > 0) {
-      const bool kernel = nr >= 4;
-      if (kernel) {
-        const std::size_t padded = (nr + batch_detail::kBlock - 1) / batch_detail::kBlock * batch_detail::kBlock;
-        for (std::size_t i = nr; i < padded; ++i) rix[i] = rix[nr - 1];  // the same lane again: same results
-        batch_detail::rocking_sample(rk_, rix, padded, dt, rk_tol_, true);
-      }
-      for (std::size_t i = 0; i < nr; ++i) {
-        const std::size_t r = rix[i], k = r / kPlaneCount;
-        const int p = static_cast<int>(r % kPlaneCount);
-        Lane& lane = lanes_[k];
-        PlaneLane& pl = lane.plane[p];
-        // AdaptiveModel::maybe_enter_linearized: below the ratio the next step() changes tier.
-        if (kernel && rk_.clean[r] && rk_.end_clear[r] && std::abs(rk_.theta_out[r]) / rk_.alpha[r] > pl.lin_ratio) {
-          if (!grows[i]) {
-            defer_rocking(pl, r, *rnext[i], p == 0 ? ax[k] : ay[k], az[k], dt);
-            summary_due_[k] = 1;
-          } else {
-            // The model's sample is the kernel's, kept as a deferred one (the sync before the item
-            // steps applies it); the plane then steps only its running intensity and screening
-            // criteria (PlaneMonitor::step_after_model), which the new maximum may change.
-            defer_rocking_model(pl, r, p == 0 ? ax[k] : ay[k], az[k], dt);
-            lane.model_done |= 1u << p;
-            if (lane.busy == 0) busy[n++] = k;
-            lane.busy |= 1u << p;
-          }
-        } else {
-          if (lane.busy == 0) busy[n++] = k;  // its first plane to step
-          lane.busy |= 1u << p;
-        }
-        lane.candidates &= ~(1u << p);
-        if (lane.candidates == 0 && lane.busy == 0) ++deferred;  // the item's last candidate: all deferred
-      }
-    }
-    for (std::size_t j = 0; j < std::min<std::size_t>(n, 6); ++j) prefetch_item(busy[j]);
-    for (std::size_t j = 0; j < std::min<std::size_t>(n, 4); ++j) prefetch_planes(busy[j]);
-    for (std::size_t j = 0; j < std::min<std::size_t>(n, 2); ++j) prefetch_models(busy[j]);
-    for (std::size_t j = 0; j < n; ++j) {
-      if (j + 6 < n) prefetch_item(busy[j + 6]);
-      if (j + 4 < n) prefetch_planes(busy[j + 4]);
-      if (j + 2 < n) prefetch_models(busy[j + 2]);
-      const std::size_t k = busy[j];
-      const unsigned planes = lanes_[k].busy;
-      sync_planes(k, planes);
-      const ItemEvents& ev = items_[k]->step_planes(ax[k], ay[k], az[k], dt, planes, lanes_[k].model_done);
-      event_flags_[k] = static_cast<std::uint8_t>((ev.change_count > 0 ? kHasChanges : 0) | (ev.alarm_count > 0 ? kHasAlarms : 0));
-      lanes_[k].stepped = true;
-      refresh_planes(k, planes);
-    }
+    if (nr > 0) settle_rocking(rix, nr, rnext, grows, ax, ay, az, dt, busy, n, deferred);
+    step_busy(busy, n, ax, ay, az, dt);
   }
   return deferred;
 }

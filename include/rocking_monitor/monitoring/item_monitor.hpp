@@ -96,6 +96,8 @@ class ItemMonitor {
   // Auto: whether the 3-D model takes over at the next step with the running peaks as they are (the
   // item at rest and the shaking bidirectional).
   bool solid_takes_over() const;
+  // The 3-D model's step of a sample and its alarms (the item's levels while it is in charge).
+  void step_solid(double dt);
   // The pair's one friction budget (friction_share.hpp): the shares for the next sample (its end's
   // input (ax, ay, az), dt later) from the planes' states, and whether the planes are engaged (then
   // both must step; it depends on the state at the sample's start alone).

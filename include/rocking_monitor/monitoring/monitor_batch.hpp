@@ -162,6 +162,11 @@ class MonitorBatch {
   void prefetch_item(std::size_t k) const;
   void prefetch_planes(std::size_t k) const;
   void prefetch_models(std::size_t k) const;
+  void step_busy(const std::size_t* busy, std::size_t n, const double* ax, const double* ay, const double* az,
+                 double dt);
+  void settle_rocking(std::uint32_t* rix, std::size_t nr, StreamingIntensity::Lane* const* rnext, const bool* grows,
+                      const double* ax, const double* ay, const double* az, double dt, std::size_t* busy,
+                      std::size_t& n, std::size_t& deferred);
   void sync_planes(std::size_t k, unsigned planes);   // sync() of these planes
   bool rocking_pending(std::size_t k) const {
     const Lane& l = lanes_[k];
