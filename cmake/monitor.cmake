@@ -116,7 +116,7 @@ endif()
 if(CPP_HTTPLIB_FOUND)
   # The page's files (src/ros/dashboard_web/) become raw string literals included by dashboard_assets.cpp.
   set(dashboard_web_inc)
-  foreach(asset index.html app.js style.css)
+  foreach(asset index.html style.css app.js state.js plan.js item_view.js alarms.js health.js)
     set(out ${CMAKE_CURRENT_BINARY_DIR}/dashboard_web/${asset}.inc)
     add_custom_command(OUTPUT ${out}
       COMMAND ${CMAKE_COMMAND} -DIN=${CMAKE_CURRENT_SOURCE_DIR}/src/ros/dashboard_web/${asset} -DOUT=${out}

@@ -1,6 +1,10 @@
 #!/usr/bin/python3
 """List C++ function definitions in src/ with their line counts (issue 53).
 
+The dashboard's JavaScript modules (src/ros/dashboard_web/*.js) are scanned
+the same way: a `function name(...) {` reads like a C++ definition (arrow
+functions count as part of the function around them).
+
 A brace-matching scan, not a parser: comments, strings and character
 literals are blanked first, then every top-level-ish `{` whose preceding
 text ends in `)` (optionally followed by const/noexcept/override/-> type/
@@ -156,7 +160,7 @@ def main():
     for root in args.paths:
         files = [root] if os.path.isfile(root) else [
             os.path.join(d, f) for d, _, fs in os.walk(root) for f in fs
-            if f.endswith((".cpp", ".hpp", ".h", ".cc"))]
+            if f.endswith((".cpp", ".hpp", ".h", ".cc", ".js"))]
         for path in sorted(files):
             for name, first, count in scan(path):
                 if count >= args.min:

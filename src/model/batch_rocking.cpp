@@ -148,28 +148,36 @@ void BatchRocking::step_all(double ax, double ay, double dt) {
   step(bcast_ax_.data(), bcast_ay_.data(), dt);
 }
 
-void BatchRocking::step(const double* ax, const double* ay, double dt) {
+void BatchRocking::check_sample(const double* ax, const double* ay, double dt) const {
   const std::size_t n = models_.size();
   bool finite = std::isfinite(dt) && dt > 0.0;
   for (std::size_t k = 0; k < n; ++k) finite &= std::isfinite(ax[k]) & std::isfinite(ay[k]);
   if (!finite)
     for (std::size_t k = 0; k < n; ++k) require_valid_sample(ax[k], ay[k], dt, "BatchRocking::step");
-  stats_ = BatchStats{};
-  Lanes& l = lanes_;
-  if (mirrors_stale_) {
-    for (std::size_t k = 0; k < n; ++k) {
-      sync(k);  // deferred samples first: the mirrors are re-read from the models
-      refresh_mirror(k);
-    }
-    mirrors_stale_ = false;
-  }
+}
 
-  // 1. Lanes at REST: the vector uplift test (mirrors: mode, last inputs).
+void BatchRocking::refresh_mirrors() {
+  const std::size_t n = models_.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    sync(k);  // deferred samples first: the mirrors are re-read from the models
+    refresh_mirror(k);
+  }
+  mirrors_stale_ = false;
+}
+
+// 1. Lanes at REST: the vector uplift test (mirrors: mode, last inputs).
+void BatchRocking::test_uplift(const double* ax, const double* ay) {
+  const std::size_t n = models_.size();
+  Lanes& l = lanes_;
   std::copy(ax, ax + n, l.ax_now.begin());
   std::copy(ay, ay + n, l.ay_now.begin());
   batch_detail::uplift_test(l, padded(n), settings_.model == ModelKind::Linearized);
+}
 
-  // 2. ROCKING lanes: the vector dopri5 on their state in place.
+// 2. ROCKING lanes: the vector dopri5 on their state in place.
+void BatchRocking::rock_lanes(double dt) {
+  const std::size_t n = models_.size();
+  Lanes& l = lanes_;
   std::size_t m = 0;
   if (vr_count_ > 0)  // no walk over the lanes when none rocks
     for (std::size_t k = 0; k < n; ++k)
@@ -179,63 +187,87 @@ void BatchRocking::step(const double* ax, const double* ay, double dt) {
     for (std::size_t i = m; i < mp; ++i) l.idx[i] = l.idx[m - 1];  // same lane again: same results
     batch_detail::rocking_sample(l, mp, dt, settings_.tol, trig_ == BatchTrig::Exact);
   }
+}
 
-  // 3. Per lane: rest (fast), rocking (the kernel's result kept or committed), everything else (scalar).
-  for (std::size_t k = 0; k < n; ++k) {
-    if (l.rest[k] && !l.maybe_lift[k]) {
-      // free_flight() and slides_from_rest() at the sample end, as RockingModel::update_criteria
-      // evaluates them (ay + g < 0; mu_s given), with room for its rounding of the input line.
-      const double margin = 1e-12 * (std::abs(ay[k]) + std::abs(l.ay_prev[k]) + kGravity);
-      if (l.mu_inf[k] && ay[k] + kGravity > margin) {
-        l.t[k] += dt;  // RockingModel::step's t_ += dt
-        l.ax_prev[k] = ax[k];
-        l.ay_prev[k] = ay[k];
-        ++l.deferred[k];
-        ++stats_.rest_fast;
-        continue;
-      }
-    }
-    if (l.over[k]) {  // RockingModel::apply_rest_samples: what step() does on its side
-      l.t[k] += dt;
+// 3a. The sample stays in lane k, its model untouched: at rest (fast), overturned, or rocking with the
+// kernel's result clean and nothing happening at its end. Forced inline, as the loop it came from:
+// it runs for every lane and sample.
+[[gnu::always_inline]] inline bool BatchRocking::defer_sample(std::size_t k, const double* ax, const double* ay,
+                                                              double dt) {
+  Lanes& l = lanes_;
+  if (l.rest[k] && !l.maybe_lift[k]) {
+    // free_flight() and slides_from_rest() at the sample end, as RockingModel::update_criteria
+    // evaluates them (ay + g < 0; mu_s given), with room for its rounding of the input line.
+    const double margin = 1e-12 * (std::abs(ay[k]) + std::abs(l.ay_prev[k]) + kGravity);
+    if (l.mu_inf[k] && ay[k] + kGravity > margin) {
+      l.t[k] += dt;  // RockingModel::step's t_ += dt
       l.ax_prev[k] = ax[k];
       l.ay_prev[k] = ay[k];
       ++l.deferred[k];
       ++stats_.rest_fast;
-      continue;
+      return true;
     }
-    if (l.vr[k] != 0.0 && l.clean[k] && l.end_clear[k]) {
-      // Nothing can change at the sample end: the sample stays in the lane (the same additions as
-      // commit_rocking_sample, applied by flush_rocking).
-      l.keep_rocking_sample(k, ax[k], ay[k]);
-      l.t[k] += dt;
-      l.last_dt[k] = dt;
-      ++l.rocking_deferred[k];
-      ++stats_.rocking_fast;
-      continue;
-    }
-    sync(k);
-    RockingModel& m = models_[k];
-    if (l.vr[k] != 0.0) {
-      if (l.clean[k]) {
-        m.commit_rocking_sample(ax[k], ay[k], dt, l.theta_out[k], l.omega_out[k], l.h_out[k], l.k1a_out[k],
-                                l.k1b_out[k], static_cast<int>(l.steps[k]), l.max_ratio[k], l.end_clear[k] != 0);
-        ++stats_.rocking_fast;
-      } else {
-        m.step(ax[k], ay[k], dt);  // the model was not touched: this is the roll-back
-        ++stats_.scalar;
-        ++stats_.rocking_fallback;
-      }
-    } else if ((l.rest[k] && !l.maybe_lift[k]) || m.mode() == Mode::Overturned) {
-      // An OVERTURNED body's step() only advances time and re-evaluates the (empty) criteria.
-      m.advance_at_rest(ax[k], ay[k], dt);
-      ++stats_.rest_fast;
-    } else {
-      m.step(ax[k], ay[k], dt);
-      ++stats_.scalar;
-    }
-    note_violations(k);
-    refresh_mirror(k);
   }
+  if (l.over[k]) {  // RockingModel::apply_rest_samples: what step() does on its side
+    l.t[k] += dt;
+    l.ax_prev[k] = ax[k];
+    l.ay_prev[k] = ay[k];
+    ++l.deferred[k];
+    ++stats_.rest_fast;
+    return true;
+  }
+  if (l.vr[k] != 0.0 && l.clean[k] && l.end_clear[k]) {
+    // Nothing can change at the sample end: the sample stays in the lane (the same additions as
+    // commit_rocking_sample, applied by flush_rocking).
+    l.keep_rocking_sample(k, ax[k], ay[k]);
+    l.t[k] += dt;
+    l.last_dt[k] = dt;
+    ++l.rocking_deferred[k];
+    ++stats_.rocking_fast;
+    return true;
+  }
+  return false;
+}
+
+// 3b. Lane k's model takes the sample: the kernel's result committed (or rolled back to the scalar
+// step), rest or overturned advanced, anything else the scalar step; then its mirror is re-read.
+[[gnu::always_inline]] inline void BatchRocking::step_model(std::size_t k, const double* ax, const double* ay,
+                                                            double dt) {
+  Lanes& l = lanes_;
+  sync(k);
+  RockingModel& m = models_[k];
+  if (l.vr[k] != 0.0) {
+    if (l.clean[k]) {
+      m.commit_rocking_sample(ax[k], ay[k], dt, l.theta_out[k], l.omega_out[k], l.h_out[k], l.k1a_out[k],
+                              l.k1b_out[k], static_cast<int>(l.steps[k]), l.max_ratio[k], l.end_clear[k] != 0);
+      ++stats_.rocking_fast;
+    } else {
+      m.step(ax[k], ay[k], dt);  // the model was not touched: this is the roll-back
+      ++stats_.scalar;
+      ++stats_.rocking_fallback;
+    }
+  } else if ((l.rest[k] && !l.maybe_lift[k]) || m.mode() == Mode::Overturned) {
+    // An OVERTURNED body's step() only advances time and re-evaluates the (empty) criteria.
+    m.advance_at_rest(ax[k], ay[k], dt);
+    ++stats_.rest_fast;
+  } else {
+    m.step(ax[k], ay[k], dt);
+    ++stats_.scalar;
+  }
+  note_violations(k);
+  refresh_mirror(k);
+}
+
+void BatchRocking::step(const double* ax, const double* ay, double dt) {
+  check_sample(ax, ay, dt);
+  stats_ = BatchStats{};
+  if (mirrors_stale_) refresh_mirrors();
+  test_uplift(ax, ay);
+  rock_lanes(dt);
+  // 3. Per lane: rest (fast), rocking (the kernel's result kept or committed), everything else (scalar).
+  const std::size_t n = models_.size();
+  for (std::size_t k = 0; k < n; ++k)
+    if (!defer_sample(k, ax, ay, dt)) step_model(k, ax, ay, dt);
 }
 
 }  // namespace rocking_monitor::core

@@ -71,10 +71,9 @@ bool Dashboard::start_server() {
       res.set_content(body, type);
     };
   };
-  server_->Get("/", asset(kIndexHtml, "text/html; charset=utf-8"));
-  server_->Get("/index.html", asset(kIndexHtml, "text/html; charset=utf-8"));
-  server_->Get("/app.js", asset(kAppJs, "application/javascript; charset=utf-8"));
-  server_->Get("/style.css", asset(kStyleCss, "text/css; charset=utf-8"));
+  server_->Get("/", asset(kWebAssets[0].body, kWebAssets[0].type));  // index.html
+  for (std::size_t i = 0; i < kWebAssetCount; ++i)
+    server_->Get(kWebAssets[i].path, asset(kWebAssets[i].body, kWebAssets[i].type));
   server_->Get("/api/snapshot", [this](const httplib::Request&, httplib::Response& res) {
     res.set_header("Cache-Control", "no-store");
     res.set_content(snapshot_json(), "application/json");

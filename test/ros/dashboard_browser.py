@@ -77,7 +77,7 @@ class DashboardBrowser(unittest.TestCase):
         self.assertIsNotNone(points, 'input chart never drawn: %s' % chart.group(0))
         self.assertGreater(int(points.group(1)), 100)
         self.assertAlmostEqual(float(peak.group(1)), 4.0, delta=1e-6)
-        # The alarm log's last column ("predicted by") shows whole without scrolling at 1280 px: app.js
+        # The alarm log's last column ("predicted by") shows whole without scrolling at 1280 px: alarms.js
         # records on the table where the column lies and what of the log is visible (markAlarmLayout).
         alarm_rows = re.findall(r'<tr data-item="[^"]+" data-level="[^"]+">', dom)
         self.assertGreater(len(alarm_rows), 0, 'no alarm rows in the DOM')

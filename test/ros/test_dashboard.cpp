@@ -8,8 +8,10 @@
 #include <filesystem>
 #include <map>
 #include <mutex>
+#include <regex>
 #include <set>
 #include <thread>
+#include <vector>
 
 #include <signal.h>
 #include <sys/wait.h>
@@ -102,6 +104,39 @@ class EventReader {
   std::map<std::string, Clock::time_point> alarms_;
 };
 
+// The page's scripts are ES modules (src/ros/dashboard_web/): index.html loads the entry with
+// <script type="module">, and each module the entry and the others import ("from './x.js'") must be
+// served by the node, 200, as JavaScript (a browser refuses a module of another type). Returns the
+// paths fetched.
+std::set<std::string> check_page_modules(httplib::Client& http, const std::string& page) {
+  const std::regex entry(R"re(<script type="module" src="(/\w+\.js)"></script>)re");
+  const std::regex import(R"re(from '\./(\w+\.js)')re");
+  std::smatch m;
+  std::vector<std::string> todo;
+  if (std::regex_search(page, m, entry))
+    todo.push_back(m[1]);
+  else
+    ADD_FAILURE() << "no <script type=\"module\"> in the page";
+  std::set<std::string> seen;
+  while (!todo.empty()) {
+    const std::string path = todo.back();
+    todo.pop_back();
+    if (!seen.insert(path).second) continue;
+    auto r = http.Get(path.c_str());
+    if (!r) {
+      ADD_FAILURE() << path << ": no answer";
+      continue;
+    }
+    EXPECT_EQ(r->status, 200) << path;
+    const std::string type = r->get_header_value("Content-Type");
+    EXPECT_EQ(type.rfind("application/javascript", 0), 0u) << path << ": " << type;
+    EXPECT_GT(r->body.size(), 100u) << path;
+    for (std::sregex_iterator it(r->body.begin(), r->body.end(), import), end; it != end; ++it)
+      todo.push_back("/" + (*it)[1].str());
+  }
+  return seen;
+}
+
 TEST(Dashboard, ServesThePageTheSnapshotAndTheAlarms) {
   ros::NodeHandle nh, pnh("~");
   std::string ns = "/rocking_monitor", url_param = "/dashboard/url", must_overturn, must_survive;
@@ -149,12 +184,16 @@ TEST(Dashboard, ServesThePageTheSnapshotAndTheAlarms) {
   ASSERT_TRUE(page);
   EXPECT_EQ(page->status, 200);
   EXPECT_NE(page->body.find("<canvas"), std::string::npos);
-  for (const char* asset : {"/app.js", "/style.css"}) {
-    auto r = http.Get(asset);
-    ASSERT_TRUE(r) << asset;
-    EXPECT_EQ(r->status, 200) << asset;
-    EXPECT_GT(r->body.size(), 100u) << asset;
+  {
+    auto r = http.Get("/style.css");
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 200);
+    EXPECT_GT(r->body.size(), 100u);
   }
+  // The entry app.js, state.js and the four panels' modules (floor plan, item view, alarm log, health).
+  const std::set<std::string> modules = check_page_modules(http, page->body);
+  EXPECT_EQ(modules.size(), 6u);
+  std::printf("page modules served: %zu\n", modules.size());
   auto missing = http.Get("/nothing_here");
   ASSERT_TRUE(missing);
   EXPECT_EQ(missing->status, 404);

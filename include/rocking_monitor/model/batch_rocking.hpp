@@ -167,6 +167,13 @@ class BatchRocking {
   void flush_rocking(std::size_t k) const;
   void refresh_mirror(std::size_t k);
   void note_violations(std::size_t k);  // after lane k's model stepped this sample
+  // step()'s steps, in its order (batch_rocking.cpp).
+  void check_sample(const double* ax, const double* ay, double dt) const;  // throws, nothing stepped
+  void refresh_mirrors();
+  void test_uplift(const double* ax, const double* ay);
+  void rock_lanes(double dt);
+  bool defer_sample(std::size_t k, const double* ax, const double* ay, double dt);
+  void step_model(std::size_t k, const double* ax, const double* ay, double dt);
 
   mutable std::vector<RockingModel> models_;
   bool mirrors_stale_ = true;

@@ -67,10 +67,16 @@ class Dashboard {
   /// (m/s^2, sensor axes, the at-rest reading removed), one point per 50 ms bin (its largest sample).
   std::string input_json() const;
 
-  /// Page assets embedded in the binary (dashboard_assets.cpp).
-  static const char* const kIndexHtml;
-  static const char* const kAppJs;
-  static const char* const kStyleCss;
+  /// One file of the page, embedded in the binary (dashboard_assets.cpp) and served at `path`.
+  struct WebAsset {
+    const char* path;  // "/app.js"
+    const char* type;  // its Content-Type
+    const char* body;
+  };
+  /// The page (also served at "/"), its style and its ES modules: the entry app.js, the shared state.js
+  /// and one module per panel (docs/dashboard.md).
+  static const WebAsset kWebAssets[];
+  static const std::size_t kWebAssetCount;
 
  private:
   // ---- state cache (dashboard_state.cpp)
