@@ -531,6 +531,7 @@ def main(argv=None):
     command = " ".join(["fragility_experiments.py"] + [shlex.quote(x) for x in (sys.argv[1:] if argv is None else argv)])
     return run_fragility(a, command)
 
+
 def read_baseline(d, name, tests, folds):
     """calibrate_experiments.py's held-out P of these tests; its folds must be these folds."""
     path = os.path.join(d, f"predictions_{name}.csv")
