@@ -78,7 +78,7 @@ def same_alarms(a, c, tol):
     return worst <= tol, worst
 
 
-def main():
+def parse_args():
     ap = argparse.ArgumentParser()
     ap.add_argument("--sim", required=True)
     ap.add_argument("--records", default=os.path.join(ROOT, "..", "shared", "records"))
@@ -88,17 +88,17 @@ def main():
                     help="agreement sweep: every .AT2 under --records at these scales ('' = skip)")
     ap.add_argument("--adaptive-args", default="", help="extra rocking_sim options of the adaptive runs")
     ap.add_argument("--out-dir", default=os.path.join(ROOT, "docs", "fidelity"))
-    args = ap.parse_args()
-    out_dir = args.out_dir
-    to_docs = os.path.abspath(out_dir) == os.path.join(ROOT, "docs", "fidelity")
-    adaptive_extra = args.adaptive_args.split()
-    os.makedirs(out_dir, exist_ok=True)
+    return ap.parse_args()
+
+
+def intensity_scenes(records):
+    """The scenes of the cost table: (level, name, record, scale), quiet noise to full records."""
     tmp = tempfile.mkdtemp()
     noise = os.path.join(tmp, "quiet_noise.csv")
     quiet_noise_csv(noise)
-    kobe = os.path.join(args.records, "kobe_1995", "RSN1106_KOBE_KJM000.AT2")
-    elc = os.path.join(args.records, "imperial_valley_1979", "RSN180_IMPVALL.H_H-E05140.AT2")
-    scenes = [
+    kobe = os.path.join(records, "kobe_1995", "RSN1106_KOBE_KJM000.AT2")
+    elc = os.path.join(records, "imperial_valley_1979", "RSN180_IMPVALL.H_H-E05140.AT2")
+    return [
         ("quiet", "quiet noise 0.005 m/s2 RMS (30 s)", noise, 1.0),
         ("moderate", "Kobe KJM000 x0.2", kobe, 0.2),
         ("moderate", "Imperial Valley E05140 x0.2", elc, 0.2),
@@ -107,6 +107,10 @@ def main():
         ("strong", "Kobe KJM000 x1", kobe, 1.0),
         ("strong", "Imperial Valley E05140 x1", elc, 1.0),
     ]
+
+
+def run_scenes(args, scenes, adaptive_extra):
+    """Every catalogue item x scene x fidelity: the cost rows and the adaptive-vs-contact agreement rows."""
     rows, agree = [], []
     for level, name, record, scale in scenes:
         for item, item_args in CATALOGUE:
@@ -133,17 +137,23 @@ def main():
                           "required_mu": res["adaptive"]["scene"]["required_mu"]})
             print("%-32s %-17s rock %.3f  contact %.3f  adaptive %.3f us/sample  agree %s" % (
                 name, item, *[1e6 * res[f]["cpu_time_s"] / n for f in FIDELITIES], ok), file=sys.stderr)
-    with open(os.path.join(out_dir, "cost.csv"), "w", newline="") as f:
+    return rows, agree
+
+
+def write_rows(path, rows):
+    with open(path, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         w.writeheader()
         w.writerows(rows)
-    with open(os.path.join(out_dir, "agreement.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(agree[0].keys()))
-        w.writeheader()
-        w.writerows(agree)
 
+
+LEVELS = ["quiet", "moderate", "medium", "strong"]
+
+
+def cost_table(rows):
+    """{(level, fidelity): (us per item-sample, steps per item-sample, share stepped by ContactModel)}."""
     # Table: mean CPU per item-sample per level and fidelity, plus steps.
-    levels = ["quiet", "moderate", "medium", "strong"]
+    levels = LEVELS
     table = {}
     for lv in levels:
         for fi in FIDELITIES:
@@ -152,6 +162,12 @@ def main():
             steps = sum(r["steps"] for r in sel) / sum(r["samples"] for r in sel)
             rc = sum(r["samples_contact_model"] for r in sel) / sum(r["samples"] for r in sel)
             table[(lv, fi)] = (cpu * 1e6, steps, rc)
+    return table
+
+
+def measured_lines(table, scenes, agree):
+    """The markdown tables: cost per intensity level, then agreement per scene and item."""
+    levels = LEVELS
     lines = ["| scene intensity | rocking-only us/item-sample | contact-only us/item-sample | adaptive us/item-sample | adaptive / contact | steps per item-sample (rocking / contact / adaptive) | adaptive: share of samples stepped by ContactModel |",
              "|---|---|---|---|---|---|---|"]
     for lv in levels:
@@ -171,7 +187,13 @@ def main():
             need, "yes" if a["ruled_out"] else "no", a["switches"], a["first_reason"]))
     n_ok = sum(a["agree"] for a in agree)
     lines += ["", "Agreement: %d of %d item-scene runs give the same alarms (flags, final mode, times within 1e-4 s)." % (n_ok, len(agree))]
-    # Agreement sweep over every historical record (adaptive vs contact, alarms only).
+    return lines
+
+
+def sweep_lines(args, adaptive_extra, out_dir, to_docs):
+    """The agreement sweep over every historical record (adaptive vs contact, alarms only): writes
+    agreement_sweep.csv, returns its summary lines (none when --sweep-scales is empty)."""
+    lines = []
     scales = [float(x) for x in args.sweep_scales.split(",") if x.strip()]
     if scales:
         records = sorted(os.path.join(d, f) for d, _, fs in os.walk(args.records) for f in fs
@@ -223,13 +245,20 @@ def main():
                          "sub-steps per sample %s itself)" % (
                              x["record"], x["scale"], x["item"], x["max_time_diff_s"],
                              "agrees with" if x["contact_self_agree_x4_substeps"] else "**differs from**"))
-    if to_docs:
-        md = os.path.join(ROOT, "docs", "fidelity.md")
-        text = open(md).read()
-        b, e = "<!-- measured:begin -->", "<!-- measured:end -->"
-        text = text[:text.index(b) + len(b)] + "\n" + "\n".join(lines) + "\n" + text[text.index(e):]
-        open(md, "w").write(text)
+    return lines
 
+
+def rewrite_fidelity_md(lines):
+    """The measured tables between the markers of docs/fidelity.md."""
+    md = os.path.join(ROOT, "docs", "fidelity.md")
+    text = open(md).read()
+    b, e = "<!-- measured:begin -->", "<!-- measured:end -->"
+    text = text[:text.index(b) + len(b)] + "\n" + "\n".join(lines) + "\n" + text[text.index(e):]
+    open(md, "w").write(text)
+
+
+def plot_cost_vs_intensity(table, out_dir):
+    levels = LEVELS
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -247,7 +276,29 @@ def main():
     ax.legend()
     fig.tight_layout()
     fig.savefig(os.path.join(out_dir, "cost_vs_intensity.png"), dpi=110)
+
+
+def run_evidence(args):
+    """Cost and agreement runs, their CSVs, tables and chart (module docstring)."""
+    out_dir = args.out_dir
+    to_docs = os.path.abspath(out_dir) == os.path.join(ROOT, "docs", "fidelity")
+    adaptive_extra = args.adaptive_args.split()
+    os.makedirs(out_dir, exist_ok=True)
+    scenes = intensity_scenes(args.records)
+    rows, agree = run_scenes(args, scenes, adaptive_extra)
+    write_rows(os.path.join(out_dir, "cost.csv"), rows)
+    write_rows(os.path.join(out_dir, "agreement.csv"), agree)
+    table = cost_table(rows)
+    lines = measured_lines(table, scenes, agree)
+    lines += sweep_lines(args, adaptive_extra, out_dir, to_docs)
+    if to_docs:
+        rewrite_fidelity_md(lines)
+    plot_cost_vs_intensity(table, out_dir)
     print("\n".join(lines))
+
+
+def main():
+    run_evidence(parse_args())
 
 
 if __name__ == "__main__":

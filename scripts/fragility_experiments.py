@@ -372,15 +372,135 @@ def parser():
     return ap
 
 
-def main(argv=None):
-    a = parser().parse_args(argv)
-    command = " ".join(["fragility_experiments.py"] + [shlex.quote(x) for x in (sys.argv[1:] if argv is None else argv)])
+def check_inputs(a):
+    if not (os.path.isfile(a.experiments) and os.access(a.experiments, os.X_OK)):
+        raise CalibrationError(f"--experiments {a.experiments}: not an executable (build rocking_experiments)")
+    if not os.path.isdir(os.path.join(a.granite, "tests")):
+        raise CalibrationError(f"--granite {a.granite}: no tests/ directory")
+
+
+def member_margins(a, name, members, bhash, dhash, summary, bar):
+    """Every member body's margins of the specimen's tests (run_margins, cached)."""
+    runs = []
+    for body, count in members:
+        rows, cached = run_margins(a, name, body, bhash, dhash)
+        summary["margin_runs"] += 1
+        summary["margins_cached"] += cached
+        runs.append(rows)
+        bar.update()
+    return runs
+
+
+def fit_specimen(a, name, members, runs, summary, preds, bodies, all_p):
+    """The specimen's fragility: fit, cross-validation and the variants scored against it, into
+    summary["specimens"][name]; its predictions in preds and all_p, its shipped body in bodies; its CSV."""
+    tests = [r["test"] for r in runs[0]]
+    if any([r["test"] for r in rr] != tests for rr in runs):
+        raise CalibrationError(f"{name}: the members' margins cover different tests")
+    keep = np.array([r["y"] >= 0 for r in runs[0]])
+    y = np.array([r["y"] for r in runs[0]])[keep]
+    ln_s = np.log(np.array([[r["s"] for r in rr] for rr in runs]))[:, keep]
+    grid = grid_scales(a.margin_range[0], a.margin_range[1], a.margin_grid)
+    for rr in runs:
+        if any(len(r["pattern"]) != a.margin_grid for r in rr):
+            raise CalibrationError(f"{name}: margins with another grid than --margin-grid {a.margin_grid}")
+    seg = Segments([[overturn_segments(r["pattern"], grid, *r["bracket"]) for r, k in zip(rr, keep) if k]
+                    for rr in runs], int(keep.sum()))
+    # the margin alone (the first overturn; chaotic tests as if monotone above it)
+    seg_first = Segments([[[(v, math.inf)] for v in row] for row in ln_s], int(keep.sum()))
+    counts = np.array([c for _, c in members], dtype=float)
+    w_mix = counts / counts.sum()
+    w_top = np.zeros(len(members))
+    w_top[0] = 1.0
+    folds = stratified_folds(y, a.folds, a.seed)
+    w_ship = w_mix if a.mixture else w_top
+    p_cv, fits = cross_validate(seg, w_ship, y, folds)
+    fit = fit_fragility(seg, w_ship, y)
+    p_in = fragility_p(seg, w_ship, fit["mu"], fit["beta"])
+    cvl = f"{a.folds}-fold CV"
+    variants = [(f"fragility (mu, beta), {cvl}", p_cv)]
+    other = w_top if a.mixture else w_mix
+    if len(members) > 1:
+        variants.append((f"fragility, {'most frequent member' if a.mixture else 'mixture of members'}, {cvl}",
+                         cross_validate(seg, other, y, folds)[0]))
+    variants.append((f"fragility, no bias (mu = 0), {cvl}", cross_validate(seg, w_ship, y, folds, fix_mu=0.0)[0]))
+    variants.append((f"fragility on the first overturn s* alone, {cvl}", cross_validate(seg_first, w_ship, y, folds)[0]))
+    variants.append(("fragility, in-sample", p_in))
+    # the members' own 0/1 outcome at scale 1 (the calibrated catalogue as shipped, fitted on all tests)
+    k1 = [i for i, g in enumerate(grid) if abs(g - 1.0) < 1e-9]
+    if k1:
+        at1 = np.array([[int(r["pattern"][k1[0]]) for r in rr] for rr in runs], dtype=float)[:, keep]
+        variants.append(("calibrated members at scale 1 (0/1, in-sample posterior)", w_mix @ at1))
+    p_base = None
+    if a.baseline:
+        p_base = read_baseline(a.baseline, name, np.array(tests)[keep], folds)
+        variants.append((f"today's calibrated model, {cvl} (grid posterior)", p_base))
+    table = [(label, all_scores(p, y)) for label, p in variants]
+    chaotic = sum(r["chaotic"] for r in runs[0])
+    summary["specimens"][name] = {
+        "tests": int(len(y)), "overturned": int(y.sum()), "members": [c for _, c in members],
+        "members_note": (f"the most frequent of {len(members)} distinct members ({members[0][1]} of "
+                         f"{int(counts.sum())})" if len(members) > 1 else "the catalogue's one body"),
+        "fit": fit, "fold_fits": fits, "fold_mu": [min(f["mu"] for f in fits), max(f["mu"] for f in fits)],
+        "fold_beta": [min(f["beta"] for f in fits), max(f["beta"] for f in fits)],
+        "cv": table[0][1], "table": table,
+        "chaotic": chaotic, "chaotic_per_member": [sum(r["chaotic"] for r in rr) for rr in runs],
+        "censored_below": sum(r["censored"] < 0 for r in runs[0]),
+        "censored_above": sum(r["censored"] > 0 for r in runs[0])}
+    preds[name] = {"y": y, "p_cv": p_cv, "p_baseline": p_base}
+    all_p[name] = (y, p_cv, p_base)
+    bodies[name] = members[0][0]
+    write_specimen_csv(a, name, runs, tests, keep, y, folds, p_cv, p_in, ln_s)
+
+
+def write_specimen_csv(a, name, runs, tests, keep, y, folds, p_cv, p_in, ln_s):
+    """fragility_NAME.csv: per kept test its outcome, fold, P (held-out and in-sample) and margins."""
+    os.makedirs(a.out_dir, exist_ok=True)
+    with open(os.path.join(a.out_dir, f"fragility_{name}.csv"), "w") as fh:
+        fh.write("test,measured,fold,p_cv,p_in_sample," + ",".join(f"s_star_member{m}" for m in range(len(runs))) +
+                 ",chaotic_member0,grid_outcomes_member0\n")
+        kept = [r for r, k in zip(runs[0], keep) if k]
+        for j, t in enumerate(np.array(tests)[keep]):
+            fh.write(f"{t},{y[j]},{folds[j]},{p_cv[j]:.6f},{p_in[j]:.6f}," +
+                     ",".join(f"{math.exp(v):.6g}" for v in ln_s[:, j]) +
+                     f",{kept[j]['chaotic']},{kept[j]['pattern']}\n")
+
+
+def score_both_specimens(summary, all_p):
+    """The specimens' held-out P scored together (and today's calibrated model's, with --baseline)."""
+    if len(all_p) > 1:
+        y = np.concatenate([v[0] for v in all_p.values()])
+        both = all_scores(np.concatenate([v[1] for v in all_p.values()]), y)
+        summary["both_cv"] = {k: both[k] for k in ("accuracy", "brier", "log_score", "bins_judged", "bins_inside")}
+        if all(v[2] is not None for v in all_p.values()):
+            bb = all_scores(np.concatenate([v[2] for v in all_p.values()]), y)
+            summary["both_baseline_cv"] = {k: bb[k] for k in ("accuracy", "brier", "log_score")}
+
+
+def write_summary(a, summary):
+    """summary.json and summary.md in --out-dir; the markdown also to stdout."""
+    os.makedirs(a.out_dir, exist_ok=True)
+    md = markdown(summary)
+    if "both_cv" in summary:
+        b = summary["both_cv"]
+        md += (f"\nBoth specimens, fragility 10-fold CV: accuracy {b['accuracy']:.3f}, Brier {b['brier']:.3f}, "
+               f"log score {b['log_score']:.3f}")
+        if "both_baseline_cv" in summary:
+            c = summary["both_baseline_cv"]
+            md += f"; today's: {c['accuracy']:.3f}, {c['brier']:.3f}, {c['log_score']:.3f}"
+        md += "\n"
+    with open(os.path.join(a.out_dir, "summary.json"), "w") as fh:
+        json.dump(summary, fh, indent=1, default=lambda o: o.tolist() if hasattr(o, "tolist") else str(o))
+    with open(os.path.join(a.out_dir, "summary.md"), "w") as fh:
+        fh.write(md)
+    sys.stdout.write(md)
+
+
+def run_fragility(a, command):
+    """Margins, fits and scores per specimen, the summary, and --plot / --write-catalogue (module docstring)."""
     t0 = time.time()
     try:
-        if not (os.path.isfile(a.experiments) and os.access(a.experiments, os.X_OK)):
-            raise CalibrationError(f"--experiments {a.experiments}: not an executable (build rocking_experiments)")
-        if not os.path.isdir(os.path.join(a.granite, "tests")):
-            raise CalibrationError(f"--granite {a.granite}: no tests/ directory")
+        check_inputs(a)
         specimens = catalogue_members(a.catalogue)
         bhash, dhash = sha256_file(a.experiments), data_digest(a.granite)
         summary = {"command": command, "folds": a.folds, "seed": a.seed, "margin_range": a.margin_range,
@@ -389,102 +509,12 @@ def main(argv=None):
         preds, bodies, all_p = {}, {}, {}
         bar = progress_bar(sum(len(m) for m in specimens.values()), "fragility_experiments: members", a.quiet)
         for name, members in specimens.items():
-            runs = []
-            for body, count in members:
-                rows, cached = run_margins(a, name, body, bhash, dhash)
-                summary["margin_runs"] += 1
-                summary["margins_cached"] += cached
-                runs.append(rows)
-                bar.update()
-            tests = [r["test"] for r in runs[0]]
-            if any([r["test"] for r in rr] != tests for rr in runs):
-                raise CalibrationError(f"{name}: the members' margins cover different tests")
-            keep = np.array([r["y"] >= 0 for r in runs[0]])
-            y = np.array([r["y"] for r in runs[0]])[keep]
-            ln_s = np.log(np.array([[r["s"] for r in rr] for rr in runs]))[:, keep]
-            grid = grid_scales(a.margin_range[0], a.margin_range[1], a.margin_grid)
-            for rr in runs:
-                if any(len(r["pattern"]) != a.margin_grid for r in rr):
-                    raise CalibrationError(f"{name}: margins with another grid than --margin-grid {a.margin_grid}")
-            seg = Segments([[overturn_segments(r["pattern"], grid, *r["bracket"]) for r, k in zip(rr, keep) if k]
-                            for rr in runs], int(keep.sum()))
-            # the margin alone (the first overturn; chaotic tests as if monotone above it)
-            seg_first = Segments([[[(v, math.inf)] for v in row] for row in ln_s], int(keep.sum()))
-            counts = np.array([c for _, c in members], dtype=float)
-            w_mix = counts / counts.sum()
-            w_top = np.zeros(len(members))
-            w_top[0] = 1.0
-            folds = stratified_folds(y, a.folds, a.seed)
-            w_ship = w_mix if a.mixture else w_top
-            p_cv, fits = cross_validate(seg, w_ship, y, folds)
-            fit = fit_fragility(seg, w_ship, y)
-            p_in = fragility_p(seg, w_ship, fit["mu"], fit["beta"])
-            cvl = f"{a.folds}-fold CV"
-            variants = [(f"fragility (mu, beta), {cvl}", p_cv)]
-            other = w_top if a.mixture else w_mix
-            if len(members) > 1:
-                variants.append((f"fragility, {'most frequent member' if a.mixture else 'mixture of members'}, {cvl}",
-                                 cross_validate(seg, other, y, folds)[0]))
-            variants.append((f"fragility, no bias (mu = 0), {cvl}", cross_validate(seg, w_ship, y, folds, fix_mu=0.0)[0]))
-            variants.append((f"fragility on the first overturn s* alone, {cvl}", cross_validate(seg_first, w_ship, y, folds)[0]))
-            variants.append(("fragility, in-sample", p_in))
-            # the members' own 0/1 outcome at scale 1 (the calibrated catalogue as shipped, fitted on all tests)
-            k1 = [i for i, g in enumerate(grid) if abs(g - 1.0) < 1e-9]
-            if k1:
-                at1 = np.array([[int(r["pattern"][k1[0]]) for r in rr] for rr in runs], dtype=float)[:, keep]
-                variants.append(("calibrated members at scale 1 (0/1, in-sample posterior)", w_mix @ at1))
-            p_base = None
-            if a.baseline:
-                p_base = read_baseline(a.baseline, name, np.array(tests)[keep], folds)
-                variants.append((f"today's calibrated model, {cvl} (grid posterior)", p_base))
-            table = [(label, all_scores(p, y)) for label, p in variants]
-            chaotic = sum(r["chaotic"] for r in runs[0])
-            summary["specimens"][name] = {
-                "tests": int(len(y)), "overturned": int(y.sum()), "members": [c for _, c in members],
-                "members_note": (f"the most frequent of {len(members)} distinct members ({members[0][1]} of "
-                                 f"{int(counts.sum())})" if len(members) > 1 else "the catalogue's one body"),
-                "fit": fit, "fold_fits": fits, "fold_mu": [min(f["mu"] for f in fits), max(f["mu"] for f in fits)],
-                "fold_beta": [min(f["beta"] for f in fits), max(f["beta"] for f in fits)],
-                "cv": table[0][1], "table": table,
-                "chaotic": chaotic, "chaotic_per_member": [sum(r["chaotic"] for r in rr) for rr in runs],
-                "censored_below": sum(r["censored"] < 0 for r in runs[0]),
-                "censored_above": sum(r["censored"] > 0 for r in runs[0])}
-            preds[name] = {"y": y, "p_cv": p_cv, "p_baseline": p_base}
-            all_p[name] = (y, p_cv, p_base)
-            bodies[name] = members[0][0]
-            os.makedirs(a.out_dir, exist_ok=True)
-            with open(os.path.join(a.out_dir, f"fragility_{name}.csv"), "w") as fh:
-                fh.write("test,measured,fold,p_cv,p_in_sample," + ",".join(f"s_star_member{m}" for m in range(len(runs))) +
-                         ",chaotic_member0,grid_outcomes_member0\n")
-                kept = [r for r, k in zip(runs[0], keep) if k]
-                for j, t in enumerate(np.array(tests)[keep]):
-                    fh.write(f"{t},{y[j]},{folds[j]},{p_cv[j]:.6f},{p_in[j]:.6f}," +
-                             ",".join(f"{math.exp(v):.6g}" for v in ln_s[:, j]) +
-                             f",{kept[j]['chaotic']},{kept[j]['pattern']}\n")
+            runs = member_margins(a, name, members, bhash, dhash, summary, bar)
+            fit_specimen(a, name, members, runs, summary, preds, bodies, all_p)
         bar.close()  # the last member is done: the summary below is not drawn over
-        if len(all_p) > 1:
-            y = np.concatenate([v[0] for v in all_p.values()])
-            both = all_scores(np.concatenate([v[1] for v in all_p.values()]), y)
-            summary["both_cv"] = {k: both[k] for k in ("accuracy", "brier", "log_score", "bins_judged", "bins_inside")}
-            if all(v[2] is not None for v in all_p.values()):
-                bb = all_scores(np.concatenate([v[2] for v in all_p.values()]), y)
-                summary["both_baseline_cv"] = {k: bb[k] for k in ("accuracy", "brier", "log_score")}
+        score_both_specimens(summary, all_p)
         summary["wall_s"] = time.time() - t0
-        os.makedirs(a.out_dir, exist_ok=True)
-        md = markdown(summary)
-        if "both_cv" in summary:
-            b = summary["both_cv"]
-            md += (f"\nBoth specimens, fragility 10-fold CV: accuracy {b['accuracy']:.3f}, Brier {b['brier']:.3f}, "
-                   f"log score {b['log_score']:.3f}")
-            if "both_baseline_cv" in summary:
-                c = summary["both_baseline_cv"]
-                md += f"; today's: {c['accuracy']:.3f}, {c['brier']:.3f}, {c['log_score']:.3f}"
-            md += "\n"
-        with open(os.path.join(a.out_dir, "summary.json"), "w") as fh:
-            json.dump(summary, fh, indent=1, default=lambda o: o.tolist() if hasattr(o, "tolist") else str(o))
-        with open(os.path.join(a.out_dir, "summary.md"), "w") as fh:
-            fh.write(md)
-        sys.stdout.write(md)
+        write_summary(a, summary)
         if a.plot:
             plot(a.plot, summary, preds)
         if a.write_catalogue:
@@ -494,6 +524,12 @@ def main(argv=None):
         print(f"fragility_experiments: error: {e}", file=sys.stderr)
         return 2
     return 0
+
+
+def main(argv=None):
+    a = parser().parse_args(argv)
+    command = " ".join(["fragility_experiments.py"] + [shlex.quote(x) for x in (sys.argv[1:] if argv is None else argv)])
+    return run_fragility(a, command)
 
 
 def read_baseline(d, name, tests, folds):

@@ -1,20 +1,27 @@
 #!/usr/bin/python3
-"""List C++ function definitions in src/ with their line counts (issue 53).
+"""List C++, JavaScript and Python functions with their line counts (issue 53).
 
 The dashboard's JavaScript modules (src/ros/dashboard_web/*.js) are scanned
-the same way: a `function name(...) {` reads like a C++ definition (arrow
-functions count as part of the function around them).
+the same way as C++: a `function name(...) {` reads like a C++ definition
+(arrow functions count as part of the function around them).
 
-A brace-matching scan, not a parser: comments, strings and character
-literals are blanked first, then every top-level-ish `{` whose preceding
+Python (files under scripts/ ending .py, and extensionless ones whose first
+line is a python3 shebang, e.g. scripts/rocking_report) is read with the
+`ast` module: a `def` counts end_lineno - lineno + 1 lines (decorators not
+included); nested defs are listed on their own and also count in the
+function around them.
+
+C++ and JavaScript: a brace-matching scan, not a parser: comments, strings and
+character literals are blanked first, then every top-level-ish `{` whose preceding
 text ends in `)` (optionally followed by const/noexcept/override/-> type/
 a constructor's initialiser list) opens a function body.  Lambdas and
 control blocks inside a body are counted as part of that body, which is
 what a reader sees.  Good enough to find the long ones; not exact.
 
-    scripts/long_functions.py [--min N] [paths...]   (default: src/, N=80)
+    scripts/long_functions.py [--min N] [paths...]   (default: src/ scripts/, N=80)
 """
 import argparse
+import ast
 import os
 import re
 import sys
@@ -150,19 +157,49 @@ def scan(path):
     return found
 
 
+def is_python(path):
+    """A .py file, or an extensionless one whose first line is a python3 shebang."""
+    if path.endswith(".py"):
+        return True
+    if os.path.splitext(os.path.basename(path))[1]:
+        return False
+    try:
+        with open(path, encoding="utf-8", errors="replace") as f:
+            first = f.readline()
+    except OSError:
+        return False
+    return first.startswith("#!") and "python3" in first
+
+
+def scan_python(path):
+    """(name, first line, line count) of every def in a Python file."""
+    with open(path, encoding="utf-8", errors="replace") as f:
+        tree = ast.parse(f.read(), filename=path)
+    return [(node.name, node.lineno, node.end_lineno - node.lineno + 1)
+            for node in ast.walk(tree)
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef))]
+
+
+def source_files(root):
+    """The C++/JS and Python files under root (or root itself, a file)."""
+    if os.path.isfile(root):
+        return [root]
+    return [os.path.join(d, f) for d, _, fs in os.walk(root) for f in fs
+            if f.endswith((".cpp", ".hpp", ".h", ".cc", ".js"))
+            or is_python(os.path.join(d, f))]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--min", type=int, default=80,
                     help="report functions of at least this many lines")
-    ap.add_argument("paths", nargs="*", default=["src"])
+    ap.add_argument("paths", nargs="*", default=["src", "scripts"])
     args = ap.parse_args()
     rows = []
     for root in args.paths:
-        files = [root] if os.path.isfile(root) else [
-            os.path.join(d, f) for d, _, fs in os.walk(root) for f in fs
-            if f.endswith((".cpp", ".hpp", ".h", ".cc", ".js"))]
-        for path in sorted(files):
-            for name, first, count in scan(path):
+        for path in sorted(source_files(root)):
+            found = scan_python(path) if is_python(path) else scan(path)
+            for name, first, count in found:
                 if count >= args.min:
                     rows.append((count, path, first, name))
     for count, path, first, name in sorted(rows, reverse=True):

@@ -123,7 +123,7 @@ def draw_miss(ax, m, hist):
                  fontsize=7)
 
 
-def main(argv=None):
+def parse_args(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--table", required=True)
     ap.add_argument("--histories", required=True)
@@ -134,14 +134,11 @@ def main(argv=None):
     ap.add_argument("--misses-csv", help="write every miss and its reason here")
     ap.add_argument("--first-page-only", action="store_true")
     ap.add_argument("--per-page", type=int, default=12)
-    a = ap.parse_args(argv)
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    return ap.parse_args(argv)
 
-    rows = read_table(a.table)
-    sliding = {(r["test"], r["specimen"]): r for r in read_table(a.sliding)} if a.sliding else {}
-    al = alphas(a.catalogue)
+
+def find_misses(a, rows, sliding, al):
+    """The wrong predictions with their reasons; and how many of them have no history."""
     misses, missing_hist = [], 0
     for r in rows:
         if r["measured_overturned"] == "" or r["predicted_overturned"] == r["measured_overturned"]:
@@ -160,21 +157,22 @@ def main(argv=None):
              "reason": classify(r, sliding.get((r["test"], r["specimen"])), al[r["specimen"]], hf),
              "hist": hist_path}
         misses.append(m)
-    if missing_hist:
-        print(f"plot_experiment_misses: {missing_hist} misses without a history (not drawn)", file=sys.stderr)
-        return 2
-    os.makedirs(a.out_dir, exist_ok=True)
-    if a.misses_csv:
-        with open(a.misses_csv, "w") as f:
-            w = csv.writer(f)
-            w.writerow(["test", "specimen", "kind", "peak_table_accel_g", "exceeds_static_uplift",
-                        "uplift", "max_rotation_ratio", "hf_peak_ratio", "reason"])
-            for m in misses:
-                w.writerow([m["test"], m["specimen"], "FP" if m["predicted"] == "1" else "FN",
-                            f"{m['peak_g']:.3f}", m["exceeds_static_uplift"], m["uplift"],
-                            f"{m['max_ratio']:.3f}", f"{m['hf_ratio']:.2f}", m["reason"]])
-    # counts
-    specimens = sorted({m["specimen"] for m in misses})
+    return misses, missing_hist
+
+
+def write_misses_csv(path, misses):
+    with open(path, "w") as f:
+        w = csv.writer(f)
+        w.writerow(["test", "specimen", "kind", "peak_table_accel_g", "exceeds_static_uplift",
+                    "uplift", "max_rotation_ratio", "hf_peak_ratio", "reason"])
+        for m in misses:
+            w.writerow([m["test"], m["specimen"], "FP" if m["predicted"] == "1" else "FN",
+                        f"{m['peak_g']:.3f}", m["exceeds_static_uplift"], m["uplift"],
+                        f"{m['max_ratio']:.3f}", f"{m['hf_ratio']:.2f}", m["reason"]])
+
+
+def print_reason_counts(misses, specimens):
+    """Misses per reason, specimen and kind (FP, FN) to stdout, as CSV."""
     print("reason, " + ", ".join(f"{s} FP, {s} FN" for s in specimens))
     for reason in REASONS:
         cells = []
@@ -183,7 +181,10 @@ def main(argv=None):
                 cells.append(str(sum(1 for m in misses if m["reason"] == reason and m["specimen"] == s
                                      and m["predicted"] == kind)))
         print(f"{reason}, " + ", ".join(cells))
-    # overview: peak table acceleration vs the model's max |theta|/alpha, one marker per miss
+
+
+def plot_overview(plt, out_dir, misses, specimens, al):
+    """overview.png: peak table acceleration vs the model's max |theta|/alpha, one marker per miss."""
     fig, axes = plt.subplots(1, len(specimens), figsize=(5.2 * len(specimens), 4.0), squeeze=False)
     for ax, s in zip(axes[0], specimens):
         for reason in REASONS:
@@ -203,9 +204,12 @@ def main(argv=None):
         ax.set_title(f"{s}: {sum(1 for m in misses if m['specimen'] == s)} misses (x FP, o FN)")
         ax.legend(fontsize=6, loc="center left")
     fig.tight_layout()
-    fig.savefig(os.path.join(a.out_dir, "overview.png"), dpi=90)
+    fig.savefig(os.path.join(out_dir, "overview.png"), dpi=90)
     plt.close(fig)
-    # small multiples per reason
+
+
+def plot_reason_pages(plt, a, misses):
+    """Small multiples per reason (--per-page misses a page); returns the pages drawn."""
     pages = 0
     for reason in REASONS:
         group = [m for m in misses if m["reason"] == reason]
@@ -225,8 +229,35 @@ def main(argv=None):
             pages += 1
             if a.first_page_only:
                 break
+    return pages
+
+
+def run_misses(a):
+    """Classify the misses, write their CSV, print the counts, draw the overview and the pages."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    rows = read_table(a.table)
+    sliding = {(r["test"], r["specimen"]): r for r in read_table(a.sliding)} if a.sliding else {}
+    al = alphas(a.catalogue)
+    misses, missing_hist = find_misses(a, rows, sliding, al)
+    if missing_hist:
+        print(f"plot_experiment_misses: {missing_hist} misses without a history (not drawn)", file=sys.stderr)
+        return 2
+    os.makedirs(a.out_dir, exist_ok=True)
+    if a.misses_csv:
+        write_misses_csv(a.misses_csv, misses)
+    # counts
+    specimens = sorted({m["specimen"] for m in misses})
+    print_reason_counts(misses, specimens)
+    plot_overview(plt, a.out_dir, misses, specimens, al)
+    pages = plot_reason_pages(plt, a, misses)
     print(f"plot_experiment_misses: {len(misses)} misses, {pages} pages, overview in {a.out_dir}")
     return 0
+
+
+def main(argv=None):
+    return run_misses(parse_args(argv))
 
 
 if __name__ == "__main__":

@@ -70,117 +70,136 @@ def setting_label(r):
 def plot_benchmarks(directory, rows, context, summary):
     items = [r for r in rows if r["kind"] == "item"]
     if items:
-        scenarios = []
-        for r in items:
-            if r["scenario"] not in scenarios:
-                scenarios.append(r["scenario"])
-        fig, axes = plt.subplots(2, 2, figsize=(14, 9), squeeze=False)
-        for row, (key, ylabel) in enumerate((("ns_per_item_step", "ns per item-step (whole input)"),
-                                             ("ns_per_rocking", "ns per item-step in which it rocked"))):
-            for col, model in enumerate(("nonlinear", "linearized")):
-                ax = axes[row][col]
-                sub = [r for r in items if r["model"] == model]
-                labels = []
-                for r in sub:
-                    lab = setting_label(r)
-                    if lab not in labels:
-                        labels.append(lab)
-                width = 0.8 / max(1, len(scenarios))
-                for j, sc in enumerate(scenarios):
-                    vals = []
-                    for lab in labels:
-                        v = [r.get(key, float("nan")) for r in sub if r["scenario"] == sc and setting_label(r) == lab]
-                        vals.append(v[0] if v else float("nan"))
-                    xs = [i + (j - (len(scenarios) - 1) / 2) * width for i in range(len(labels))]
-                    ax.bar(xs, vals, width=width, label=sc)
-                ax.set_xticks(range(len(labels)))
-                ax.set_xticklabels(labels, rotation=50, ha="right", fontsize=8)
-                ax.set_ylabel(ylabel)
-                if row == 0:
-                    ax.set_title(f"{model} model, one item, 200 Hz input")
-                ax.grid(True, axis="y", alpha=0.3)
-                ax.legend(fontsize=7, ncol=2)
-        fig.suptitle("Cost of one input sample of one item (Release, one thread); the second row charges "
-                     "all the time to the samples in which the item rocked", fontsize=10)
-        fig.tight_layout()
-        save(fig, directory, "cost_per_item_step")
-
-        summary.append("## Cost per item-step (single item, 200 Hz)\n")
-        summary.append("ns per item-step averaged over the whole input; in brackets, per item-step in "
-                       "which the item rocked (all time charged to the rocking steps).\n")
-        hdr = "| scenario | model | " + " | ".join(labels_all(items)) + " |"
-        summary.append(hdr)
-        summary.append("|" + "---|" * (2 + len(labels_all(items))))
-        for sc in scenarios:
-            for model in ("nonlinear", "linearized"):
-                cells = []
-                for lab in labels_all(items):
-                    v = [r for r in items if r["scenario"] == sc and r["model"] == model
-                         and setting_label(r) == lab]
-                    if v:
-                        r = v[0]
-                        cells.append(f"{r['ns_per_item_step']:.0f} ({r.get('ns_per_rocking', float('nan')):.0f})")
-                    else:
-                        cells.append("")
-                summary.append(f"| {sc} | {model} | " + " | ".join(cells) + " |")
-        summary.append("")
+        scenarios = first_seen_scenarios(items)
+        plot_item_costs(directory, items, scenarios)
+        summarise_item_costs(items, scenarios, summary)
 
     cats = [r for r in rows if r["kind"] == "catalogue"]
     if cats:
-        cases = []
-        for r in cats:
-            if r["scenario"] not in cases:
-                cases.append(r["scenario"])
-        labels = []
-        for r in cats:
-            lab = setting_label(r) + ("" if r["model"] == "nonlinear" else " (lin.)")
-            if lab not in labels:
-                labels.append(lab)
-        fig, axes = plt.subplots(1, len(cases), figsize=(5.2 * len(cases), 5), squeeze=False)
-        for ax, case in zip(axes[0], cases):
-            sub = [r for r in cats if r["scenario"] == case]
-            names = [setting_label(r) + ("" if r["model"] == "nonlinear" else " (lin.)") for r in sub]
-            cap = [r["capacity_200Hz"] for r in sub]
-            cap_r = [r.get("cap_all_rocking", float("nan")) for r in sub]
-            y = range(len(sub))
-            ax.barh([i + 0.2 for i in y], cap, height=0.4, color="#1f77b4", label="this input")
-            ax.barh([i - 0.2 for i in y], cap_r, height=0.4, color="#ff7f0e",
-                    label="if every item rocked in every sample")
-            ax.axvline(10000, color="k", ls="--", lw=1)
-            ax.text(10000, len(sub) - 0.4, " target 10,000", fontsize=7, va="top")
-            ax.set_yticks(list(y))
-            ax.set_yticklabels(names, fontsize=8)
-            ax.set_xscale("log")
-            ax.xaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v:,.0f}"))
-            ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
-            ax.set_xlim(min(5000, min(cap_r + cap) * 0.8), max(cap + cap_r) * 2.2)
-            ax.set_xlabel("items one core keeps up with at 200 Hz")
-            frac = sub[0].get("rocking_frac", float("nan"))
-            ax.set_title(f"{case}\n(rocking in {100 * frac:.0f}% of item-steps)", fontsize=9)
-            ax.grid(True, axis="x", which="both", alpha=0.3)
-            for i, (c, cr) in enumerate(zip(cap, cap_r)):
-                ax.text(c, i + 0.2, f" {c:,.0f}", va="center", fontsize=6.5)
-                if not math.isnan(cr):
-                    ax.text(cr, i - 0.2, f" {cr:,.0f}", va="center", fontsize=6.5)
-        handles, labs = axes[0][0].get_legend_handles_labels()
-        fig.legend(handles, labs, loc="lower center", ncol=2, fontsize=8, bbox_to_anchor=(0.5, -0.04))
-        fig.suptitle("Real-time capacity of one core (catalogue of 10,000 items, one 200 Hz feed)")
-        fig.tight_layout(rect=(0, 0.04, 1, 1))
-        save(fig, directory, "capacity")
-
-        summary.append("## Real-time capacity (10,000-item catalogue, 200 Hz, one core)\n")
-        summary.append("| input | method | rocking share | ns/item-step | ns/rocking item-step | "
-                       "capacity (this input) | capacity (all rocking) |")
-        summary.append("|---|---|---|---|---|---|---|")
-        for r in cats:
-            summary.append(
-                f"| {r['scenario']} | {setting_label(r)} ({r['model']}) | {100 * r.get('rocking_frac', 0):.1f}% "
-                f"| {r['ns_per_item_step']:.0f} | {r.get('ns_per_rocking', float('nan')):.0f} "
-                f"| {r['capacity_200Hz']:,.0f} | {r.get('cap_all_rocking', float('nan')):,.0f} |")
-        summary.append("")
+        cases = first_seen_scenarios(cats)
+        plot_capacity(directory, cats, cases)
+        summarise_capacity(cats, summary)
     if context:
         summary.append(f"Machine: {context.get('num_cpus', '?')} CPUs at {context.get('mhz_per_cpu', '?')} MHz; "
                        f"benchmark run {context.get('date', '')}.\n")
+
+
+def first_seen_scenarios(rows):
+    """The rows' scenarios in the order they first appear."""
+    scenarios = []
+    for r in rows:
+        if r["scenario"] not in scenarios:
+            scenarios.append(r["scenario"])
+    return scenarios
+
+
+def plot_item_costs(directory, items, scenarios):
+    """cost_per_item_step: ns per item-step by setting and scenario, both models."""
+    fig, axes = plt.subplots(2, 2, figsize=(14, 9), squeeze=False)
+    for row, (key, ylabel) in enumerate((("ns_per_item_step", "ns per item-step (whole input)"),
+                                         ("ns_per_rocking", "ns per item-step in which it rocked"))):
+        for col, model in enumerate(("nonlinear", "linearized")):
+            ax = axes[row][col]
+            sub = [r for r in items if r["model"] == model]
+            labels = []
+            for r in sub:
+                lab = setting_label(r)
+                if lab not in labels:
+                    labels.append(lab)
+            width = 0.8 / max(1, len(scenarios))
+            for j, sc in enumerate(scenarios):
+                vals = []
+                for lab in labels:
+                    v = [r.get(key, float("nan")) for r in sub if r["scenario"] == sc and setting_label(r) == lab]
+                    vals.append(v[0] if v else float("nan"))
+                xs = [i + (j - (len(scenarios) - 1) / 2) * width for i in range(len(labels))]
+                ax.bar(xs, vals, width=width, label=sc)
+            ax.set_xticks(range(len(labels)))
+            ax.set_xticklabels(labels, rotation=50, ha="right", fontsize=8)
+            ax.set_ylabel(ylabel)
+            if row == 0:
+                ax.set_title(f"{model} model, one item, 200 Hz input")
+            ax.grid(True, axis="y", alpha=0.3)
+            ax.legend(fontsize=7, ncol=2)
+    fig.suptitle("Cost of one input sample of one item (Release, one thread); the second row charges "
+                 "all the time to the samples in which the item rocked", fontsize=10)
+    fig.tight_layout()
+    save(fig, directory, "cost_per_item_step")
+
+
+def summarise_item_costs(items, scenarios, summary):
+    summary.append("## Cost per item-step (single item, 200 Hz)\n")
+    summary.append("ns per item-step averaged over the whole input; in brackets, per item-step in "
+                   "which the item rocked (all time charged to the rocking steps).\n")
+    hdr = "| scenario | model | " + " | ".join(labels_all(items)) + " |"
+    summary.append(hdr)
+    summary.append("|" + "---|" * (2 + len(labels_all(items))))
+    for sc in scenarios:
+        for model in ("nonlinear", "linearized"):
+            cells = []
+            for lab in labels_all(items):
+                v = [r for r in items if r["scenario"] == sc and r["model"] == model
+                     and setting_label(r) == lab]
+                if v:
+                    r = v[0]
+                    cells.append(f"{r['ns_per_item_step']:.0f} ({r.get('ns_per_rocking', float('nan')):.0f})")
+                else:
+                    cells.append("")
+            summary.append(f"| {sc} | {model} | " + " | ".join(cells) + " |")
+    summary.append("")
+
+
+def plot_capacity(directory, cats, cases):
+    """capacity: items one core keeps up with at 200 Hz, per catalogue case and setting."""
+    labels = []
+    for r in cats:
+        lab = setting_label(r) + ("" if r["model"] == "nonlinear" else " (lin.)")
+        if lab not in labels:
+            labels.append(lab)
+    fig, axes = plt.subplots(1, len(cases), figsize=(5.2 * len(cases), 5), squeeze=False)
+    for ax, case in zip(axes[0], cases):
+        sub = [r for r in cats if r["scenario"] == case]
+        names = [setting_label(r) + ("" if r["model"] == "nonlinear" else " (lin.)") for r in sub]
+        cap = [r["capacity_200Hz"] for r in sub]
+        cap_r = [r.get("cap_all_rocking", float("nan")) for r in sub]
+        y = range(len(sub))
+        ax.barh([i + 0.2 for i in y], cap, height=0.4, color="#1f77b4", label="this input")
+        ax.barh([i - 0.2 for i in y], cap_r, height=0.4, color="#ff7f0e",
+                label="if every item rocked in every sample")
+        ax.axvline(10000, color="k", ls="--", lw=1)
+        ax.text(10000, len(sub) - 0.4, " target 10,000", fontsize=7, va="top")
+        ax.set_yticks(list(y))
+        ax.set_yticklabels(names, fontsize=8)
+        ax.set_xscale("log")
+        ax.xaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v:,.0f}"))
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+        ax.set_xlim(min(5000, min(cap_r + cap) * 0.8), max(cap + cap_r) * 2.2)
+        ax.set_xlabel("items one core keeps up with at 200 Hz")
+        frac = sub[0].get("rocking_frac", float("nan"))
+        ax.set_title(f"{case}\n(rocking in {100 * frac:.0f}% of item-steps)", fontsize=9)
+        ax.grid(True, axis="x", which="both", alpha=0.3)
+        for i, (c, cr) in enumerate(zip(cap, cap_r)):
+            ax.text(c, i + 0.2, f" {c:,.0f}", va="center", fontsize=6.5)
+            if not math.isnan(cr):
+                ax.text(cr, i - 0.2, f" {cr:,.0f}", va="center", fontsize=6.5)
+    handles, labs = axes[0][0].get_legend_handles_labels()
+    fig.legend(handles, labs, loc="lower center", ncol=2, fontsize=8, bbox_to_anchor=(0.5, -0.04))
+    fig.suptitle("Real-time capacity of one core (catalogue of 10,000 items, one 200 Hz feed)")
+    fig.tight_layout(rect=(0, 0.04, 1, 1))
+    save(fig, directory, "capacity")
+
+
+def summarise_capacity(cats, summary):
+    summary.append("## Real-time capacity (10,000-item catalogue, 200 Hz, one core)\n")
+    summary.append("| input | method | rocking share | ns/item-step | ns/rocking item-step | "
+                   "capacity (this input) | capacity (all rocking) |")
+    summary.append("|---|---|---|---|---|---|---|")
+    for r in cats:
+        summary.append(
+            f"| {r['scenario']} | {setting_label(r)} ({r['model']}) | {100 * r.get('rocking_frac', 0):.1f}% "
+            f"| {r['ns_per_item_step']:.0f} | {r.get('ns_per_rocking', float('nan')):.0f} "
+            f"| {r['capacity_200Hz']:,.0f} | {r.get('cap_all_rocking', float('nan')):,.0f} |")
+    summary.append("")
 
 
 def labels_all(items):
@@ -219,81 +238,100 @@ def plot_work_precision(directory, rows, summary):
         sub = [r for r in rows if r["model"] == model]
         if not sub:
             continue
-        batch_lanes = {r.get("lanes") for r in sub if r["method"].startswith("batch")}
-        lanes = "/".join(sorted(l for l in batch_lanes if l))
-        fig, axes = plt.subplots(len(metrics), len(kinds), figsize=(5.0 * len(kinds), 4.2 * len(metrics)),
-                                 squeeze=False)
-        for col, kind in enumerate(kinds):
-            kr = [r for r in sub if r["input"] == kind]
-            # group by sample rate: free/pulse cases are at 200 or 50 Hz; records at their own rate
-            def rate_group(r):
-                if kind == "record":
-                    return "native (100-250 Hz)"
-                return f"{int(round(fnum(r['sample_rate_hz'])))} Hz"
-            groups = sorted({rate_group(r) for r in kr}, key=lambda g: -fnum(g.split()[0]) if g[0].isdigit() else 0)
-            for row, (metric, mlabel) in enumerate(metrics):
-                ax = axes[row][col]
-                for g in groups:
-                    style = "-" if g.startswith("200") or g.startswith("native") else "--"
-                    for method, (name, marker, size) in WP_SERIES.items():
-                        mr = [r for r in kr if r["method"] == method and rate_group(r) == g]
-                        if not mr:
-                            continue
-                        tol_axis = method != "rk4" and method != "analytic"
-                        by_label = defaultdict(list)
-                        for r in mr:
-                            by_label[(fnum(r["param"]), r["label"])].append(r)
-                        pts = []
-                        for (param, _label), rs in sorted(by_label.items(), key=lambda kv: -kv[0][0] if tol_axis else kv[0][0]):
-                            costs = sorted(fnum(r["ns_per_sim_s"]) for r in rs)
-                            cost = costs[len(costs) // 2]
-                            errs = [fnum(r[metric]) for r in rs]
-                            errs = [e for e in errs if not math.isnan(e)]
-                            if not errs:
-                                continue
-                            err = max(errs)
-                            if math.isinf(err):
-                                err = 1.0
-                            pts.append((cost, max(err, FLOOR), short_param(method, param)))
-                        if not pts:
-                            continue
-                        pts = merge_coincident(pts)
-                        xs, ys, ls = zip(*pts)
-                        ax.plot(xs, ys, style, marker=marker, ms=size, color=METHOD_COLOURS[method],
-                                label=f"{name}, {g}", alpha=0.9)
-                        if method.startswith("batch"):
-                            continue  # same tolerances as the dopri5 labels at the same heights
-                        for x, y, lab in pts:
-                            if lab:
-                                ax.annotate(lab, (x, y), textcoords="offset points", xytext=(3, 3),
-                                            fontsize=6, color=METHOD_COLOURS[method])
-                ax.set_xscale("log")
-                ax.set_yscale("log")
-                ax.set_ylim(bottom=FLOOR / 3)
-                ax.grid(True, which="both", alpha=0.25)
-                if row == 0:
-                    ax.set_title(f"{kind} input ({model} model)")
-                if row == len(metrics) - 1:
-                    ax.set_xlabel("cost: ns per simulated second (one item)" if not lanes else
-                                  f"cost: ns per simulated second (one item; batch: per lane of {lanes})")
-                if col == 0:
-                    ax.set_ylabel(mlabel)
-        # One legend for the figure (per-panel legends hid the points): colour and marker = method,
-        # line style = input rate.
-        present = [m for m in WP_SERIES if any(r["method"] == m for r in sub)]
-        handles = [Line2D([], [], color=METHOD_COLOURS[m], marker=WP_SERIES[m][1], ms=WP_SERIES[m][2],
-                          label=WP_SERIES[m][0]) for m in present]
-        handles += [Line2D([], [], color="k", ls="-", label="200 Hz; records at their own rate (100-250 Hz)"),
-                    Line2D([], [], color="k", ls="--", label="50 Hz")]
-        fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=8,
-                   bbox_to_anchor=(0.5, -0.035))
-        fig.suptitle(f"Work-precision, {model} model: worst error over the cases of each input kind "
-                     "(labels: dopri5 tol, rk4 sub-steps; error 0 drawn at 1e-14)"
-                     + ("\nbatch dopri5 = BatchRocking, same tolerances; exact trig has the scalar dopri5's "
-                        "errors bit for bit" if lanes else ""), fontsize=10)
-        fig.tight_layout()
-        save(fig, directory, f"work_precision_{model}")
+        plot_work_precision_model(directory, sub, model, kinds, metrics)
+    summarise_work_precision(rows, summary)
 
+
+def plot_work_precision_model(directory, sub, model, kinds, metrics):
+    """work_precision_MODEL: error against cost, one column per input kind, one row per metric."""
+    batch_lanes = {r.get("lanes") for r in sub if r["method"].startswith("batch")}
+    lanes = "/".join(sorted(l for l in batch_lanes if l))
+    fig, axes = plt.subplots(len(metrics), len(kinds), figsize=(5.0 * len(kinds), 4.2 * len(metrics)),
+                             squeeze=False)
+    for col, kind in enumerate(kinds):
+        kr = [r for r in sub if r["input"] == kind]
+        # group by sample rate: free/pulse cases are at 200 or 50 Hz; records at their own rate
+        def rate_group(r):
+            if kind == "record":
+                return "native (100-250 Hz)"
+            return f"{int(round(fnum(r['sample_rate_hz'])))} Hz"
+        groups = sorted({rate_group(r) for r in kr}, key=lambda g: -fnum(g.split()[0]) if g[0].isdigit() else 0)
+        for row, (metric, mlabel) in enumerate(metrics):
+            ax = axes[row][col]
+            draw_work_precision_panel(ax, kr, groups, rate_group, metric)
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_ylim(bottom=FLOOR / 3)
+            ax.grid(True, which="both", alpha=0.25)
+            if row == 0:
+                ax.set_title(f"{kind} input ({model} model)")
+            if row == len(metrics) - 1:
+                ax.set_xlabel("cost: ns per simulated second (one item)" if not lanes else
+                              f"cost: ns per simulated second (one item; batch: per lane of {lanes})")
+            if col == 0:
+                ax.set_ylabel(mlabel)
+    # One legend for the figure (per-panel legends hid the points): colour and marker = method,
+    # line style = input rate.
+    present = [m for m in WP_SERIES if any(r["method"] == m for r in sub)]
+    handles = [Line2D([], [], color=METHOD_COLOURS[m], marker=WP_SERIES[m][1], ms=WP_SERIES[m][2],
+                      label=WP_SERIES[m][0]) for m in present]
+    handles += [Line2D([], [], color="k", ls="-", label="200 Hz; records at their own rate (100-250 Hz)"),
+                Line2D([], [], color="k", ls="--", label="50 Hz")]
+    fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=8,
+               bbox_to_anchor=(0.5, -0.035))
+    fig.suptitle(f"Work-precision, {model} model: worst error over the cases of each input kind "
+                 "(labels: dopri5 tol, rk4 sub-steps; error 0 drawn at 1e-14)"
+                 + ("\nbatch dopri5 = BatchRocking, same tolerances; exact trig has the scalar dopri5's "
+                    "errors bit for bit" if lanes else ""), fontsize=10)
+    fig.tight_layout()
+    save(fig, directory, f"work_precision_{model}")
+
+
+def draw_work_precision_panel(ax, kr, groups, rate_group, metric):
+    """One panel: a line per method and input rate, labelled with its settings."""
+    for g in groups:
+        style = "-" if g.startswith("200") or g.startswith("native") else "--"
+        for method, (name, marker, size) in WP_SERIES.items():
+            mr = [r for r in kr if r["method"] == method and rate_group(r) == g]
+            if not mr:
+                continue
+            pts = work_precision_points(mr, method, metric)
+            if not pts:
+                continue
+            pts = merge_coincident(pts)
+            xs, ys, ls = zip(*pts)
+            ax.plot(xs, ys, style, marker=marker, ms=size, color=METHOD_COLOURS[method],
+                    label=f"{name}, {g}", alpha=0.9)
+            if method.startswith("batch"):
+                continue  # same tolerances as the dopri5 labels at the same heights
+            for x, y, lab in pts:
+                if lab:
+                    ax.annotate(lab, (x, y), textcoords="offset points", xytext=(3, 3),
+                                fontsize=6, color=METHOD_COLOURS[method])
+
+
+def work_precision_points(mr, method, metric):
+    """(median cost, worst error, label) per setting of one method, in the order its line is drawn."""
+    tol_axis = method != "rk4" and method != "analytic"
+    by_label = defaultdict(list)
+    for r in mr:
+        by_label[(fnum(r["param"]), r["label"])].append(r)
+    pts = []
+    for (param, _label), rs in sorted(by_label.items(), key=lambda kv: -kv[0][0] if tol_axis else kv[0][0]):
+        costs = sorted(fnum(r["ns_per_sim_s"]) for r in rs)
+        cost = costs[len(costs) // 2]
+        errs = [fnum(r[metric]) for r in rs]
+        errs = [e for e in errs if not math.isnan(e)]
+        if not errs:
+            continue
+        err = max(errs)
+        if math.isinf(err):
+            err = 1.0
+        pts.append((cost, max(err, FLOOR), short_param(method, param)))
+    return pts
+
+
+def summarise_work_precision(rows, summary):
     summary.append("## Work-precision (worst error over the cases of each kind; cost = median ns per simulated second)\n")
     lanes = sorted({r.get("lanes") for r in rows if r["method"].startswith("batch") and r.get("lanes")})
     if lanes:

@@ -121,7 +121,13 @@ def plot_stability(directory, rows, summary):
     an = [r for r in rows if r["method"] == "analytic"]
     alphas = sorted({fnum(r["alpha_deg"]) for r in rk})
 
-    # ---------------- overview: letters of the failing kinds in every cell
+    plot_failing_kinds(directory, rk, dp, an, alphas)
+    plot_severity_maps(directory, rk, dp, an, alphas)
+    summarise_failing_cells(rows, summary)
+
+
+def plot_failing_kinds(directory, rk, dp, an, alphas):
+    """stability_summary: the letters of the failing kinds in every cell, every method."""
     panels = []
     for a in alphas:
         panels.append(("rk4", [r for r in rk if fnum(r["alpha_deg"]) == a], "h",
@@ -147,51 +153,13 @@ def plot_stability(directory, rows, summary):
     fig.tight_layout()
     save(fig, directory, "stability_summary")
 
-    # ---------------- detailed maps: one row per failure kind
-    def detail(name, sets, xkey, xfmt):
-        fig, axes = plt.subplots(len(FAILURES), len(sets), figsize=(3.6 * len(sets), 2.7 * len(FAILURES) + 0.8),
-                                 squeeze=False)
-        for col, (title, sub) in enumerate(sets):
-            xs, ys = grid_of(sub, xkey)
-            for row, (code, fname, _desc) in enumerate(FAILURES):
-                ax = axes[row][col]
-                z = [[float("nan")] * len(xs) for _ in ys]
-                fail = []
-                for r in sub:
-                    i, j = ys.index(fnum(r["p"])), xs.index(fnum(r[xkey]))
-                    v = metric_values(r)[code]
-                    z[i][j] = min(max(v, 1e-12), 1e3) if not math.isnan(v) else float("nan")
-                    if failures(r)[code]:
-                        fail.append((j, i))
-                im = ax.imshow(z, origin="lower", aspect="auto", cmap="viridis",
-                               norm=LogNorm(vmin=1e-10, vmax=1e2),
-                               extent=(-0.5, len(xs) - 0.5, -0.5, len(ys) - 0.5))
-                for j, i in fail:
-                    ax.text(j, i, "x", ha="center", va="center", color="red", fontsize=9, fontweight="bold")
-                ax.set_xticks(range(len(xs)))
-                ax.set_xticklabels([xfmt(x) for x in xs], fontsize=6, rotation=45)
-                ax.set_yticks(range(len(ys)))
-                ax.set_yticklabels([f"{y:g}" for y in ys], fontsize=6)
-                if row == 0:
-                    ax.set_title(title, fontsize=8.5)
-                if col == 0:
-                    ax.set_ylabel(f"{fname}\np (rad/s)", fontsize=8)
-                if row == len(FAILURES) - 1:
-                    ax.set_xlabel({"h": "step h (ms)", "param": "tolerance", "alpha_deg": "alpha (deg)"}[xkey],
-                                  fontsize=8)
-                if xkey == "param":
-                    ax.invert_xaxis()
-                if col == len(sets) - 1:
-                    cb = fig.colorbar(im, ax=ax, fraction=0.05)
-                    cb.ax.tick_params(labelsize=6.5)
-                    cb.set_label(METRIC_LABELS[code] + f"\n(x: > {METRIC_THRESHOLDS[code]:g})", fontsize=7)
-        fig.suptitle(f"{name}: severity of each failure kind (colour) and failing cells (red x)", fontsize=10)
-        fig.tight_layout()
-        save(fig, directory, f"stability_{name}")
 
+def plot_severity_maps(directory, rk, dp, an, alphas):
+    """stability_rk4, stability_dopri5, stability_analytic (those with rows)."""
     if rk:
-        detail("rk4", [(f"rk4, alpha = {a:g} deg", [r for r in rk if fnum(r["alpha_deg"]) == a]) for a in alphas],
-               "h", lambda x: f"{1000 * x:.3g}")
+        plot_severity_map(directory, "rk4",
+                          [(f"rk4, alpha = {a:g} deg", [r for r in rk if fnum(r["alpha_deg"]) == a]) for a in alphas],
+                          "h", lambda x: f"{1000 * x:.3g}")
     if dp:
         sets = []
         for feed in (200, 20):
@@ -199,11 +167,57 @@ def plot_stability(directory, rows, summary):
                 sub = [r for r in dp if fnum(r["alpha_deg"]) == a and fnum(r["feed_hz"]) == feed]
                 if sub:
                     sets.append((f"dopri5 {feed} Hz, alpha = {a:g} deg", sub))
-        detail("dopri5", sets, "param", lambda x: f"1e{int(round(math.log10(x)))}")
+        plot_severity_map(directory, "dopri5", sets, "param", lambda x: f"1e{int(round(math.log10(x)))}")
     if an:
-        detail("analytic", [("analytic (linearized) vs nonlinear", an)], "alpha_deg", lambda x: f"{x:g}")
+        plot_severity_map(directory, "analytic", [("analytic (linearized) vs nonlinear", an)], "alpha_deg",
+                          lambda x: f"{x:g}")
 
-    # ---------------- summary lines: the first failing cell of each method
+
+def plot_severity_map(directory, name, sets, xkey, xfmt):
+    """stability_NAME: one column per set, one row per failure kind (its severity; x where it fails)."""
+    fig, axes = plt.subplots(len(FAILURES), len(sets), figsize=(3.6 * len(sets), 2.7 * len(FAILURES) + 0.8),
+                             squeeze=False)
+    for col, (title, sub) in enumerate(sets):
+        xs, ys = grid_of(sub, xkey)
+        for row, (code, fname, _desc) in enumerate(FAILURES):
+            ax = axes[row][col]
+            z = [[float("nan")] * len(xs) for _ in ys]
+            fail = []
+            for r in sub:
+                i, j = ys.index(fnum(r["p"])), xs.index(fnum(r[xkey]))
+                v = metric_values(r)[code]
+                z[i][j] = min(max(v, 1e-12), 1e3) if not math.isnan(v) else float("nan")
+                if failures(r)[code]:
+                    fail.append((j, i))
+            im = ax.imshow(z, origin="lower", aspect="auto", cmap="viridis",
+                           norm=LogNorm(vmin=1e-10, vmax=1e2),
+                           extent=(-0.5, len(xs) - 0.5, -0.5, len(ys) - 0.5))
+            for j, i in fail:
+                ax.text(j, i, "x", ha="center", va="center", color="red", fontsize=9, fontweight="bold")
+            ax.set_xticks(range(len(xs)))
+            ax.set_xticklabels([xfmt(x) for x in xs], fontsize=6, rotation=45)
+            ax.set_yticks(range(len(ys)))
+            ax.set_yticklabels([f"{y:g}" for y in ys], fontsize=6)
+            if row == 0:
+                ax.set_title(title, fontsize=8.5)
+            if col == 0:
+                ax.set_ylabel(f"{fname}\np (rad/s)", fontsize=8)
+            if row == len(FAILURES) - 1:
+                ax.set_xlabel({"h": "step h (ms)", "param": "tolerance", "alpha_deg": "alpha (deg)"}[xkey],
+                              fontsize=8)
+            if xkey == "param":
+                ax.invert_xaxis()
+            if col == len(sets) - 1:
+                cb = fig.colorbar(im, ax=ax, fraction=0.05)
+                cb.ax.tick_params(labelsize=6.5)
+                cb.set_label(METRIC_LABELS[code] + f"\n(x: > {METRIC_THRESHOLDS[code]:g})", fontsize=7)
+    fig.suptitle(f"{name}: severity of each failure kind (colour) and failing cells (red x)", fontsize=10)
+    fig.tight_layout()
+    save(fig, directory, f"stability_{name}")
+
+
+def summarise_failing_cells(rows, summary):
+    """The summary's lines: the failing cells of each method."""
     summary.append("## Stability maps: failing cells\n")
     summary.append("Failure kinds: " + "; ".join(f"**{c}** {n}: {d}" for c, n, d in FAILURES) + ".\n")
     summary.append("| method | input rate | alpha | failing cells (of) | kinds seen | smallest p*h with a failure |")

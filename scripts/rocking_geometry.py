@@ -242,7 +242,7 @@ def granite_ensemble(directory, members, seed, tolerance, max_tilt_deg=5.0, tol_
     return entries, refused
 
 
-def main(argv=None):
+def parse_args(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("mesh", nargs="?", help="mesh or scan: PLY, STL, OBJ, OFF, glTF, GLB (.gz allowed)")
     ap.add_argument("--granite", metavar="DIR", help="the granite_pbr data set: both specimens")
@@ -308,47 +308,54 @@ def main(argv=None):
     ap.add_argument("--json", help="write every number here")
     ap.add_argument("--plot-dir", help="outline pictures (PNG) here")
     a = ap.parse_args(argv)
-    global WRITE_HULL
-    WRITE_HULL = not a.no_hull
-    try:
-        if not a.granite and (a.homogeneous or a.urdf_com or a.specimen):
-            raise GeometryError("--homogeneous, --urdf-com and --specimen need --granite DIR")
-        if a.granite:
-            if a.ensemble > 0:
-                if not 0.0 <= a.restitution_spread <= 1.0:
-                    raise GeometryError(f"--restitution-spread {a.restitution_spread}: must lie in [0, 1]")
-                if not 0.0 <= a.mu_s[0] <= a.mu_s[1]:
-                    raise GeometryError(f"--mu-s {a.mu_s[0]} {a.mu_s[1]}: need 0 <= LO <= HI")
-                entries, refused = granite_ensemble(
-                    a.granite, a.ensemble, a.seed, a.contact_tolerance,
-                    restitution_spread=a.restitution_spread,
-                    mu_range=None if a.no_friction else tuple(a.mu_s), homogeneous=a.homogeneous,
-                    com_shift=a.com_shift, names=a.specimen, planar_only=a.planar_only,
-                    urdf_com=a.urdf_com)
-                results = {}
-                print(f"rocking_geometry: {len(entries)} members written, {refused} refused",
-                      file=sys.stderr)
-            else:
-                results, entries = granite(a.granite, a.contact_tolerance, a.plot_dir, not a.no_settle,
-                                           a.homogeneous, a.com_shift, a.specimen, a.planar_only,
-                                           a.urdf_com)
-        elif a.mesh:
-            import scan_entry  # noqa: E402  (beside this script)
-            g, placed, notes = scan_entry.scan_geometry(
-                a.mesh, a.mass, a.contact_tolerance, a.com, a.unit, a.up, a.floor, a.keep_slab,
-                a.cap_tolerance, a.quaternion, a.settle, a.com_shift)
-            for n in notes + [scan_entry.describe(g)]:
-                print(f"rocking_geometry: {a.mesh}: {n}", file=sys.stderr)
-            extra = scan_entry.entry_comments(g)
-            results = {a.id: g}
-            entries = [catalogue_entry(a.id, g, a.sensor, planar_only=a.planar_only, extra=extra)]
-            if a.plot_dir:
-                plot_outline(os.path.join(a.plot_dir, f"{a.id}.png"), a.id, placed, g)
-        else:
-            ap.error("give a MESH or --granite DIR")
-    except GeometryError as e:
-        print(f"rocking_geometry: {e}", file=sys.stderr)
-        return 2
+    # Neither input: the usage error, as before (--homogeneous & co. without --granite are the run's
+    # GeometryError, exit 2), so that the run steps need no parser.
+    if not a.granite and not a.mesh and not (a.homogeneous or a.urdf_com or a.specimen):
+        ap.error("give a MESH or --granite DIR")
+    return a
+
+
+def granite_entries(a):
+    """--granite: (results, entries) of the specimens, or of their --ensemble members."""
+    if a.ensemble > 0:
+        if not 0.0 <= a.restitution_spread <= 1.0:
+            raise GeometryError(f"--restitution-spread {a.restitution_spread}: must lie in [0, 1]")
+        if not 0.0 <= a.mu_s[0] <= a.mu_s[1]:
+            raise GeometryError(f"--mu-s {a.mu_s[0]} {a.mu_s[1]}: need 0 <= LO <= HI")
+        entries, refused = granite_ensemble(
+            a.granite, a.ensemble, a.seed, a.contact_tolerance,
+            restitution_spread=a.restitution_spread,
+            mu_range=None if a.no_friction else tuple(a.mu_s), homogeneous=a.homogeneous,
+            com_shift=a.com_shift, names=a.specimen, planar_only=a.planar_only,
+            urdf_com=a.urdf_com)
+        results = {}
+        print(f"rocking_geometry: {len(entries)} members written, {refused} refused",
+              file=sys.stderr)
+    else:
+        results, entries = granite(a.granite, a.contact_tolerance, a.plot_dir, not a.no_settle,
+                                   a.homogeneous, a.com_shift, a.specimen, a.planar_only,
+                                   a.urdf_com)
+    return results, entries
+
+
+def mesh_entries(a):
+    """MESH: (results, entries) of the one scan (scan_entry.py), its outline with --plot-dir."""
+    import scan_entry  # noqa: E402  (beside this script)
+    g, placed, notes = scan_entry.scan_geometry(
+        a.mesh, a.mass, a.contact_tolerance, a.com, a.unit, a.up, a.floor, a.keep_slab,
+        a.cap_tolerance, a.quaternion, a.settle, a.com_shift)
+    for n in notes + [scan_entry.describe(g)]:
+        print(f"rocking_geometry: {a.mesh}: {n}", file=sys.stderr)
+    extra = scan_entry.entry_comments(g)
+    results = {a.id: g}
+    entries = [catalogue_entry(a.id, g, a.sensor, planar_only=a.planar_only, extra=extra)]
+    if a.plot_dir:
+        plot_outline(os.path.join(a.plot_dir, f"{a.id}.png"), a.id, placed, g)
+    return results, entries
+
+
+def write_outputs(a, argv, results, entries):
+    """The catalogue text (--yaml or stdout), open-mesh warnings, every number (--json)."""
     made_by = " ".join(["rocking_geometry.py"] + list(sys.argv[1:] if argv is None else argv))
     text = ("# rocking_geometry: catalogue entries derived from meshes "
             f"(contact tolerance {a.contact_tolerance} m)\n# made by: {made_by}\nitems:\n" + "".join(entries))
@@ -364,7 +371,27 @@ def main(argv=None):
     if a.json:
         with open(a.json, "w") as out:
             json.dump(results, out, indent=1)
+
+
+def run_geometry(a, argv=None):
+    global WRITE_HULL
+    WRITE_HULL = not a.no_hull
+    try:
+        if not a.granite and (a.homogeneous or a.urdf_com or a.specimen):
+            raise GeometryError("--homogeneous, --urdf-com and --specimen need --granite DIR")
+        if a.granite:
+            results, entries = granite_entries(a)
+        else:
+            results, entries = mesh_entries(a)
+    except GeometryError as e:
+        print(f"rocking_geometry: {e}", file=sys.stderr)
+        return 2
+    write_outputs(a, argv, results, entries)
     return 0
+
+
+def main(argv=None):
+    return run_geometry(parse_args(argv), argv)
 
 
 if __name__ == "__main__":

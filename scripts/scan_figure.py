@@ -14,10 +14,20 @@ def plot_scan(path, item_id, g, derived, notes):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
     mesh = g["_mesh"]
     v, f, caps = mesh["vertices"], mesh["faces"], mesh["caps"]
     fig = plt.figure(figsize=(15, 5.4))
+    draw_stood_scan(fig, item_id, g, mesh, v, f, caps)
+    draw_base(fig, g, v)
+    draw_derived_table(fig, derived, notes)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def draw_stood_scan(fig, item_id, g, mesh, v, f, caps):
+    """Left: the scan stood on its floor, shaded, with the removed floor, the cap and the centre of mass."""
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
     ax = fig.add_subplot(1, 3, 1, projection="3d")
     step = max(1, (len(f) - caps) // 15000)  # a picture, not the mesh: at most ~15k triangles drawn
     body = f[: len(f) - caps][::step]
@@ -45,6 +55,11 @@ def plot_scan(path, item_id, g, derived, notes):
     ax.set_zlabel("z, m")
     ax.set_title(f"{item_id}: the scan stood on its floor\n(grey: removed turntable/floor; blue: cap; *: centre of mass)",
                  fontsize=9)
+
+
+def draw_base(fig, g, v):
+    """Middle: the base seen from above: contact points, base polygon, centre of mass, both planes' pivots."""
+    com = g["com"]
     ax2 = fig.add_subplot(1, 3, 2)
     low = v[v[:, 2] <= g["contact_tolerance"]]
     ax2.scatter(low[:, 0], low[:, 1], s=2, c="0.6", label=f"contact points (within {g['contact_tolerance'] * 1000:g} mm)")
@@ -61,6 +76,10 @@ def plot_scan(path, item_id, g, derived, notes):
     ax2.set_ylabel("y, m")
     ax2.set_title("its base, seen from above", fontsize=9)
     ax2.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
+
+
+def draw_derived_table(fig, derived, notes):
+    """Right: catalogue_check's numbers per plane, and the scan's notes."""
     ax3 = fig.add_subplot(1, 3, 3)
     ax3.axis("off")
     rows = [["", "x plane", "y plane"]]
@@ -89,6 +108,3 @@ def plot_scan(path, item_id, g, derived, notes):
     ax3.set_title("what the monitor derives (catalogue_check)", fontsize=9)
     text = "\n".join(textwrap.fill(n, 100, subsequent_indent="  ") for n in notes)
     ax3.text(0.0, 0.02, text, fontsize=6, va="bottom", family="monospace", transform=ax3.transAxes)
-    fig.tight_layout()
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
