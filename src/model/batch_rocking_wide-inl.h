@@ -32,27 +32,17 @@ struct Tag {
     for (std::size_t u = 0; u < U; ++u) r.v[u] = hn::Name(a.v[u]); \
     return r;                                                     \
   }
-#define RM_W_BINARY(Name)                                                    \
+// A two-operand Highway operation lifted over the U registers: Out r.of[u] = hn::Name(a.in[u], b.in[u]).
+#define RM_W_LIFT2(Name, In, in, Out, of)                                    \
   template <std::size_t U>                                                   \
-  HWY_INLINE Wide<U> Name(Wide<U> a, Wide<U> b) {                            \
-    Wide<U> r;                                                               \
-    for (std::size_t u = 0; u < U; ++u) r.v[u] = hn::Name(a.v[u], b.v[u]);   \
+  HWY_INLINE Out<U> Name(In<U> a, In<U> b) {                                 \
+    Out<U> r;                                                                \
+    for (std::size_t u = 0; u < U; ++u) r.of[u] = hn::Name(a.in[u], b.in[u]); \
     return r;                                                                \
   }
-#define RM_W_COMPARE(Name)                                                   \
-  template <std::size_t U>                                                   \
-  HWY_INLINE WMask<U> Name(Wide<U> a, Wide<U> b) {                           \
-    WMask<U> r;                                                              \
-    for (std::size_t u = 0; u < U; ++u) r.m[u] = hn::Name(a.v[u], b.v[u]);   \
-    return r;                                                                \
-  }
-#define RM_W_MASK2(Name)                                                     \
-  template <std::size_t U>                                                   \
-  HWY_INLINE WMask<U> Name(WMask<U> a, WMask<U> b) {                         \
-    WMask<U> r;                                                              \
-    for (std::size_t u = 0; u < U; ++u) r.m[u] = hn::Name(a.m[u], b.m[u]);   \
-    return r;                                                                \
-  }
+#define RM_W_BINARY(Name) RM_W_LIFT2(Name, Wide, v, Wide, v)
+#define RM_W_COMPARE(Name) RM_W_LIFT2(Name, Wide, v, WMask, m)
+#define RM_W_MASK2(Name) RM_W_LIFT2(Name, WMask, m, WMask, m)
 RM_W_UNARY(Abs)
 RM_W_UNARY(Neg)
 RM_W_UNARY(Sqrt)
@@ -75,6 +65,7 @@ RM_W_MASK2(AndNot)
 #undef RM_W_BINARY
 #undef RM_W_COMPARE
 #undef RM_W_MASK2
+#undef RM_W_LIFT2
 template <std::size_t U>
 HWY_INLINE WMask<U> Not(WMask<U> a) {
   WMask<U> r;
