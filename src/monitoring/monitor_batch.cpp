@@ -35,6 +35,13 @@ MonitorBatch::MonitorBatch(std::vector<ItemMonitor*> items) : items_(std::move(i
   }
 }
 
+// The friction a deferred plane's sample must stay below. Sharing one budget (friction_share.hpp), a
+// plane is deferred only below the engaging demand: the item then stays not engaged, and its planes
+// may be deferred each on its own.
+double MonitorBatch::deferrable_mu(const ItemMonitor& item, double mu_s) {
+  return item.shares_friction_ ? mu_s * kShareEngage : mu_s;
+}
+
 void MonitorBatch::refresh(std::size_t k) { refresh_planes(k, (1u << kPlaneCount) - 1); }
 
 // What an item's lanes must hold again after the item stepped (or at the start): for each plane
@@ -105,9 +112,7 @@ void MonitorBatch::copy_plane_state(const ItemMonitor& item, int p, PlaneLane& p
     pl.cs[i] = linear ? 1.0 : pv.cos_alpha;  // uplift_function(): linearized cos -> 1, sin -> alpha
     pl.sn[i] = linear ? pv.alpha : pv.sin_alpha;
   }
-  // Sharing one budget (friction_share.hpp), a plane is deferred only below the engaging demand:
-  // the item then stays not engaged, and its planes may be deferred each on its own.
-  pl.mu = item.shares_friction_ ? body.mu_s() * kShareEngage : body.mu_s();
+  pl.mu = deferrable_mu(item, body.mu_s());
   pl.overturned = (adaptive != nullptr ? adaptive->mode() : pm.contact_mode()) == ContactMode::Overturned;
   const SceneEnvelope scene = adaptive != nullptr ? adaptive->settings().scene : SceneEnvelope{};
   pl.scene_h = scene.horizontal;
@@ -182,7 +187,7 @@ void MonitorBatch::mirror_rocking(std::size_t k, int p, const AdaptiveModel& a) 
   // As BatchRocking::refresh_mirror: the model just stepped (or was set up); read once here.
   const std::size_t r = kPlaneCount * k + static_cast<std::size_t>(p);
   const RockingModel& m = a.nonlinear_model();
-  const double mu = items_[k]->shares_friction_ ? m.body().mu_s() * kShareEngage : m.body().mu_s();  // (refresh_planes)
+  const double mu = deferrable_mu(*items_[k], m.body().mu_s());
   BatchRocking::Lanes& l = rk_;
   l.vr[r] = 1.0;
   BatchRocking::mirror_rocking(l, r, m);

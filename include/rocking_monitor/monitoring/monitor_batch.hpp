@@ -185,6 +185,8 @@ class MonitorBatch {
   // refresh_planes()' steps. Whether plane pm may defer its next sample (started: the item and the
   // plane; solid: the item's SolidLane or -1); sets pl.rocking.
   bool plane_deferrable(bool started, const PlaneMonitor& pm, int solid, PlaneLane& pl) const;
+  // The friction a deferred plane's sample must stay below (mu_s, or the pair's engaging demand).
+  static double deferrable_mu(const ItemMonitor& item, double mu_s);
   // An eligible plane's lane: its uplift and slip tests, scene, clock, intensity and last input.
   static void copy_plane_state(const ItemMonitor& item, int p, PlaneLane& pl);
   // An item with a 3-D description: whether it may defer as a whole and, if so, its SolidLane.
