@@ -48,4 +48,13 @@ FrictionShare friction_share(const AdaptiveModel& x, const AdaptiveModel& y, con
   return friction_share(v, w, q0, q1, x.body().mu_s());
 }
 
+bool friction_engaged(const AdaptiveModel& x, const AdaptiveModel& y, const double (&x0)[2], const double (&y0)[2]) {
+  const double mu_s = x.body().mu_s();
+  const double v[2] = {x.slip_velocity(), y.slip_velocity()};
+  if (!std::isfinite(mu_s) || !std::isfinite(v[0]) || !std::isfinite(v[1])) return false;
+  if (v[0] != 0.0 || v[1] != 0.0) return true;
+  const double q0[2] = {x.friction_demand(x0[0], x0[1]), y.friction_demand(y0[0], y0[1])};
+  return std::isfinite(q0[0]) && std::isfinite(q0[1]) && std::max(q0[0], q0[1]) >= mu_s * kShareEngage;
+}
+
 }  // namespace rocking_monitor::core

@@ -48,4 +48,8 @@ FrictionShare friction_share(const double (&v)[2], const double (&w)[2], const d
 FrictionShare friction_share(const AdaptiveModel& x, const AdaptiveModel& y, const double (&x0)[2],
                              const double (&y0)[2], const double (&x1)[2], const double (&y1)[2], double dt);
 
+/// Whether the planes are engaged at a sample's start (their input there x0, y0): a plane slips, or
+/// one demands mu_s * kShareEngage or more; friction_share's `engaged`, without the sample's end.
+bool friction_engaged(const AdaptiveModel& x, const AdaptiveModel& y, const double (&x0)[2], const double (&y0)[2]);
+
 }  // namespace rocking_monitor::core

@@ -104,7 +104,8 @@ class ItemMonitor {
   FrictionShare friction_share_now(double ax, double ay, double az, double dt) const;
   void share_friction(double ax, double ay, double az, double dt, unsigned planes, unsigned model_done);
   bool friction_engaged() const {
-    return shares_friction_ && friction_share_now(last_input_[0][0], last_input_[1][0], last_input_[1][1], 0.0).engaged;
+    const double x0[2] = {last_input_[0][0], last_input_[0][1]}, y0[2] = {last_input_[1][0], last_input_[1][1]};
+    return shares_friction_ && core::friction_engaged(*planes_[0]->adaptive(), *planes_[1]->adaptive(), x0, y0);
   }
   ItemSpec spec_;
   bool shares_friction_ = false;  // two planes that both model friction
