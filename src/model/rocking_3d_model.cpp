@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "rocking_monitor/physics/criteria.hpp"
+#include "rocking_monitor/physics/support_polygon.hpp"
 
 #include "rocking_3d_internal.hpp"
 #include "rocking_monitor/model/rocking_3d_model.hpp"
@@ -45,12 +46,27 @@ Rocking3DModel::Rocking3DModel(const BaseBody& body, const SolverSettings& setti
     : Rocking3DModel(body, settings, true) {}
 
 Rocking3DModel::Rocking3DModel(const BaseBody& body, const SolverSettings& settings, bool with_probe)
-    : body_(body), settings_(checked_3d(settings)), hull_(&body_.contact_hull()) {
+    : body_(body), settings_(checked_3d(settings)) {
+  central_inverse_ = body_.central_inertia_per_mass().inverse();
+  placed_support_.reserve(body_.parameters().support.size());
+  for (const Eigen::Vector2d& b : body_.whole_base())
+    contact_whole_ = contact_whole_ && (body_.parameters().support.empty() || inside_margin(body_.parameters().support, b) >= 0.0);
+  derive_contact();
+  if (with_probe) probe_.reset(new Rocking3DModel(body, settings, false));
+  reset(0.0);
+}
+
+// What the model keeps of its body's contact: made at construction and again when a support's cut
+// of the base moves with the item (rocking_3d_support.cpp).
+void Rocking3DModel::derive_contact() {
+  hull_ = &body_.contact_hull();
+  set_face(face_);
   double size = 0.0;
   for (const BaseVertex& v : hull().vertices) size = std::max(size, v.radius);
   floor_tol_ = 1e-9 * size;
-  central_inverse_ = body_.central_inertia_per_mass().inverse();
   stop_speed_ = 1e-6 * kGravity / body_.max_p();
+  friction_.clear();
+  slide_first_.clear();
   for (const HullFace& f : hull().faces) {
     std::vector<Eigen::Vector2d> polygon;
     for (int k = 0; k < f.body->vertex_count(); ++k) polygon.push_back(f.body->vertex(k).position.head<2>());
@@ -59,8 +75,6 @@ Rocking3DModel::Rocking3DModel(const BaseBody& body, const SolverSettings& setti
     for (int k = 0; k < f.body->vertex_count(); ++k) tan_min = std::min(tan_min, f.body->edge(k).pivot.tan_alpha);
     slide_first_.push_back(tan_min);
   }
-  if (with_probe) probe_.reset(new Rocking3DModel(body, settings, false));
-  reset(0.0);
 }
 
 void Rocking3DModel::reset(double t, const Eigen::Vector3d& a) {
@@ -73,6 +87,7 @@ void Rocking3DModel::reset(double t, const Eigen::Vector3d& a) {
   pivot_world_.setZero();
   yaw_ = 0.0;
   shift_.setZero();
+  fit_contact();
   t_ = t;
   a_prev_ = a;
   report_ = StepReport{};
@@ -100,6 +115,8 @@ void Rocking3DModel::save(Saved& out) const {
   out.pivot_world = pivot_world_;
   out.yaw = yaw_;
   out.shift = shift_;
+  out.fit_yaw = fit_yaw_;
+  out.fit_shift = fit_shift_;
   out.t = t_;
   out.a_prev = a_prev_;
   std::copy(std::begin(armed_), std::end(armed_), std::begin(out.armed));
@@ -121,6 +138,10 @@ void Rocking3DModel::save(Saved& out) const {
 void Rocking3DModel::restore(const Saved& in) {
   if (in.face < 0 || in.face >= static_cast<int>(hull().faces.size()))
     throw std::invalid_argument("Rocking3DModel::restore: face " + std::to_string(in.face) + " is not a face of this body's hull");
+  // The contact the state was in first (a support's cut of the base follows the item).
+  yaw_ = in.fit_yaw;
+  shift_ = in.fit_shift;
+  fit_contact();
   mode_ = in.mode;
   contact_ = in.contact;
   set_face(in.face);
@@ -210,6 +231,7 @@ double Rocking3DModel::tilt() const {
 
 
 void Rocking3DModel::go_to_rest() {
+  fit_contact();  // (the footprint may have moved: a support's cut follows it)
   mode_ = Mode3D::Rest;
   contact_ = -1;
   theta_ = omega_ = 0.0;

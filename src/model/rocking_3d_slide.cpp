@@ -10,7 +10,6 @@
 #include "rocking_monitor/integrate/event_location.hpp"
 #include "rocking_monitor/model/rocking_3d_model.hpp"
 #include "rocking_monitor/physics/criteria.hpp"
-#include "rocking_monitor/physics/support_polygon.hpp"
 
 namespace rocking_monitor::core {
 
@@ -40,18 +39,6 @@ constexpr double kSlipFloorPerTol = 100.0;  // m/s per unit tol: the slip veloci
 Eigen::Vector2d Rocking3DModel::slip() const {
   const Eigen::Vector3d c = body_.centre_of_mass();
   return (rotation() * c + translation() - c).head<2>();
-}
-
-double Rocking3DModel::support_margin_of(const Vec6& y) const {
-  const std::vector<Eigen::Vector2d>& support = body_.parameters().support;
-  if (support.empty()) return std::numeric_limits<double>::infinity();
-  // (a support excludes a hull: the body slides on its base, face 0, whose frame is the item's)
-  return inside_margin(support, rot2(y(5)) * fb().centre_of_mass().head<2>() + y.segment<2>(3));
-}
-
-double Rocking3DModel::support_margin() const {
-  if (body_.parameters().support.empty()) return std::numeric_limits<double>::infinity();
-  return inside_margin(body_.parameters().support, (rotation() * body_.centre_of_mass() + translation()).head<2>());
 }
 
 void Rocking3DModel::set_slide_state(const Eigen::Vector2d& u, double spin) {
@@ -190,6 +177,7 @@ double Rocking3DModel::slide_lift(const GroundInput3& in, double t, const Vec6& 
   // A pure slide (no spin, slip not held past a stop) pulls with mu_k N against the slip: no edge
   // lifts while mu_k stays below every edge's tan(alpha), the planar slide-first rule (saves the
   // edge loop at every probe).
+  if (!body_.parameters().support.empty()) return support_lift(y, lift_friction(in, t, y), in.at(t).z());
   if (y(2) == 0.0 && y.head<2>().squaredNorm() > 0.0 && mu_k() < slide_first_[static_cast<std::size_t>(face_)] * (1.0 - 1e-9) &&
       kGravity + in.at(t).z() > 0.0)
     return -1.0;
@@ -211,11 +199,13 @@ void Rocking3DModel::note_slide() {
   outcome3_.max_slip = std::max(outcome3_.max_slip, slip().norm());
   outcome3_.max_slip_speed = std::max(outcome3_.max_slip_speed, slide_.head<2>().norm());
   outcome3_.max_twist = std::max(outcome3_.max_twist, std::abs(yaw_));
+  fit_contact();
 }
 
 // The slide ends on an edge: the body pivots on it, the pivot sticking (issue 40's plastic impact
 // onto the edge: angular momentum about the edge kept, the rest of the slip stopped).
 void Rocking3DModel::slide_to_edge(const GroundInput3& in, double tau) {
+  note_slide();  // (on a support, the contact cut where it lifts: the lifting line is one of its edges)
   int best = 0;
   double best_u = -std::numeric_limits<double>::infinity();
   const Eigen::Vector2d f = lift_friction(in, tau, slide_);
@@ -230,7 +220,6 @@ void Rocking3DModel::slide_to_edge(const GroundInput3& in, double tau) {
   const Eigen::Vector3d lever = fb().centre_of_mass() - fb().vertex(e.a).position;
   const Eigen::Vector3d h = fb().central_inertia_per_mass() * Eigen::Vector3d(0.0, 0.0, slide_(2)) +
                             lever.cross(Eigen::Vector3d(u_fp.x(), u_fp.y(), 0.0));
-  note_slide();
   mode_ = Mode3D::Edge;
   contact_ = best;
   theta_ = 0.0;

@@ -41,6 +41,10 @@ void Rocking3DModel::note_transition(Mode3D from, Transition3D reason, double ta
 }
 
 void Rocking3DModel::overturn_at(double tau) {
+  if (!outcome3_.fell_off_support && pivot_on_support_edge()) {  // over the support's edge: off it
+    outcome3_.fell_off_support = true;
+    outcome3_.fell_off_time = t_ + tau;
+  }
   note_ratio();
   mode_ = Mode3D::Overturned;
   outcome_.overturned = true;
@@ -55,8 +59,7 @@ void Rocking3DModel::handle_event(Event e, int other, const GroundInput3& in, do
   switch (e) {
     case Event::Overturn:
       overturn_at(tau);
-      note_transition(from, from == Mode3D::Slide && outcome3_.fell_off_support ? Transition3D::FellOffSupport
-                                                                                 : Transition3D::Overturn, tau);
+      note_transition(from, outcome3_.fell_off_support ? Transition3D::FellOffSupport : Transition3D::Overturn, tau);
       return;
     case Event::Stick:
       go_to_rest();  // the slip stopped and the static law holds: at rest where it slid to

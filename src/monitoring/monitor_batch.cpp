@@ -28,6 +28,8 @@ MonitorBatch::MonitorBatch(std::vector<ItemMonitor*> items) : items_(std::move(i
     if (const Rocking3DModel* solid = items_[k]->solid()) {
       lanes_[k].solid = static_cast<int>(solids_.size());
       solids_.emplace_back();
+      // (on a support the contact's edges change as the item slides: room for the base's and the support's)
+      solids_.back().edges.reserve(solid->body().whole_base().size() + solid->body().parameters().support.size());
       solids_.back().edges.resize(static_cast<std::size_t>(solid->body().vertex_count()));
       solids_.back().mu_s = solid->body().parameters().mu_s;
     }
@@ -140,6 +142,7 @@ void MonitorBatch::refresh_solid(const ItemMonitor& item, Lane& lane, bool secon
   sl.peak_y = item.peak_y_;
   sl.overturned = solid.mode() == Mode3D::Overturned;
   sl.t = solid.time();
+  sl.edges.resize(static_cast<std::size_t>(solid.body().vertex_count()));  // (within its reserve: no allocation)
   for (std::size_t e = 0; e < sl.edges.size(); ++e) {
     const Eigen::Vector3d n = solid.edge_normal(static_cast<int>(e));
     const Pivot& pv = solid.body().edge(static_cast<int>(e)).pivot;

@@ -383,6 +383,8 @@ void visit(V& v, Rocking3DModel::Saved& s) {
   visit_matrix(v, "pivot_world", s.pivot_world);
   v("yaw", s.yaw);
   visit_matrix(v, "shift", s.shift);
+  v("fit_yaw", s.fit_yaw);
+  visit_matrix(v, "fit_shift", s.fit_shift);
   v("t", s.t);
   visit_matrix(v, "a_prev", s.a_prev);
   for (bool& a : s.armed) v("armed", a);

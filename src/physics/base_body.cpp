@@ -147,10 +147,20 @@ bool ContactHull::face_with_edge(int a, int b, const Eigen::Matrix3d& rotation, 
 }
 
 BaseBody BaseBody::face(const BaseBodyParameters& parameters) { return BaseBody(parameters, false); }
+
+BaseBody BaseBody::on_support(const std::vector<Eigen::Vector2d>& placed) const {
+  BaseBodyParameters moved = params_;
+  moved.base = whole_base_;
+  moved.support = placed;
+  BaseBody body(moved, true);
+  body.params_.support = params_.support;
+  return body;
+}
 BaseBody::BaseBody(const BaseBodyParameters& parameters) : BaseBody(parameters, true) {}
 
 BaseBody::BaseBody(const BaseBodyParameters& parameters, bool must_stand) : params_(parameters) {
   if (const std::string e = validate_body(params_, must_stand); !e.empty()) throw BodyError(e);
+  whole_base_ = params_.base;
   if (!params_.support.empty()) {
     // The contact is the base where it lies on the support (a pedestal smaller than the base bounds it).
     params_.base = clip_convex(params_.base, params_.support);

@@ -220,7 +220,7 @@ void solid_support_and_hull_lines(const rm::Rocking3DModel& model, std::vector<s
   const rm::Rocking3DOutcome& r3 = model.outcome_3d();
   if (!model.body().parameters().support.empty())
     L.push_back(r3.fell_off_support
-                    ? format("support     FELL OFF its support at %.4f s (the centre of mass passed its edge)", r3.fell_off_time)
+                    ? format("support     FELL OFF its support at %.4f s (over its edge)", r3.fell_off_time)
                     : format("support     stayed on its support: the centre of mass %.4f m inside its edge at the end",
                              model.support_margin()));
   if (model.body().contact_hull().from_hull)

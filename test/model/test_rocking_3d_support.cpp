@@ -1,10 +1,12 @@
-// Supports that end (issue 51): a box on a plinth falls off exactly when its slip carries its centre
-// of mass past the plinth's edge (an exact 1-D slider locates the instant); a pedestal smaller than
+// Supports that end (issue 51): a box sliding on a plinth tips over its edge exactly where its friction
+// can tip it (an exact 1-D slider locates the instant); one that slid part of the way over rocks about
+// the plinth's edge as the planar body of the part still on it; a pedestal smaller than
 // the base bounds the contact, and the body rocks about the pedestal's edge as the planar body of the
 // pedestal's width; bad supports are refused naming the item and the field.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -90,8 +92,14 @@ BaseBodyParameters plinth_box(double mu) {
   return p;
 }
 
-TEST(Rocking3DSupport, ABoxOnAPlinthFallsOffWhenItsSlipReachesTheEdge) {
+// Sliding towards the plinth's edge, the contact is the base where it still lies on the plinth: the
+// box brakes (friction mu_k g against its slip, at the floor, h below its centre of mass) and tips
+// over the plinth's edge once its centre of mass is within mu_k h of it (eq. 19 about that edge:
+// mu_k g h > g b). The instant is an exact 1-D slider's reaching 0.4 - mu h (or -(0.5 - mu h)); from
+// there it pivots on the plinth's edge, and an overturn about that edge is a fall off the plinth.
+TEST(Rocking3DSupport, ABoxSlidingToThePlinthsEdgeTipsOverItWhereItsFrictionTipsIt) {
   // A plinth 0.4 m beyond the centre of mass towards +x, 0.5 m towards -x (larger than the base).
+  const double mu = 0.3, h = 0.35;
   int fell = 0, stayed = 0;
   for (double amp : {0.4, 0.6, 0.8})
     for (double f : {0.5, 1.0}) {
@@ -99,28 +107,134 @@ TEST(Rocking3DSupport, ABoxOnAPlinthFallsOffWhenItsSlipReachesTheEdge) {
       const double dt = 0.01;
       for (double t = 0.0; t < 1.0 / f; t += dt) ax.push_back(-amp * kGravity * std::sin(2 * kPi * f * t));
       ax.resize(ax.size() + 300, 0.0);
-      BaseBodyParameters p = plinth_box(0.3);
+      BaseBodyParameters p = plinth_box(mu);
       p.support = {{-0.5, -0.4}, {0.4, -0.4}, {0.4, 0.4}, {-0.5, 0.4}};
       Rocking3DModel m(BaseBody(p), support_settings());
       m.reset(0.0);
       for (std::size_t i = 1; i < ax.size(); ++i) m.step(Eigen::Vector3d(ax[i], 0.0, 0.0), dt);
-      const double expected = plinth_fall_time(ax, dt, 0.3, 0.4, 0.5);
+      const double tips = plinth_fall_time(ax, dt, mu, 0.4 - mu * h, 0.5 - mu * h);
       const std::string label = std::to_string(amp) + " g " + std::to_string(f) + " Hz";
-      ASSERT_EQ(m.outcome_3d().fell_off_support, !std::isnan(expected)) << label;
-      if (std::isnan(expected)) {
+      ASSERT_EQ(std::isnan(m.outcome().uplift_time), std::isnan(tips)) << label;
+      if (std::isnan(tips)) {
         ++stayed;
-        EXPECT_GT(m.support_margin(), 0.0) << label;
+        EXPECT_FALSE(m.outcome_3d().fell_off_support) << label;
+        EXPECT_GT(m.support_margin(), mu * h) << label;
         continue;
       }
+      EXPECT_NEAR(m.outcome().uplift_time, tips, 1e-9) << label;
+      EXPECT_EQ(m.outcome_3d().slide_to_rock, 1) << label;
+      // it went over the plinth's edge (these pulses all carry it over), and that is the fall
+      ASSERT_TRUE(m.outcome().overturned) << label;
       ++fell;
-      EXPECT_EQ(m.mode(), Mode3D::Overturned) << label;
-      EXPECT_TRUE(m.outcome().overturned) << label;
-      EXPECT_NEAR(m.outcome_3d().fell_off_time, expected, 1e-9) << label;
-      EXPECT_NEAR(m.outcome().overturn_time, expected, 1e-9) << label;
-      EXPECT_NEAR(m.support_margin(), 0.0, 1e-9) << label;
+      EXPECT_TRUE(m.outcome_3d().fell_off_support) << label;
+      EXPECT_EQ(m.outcome_3d().fell_off_time, m.outcome().overturn_time) << label;
+      EXPECT_GT(m.outcome().overturn_time, tips) << label;
+      const Transition3DRecord& last = m.transition(m.transition_records() - 1);
+      EXPECT_EQ(last.reason, Transition3D::FellOffSupport) << label;
     }
   EXPECT_GE(fell, 2);
   EXPECT_GE(stayed, 1);
+}
+
+// The contact follows the item: a box that slid part of the way over the plinth's edge and stopped
+// stands on the base's part still on the plinth, and rocks about the plinth's edge as the planar body
+// of that part's width (the box's inertia) does: tilt at every sample, impacts, uplift and overturn.
+// (mu_k 0.3 below mu_s 0.6: it slides without tipping, then a pulse below mu_s g rocks it.)
+TEST(Rocking3DSupport, ABoxThatSlidPartlyOverThePlinthsEdgeRocksAboutThatEdge) {
+  const double h = 0.35, dt = 0.01;
+  int compared = 0, overturned = 0, impacts = 0;
+  for (double amp1 = 0.61; amp1 < 1.05; amp1 += 0.01)
+    for (double f : {0.8, 1.5}) {
+      BaseBodyParameters p = plinth_box(0.6);
+      p.mu_k = 0.3;
+      p.support = {{-0.5, -0.4}, {0.4, -0.4}, {0.4, 0.4}, {-0.5, 0.4}};
+      Rocking3DModel m(BaseBody(p), support_settings());
+      m.reset(0.0);
+      double t = 0.0;
+      for (; t < 3.0 - 1e-9; t += dt) {  // a half-sine towards -x: it slides towards +x, then stops
+        const double a = t + dt < 0.3 ? -amp1 * kGravity * std::sin(kPi * (t + dt) / 0.3) : 0.0;
+        m.step(Eigen::Vector3d(a, 0.0, 0.0), dt);
+      }
+      if (m.mode() != Mode3D::Rest || m.outcome_3d().slide_to_rock > 0) continue;  // it tipped (the test above)
+      const double b = 0.4 - m.slip().x();  // how far the plinth's edge is from the centre of mass
+      ASSERT_NEAR(m.slip().y(), 0.0, 1e-12);
+      if (!(b / h < 0.56 && b > 0.3 * h)) continue;  // rocks under 0.58 g (below mu_s g), did not tip sliding
+      // The cut: [-0.3, b] x [-0.25, 0.25] about the centre of mass.
+      ASSERT_EQ(m.body().vertex_count(), 4);
+      EXPECT_NEAR(m.body().min_alpha(), std::atan(b / h), 1e-12);
+      BodyParameters planar;
+      planar.width = 0.3 + b;
+      planar.cg_height = h;
+      planar.nu1 = 0.3 / (0.3 + b);  // the centre of mass 0.3 m from the -x edge
+      planar.radius_of_gyration = std::sqrt(m.body().central_inertia_per_mass()(1, 1));
+      RockingModel ref(planar, support_settings());
+      for (double s = dt; s < 4.0; s += dt) {
+        const double a = s < 1.0 / f ? -0.58 * kGravity * std::sin(2 * kPi * f * s) : 0.0;
+        ref.step(a, 0.0, dt);
+        m.step(Eigen::Vector3d(a, 0.0, 0.0), dt);
+        ASSERT_NEAR(m.tilt(), ref.mode() == Mode::Overturned ? m.tilt() : std::abs(ref.theta()), 1e-8) << amp1 << " " << s;
+      }
+      EXPECT_EQ(ref.outcome().overturned, m.outcome().overturned);
+      EXPECT_EQ(ref.outcome().impacts, m.outcome().impacts);
+      ASSERT_FALSE(std::isnan(ref.outcome().uplift_time));
+      EXPECT_NEAR(ref.outcome().uplift_time + t, m.outcome().uplift_time, 1e-9);
+      if (ref.outcome().overturned) {
+        EXPECT_NEAR(ref.outcome().overturn_time + t, m.outcome().overturn_time, 1e-8);
+        EXPECT_TRUE(m.outcome_3d().fell_off_support) << "over the plinth's edge";
+      }
+      ++compared;
+      overturned += ref.outcome().overturned;
+      impacts += static_cast<int>(ref.outcome().impacts);
+    }
+  EXPECT_GE(compared, 8);
+  EXPECT_GE(overturned, 1);
+  EXPECT_GE(impacts, 3);
+  std::printf("[ measured ] %d cases compared, %d overturned, %d impacts\n", compared, overturned, impacts);
+}
+
+// A snapshot carries the footprint the contact was cut for: a model restored while the box slides
+// over the plinth's edge, stands there, or rocks about that edge goes on exactly as the live one.
+TEST(Rocking3DSupport, ASnapshotResumesTheContactWhereTheItemSlidExactly) {
+  BaseBodyParameters p = plinth_box(0.6);
+  p.mu_k = 0.3;
+  p.support = {{-0.5, -0.4}, {0.4, -0.4}, {0.4, 0.4}, {-0.5, 0.4}};
+  const double dt = 0.01;
+  std::vector<Eigen::Vector3d> in;
+  for (double t = dt; t < 6.0; t += dt) {
+    const double s = t - 3.0;
+    const double a = t < 0.3 ? -0.92 * kGravity * std::sin(kPi * t / 0.3)
+                     : s > 0.0 && s < 1.25 ? -0.58 * kGravity * std::sin(2 * kPi * 0.8 * s) : 0.0;
+    in.emplace_back(a, 0.1 * a, 0.0);
+  }
+  Rocking3DModel live(BaseBody(p), support_settings());
+  live.reset(0.0);
+  std::vector<Rocking3DModel::Saved> saved(in.size());
+  std::vector<double> tilt(in.size()), slip(in.size());
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    live.step(in[i], dt);
+    live.save(saved[i]);
+    tilt[i] = live.tilt();
+    slip[i] = live.slip().x();
+  }
+  ASSERT_GT(live.outcome().impacts, 0);  // it rocked about the plinth's edge after sliding over it
+  int cut = 0;
+  for (std::size_t k : {10, 20, 100, 305, 330, 360}) {
+    Rocking3DModel resumed(BaseBody(p), support_settings());
+    resumed.restore(saved[k]);
+    Rocking3DModel::Saved copy;
+    resumed.save(copy);
+    cut += copy.fit_shift.x() > 0.1;  // the base then overhung the plinth
+    for (std::size_t i = k + 1; i < in.size(); ++i) {
+      resumed.step(in[i], dt);
+      ASSERT_EQ(resumed.tilt(), tilt[i]) << k << " " << i;
+      ASSERT_EQ(resumed.slip().x(), slip[i]) << k << " " << i;
+    }
+    EXPECT_EQ(resumed.outcome().impacts, live.outcome().impacts) << k;
+    EXPECT_EQ(resumed.slip().x(), live.slip().x()) << k;
+    EXPECT_EQ(resumed.body().vertex_count(), live.body().vertex_count()) << k;
+    EXPECT_EQ(resumed.outcome().overturned, live.outcome().overturned) << k;
+  }
+  EXPECT_GE(cut, 3);
 }
 
 TEST(Rocking3DSupport, APedestalSmallerThanTheBaseRocksItAsThePlanarBodyOfThePedestalsWidth) {

@@ -66,7 +66,7 @@ enum class Transition3D : std::uint8_t {
   RestCapture,        ///< a landing with almost no energy left: REST (the Zeno rule)
   Degenerate,         ///< -> REST: a degenerate pivot motion (rocking_3d_vertex.cpp)
   ForcedRest,         ///< -> REST: the bound on events per sample
-  FellOffSupport,     ///< SLIDE -> OVERTURNED: the centre of mass passed the support's edge
+  FellOffSupport,     ///< -> OVERTURNED: the centre of mass passed the support's edge sliding, or it tipped over that edge
   // Not a mode change (from == to): where the rocking model stops being exact (slide-rock and flight
   // are not modelled in 3-D yet; the motion after is followed as rocking on a sticking pivot).
   PivotSlips,         ///< EDGE, VERTEX: the pivot's reaction left the friction cone (slide-rock)
@@ -134,8 +134,8 @@ struct Rocking3DOutcome {
   double max_slip_speed = 0.0;    ///< largest slip speed of the centre of mass, m/s (at step ends)
   double max_twist = 0.0;         ///< largest |yaw| of the footprint, rad
   double slip_time = 0.0;         ///< time spent sliding, s
-  /// The centre of mass passed the support's edge while sliding: the item fell off its plinth, shelf or
-  /// pedestal (it counts OVERTURNED, at that instant).
+  /// The item fell off its plinth, shelf or pedestal: its centre of mass passed the support's edge
+  /// while sliding, or it overturned about that edge (it counts OVERTURNED, at that instant).
   bool fell_off_support = false;
   double fell_off_time = std::numeric_limits<double>::quiet_NaN();  ///< s
   // The pivot while rocking (EDGE, VERTEX): the floor's reaction on the body against the friction cone
@@ -197,6 +197,8 @@ class Rocking3DModel {
     Eigen::Vector3d pivot_world = Eigen::Vector3d::Zero();    ///< m
     double yaw = 0.0;                                         ///< rad
     Eigen::Vector2d shift = Eigen::Vector2d::Zero();          ///< m
+    double fit_yaw = 0.0;                                     ///< rad: the footprint a support's cut of the base was made for
+    Eigen::Vector2d fit_shift = Eigen::Vector2d::Zero();      ///< m: ditto
     double t = 0.0;                                           ///< s
     Eigen::Vector3d a_prev = Eigen::Vector3d::Zero();         ///< m/s^2
     bool armed[kMaxBaseVertices] = {};
@@ -403,7 +405,12 @@ class Rocking3DModel {
   Eigen::Vector2d slide_friction(const GroundInput3& in, double t, const Vec6& y, double& torque) const;
   Eigen::Vector2d lift_friction(const GroundInput3& in, double t, const Vec6& y) const;
   double slide_lift(const GroundInput3& in, double t, const Vec6& y) const;
+  // On a support (rocking_3d_support.cpp).
   double support_margin_of(const Vec6& y) const;
+  void derive_contact();
+  void fit_contact();
+  double support_lift(const Vec6& y, const Eigen::Vector2d& f, double az) const;
+  bool pivot_on_support_edge() const;
   void slide_to_edge(const GroundInput3& in, double tau);
   void note_slide();
   double mu_k() const { return std::isnan(body_.parameters().mu_k) ? body_.parameters().mu_s : body_.parameters().mu_k; }
@@ -429,6 +436,12 @@ class Rocking3DModel {
   Eigen::Vector3d pivot_world_ = Eigen::Vector3d::Zero();  // VERTEX
   double yaw_ = 0.0;                   // footprint
   Eigen::Vector2d shift_ = Eigen::Vector2d::Zero();
+  // On a support: the footprint the contact (body_'s base, the whole base where it lies on the
+  // support) was cut for, the support seen from the item there, and whether that is the whole base.
+  double fit_yaw_ = 0.0;
+  Eigen::Vector2d fit_shift_ = Eigen::Vector2d::Zero();
+  std::vector<Eigen::Vector2d> placed_support_;
+  bool contact_whole_ = true;
   double t_ = 0.0;
   Eigen::Vector3d a_prev_ = Eigen::Vector3d::Zero();
   double sample_dt_ = 0.0;

@@ -79,6 +79,13 @@ class BaseBody {
   /// A face of a hull as a base: the centre of mass may lie beyond its edges (then those edges'
   /// alpha <= 0 and stands() is false); no hull of its own.
   static BaseBody face(const BaseBodyParameters& parameters);
+  /// The same body after it slid or turned on its support (issue 51): `placed` is the support's top
+  /// as seen in the item frame now, and the contact is the whole base (as given, before any support
+  /// cut it) where it lies on it. parameters() keep the support where the item stood. Throws
+  /// BodyError when the centre of mass is off `placed` or they do not overlap.
+  BaseBody on_support(const std::vector<Eigen::Vector2d>& placed) const;
+  /// The base as given, before a support cut it to the contact (the contact is base(): vertices).
+  const std::vector<Eigen::Vector2d>& whole_base() const { return whole_base_; }
 
   const BaseBodyParameters& parameters() const { return params_; }
   int vertex_count() const { return static_cast<int>(vertices_.size()); }
@@ -107,6 +114,7 @@ class BaseBody {
   BaseBody(const BaseBodyParameters& parameters, bool must_stand);
   void build_contact_hull();
   BaseBodyParameters params_;
+  std::vector<Eigen::Vector2d> whole_base_;
   bool stands_ = true;
   std::shared_ptr<const ContactHull> hull_;
   Eigen::Matrix3d central_;

@@ -1,0 +1,113 @@
+// The 3-D model on a support that ends (issue 51): the contact is the base where it lies on the
+// support's top, and it follows the item as the item slides or turns there; the margin to the edge;
+// the uplift about the support's moving edges while sliding; an overturn about them is a fall off it.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "rocking_monitor/model/rocking_3d_model.hpp"
+#include "rocking_monitor/physics/support_polygon.hpp"
+
+namespace rocking_monitor::core {
+
+namespace {
+
+Eigen::Matrix2d rot2(double yaw) {
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  Eigen::Matrix2d r;
+  r << c, -s, s, c;
+  return r;
+}
+
+Eigen::Vector2d outward(const Eigen::Vector2d& from, const Eigen::Vector2d& to) {  // of a ccw polygon's edge
+  const Eigen::Vector2d d = (to - from).normalized();
+  return Eigen::Vector2d(d.y(), -d.x());
+}
+
+}  // namespace
+
+double Rocking3DModel::support_margin_of(const Vec6& y) const {
+  const std::vector<Eigen::Vector2d>& support = body_.parameters().support;
+  if (support.empty()) return std::numeric_limits<double>::infinity();
+  // (a support excludes a hull: the body slides on its base, face 0, whose frame is the item's)
+  return inside_margin(support, rot2(y(5)) * fb().centre_of_mass().head<2>() + y.segment<2>(3));
+}
+
+double Rocking3DModel::support_margin() const {
+  if (body_.parameters().support.empty()) return std::numeric_limits<double>::infinity();
+  return inside_margin(body_.parameters().support, (rotation() * body_.centre_of_mass() + translation()).head<2>());
+}
+
+// The cut is made again where the footprint (shift_, yaw_) has moved since it was last made: at every
+// slide step's end and where the item comes to rest, never while it pivots (the pivot is an edge or a
+// vertex of the cut it began on). Nothing is made while the whole base stays on the support (a plinth
+// larger than the base, away from its edge): the usual case allocates nothing.
+void Rocking3DModel::fit_contact() {
+  const std::vector<Eigen::Vector2d>& support = body_.parameters().support;
+  if (support.empty() || (shift_ == fit_shift_ && yaw_ == fit_yaw_)) return;
+  fit_shift_ = shift_;
+  fit_yaw_ = yaw_;
+  const Eigen::Matrix2d back = rot2(-yaw_);
+  placed_support_.clear();
+  for (const Eigen::Vector2d& s : support) placed_support_.push_back(back * (s - shift_));
+  bool whole = true;
+  for (const Eigen::Vector2d& b : body_.whole_base()) whole = whole && inside_margin(placed_support_, b) >= 0.0;
+  if (whole && contact_whole_) return;
+  // Off the support the item has fallen (the slide's margin event): its last cut stays.
+  if (!(inside_margin(placed_support_, body_.centre_of_mass().head<2>()) > 0.0)) return;
+  try {
+    body_ = body_.on_support(placed_support_);
+  } catch (const BodyError&) {
+    return;  // a cut the base validation refuses (more than kMaxBaseVertices): the last cut stays
+  }
+  contact_whole_ = whole;
+  derive_contact();
+  if (mode_ == Mode3D::Slide) slide_stepper_.invalidate();  // its derivative was the old cut's
+}
+
+// Sliding on a support: the uplift (eq. 19 about a line, as slide_lift's about an edge) about every
+// line that bounds the contact at y: the whole base's edges, fixed in the item frame, and the
+// support's edges, which move with the slide. The cut is the intersection of their half-planes, so
+// the largest is > 0 exactly when the resultant leaves it: a body braking towards the edge tips over
+// it once its centre of mass is within mu_k h of it.
+double Rocking3DModel::support_lift(const Vec6& y, const Eigen::Vector2d& f, double az) const {
+  const Eigen::Matrix2d r = rot2(y(5)), back = r.transpose();
+  const Eigen::Vector2d c = body_.centre_of_mass().head<2>();
+  const double h = body_.centre_of_mass().z();
+  auto lift = [&](const Eigen::Vector2d& q, const Eigen::Vector2d& n) {  // the line through q, outward n (item frame)
+    const double inward = (q - c).dot(n);
+    return (-f.dot(r * n) * h - (kGravity + az) * inward) / std::hypot(inward, h);
+  };
+  double best = -std::numeric_limits<double>::infinity();
+  const std::vector<Eigen::Vector2d>& base = body_.whole_base();
+  for (std::size_t k = 0; k < base.size(); ++k)
+    best = std::max(best, lift(base[k], outward(base[k], base[(k + 1) % base.size()])));
+  const std::vector<Eigen::Vector2d>& support = body_.parameters().support;
+  const Eigen::Vector2d shift = y.segment<2>(3);
+  for (std::size_t k = 0; k < support.size(); ++k) {
+    const Eigen::Vector2d a = back * (support[k] - shift), b = back * (support[(k + 1) % support.size()] - shift);
+    best = std::max(best, lift(a, outward(a, b)));
+  }
+  return best;
+}
+
+// Whether the pivot (EDGE: the edge's middle; VERTEX on the base: the vertex) lies on the support's
+// edge as the cut was made: an overturn about it carries the item off its support.
+bool Rocking3DModel::pivot_on_support_edge() const {
+  const std::vector<Eigen::Vector2d>& support = body_.parameters().support;
+  if (support.empty() || face_ != 0 || contact_ < 0) return false;
+  Eigen::Vector2d p;
+  if (mode_ == Mode3D::Edge) {
+    const BaseEdge& e = fb().edge(contact_);
+    p = 0.5 * (fb().vertex(e.a).position + fb().vertex(e.b).position).head<2>();
+  } else if (mode_ == Mode3D::Vertex && contact_ < fb().vertex_count()) {
+    p = fb().vertex(contact_).position.head<2>();
+  } else {
+    return false;
+  }
+  // the support as the item saw it when the cut was made, in the item frame
+  const Eigen::Vector2d world = rot2(fit_yaw_) * p + fit_shift_;
+  return std::abs(inside_margin(support, world)) <= floor_tol_;
+}
+
+}  // namespace rocking_monitor::core
