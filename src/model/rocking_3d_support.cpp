@@ -110,4 +110,28 @@ bool Rocking3DModel::pivot_on_support_edge() const {
   return std::abs(inside_margin(support, world)) <= floor_tol_;
 }
 
+// On a support the contact is cut from the base, and numbered as the cut: which of the base's own
+// edges (EDGE) or vertices (VERTEX) it is, as the catalogue numbers them, or -1 on the support's edge.
+int Rocking3DModel::base_contact() const {
+  const int k = contact();
+  if (k < 0 || body_.parameters().support.empty() || face_ != 0) return k;
+  const std::vector<Eigen::Vector2d>& base = body_.whole_base();
+  const int n = static_cast<int>(base.size());
+  if (mode_ == Mode3D::Vertex) {
+    if (k >= fb().vertex_count()) return k;  // (no hull with a support: not reached)
+    for (int j = 0; j < n; ++j)
+      if ((base[static_cast<std::size_t>(j)] - fb().vertex(k).position.head<2>()).norm() <= floor_tol_) return j;
+    return -1;
+  }
+  const BaseEdge& e = fb().edge(k);
+  for (int j = 0; j < n; ++j) {
+    const Eigen::Vector2d& w = base[static_cast<std::size_t>(j)];
+    const Eigen::Vector2d nj = outward(w, base[static_cast<std::size_t>((j + 1) % n)]);
+    if (std::abs((fb().vertex(e.a).position.head<2>() - w).dot(nj)) <= floor_tol_ &&
+        std::abs((fb().vertex(e.b).position.head<2>() - w).dot(nj)) <= floor_tol_)
+      return j;
+  }
+  return -1;
+}
+
 }  // namespace rocking_monitor::core

@@ -336,8 +336,14 @@ void RockingMonitor::fill_state(const Item& it, const core::ItemSummary& sm, Roc
     out.energy_margin = solid->margin().margin;
     const int k = solid->contact(), face = solid->face();
     const bool base_vertex = k < solid->body().vertex_count();
-    if (solid->mode() == core::Mode3D::Edge) out.contact.append("edge ").append(std::to_string(k + 1));
-    if (solid->mode() == core::Mode3D::Vertex) out.contact.append(base_vertex ? "vertex " : "hull vertex ").append(std::to_string(k + 1));
+    // (on a support, numbered as the catalogue's base polygon, or on the support's own edge)
+    const int own = solid->base_contact();
+    if (solid->mode() == core::Mode3D::Edge)
+      out.contact = own >= 0 ? "edge " + std::to_string(own + 1) : std::string("the support's edge");
+    if (solid->mode() == core::Mode3D::Vertex)
+      out.contact = !base_vertex ? "hull vertex " + std::to_string(k + 1)
+                    : own >= 0   ? "vertex " + std::to_string(own + 1)
+                                 : std::string("a corner on the support's edge");
     // Off its base (a hull, docs/rocking_3d.md): which hull face it rocks or rests on.
     if (face != 0 && solid->mode() == core::Mode3D::Edge) out.contact.append(" of hull face ").append(std::to_string(face));
     if (face != 0 && solid->mode() == core::Mode3D::Rest) out.contact.append("hull face ").append(std::to_string(face));

@@ -173,6 +173,9 @@ TEST(Rocking3DSupport, ABoxThatSlidPartlyOverThePlinthsEdgeRocksAboutThatEdge) {
         ref.step(a, 0.0, dt);
         m.step(Eigen::Vector3d(a, 0.0, 0.0), dt);
         ASSERT_NEAR(m.tilt(), ref.mode() == Mode::Overturned ? m.tilt() : std::abs(ref.theta()), 1e-8) << amp1 << " " << s;
+        // about the base's own -x edge (the catalogue's edge 3) or the plinth's edge (-1: not the base's)
+        if (m.mode() == Mode3D::Edge)
+          ASSERT_EQ(m.base_contact(), ref.theta() > 0.0 || (ref.theta() == 0.0 && ref.omega() > 0.0) ? 3 : -1) << s;
       }
       EXPECT_EQ(ref.outcome().overturned, m.outcome().overturned);
       EXPECT_EQ(ref.outcome().impacts, m.outcome().impacts);

@@ -224,6 +224,10 @@ class Rocking3DModel {
   int face() const { return face_; }
   /// The active edge (EDGE: of face()) or hull vertex (VERTEX; vertex k < n is base vertex k); -1 otherwise.
   int contact() const { return mode_ == Mode3D::Edge || mode_ == Mode3D::Vertex ? contact_ : -1; }
+  /// contact() numbered as the item's base polygon: on a support the contact is the base cut where it
+  /// lies on the support, whose edges and vertices are the base's own (their index in the catalogue's
+  /// base polygon) or lie on the support's edge (-1). Without a support, contact().
+  int base_contact() const;
   /// The pivot (VERTEX) or the rocking edge's start (EDGE) in the item frame, m; NaN otherwise.
   Eigen::Vector3d contact_point() const;
   double theta() const { return mode_ == Mode3D::Edge ? theta_ : 0.0; }  ///< EDGE: rad

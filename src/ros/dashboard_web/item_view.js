@@ -193,6 +193,7 @@ function drawSide3d(ctx, W, H, it, st) {
     axisLabel = 'on corner ' + (k + 1) + ' (corner wobble)';
   } else {
     if (st.mode === 'OVERTURNED') axisLabel = 'overturned, on its side';
+    else if (/support/.test(st.contact)) axisLabel = 'about ' + st.contact;  // its plinth's edge (issue 51)
     else if (st.contact) axisLabel = 'on its hull: ' + st.contact;  // off its base (docs/rocking_3d.md)
     let lo = Infinity;  // at rest: seen along y, the pivot at the base's -x extreme
     for (const v of base) if (v[0] < lo) { lo = v[0]; p = v; }
