@@ -2,6 +2,8 @@
 
 // Helpers shared by the 3-D model's files (rocking_3d_*.cpp); not part of the public interface.
 
+#include <cmath>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -11,6 +13,14 @@ namespace rocking_monitor::core::rocking_3d {
 
 inline Eigen::Matrix3d rot_z(double yaw) {
   return Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+}
+
+/// The footprint's turn by yaw about the vertical, in the floor's plane.
+inline Eigen::Matrix2d rot2(double yaw) {
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  Eigen::Matrix2d r;
+  r << c, -s, s, c;
+  return r;
 }
 
 /// Per unit mass in the ground's frame: gravity and the ground's inertial force.

@@ -13,14 +13,9 @@
 
 namespace rocking_monitor::core {
 
-namespace {
+using rocking_3d::rot2;
 
-Eigen::Matrix2d rot2(double yaw) {
-  const double c = std::cos(yaw), s = std::sin(yaw);
-  Eigen::Matrix2d r;
-  r << c, -s, s, c;
-  return r;
-}
+namespace {
 
 Eigen::Vector2d perp2(const Eigen::Vector2d& a) { return Eigen::Vector2d(-a.y(), a.x()); }  // z x a
 

@@ -5,19 +5,15 @@
 #include <cmath>
 #include <limits>
 
+#include "rocking_3d_internal.hpp"
 #include "rocking_monitor/model/rocking_3d_model.hpp"
 #include "rocking_monitor/physics/support_polygon.hpp"
 
 namespace rocking_monitor::core {
 
-namespace {
+using rocking_3d::rot2;
 
-Eigen::Matrix2d rot2(double yaw) {
-  const double c = std::cos(yaw), s = std::sin(yaw);
-  Eigen::Matrix2d r;
-  r << c, -s, s, c;
-  return r;
-}
+namespace {
 
 Eigen::Vector2d outward(const Eigen::Vector2d& from, const Eigen::Vector2d& to) {  // of a ccw polygon's edge
   const Eigen::Vector2d d = (to - from).normalized();
