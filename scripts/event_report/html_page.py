@@ -195,7 +195,7 @@ def render_items(w, items):
       'plane that reached the level first (UTC on hover; "3d": the 3-D model on the base polygon reached it, '
       'and the line under the item\'s name gives its largest tilt and the base edges and corners it turned about; '
       'for an item on a plinth, shelf or pedestal, the support margin: how far its centre of mass stayed inside '
-      'the support\'s edge, m). An OVERTURNED time marked "fell off its support": the item slid off that edge '
+      'the support\'s edge, m). An OVERTURNED time marked "fell off its support": the item slid or tipped over that edge '
       '(docs/report.md). Lead time: OVERTURNED minus COMMITTED. Criteria: '
       'the screening criteria of that plane that had and had not predicted the item\'s highest alarm.</p>')
 

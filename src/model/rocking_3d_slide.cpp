@@ -172,7 +172,7 @@ double Rocking3DModel::slide_lift(const GroundInput3& in, double t, const Vec6& 
   // A pure slide (no spin, slip not held past a stop) pulls with mu_k N against the slip: no edge
   // lifts while mu_k stays below every edge's tan(alpha), the planar slide-first rule (saves the
   // edge loop at every probe).
-  if (!body_.parameters().support.empty()) return support_lift(y, lift_friction(in, t, y), in.at(t).z());
+  if (!body_.parameters().support.empty()) return support_lift(y, lift_friction(in, t, y), in.at(t).z(), false);
   if (y(2) == 0.0 && y.head<2>().squaredNorm() > 0.0 && mu_k() < slide_first_[static_cast<std::size_t>(face_)] * (1.0 - 1e-9) &&
       kGravity + in.at(t).z() > 0.0)
     return -1.0;
@@ -200,7 +200,7 @@ void Rocking3DModel::note_slide() {
 // The slide ends on an edge: the body pivots on it, the pivot sticking (issue 40's plastic impact
 // onto the edge: angular momentum about the edge kept, the rest of the slip stopped).
 void Rocking3DModel::slide_to_edge(const GroundInput3& in, double tau) {
-  note_slide();  // (on a support, the contact cut where it lifts: the lifting line is one of its edges)
+  note_slide();  // (on a support, the contact cut where it lifts: it pivots on one of the cut's edges)
   int best = 0;
   double best_u = -std::numeric_limits<double>::infinity();
   const Eigen::Vector2d f = lift_friction(in, tau, slide_);
@@ -262,6 +262,22 @@ void Rocking3DModel::slide_to_event(double tau, double t_start) {
   outcome3_.slip_time += tau - t_start;
 }
 
+// The centre of mass passed the support's edge at tau, inside the last step: it fell off.
+void Rocking3DModel::fall_off_support(double tau, double t_start) {
+  slide_to_event(tau, t_start);
+  note_slide();
+  outcome3_.fell_off_support = true;
+  outcome3_.fell_off_time = t_ + tau;
+}
+
+// Braking would tip the item over the support's edge from t_over (support_lift): recorded when that
+// comes before what ends the stepped interval at t_end.
+void Rocking3DModel::note_over_support_edge(double t_over, double t_end) {
+  if (!(t_over <= t_end)) return;
+  ++outcome3_.slides_over_support_edge;
+  note_transition(Mode3D::Slide, Transition3D::SlidesOverSupportEdge, t_over);
+}
+
 Rocking3DModel::Event Rocking3DModel::advance_slide(const GroundInput3& in, double& tau, double tau_end) {
   auto f = [&](double t, const Vec6& y, Vec6& dy) { slide_rhs(in, t, y, dy); };
   const double rho = std::sqrt(fb().central_inertia_per_mass()(2, 2));
@@ -280,15 +296,20 @@ Rocking3DModel::Event Rocking3DModel::advance_slide(const GroundInput3& in, doub
     auto along = [&](const Vec6& y) { return ref.dot(Eigen::Vector3d(y(0), y(1), rho * y(2))); };
     auto lift = [&](const Vec6& y, double t) { return slide_lift(in, t, y); };
     auto margin = [&](const Vec6& y) { return supported ? support_margin_of(y) : 1.0; };
+    auto over = [&](const Vec6& y, double t) {  // > 0: braking would tip it over the support's edge
+      return supported ? support_lift(y, lift_friction(in, t, y), in.at(t).z(), true) : -1.0;
+    };
     constexpr int kProbes = 4;
-    double t_prev = t0, s_prev = 1.0, l_prev = lift(slide_, t0), m_prev = margin(slide_);
+    double t_prev = t0, s_prev = 1.0, l_prev = lift(slide_, t0), m_prev = margin(slide_), o_prev = over(slide_, t0);
     for (int k = 1; k <= kProbes; ++k) {
       const double tk = k == kProbes ? t1 : t0 + (t1 - t0) * k / kProbes;
       const Vec6 yk = k == kProbes ? Vec6(slide_stepper_.y1()) : Vec6(slide_stepper_.eval(tk));
-      const double s = along(yk), l = lift(yk, tk), mk = margin(yk);
+      const double s = along(yk), l = lift(yk, tk), mk = margin(yk), ok = over(yk, tk);
       auto root = [&](auto g, double ga, double gb) {
         return bracketed_root([&](double t) { return g(Vec6(slide_stepper_.eval(t)), t); }, t_prev, tk, ga, gb, t_tol);
       };
+      const double t_over = ok > 0.0 && !(o_prev > 0.0) ? root(over, o_prev, ok) : std::numeric_limits<double>::infinity();
+      auto over_before = [&](double t_end) { note_over_support_edge(t_over, t_end); };
       auto along_t = [&](const Vec6& y, double) { return along(y); };
       if (mk <= 0.0 && m_prev > 0.0) {
         // Falling off the support comes first when it is in this interval (a stop or lift after it
@@ -296,11 +317,8 @@ Rocking3DModel::Event Rocking3DModel::advance_slide(const GroundInput3& in, doub
         const double tf = root([&](const Vec6& y, double) { return margin(y); }, m_prev, mk);
         const double ts = s <= 0.0 ? root(along_t, s_prev, s) : tk;
         if (!(ts < tf)) {
-          tau = tf;
-          slide_to_event(tau, t_start);
-          note_slide();
-          outcome3_.fell_off_support = true;
-          outcome3_.fell_off_time = t_ + tau;
+          over_before(tf);
+          fall_off_support(tau = tf, t_start);
           return Event::Overturn;
         }
       }
@@ -310,6 +328,7 @@ Rocking3DModel::Event Rocking3DModel::advance_slide(const GroundInput3& in, doub
         const double tl = lifts ? root(lift, l_prev, l) : tk;
         const bool stick_first = stops && (!lifts || ts <= tl);
         tau = stick_first ? ts : tl;
+        over_before(tau);
         slide_to_event(tau, t_start);
         if (!stick_first) return Event::Lift;
         slide_(0) = slide_(1) = slide_(2) = 0.0;
@@ -320,10 +339,12 @@ Rocking3DModel::Event Rocking3DModel::advance_slide(const GroundInput3& in, doub
         slide_stepper_.reset(sample_dt_);
         break;
       }
+      over_before(tk);
       t_prev = tk;
       s_prev = s;
       l_prev = l;
       m_prev = mk;
+      o_prev = ok;
       if (k == kProbes) {
         slide_ = slide_stepper_.y1();
         outcome3_.slip_time += t1 - t_start;

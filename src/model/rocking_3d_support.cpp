@@ -61,12 +61,15 @@ void Rocking3DModel::fit_contact() {
   if (mode_ == Mode3D::Slide) slide_stepper_.invalidate();  // its derivative was the old cut's
 }
 
-// Sliding on a support: the uplift (eq. 19 about a line, as slide_lift's about an edge) about every
-// line that bounds the contact at y: the whole base's edges, fixed in the item frame, and the
-// support's edges, which move with the slide. The cut is the intersection of their half-planes, so
-// the largest is > 0 exactly when the resultant leaves it: a body braking towards the edge tips over
-// it once its centre of mass is within mu_k h of it.
-double Rocking3DModel::support_lift(const Vec6& y, const Eigen::Vector2d& f, double az) const {
+// Sliding on a support: the uplift (eq. 19 about a line, as slide_lift's about an edge) about the
+// lines of the whole base (`over` false), fixed in the item frame, or about the support's edges
+// (`over` true), which move with the slide. While it slides the item tips only about its own base's
+// lines, as without a support; the support's edges bound the slide where the centre of mass passes
+// them (fell off). A body braking within mu_k h of the support's edge would start to tip over it
+// while its base slides on across it: that slide-rock over the edge is not modelled (a sticking
+// impact onto the edge would take energy the real motion keeps), so it is located and recorded
+// (Transition3D::SlidesOverSupportEdge) and followed as sliding.
+double Rocking3DModel::support_lift(const Vec6& y, const Eigen::Vector2d& f, double az, bool over) const {
   const Eigen::Matrix2d r = rot2(y(5)), back = r.transpose();
   const Eigen::Vector2d c = body_.centre_of_mass().head<2>();
   const double h = body_.centre_of_mass().z();
@@ -75,9 +78,12 @@ double Rocking3DModel::support_lift(const Vec6& y, const Eigen::Vector2d& f, dou
     return (-f.dot(r * n) * h - (kGravity + az) * inward) / std::hypot(inward, h);
   };
   double best = -std::numeric_limits<double>::infinity();
-  const std::vector<Eigen::Vector2d>& base = body_.whole_base();
-  for (std::size_t k = 0; k < base.size(); ++k)
-    best = std::max(best, lift(base[k], outward(base[k], base[(k + 1) % base.size()])));
+  if (!over) {
+    const std::vector<Eigen::Vector2d>& base = body_.whole_base();
+    for (std::size_t k = 0; k < base.size(); ++k)
+      best = std::max(best, lift(base[k], outward(base[k], base[(k + 1) % base.size()])));
+    return best;
+  }
   const std::vector<Eigen::Vector2d>& support = body_.parameters().support;
   const Eigen::Vector2d shift = y.segment<2>(3);
   for (std::size_t k = 0; k < support.size(); ++k) {

@@ -20,6 +20,7 @@ const char* to_string(Transition3D r) {
     case Transition3D::Degenerate: return "degenerate pivot motion: rest";
     case Transition3D::ForcedRest: return "forced rest (events per sample bound)";
     case Transition3D::FellOffSupport: return "fell off its support";
+    case Transition3D::SlidesOverSupportEdge: return "braking would tip it over the support's edge (slide-rock over the edge; followed as sliding)";
     case Transition3D::PivotSlips: return "the pivot's reaction left the friction cone (slide-rock; followed as sticking)";
     case Transition3D::PivotSticks: return "the slipping pivot stopped and the static law holds";
     case Transition3D::PivotLifts: return "the pivot's normal reaction vanished (flight; followed as sticking)";
@@ -33,7 +34,7 @@ void Rocking3DModel::note_transition(Mode3D from, Transition3D reason, double ta
   // A new contact starts inside the cone, except after a landing already counted with a slipping pivot;
   // an end of the edge lifting keeps the other end's slip (the same contact goes on).
   if (reason != Transition3D::PivotSlips && reason != Transition3D::PivotLifts && reason != Transition3D::PivotSticks &&
-      reason != Transition3D::EdgeToVertex)
+      reason != Transition3D::EdgeToVertex && reason != Transition3D::SlidesOverSupportEdge)
     pivot_outside_cone_ = reason == Transition3D::LandingPivotSlips;
   if (transition_count_ >= kMaxTransitionRecords) return;
   const bool has_contact = mode_ == Mode3D::Edge || mode_ == Mode3D::Vertex;

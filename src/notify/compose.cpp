@@ -59,7 +59,7 @@ std::string iso_utc(double t) {
 namespace {
 
 const char* const kFellOffText =
-    "fell off its support (slid off the edge of its plinth, shelf or pedestal: look for it on the floor beside "
+    "fell off its support (slid or tipped over the edge of its plinth, shelf or pedestal: look for it on the floor beside "
     "the support)";
 
 double when(const NotifyAlarm& a) {

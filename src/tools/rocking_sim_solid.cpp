@@ -180,6 +180,7 @@ json solid_json(const rm::Rocking3DModel& model, rm::SolidChoice choice, bool de
               {"slip_time_s", r3.slip_time},
               {"fell_off_support", r3.fell_off_support},
               {"fell_off_time_s", nullable(r3.fell_off_time)},
+              {"slides_over_support_edge", r3.slides_over_support_edge},
               {"support_margin_m", nullable(model.support_margin())},
               {"transitions_total", r3.transitions},
               {"transitions", transitions_json(model)},
@@ -220,9 +221,11 @@ void solid_support_and_hull_lines(const rm::Rocking3DModel& model, std::vector<s
   const rm::Rocking3DOutcome& r3 = model.outcome_3d();
   if (!model.body().parameters().support.empty())
     L.push_back(r3.fell_off_support
-                    ? format("support     FELL OFF its support at %.4f s (over its edge)", r3.fell_off_time)
-                    : format("support     stayed on its support: the centre of mass %.4f m inside its edge at the end",
-                             model.support_margin()));
+                    ? format("support     FELL OFF its support at %.4f s (over its edge); %ld slides braking within mu_k h "
+                             "of its edge (slide-rock over it, followed as sliding)", r3.fell_off_time, r3.slides_over_support_edge)
+                    : format("support     stayed on its support: the centre of mass %.4f m inside its edge at the end; %ld "
+                             "slides braking within mu_k h of its edge (slide-rock over it, followed as sliding)",
+                             model.support_margin(), r3.slides_over_support_edge));
   if (model.body().contact_hull().from_hull)
     L.push_back(format("hull        %zu faces, %zu vertices; %ld landings onto another face, %ld rests off the base; "
                        "ends on %s", model.body().contact_hull().faces.size(), model.body().contact_hull().vertices.size(),

@@ -452,8 +452,8 @@ recipients:
 
   const OutMessage mail = compose_group(c, c.recipients[0], {&off});
   EXPECT_EQ(mail.subject, "[" + c.site + "] 1 item OVERTURNED: bust (fell off its support)");
-  EXPECT_NE(mail.body.find("  - bust (item bust) at 1970-01-01T00:01:40.000Z: fell off its support (slid off the "
-                           "edge of its plinth, shelf or pedestal"),
+  EXPECT_NE(mail.body.find("  - bust (item bust) at 1970-01-01T00:01:40.000Z: fell off its support (slid or tipped "
+                           "over the edge of its plinth, shelf or pedestal"),
             std::string::npos)
       << mail.body;
   const OutMessage both = compose_group(c, c.recipients[0], {&off, &rocked});

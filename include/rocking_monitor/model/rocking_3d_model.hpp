@@ -72,6 +72,7 @@ enum class Transition3D : std::uint8_t {
   PivotSlips,         ///< EDGE, VERTEX: the pivot's reaction left the friction cone (slide-rock)
   PivotLifts,         ///< EDGE, VERTEX: the pivot's normal reaction vanished (flight)
   PivotSticks,        ///< VERTEX: the slipping pivot stopped and the static law holds
+  SlidesOverSupportEdge,  ///< SLIDE: braking would tip it over the support's edge (slide-rock over it; followed as sliding)
   Overturn,           ///< -> OVERTURNED: lying on its side, or over the tipping point
 };
 const char* to_string(Transition3D reason);
@@ -138,6 +139,9 @@ struct Rocking3DOutcome {
   /// while sliding, or it overturned about that edge (it counts OVERTURNED, at that instant).
   bool fell_off_support = false;
   double fell_off_time = std::numeric_limits<double>::quiet_NaN();  ///< s
+  /// Slides in which braking would have tipped the item over the support's edge (its centre of mass
+  /// within mu_k h of it): the slide-rock over the edge is not modelled, the slide goes on flat.
+  long slides_over_support_edge = 0;
   // The pivot while rocking (EDGE, VERTEX): the floor's reaction on the body against the friction cone
   // |F_h| <= mu_s F_z, from the equations of motion at each step's end (onsets located on the dense
   // output). Beyond it the real body slide-rocks (or flies); the model follows a sticking pivot.
@@ -413,9 +417,11 @@ class Rocking3DModel {
   double support_margin_of(const Vec6& y) const;
   void derive_contact();
   void fit_contact();
-  double support_lift(const Vec6& y, const Eigen::Vector2d& f, double az) const;
+  double support_lift(const Vec6& y, const Eigen::Vector2d& f, double az, bool over) const;
   bool pivot_on_support_edge() const;
   void slide_to_edge(const GroundInput3& in, double tau);
+  void fall_off_support(double tau, double t_start);
+  void note_over_support_edge(double t_over, double t_end);
   void note_slide();
   double mu_k() const { return std::isnan(body_.parameters().mu_k) ? body_.parameters().mu_s : body_.parameters().mu_k; }
 
