@@ -169,10 +169,11 @@ Eigen::Vector2d Rocking3DModel::lift_friction(const GroundInput3& in, double t, 
 // > 0 when an edge lifts: the uplift test with the body's own acceleration (the friction) in place
 // of the ground's (the planar eq. 19 about each edge of the face).
 double Rocking3DModel::slide_lift(const GroundInput3& in, double t, const Vec6& y) const {
+  // (on a support: about the whole base's lines, the contact's cut moving with the slide)
+  if (!body_.parameters().support.empty()) return support_lift(y, lift_friction(in, t, y), in.at(t).z(), false);
   // A pure slide (no spin, slip not held past a stop) pulls with mu_k N against the slip: no edge
   // lifts while mu_k stays below every edge's tan(alpha), the planar slide-first rule (saves the
   // edge loop at every probe).
-  if (!body_.parameters().support.empty()) return support_lift(y, lift_friction(in, t, y), in.at(t).z(), false);
   if (y(2) == 0.0 && y.head<2>().squaredNorm() > 0.0 && mu_k() < slide_first_[static_cast<std::size_t>(face_)] * (1.0 - 1e-9) &&
       kGravity + in.at(t).z() > 0.0)
     return -1.0;

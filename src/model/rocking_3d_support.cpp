@@ -1,6 +1,7 @@
 // The 3-D model on a support that ends (issue 51): the contact is the base where it lies on the
 // support's top, and it follows the item as the item slides or turns there; the margin to the edge;
-// the uplift about the support's moving edges while sliding; an overturn about them is a fall off it.
+// the uplift while sliding (braking over the support's edge is recorded); an overturn about the
+// support's edge is a fall off it.
 #include <algorithm>
 #include <cmath>
 #include <limits>
