@@ -51,6 +51,7 @@ Rocking3DModel::Rocking3DModel(const BaseBody& body, const SolverSettings& setti
   placed_support_.reserve(body_.parameters().support.size());
   for (const Eigen::Vector2d& b : body_.whole_base())
     contact_whole_ = contact_whole_ && (body_.parameters().support.empty() || inside_margin(body_.parameters().support, b) >= 0.0);
+  whole_margin_ = inside_margin(body_.whole_base(), body_.centre_of_mass().head<2>());
   derive_contact();
   if (with_probe) probe_.reset(new Rocking3DModel(body, settings, false));
   reset(0.0);

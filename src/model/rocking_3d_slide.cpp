@@ -170,7 +170,7 @@ Eigen::Vector2d Rocking3DModel::lift_friction(const GroundInput3& in, double t, 
 // of the ground's (the planar eq. 19 about each edge of the face).
 double Rocking3DModel::slide_lift(const GroundInput3& in, double t, const Vec6& y) const {
   // (on a support: about the whole base's lines, the contact's cut moving with the slide)
-  if (!body_.parameters().support.empty()) return support_lift(y, lift_friction(in, t, y), in.at(t).z(), false);
+  if (!body_.parameters().support.empty()) return support_lift(in, t, y, false);
   // A pure slide (no spin, slip not held past a stop) pulls with mu_k N against the slip: no edge
   // lifts while mu_k stays below every edge's tan(alpha), the planar slide-first rule (saves the
   // edge loop at every probe).
@@ -195,13 +195,13 @@ void Rocking3DModel::note_slide() {
   outcome3_.max_slip = std::max(outcome3_.max_slip, slip().norm());
   outcome3_.max_slip_speed = std::max(outcome3_.max_slip_speed, slide_.head<2>().norm());
   outcome3_.max_twist = std::max(outcome3_.max_twist, std::abs(yaw_));
-  fit_contact();
 }
 
 // The slide ends on an edge: the body pivots on it, the pivot sticking (issue 40's plastic impact
 // onto the edge: angular momentum about the edge kept, the rest of the slip stopped).
 void Rocking3DModel::slide_to_edge(const GroundInput3& in, double tau) {
-  note_slide();  // (on a support, the contact cut where it lifts: it pivots on one of the cut's edges)
+  note_slide();
+  fit_contact();  // (on a support, the contact cut where it lifts: it pivots on one of the cut's edges)
   int best = 0;
   double best_u = -std::numeric_limits<double>::infinity();
   const Eigen::Vector2d f = lift_friction(in, tau, slide_);
@@ -298,7 +298,7 @@ Rocking3DModel::Event Rocking3DModel::advance_slide(const GroundInput3& in, doub
     auto lift = [&](const Vec6& y, double t) { return slide_lift(in, t, y); };
     auto margin = [&](const Vec6& y) { return supported ? support_margin_of(y) : 1.0; };
     auto over = [&](const Vec6& y, double t) {  // > 0: braking would tip it over the support's edge
-      return supported ? support_lift(y, lift_friction(in, t, y), in.at(t).z(), true) : -1.0;
+      return supported ? support_lift(in, t, y, true) : -1.0;
     };
     constexpr int kProbes = 4;
     double t_prev = t0, s_prev = 1.0, l_prev = lift(slide_, t0), m_prev = margin(slide_), o_prev = over(slide_, t0);

@@ -417,7 +417,7 @@ class Rocking3DModel {
   double support_margin_of(const Vec6& y) const;
   void derive_contact();
   void fit_contact();
-  double support_lift(const Vec6& y, const Eigen::Vector2d& f, double az, bool over) const;
+  double support_lift(const GroundInput3& in, double t, const Vec6& y, bool over) const;
   bool pivot_on_support_edge() const;
   void slide_to_edge(const GroundInput3& in, double tau);
   void fall_off_support(double tau, double t_start);
@@ -452,6 +452,7 @@ class Rocking3DModel {
   Eigen::Vector2d fit_shift_ = Eigen::Vector2d::Zero();
   std::vector<Eigen::Vector2d> placed_support_;
   bool contact_whole_ = true;
+  double whole_margin_ = 0.0;  // m: the centre of mass's plan position inside the whole base's edges
   double t_ = 0.0;
   Eigen::Vector3d a_prev_ = Eigen::Vector3d::Zero();
   double sample_dt_ = 0.0;
