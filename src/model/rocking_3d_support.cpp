@@ -38,8 +38,8 @@ double Rocking3DModel::support_margin() const {
 // The cut is made again where the footprint (shift_, yaw_) has moved since it was last made: where the
 // item comes to rest and where a slide ends on an edge, never while it pivots (the pivot is an edge
 // or a vertex of the cut it began on) or slides (the friction's pressure is spread over the cut where
-// the slide began: cutting at every step's end cost a supported box sliding over the edge half again
-// as much, rocking_sim on Northridge Jensen). Nothing is made while the whole base stays on the
+// the slide began: cutting at every step's end made a box sliding over its plinth's edge cost three
+// times as much, rocking_sim on Northridge Jensen). Nothing is made while the whole base stays on the
 // support (a plinth larger than the base, away from its edge): the usual case allocates nothing.
 void Rocking3DModel::fit_contact() {
   const std::vector<Eigen::Vector2d>& support = body_.parameters().support;
