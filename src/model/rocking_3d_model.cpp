@@ -49,8 +49,7 @@ Rocking3DModel::Rocking3DModel(const BaseBody& body, const SolverSettings& setti
     : body_(body), settings_(checked_3d(settings)) {
   central_inverse_ = body_.central_inertia_per_mass().inverse();
   placed_support_.reserve(body_.parameters().support.size());
-  for (const Eigen::Vector2d& b : body_.whole_base())
-    contact_whole_ = contact_whole_ && (body_.parameters().support.empty() || inside_margin(body_.parameters().support, b) >= 0.0);
+  contact_whole_ = body_.parameters().support.empty() || whole_base_on(body_.parameters().support);
   whole_margin_ = inside_margin(body_.whole_base(), body_.centre_of_mass().head<2>());
   derive_contact();
   if (with_probe) probe_.reset(new Rocking3DModel(body, settings, false));
@@ -88,7 +87,7 @@ void Rocking3DModel::reset(double t, const Eigen::Vector3d& a) {
   pivot_world_.setZero();
   yaw_ = 0.0;
   shift_.setZero();
-  fit_contact();
+  fit_contact(shift_, yaw_);
   t_ = t;
   a_prev_ = a;
   report_ = StepReport{};
@@ -139,10 +138,7 @@ void Rocking3DModel::save(Saved& out) const {
 void Rocking3DModel::restore(const Saved& in) {
   if (in.face < 0 || in.face >= static_cast<int>(hull().faces.size()))
     throw std::invalid_argument("Rocking3DModel::restore: face " + std::to_string(in.face) + " is not a face of this body's hull");
-  // The contact the state was in first (a support's cut of the base follows the item).
-  yaw_ = in.fit_yaw;
-  shift_ = in.fit_shift;
-  fit_contact();
+  fit_contact(in.fit_shift, in.fit_yaw);  // the contact the state was in (a support's cut follows the item)
   mode_ = in.mode;
   contact_ = in.contact;
   set_face(in.face);
@@ -232,7 +228,7 @@ double Rocking3DModel::tilt() const {
 
 
 void Rocking3DModel::go_to_rest() {
-  fit_contact();  // (the footprint may have moved: a support's cut follows it)
+  fit_contact(shift_, yaw_);  // (the footprint may have moved: a support's cut follows it)
   mode_ = Mode3D::Rest;
   contact_ = -1;
   theta_ = omega_ = 0.0;

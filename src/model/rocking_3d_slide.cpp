@@ -170,7 +170,7 @@ Eigen::Vector2d Rocking3DModel::lift_friction(const GroundInput3& in, double t, 
 // of the ground's (the planar eq. 19 about each edge of the face).
 double Rocking3DModel::slide_lift(const GroundInput3& in, double t, const Vec6& y) const {
   // (on a support: about the whole base's lines, the contact's cut moving with the slide)
-  if (!body_.parameters().support.empty()) return support_lift(in, t, y, false);
+  if (!body_.parameters().support.empty()) return support_lift(in, t, y, false, 0.0);
   // A pure slide (no spin, slip not held past a stop) pulls with mu_k N against the slip: no edge
   // lifts while mu_k stays below every edge's tan(alpha), the planar slide-first rule (saves the
   // edge loop at every probe).
@@ -201,7 +201,7 @@ void Rocking3DModel::note_slide() {
 // onto the edge: angular momentum about the edge kept, the rest of the slip stopped).
 void Rocking3DModel::slide_to_edge(const GroundInput3& in, double tau) {
   note_slide();
-  fit_contact();  // (on a support, the contact cut where it lifts: it pivots on one of the cut's edges)
+  fit_contact(shift_, yaw_);  // (on a support, the contact cut where it lifts: it pivots on one of the cut's edges)
   int best = 0;
   double best_u = -std::numeric_limits<double>::infinity();
   const Eigen::Vector2d f = lift_friction(in, tau, slide_);
@@ -297,19 +297,19 @@ Rocking3DModel::Event Rocking3DModel::advance_slide(const GroundInput3& in, doub
     auto along = [&](const Vec6& y) { return ref.dot(Eigen::Vector3d(y(0), y(1), rho * y(2))); };
     auto lift = [&](const Vec6& y, double t) { return slide_lift(in, t, y); };
     auto margin = [&](const Vec6& y) { return supported ? support_margin_of(y) : 1.0; };
-    auto over = [&](const Vec6& y, double t) {  // > 0: braking would tip it over the support's edge
-      return supported ? support_lift(in, t, y, true) : -1.0;
+    auto over = [&](const Vec6& y, double t, double m) {  // > 0: braking would tip it over the support's edge
+      return supported ? support_lift(in, t, y, true, m) : -1.0;
     };
     constexpr int kProbes = 4;
-    double t_prev = t0, s_prev = 1.0, l_prev = lift(slide_, t0), m_prev = margin(slide_), o_prev = over(slide_, t0);
+    double t_prev = t0, s_prev = 1.0, l_prev = lift(slide_, t0), m_prev = margin(slide_), o_prev = over(slide_, t0, m_prev);
     for (int k = 1; k <= kProbes; ++k) {
       const double tk = k == kProbes ? t1 : t0 + (t1 - t0) * k / kProbes;
       const Vec6 yk = k == kProbes ? Vec6(slide_stepper_.y1()) : Vec6(slide_stepper_.eval(tk));
-      const double s = along(yk), l = lift(yk, tk), mk = margin(yk), ok = over(yk, tk);
+      const double s = along(yk), l = lift(yk, tk), mk = margin(yk), ok = over(yk, tk, mk);
       auto root = [&](auto g, double ga, double gb) {
         return bracketed_root([&](double t) { return g(Vec6(slide_stepper_.eval(t)), t); }, t_prev, tk, ga, gb, t_tol);
       };
-      const double t_over = ok > 0.0 && !(o_prev > 0.0) ? root(over, o_prev, ok) : std::numeric_limits<double>::infinity();
+      const double t_over = ok > 0.0 && !(o_prev > 0.0) ? root([&](const Vec6& y, double t) { return over(y, t, margin(y)); }, o_prev, ok) : std::numeric_limits<double>::infinity();
       auto over_before = [&](double t_end) { note_over_support_edge(t_over, t_end); };
       auto along_t = [&](const Vec6& y, double) { return along(y); };
       if (mk <= 0.0 && m_prev > 0.0) {

@@ -41,16 +41,15 @@ double Rocking3DModel::support_margin() const {
 // the slide began: cutting at every step's end made a box sliding over its plinth's edge cost three
 // times as much, rocking_sim on Northridge Jensen). Nothing is made while the whole base stays on the
 // support (a plinth larger than the base, away from its edge): the usual case allocates nothing.
-void Rocking3DModel::fit_contact() {
+void Rocking3DModel::fit_contact(const Eigen::Vector2d& shift, double yaw) {
   const std::vector<Eigen::Vector2d>& support = body_.parameters().support;
-  if (support.empty() || (shift_ == fit_shift_ && yaw_ == fit_yaw_)) return;
-  fit_shift_ = shift_;
-  fit_yaw_ = yaw_;
-  const Eigen::Matrix2d back = rot2(-yaw_);
+  if (support.empty() || (shift == fit_shift_ && yaw == fit_yaw_)) return;
+  fit_shift_ = shift;
+  fit_yaw_ = yaw;
+  const Eigen::Matrix2d back = rot2(-yaw);
   placed_support_.clear();
-  for (const Eigen::Vector2d& s : support) placed_support_.push_back(back * (s - shift_));
-  bool whole = true;
-  for (const Eigen::Vector2d& b : body_.whole_base()) whole = whole && inside_margin(placed_support_, b) >= 0.0;
+  for (const Eigen::Vector2d& s : support) placed_support_.push_back(back * (s - shift));
+  const bool whole = whole_base_on(placed_support_);
   if (whole && contact_whole_) return;
   // Off the support the item has fallen (the slide's margin event): its last cut stays.
   if (!(inside_margin(placed_support_, body_.centre_of_mass().head<2>()) > 0.0)) return;
@@ -64,6 +63,13 @@ void Rocking3DModel::fit_contact() {
   if (mode_ == Mode3D::Slide) slide_stepper_.invalidate();  // its derivative was the old cut's
 }
 
+// Whether the whole base lies on `support` (item frame): then the contact is the whole base.
+bool Rocking3DModel::whole_base_on(const std::vector<Eigen::Vector2d>& support) const {
+  for (const Eigen::Vector2d& b : body_.whole_base())
+    if (!(inside_margin(support, b) >= 0.0)) return false;
+  return true;
+}
+
 // Sliding on a support: the uplift (eq. 19 about a line, as slide_lift's about an edge) about the
 // lines of the whole base (`over` false), fixed in the item frame, or about the support's edges
 // (`over` true), which move with the slide. While it slides the item tips only about its own base's
@@ -71,13 +77,14 @@ void Rocking3DModel::fit_contact() {
 // them (fell off). A body braking within mu_k h of the support's edge would start to tip over it
 // while its base slides on across it: that slide-rock over the edge is not modelled (a sticking
 // impact onto the edge would take energy the real motion keeps), so it is located and recorded
-// (Transition3D::SlidesOverSupportEdge) and followed as sliding.
-double Rocking3DModel::support_lift(const GroundInput3& in, double t, const Vec6& y, bool over) const {
+// (Transition3D::SlidesOverSupportEdge) and followed as sliding. margin: support_margin_of(y), which
+// the slide has at hand (used with `over`).
+double Rocking3DModel::support_lift(const GroundInput3& in, double t, const Vec6& y, bool over, double margin) const {
   const double az = in.at(t).z(), h = body_.centre_of_mass().z();
   if (kGravity + az > 0.0) {
     // The friction is at most mu_k N: no line lifts while the centre of mass is more than mu_k h
     // inside every one (the slide-first rule for any slip and spin; saves the friction and the loop).
-    const double inside = over ? support_margin_of(y) : whole_margin_;
+    const double inside = over ? margin : whole_margin_;
     if (inside > mu_k() * h * (1.0 + 1e-9)) return over ? mu_k() * h - inside : -1.0;
   }
   const Eigen::Vector2d f = lift_friction(in, t, y);

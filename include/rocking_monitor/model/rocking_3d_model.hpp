@@ -416,8 +416,9 @@ class Rocking3DModel {
   // On a support (rocking_3d_support.cpp).
   double support_margin_of(const Vec6& y) const;
   void derive_contact();
-  void fit_contact();
-  double support_lift(const GroundInput3& in, double t, const Vec6& y, bool over) const;
+  void fit_contact(const Eigen::Vector2d& shift, double yaw);
+  bool whole_base_on(const std::vector<Eigen::Vector2d>& support) const;
+  double support_lift(const GroundInput3& in, double t, const Vec6& y, bool over, double margin) const;
   bool pivot_on_support_edge() const;
   void slide_to_edge(const GroundInput3& in, double tau);
   void fall_off_support(double tau, double t_start);
