@@ -26,7 +26,7 @@ Eigen::Vector2d outward(const Eigen::Vector2d& from, const Eigen::Vector2d& to) 
 double Rocking3DModel::support_margin_of(const Vec6& y) const {
   const std::vector<Eigen::Vector2d>& support = body_.parameters().support;
   if (support.empty()) return std::numeric_limits<double>::infinity();
-  // (a support excludes a hull: the body slides on its base, face 0, whose frame is the item's)
+  // (with a support the body slides on its base, face 0, whose frame is the item's: its hull never lands)
   return inside_margin(support, rot2(y(5)) * fb().centre_of_mass().head<2>() + y.segment<2>(3));
 }
 
@@ -51,6 +51,7 @@ void Rocking3DModel::fit_contact(const Eigen::Vector2d& shift, double yaw) {
   for (const Eigen::Vector2d& s : support) placed_support_.push_back(back * (s - shift));
   const bool whole = whole_base_on(placed_support_);
   if (whole && contact_whole_) return;
+  if (!body_.parameters().hull.empty() && !support_within_base()) ++outcome3_.pedestal_beyond_base;
   // Off the support the item has fallen (the slide's margin event): its last cut stays.
   if (!(inside_margin(placed_support_, body_.centre_of_mass().head<2>()) > 0.0)) return;
   try {
@@ -68,6 +69,17 @@ bool Rocking3DModel::whole_base_on(const std::vector<Eigen::Vector2d>& support) 
   for (const Eigen::Vector2d& b : body_.whole_base())
     if (!(inside_margin(support, b) >= 0.0)) return false;
   return true;
+}
+
+// A body with a hull stands on a pedestal within its base (BaseBody refuses others at load): every
+// edge of the contact is the pedestal's, and a hull point can come down only beyond it. Once a slide
+// has carried the base so that the pedestal reaches beyond one of the base's edges, the body may
+// pivot on that edge, and the hull's face across it could land on the pedestal there: not modelled
+// (the body rocks on the base's cut), counted (pedestal_beyond_base).
+bool Rocking3DModel::support_within_base() const {
+  const double tol = floor_tol_;
+  return std::all_of(placed_support_.begin(), placed_support_.end(),
+                     [&](const Eigen::Vector2d& s) { return inside_margin(body_.whole_base(), s) >= -tol; });
 }
 
 // Sliding on a support: the uplift (eq. 19 about a line, as slide_lift's about an edge) about the
@@ -137,7 +149,7 @@ int Rocking3DModel::base_contact() const {
   const std::vector<Eigen::Vector2d>& base = body_.whole_base();
   const int n = static_cast<int>(base.size());
   if (mode_ == Mode3D::Vertex) {
-    if (k >= fb().vertex_count()) return k;  // (no hull with a support: not reached)
+    if (k >= fb().vertex_count()) return k;  // (on a support the contact hull is the cut: not reached)
     for (int j = 0; j < n; ++j)
       if ((base[static_cast<std::size_t>(j)] - fb().vertex(k).position.head<2>()).norm() <= floor_tol_) return j;
     return -1;

@@ -417,6 +417,7 @@ void visit(V& v, Rocking3DModel::Saved& s) {
     v("fell_off_support", s.outcome_3d.fell_off_support);
     v("fell_off_time", s.outcome_3d.fell_off_time);
     v("slides_over_support_edge", s.outcome_3d.slides_over_support_edge);
+    v("pedestal_beyond_base", s.outcome_3d.pedestal_beyond_base);
     v("max_pivot_friction_demand", s.outcome_3d.max_pivot_friction_demand);
     v("pivot_slips", s.outcome_3d.pivot_slips);
     v("pivot_lifts", s.outcome_3d.pivot_lifts);

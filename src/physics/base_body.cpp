@@ -28,7 +28,18 @@ std::string support_problem(const BaseBodyParameters& p) {
   if (p.support.size() > static_cast<std::size_t>(kMaxBaseVertices))
     return "at most " + std::to_string(kMaxBaseVertices) + " vertices, found " + std::to_string(p.support.size());
   if (const std::string problem = polygon_problem(p.support); !problem.empty()) return problem;
-  if (!p.hull.empty()) return "a support under a body with a hull is not modelled yet: give one or the other";
+  if (!p.hull.empty()) {
+    // A pedestal within the base: every pivot is on the pedestal's edge, so no hull point beyond it
+    // can come down onto the pedestal (docs/rocking_3d.md); on a wider plinth the hull's other faces
+    // would land on it beyond the base.
+    double size = 0.0;
+    for (const auto& b : p.base) size = std::max(size, b.norm());
+    for (std::size_t i = 0; i < p.support.size(); ++i)
+      if (inside_margin(p.base, p.support[i]) < -1e-9 * size)
+        return "with a hull, the support must lie within base_polygon (a pedestal under a scanned body): vertex " +
+               std::to_string(i + 1) + " lies beyond the base, where the hull's other faces could land on it " +
+               "(not modelled yet)";
+  }
   if (!(inside_margin(p.support, p.centre_of_mass.head<2>()) > 0.0))
     return "the centre of mass's plan position lies off the support: the item would fall at once";
   if (clip_convex(p.base, p.support).empty()) return "does not overlap the base polygon";
@@ -152,8 +163,10 @@ BaseBody BaseBody::on_support(const std::vector<Eigen::Vector2d>& placed) const 
   BaseBodyParameters moved = params_;
   moved.base = whole_base_;
   moved.support = placed;
+  moved.hull.clear();  // (on a support the contact is the base's cut: the hull was checked at load)
   BaseBody body(moved, true);
   body.params_.support = params_.support;
+  body.params_.hull = params_.hull;
   return body;
 }
 BaseBody::BaseBody(const BaseBodyParameters& parameters) : BaseBody(parameters, true) {}
@@ -221,6 +234,12 @@ BaseBody::BaseBody(const BaseBodyParameters& parameters, bool must_stand) : para
         << pv.alpha << " rad)";
       throw BodyError(m.str());
     }
+  }
+  if (must_stand && !params_.hull.empty() && !params_.support.empty()) {
+    // The hull's own checks (its base a face of it, the centre of mass inside), as without the support.
+    BaseBodyParameters whole = parameters;
+    whole.support.clear();
+    const BaseBody check(whole);
   }
   if (must_stand) build_contact_hull();
 }
@@ -338,7 +357,8 @@ void BaseBody::build_contact_hull() {
   const int n = vertex_count();
   BaseBody base = *this;
   base.params_.hull.clear();
-  if (params_.hull.empty()) {
+  // On a support (a pedestal within the base with a hull) the contact is the base's cut alone.
+  if (params_.hull.empty() || !params_.support.empty()) {
     hull_ = base_only_hull(vertices_, base);
     return;
   }

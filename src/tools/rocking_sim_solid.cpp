@@ -181,6 +181,7 @@ json solid_json(const rm::Rocking3DModel& model, rm::SolidChoice choice, bool de
               {"fell_off_support", r3.fell_off_support},
               {"fell_off_time_s", nullable(r3.fell_off_time)},
               {"slides_over_support_edge", r3.slides_over_support_edge},
+              {"pedestal_beyond_base", r3.pedestal_beyond_base},
               {"support_margin_m", nullable(model.support_margin())},
               {"transitions_total", r3.transitions},
               {"transitions", transitions_json(model)},
@@ -209,9 +210,10 @@ void solid_motion_lines(const rm::Rocking3DModel& model, std::vector<std::string
                      "sticking)", r3.max_pivot_friction_demand, r3.pivot_slips, r3.pivot_lifts,
                      std::isnan(r3.first_pivot_slip_time) ? "-" : format("%.4f s", r3.first_pivot_slip_time).c_str(),
                      r3.pivot_slip_time, r3.pivot_slip_distance, r3.pivot_sticks));
-  L.push_back(format("sliding     %ld slip onsets (first at %s), %ld sticks; max slip %.4f m, final %.4f m, "
-                     "max slip speed %.3f m/s, max twist %.4f rad, %.3f s sliding; %ld slides ended by an edge lifting",
-                     r3.slides, std::isnan(r3.first_slip_time) ? "-" : format("%.4f s", r3.first_slip_time).c_str(),
+  L.push_back(format("sliding     %ld slip onsets from rest and %ld from landings (the first at %s), %ld sticks; max "
+                     "slip %.4f m, final %.4f m, max slip speed %.3f m/s, max twist %.4f rad, %.3f s sliding; %ld slides "
+                     "ended by an edge lifting", r3.slides, r3.landing_slides,
+                     std::isnan(r3.first_slip_time) ? "-" : format("%.4f s", r3.first_slip_time).c_str(),
                      r3.sticks, r3.max_slip, model.slip().norm(), r3.max_slip_speed, r3.max_twist, r3.slip_time,
                      r3.slide_to_rock));
 }
@@ -233,6 +235,12 @@ void solid_support_and_hull_lines(const rm::Rocking3DModel& model, std::vector<s
                        model.mode() == rm::Mode3D::Overturned ? "its side (overturned)"
                        : model.face() == 0                     ? "its base"
                                                                : ("hull face " + std::to_string(model.face())).c_str()));
+  if (!model.body().parameters().support.empty() && !model.body().parameters().hull.empty())
+    L.push_back(format("hull        on its pedestal the contact is the pedestal's top: its hull cannot land there%s",
+                       r3.pedestal_beyond_base == 0
+                           ? ""
+                           : format("; %ld times it slid so that the pedestal reached beyond its base, where the hull "
+                                    "could land (not modelled: it rocks on its base there)", r3.pedestal_beyond_base).c_str()));
 }
 
 }  // namespace

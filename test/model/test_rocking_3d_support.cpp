@@ -3,7 +3,8 @@
 // (an exact 1-D slider locates both); one that slid part of the way over rocks about
 // the plinth's edge as the planar body of the part still on it; a pedestal smaller than
 // the base bounds the contact, and the body rocks about the pedestal's edge as the planar body of the
-// pedestal's width; bad supports are refused naming the item and the field.
+// pedestal's width, a scanned body (a hull) on a pedestal within its base too; bad supports are
+// refused naming the item and the field.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -292,6 +293,92 @@ TEST(Rocking3DSupport, APedestalSmallerThanTheBaseRocksItAsThePlanarBodyOfThePed
   EXPECT_GT(impacts, 5);
 }
 
+// A scanned body (a hull) on a pedestal within its base: a bust 0.3 m square at the base, widening
+// to 0.5 m at its top. Tipping about the pedestal's edge, every hull point that comes down lies beyond
+// the pedestal (rotation about a line on the pedestal's top keeps each point's side of it below 90
+// degrees), so the body rocks exactly as the planar body of the pedestal's width with the body's
+// inertia. On the open floor the same body tips onto its flared side (a hull landing) instead.
+BaseBodyParameters flared_bust(double h) {
+  BaseBodyParameters p;
+  p.centre_of_mass = {0.0, 0.0, h};
+  p.base = {{-0.15, -0.15}, {0.15, -0.15}, {0.15, 0.15}, {-0.15, 0.15}};
+  for (double x : {-0.25, 0.25})
+    for (double y : {-0.25, 0.25}) p.hull.emplace_back(x, y, 0.6);
+  p.central_inertia = Eigen::Vector3d(0.035, 0.03, 0.025).asDiagonal();
+  return p;
+}
+
+TEST(Rocking3DSupport, AScannedBodyOnAPedestalWithinItsBaseRocksAsThePlanarBodyOfThePedestalsWidth) {
+  const double h = 0.3;
+  BaseBodyParameters p = flared_bust(h);
+  p.support = {{-0.1, -0.12}, {0.1, -0.12}, {0.1, 0.12}, {-0.1, 0.12}};
+  const BaseBody body(p);
+  EXPECT_FALSE(body.contact_hull().from_hull);  // the pedestal's top is the contact
+  BodyParameters planar;
+  planar.width = 0.2;
+  planar.cg_height = h;
+  planar.nu1 = 0.5;
+  planar.radius_of_gyration = std::sqrt(0.03);
+  int overturned = 0, impacts = 0, floor_hull_landings = 0;
+  for (double amp : {0.25, 0.35, 0.5})
+    for (double f : {1.0, 2.0}) {
+      RockingModel ref(planar, support_settings());
+      Rocking3DModel solid(body, support_settings());
+      for (double t = 0.01; t < 8.0; t += 0.01) {
+        const double a = t < 1.0 / f ? amp * kGravity * std::sin(2 * kPi * f * t) : 0.0;
+        ref.step(a, 0.0, 0.01);
+        solid.step(Eigen::Vector3d(a, 0.0, 0.0), 0.01);
+        ASSERT_NEAR(solid.tilt(), ref.mode() == Mode::Overturned ? solid.tilt() : std::abs(ref.theta()), 1e-8) << t;
+      }
+      const std::string label = std::to_string(amp) + " g " + std::to_string(f) + " Hz";
+      EXPECT_EQ(ref.outcome().overturned, solid.outcome().overturned) << label;
+      EXPECT_EQ(ref.outcome().impacts, solid.outcome().impacts) << label;
+      EXPECT_EQ(solid.outcome_3d().hull_landings, 0) << label;
+      if (ref.outcome().overturned) {
+        EXPECT_NEAR(ref.outcome().overturn_time, solid.outcome().overturn_time, 1e-8) << label;
+        EXPECT_TRUE(solid.outcome_3d().fell_off_support) << label;
+      }
+      overturned += ref.outcome().overturned;
+      impacts += static_cast<int>(ref.outcome().impacts);
+    }
+  for (double amp : {0.6, 0.8, 1.0}) {
+    Rocking3DModel floor(BaseBody(flared_bust(h)), support_settings());
+    for (double t = 0.01; t < 4.0; t += 0.01)
+      floor.step(Eigen::Vector3d(t < 1.0 ? amp * kGravity * std::sin(2 * kPi * t) : 0.0, 0.0, 0.0), 0.01);
+    floor_hull_landings += static_cast<int>(floor.outcome_3d().hull_landings);
+  }
+  std::printf("[ measure ] on the pedestal %d overturns (falls off it), %d impacts as the planar body; on the open "
+              "floor %d landings on its flared side\n", overturned, impacts, floor_hull_landings);
+  EXPECT_GE(overturned, 1);
+  EXPECT_GT(impacts, 5);
+  EXPECT_GT(floor_hull_landings, 0);  // the hull matters off the pedestal
+}
+
+// Sliding on its pedestal, a scanned body whose base slid so far that the pedestal reaches beyond
+// its edge is counted: pivoting there, its hull across that edge could land on the pedestal.
+TEST(Rocking3DSupport, AScannedBodyThatSlidUntilItsPedestalReachesBeyondItsBaseIsCounted) {
+  const double mu = 0.3;
+  int beyond = 0, within = 0;
+  for (double amp : {0.35, 0.4, 0.45, 0.5}) {
+    BaseBodyParameters p = flared_bust(0.12);  // tan alpha 0.1 / 0.12 > mu: it slides before it tips
+    p.mu_s = mu;
+    p.support = {{-0.1, -0.1}, {0.1, -0.1}, {0.1, 0.1}, {-0.1, 0.1}};
+    Rocking3DModel m(BaseBody(p), support_settings());
+    m.reset(0.0);
+    double most = 0.0;
+    for (double t = 0.01; t < 3.0; t += 0.01) {
+      m.step(Eigen::Vector3d(t < 0.5 ? amp * kGravity * std::sin(2 * kPi * t) : 0.0, 0.0, 0.0), 0.01);
+      if (m.mode() == Mode3D::Rest) most = std::max(most, std::abs(m.slip().x()));
+    }
+    ASSERT_FALSE(m.outcome().overturned) << amp;
+    const bool reached = most > 0.05 + 1e-9;  // the pedestal's edge 0.1 m out, the base's 0.15 m
+    EXPECT_EQ(m.outcome_3d().pedestal_beyond_base > 0, reached) << amp << " " << most;
+    (reached ? beyond : within) += 1;
+  }
+  EXPECT_GE(beyond, 1);
+  EXPECT_GE(within, 1);
+}
+
 TEST(Rocking3DSupport, ClippingAndMarginsAreExact) {
   const std::vector<Eigen::Vector2d> base = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   // a support turned 45 degrees through the square's centre: their intersection is an octagon
@@ -340,6 +427,14 @@ TEST(Rocking3DSupport, BadSupportsAreRefusedNamingTheItemAndField) {
     EXPECT_NE(err.find("support"), std::string::npos) << err;
     EXPECT_NE(err.find(c.says), std::string::npos) << err;
   }
+  // a scanned body (hull) only on a pedestal within its base
+  nlohmann::json scanned = item();
+  scanned["hull"] = nlohmann::json::parse("[[0, 0, 0.6], [0.2, 0, 0.6], [0.2, 0.1, 0.6], [0, 0.1, 0.6]]");
+  std::string err = support_error(scanned);
+  EXPECT_NE(err.find("statue"), std::string::npos) << err;
+  EXPECT_NE(err.find("support: with a hull, the support must lie within base_polygon"), std::string::npos) << err;
+  scanned["support"] = nlohmann::json::parse("[[0.05, 0.02], [0.15, 0.02], [0.15, 0.08], [0.05, 0.08]]");
+  EXPECT_EQ(support_error(scanned), "");
   nlohmann::json planar = item();
   for (const char* k : {"mass", "centre_of_mass", "central_inertia", "base_polygon"}) planar.erase(k);
   EXPECT_NE(support_error(planar).find("needs the 3-D description"), std::string::npos);

@@ -142,6 +142,10 @@ struct Rocking3DOutcome {
   /// Slides in which braking would have tipped the item over the support's edge (its centre of mass
   /// within mu_k h of it): the slide-rock over the edge is not modelled, the slide goes on flat.
   long slides_over_support_edge = 0;
+  /// A body with a hull on a pedestal: contacts cut where a slide had carried the base so that the
+  /// pedestal reaches beyond the base's edge. Pivoting on that edge, the hull's face across it could
+  /// land on the pedestal: not modelled (the body rocks on the base's cut).
+  long pedestal_beyond_base = 0;
   // The pivot while rocking (EDGE, VERTEX): the floor's reaction on the body against the friction cone
   // |F_h| <= mu_s F_z, from the equations of motion at each step's end (onsets located on the dense
   // output). Beyond it the real body slide-rocks (or flies); the model follows a sticking pivot.
@@ -418,6 +422,7 @@ class Rocking3DModel {
   void derive_contact();
   void fit_contact(const Eigen::Vector2d& shift, double yaw);
   bool whole_base_on(const std::vector<Eigen::Vector2d>& support) const;
+  bool support_within_base() const;  // placed_support_ within the whole base (a pedestal under a hull)
   double support_lift(const GroundInput3& in, double t, const Vec6& y, bool over, double margin) const;
   bool pivot_on_support_edge() const;
   void slide_to_edge(const GroundInput3& in, double tau);

@@ -44,7 +44,8 @@ struct BaseBodyParameters {
   /// What the item stands on when not the floor (issue 51): the top of its plinth, shelf or pedestal, m,
   /// item frame, convex, counter-clockwise; empty: the floor, unbounded. The contact polygon is the base
   /// where it lies on the support (BaseBody clips `base` to it), and the item falls off when its centre
-  /// of mass passes the support's edge. Not with a hull (yet).
+  /// of mass passes the support's edge. With a hull only a pedestal within the base: the body rocks
+  /// on the pedestal's edges, and no other hull face can come down onto the pedestal.
   std::vector<Eigen::Vector2d> support;
 };
 
