@@ -22,6 +22,7 @@
 #include "rocking_monitor/physics/body.hpp"
 #include "rocking_monitor/physics/criteria.hpp"
 #include "rocking_monitor/physics/principal_planes.hpp"
+#include "rocking_monitor/physics/support_polygon.hpp"
 
 namespace {
 
@@ -76,6 +77,20 @@ json item_json(const CatalogueItem& item) {
   if (item.pose.given) {
     j["pose"] = {{"parent_frame", item.pose.parent_frame}, {"x", item.pose.x}, {"y", item.pose.y},
                  {"yaw", item.pose.yaw}};
+  }
+  // What it stands on (issue 51): the support's top (m, item frame), the centre of mass's distance
+  // inside its nearest edge at rest (m), and inside the contact (the base where it lies on the
+  // support, m: over the centre of mass's height, the tangent of the smallest tipping angle there);
+  // null on the open floor.
+  j["support"] = nullptr;
+  j["support_margin"] = nullptr;
+  j["contact_margin"] = nullptr;
+  if (s.solid && !s.solid->support.empty()) {
+    const Eigen::Vector2d c = s.solid->centre_of_mass.head<2>();
+    j["support"] = json::array();
+    for (const auto& v : s.solid->support) j["support"].push_back({v.x(), v.y()});
+    j["support_margin"] = inside_margin(s.solid->support, c);
+    j["contact_margin"] = inside_margin(clip_convex(s.solid->base, s.solid->support), c);
   }
   json planes = json::array({plane_json("x", s.body)});
   if (s.two_planes()) planes.push_back(plane_json("y", y_plane_body(s.body, s.depth)));

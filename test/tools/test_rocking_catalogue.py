@@ -233,6 +233,42 @@ class FromScan(unittest.TestCase):
             self.assertIn("open elsewhere than at its base", r.stderr)
             self.assertFalse(os.path.exists(out + "2"))
 
+    def test_a_scan_on_a_pedestal(self):
+        """--pedestal W D (issue 51): the support key, a W x D rectangle under the centre of mass, as the
+        node's parser reads it; one reaching beyond the scan's base is refused by that parser, naming
+        the item and the field, and nothing is written."""
+        sys.path.insert(0, HERE)
+        import test_mesh_input as tm
+        with tempfile.TemporaryDirectory() as tmp:
+            v, f, *_ = tm.case_cylinder()  # a 24-gon 0.2 m in radius (0.198 m to its sides), 0.7 m tall
+            scan = tm.write(os.path.join(tmp, "vase.ply"), v, f, "ply")
+            out = os.path.join(tmp, "c.yaml")
+            r = run("from-scan", scan, "--id", "vase", "--mass", "30", "--unit", "m", "--pedestal", "0.2", "0.24",
+                    "--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            item = parsed(out)["items"][0]
+            c = np.mean(np.array(item["support"]), axis=0)
+            self.assertEqual(len(item["support"]), 4)
+            self.assertAlmostEqual(np.ptp(np.array(item["support"])[:, 0]), 0.2, delta=1e-9)
+            self.assertAlmostEqual(np.ptp(np.array(item["support"])[:, 1]), 0.24, delta=1e-9)
+            self.assertAlmostEqual(item["support_margin"], 0.1, delta=1e-9)  # the nearer sides, 0.1 m away
+            self.assertAlmostEqual(float(np.hypot(*c)), 0.0, delta=1e-6)  # under the axis
+            self.assertAlmostEqual(item["contact_margin"], 0.1, delta=1e-9)  # the pedestal is the contact
+            r = run("check", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            # lifted from rest at tan(alpha) = 0.1 / 0.35 on the pedestal (0.198 / 0.35 on the floor)
+            self.assertIn("on a support (1; the 3-D model on its top decides): vase (lifted from rest at 0.29 g on "
+                          "it; centre of mass 0.100 m inside its edge)", r.stdout)
+            for bad, says in ((("0.3", "0.3"), "support: with a hull, the support must lie within base_polygon"),
+                              (("0", "0.2"), "--pedestal: width and depth must be finite values > 0 m")):
+                r = run("from-scan", scan, "--id", "vase", "--mass", "30", "--unit", "m", "--pedestal", *bad,
+                        "--out", out + "2")
+                self.assertEqual(r.returncode, 1, r.stderr)
+                self.assertIn(says, r.stderr)
+                self.assertFalse(os.path.exists(out + "2"))
+            r = run("from-scan", scan, "--id", "vase", "--mass", "30", "--unit", "m", "--out", out)
+            self.assertIsNone(parsed(out)["items"][0]["support"])
+
     def test_progress_only_on_a_terminal(self):
         """from-scan's stage bar (issue 53): off a terminal stderr is the --quiet run's, byte for byte;
         on a pseudo-terminal it reaches all of scan_geometry's stages; --quiet draws nothing there."""
