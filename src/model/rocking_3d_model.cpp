@@ -138,7 +138,7 @@ void Rocking3DModel::save(Saved& out) const {
 void Rocking3DModel::restore(const Saved& in) {
   if (in.face < 0 || in.face >= static_cast<int>(hull().faces.size()))
     throw std::invalid_argument("Rocking3DModel::restore: face " + std::to_string(in.face) + " is not a face of this body's hull");
-  fit_contact(in.fit_shift, in.fit_yaw);  // the contact the state was in (a support's cut follows the item)
+  fit_contact(in.fit_shift, in.fit_yaw, false);  // the contact the state was in (a support's cut follows the item)
   mode_ = in.mode;
   contact_ = in.contact;
   set_face(in.face);
@@ -356,8 +356,16 @@ const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
       break;
     }
     if (++events >= settings_.max_events_per_sample) {
-      // Bounded work per sample: the body is put down flat for the rest of the sample.
+      // Bounded work per sample: the body is put down flat for the rest of the sample, unless it is
+      // beyond its tipping point (a see-saw on the edge it falls over, its landings ever faster):
+      // put down flat from there it would stand again, so it overturns where the bound stops it.
       const Mode3D from = mode_;
+      if ((mode_ == Mode3D::Edge || mode_ == Mode3D::Vertex) && rotation_ratio() > 1.0) {
+        overturn_at(tau);
+        ++outcome3_.forced_overturns;
+        note_transition(from, Transition3D::ForcedOverturn, tau);
+        break;
+      }
       go_to_rest();
       report_.forced_rest = true;
       ++outcome_.forced_rest_captures;

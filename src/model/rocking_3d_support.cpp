@@ -36,32 +36,80 @@ double Rocking3DModel::support_margin() const {
 }
 
 // The cut is made again where the footprint (shift_, yaw_) has moved since it was last made: where the
-// item comes to rest and where a slide ends on an edge, never while it pivots (the pivot is an edge
-// or a vertex of the cut it began on) or slides (the friction's pressure is spread over the cut where
-// the slide began: cutting at every step's end made a box sliding over its plinth's edge cost three
-// times as much, rocking_sim on Northridge Jensen). Nothing is made while the whole base stays on the
-// support (a plinth larger than the base, away from its edge): the usual case allocates nothing.
-void Rocking3DModel::fit_contact(const Eigen::Vector2d& shift, double yaw) {
+// item comes to rest and where a slide ends on an edge; pivoting on a corner where it has turned
+// (refit_on_vertex); never while it rocks on an edge (tilting about a line of the support keeps the
+// cut) or slides (the friction's pressure is spread over the cut where the slide began: cutting at
+// every step's end made a box sliding over its plinth's edge cost three times as much, rocking_sim on
+// Northridge Jensen). Nothing is made while the whole base stays on the support (a plinth larger than
+// the base, away from its edge): the usual case allocates nothing. check_com: the item flat there
+// must have its centre of mass on the support (else it fell off: the last cut stays).
+bool Rocking3DModel::fit_contact(const Eigen::Vector2d& shift, double yaw, bool check_com) {
   const std::vector<Eigen::Vector2d>& support = body_.parameters().support;
-  if (support.empty() || (shift == fit_shift_ && yaw == fit_yaw_)) return;
-  fit_shift_ = shift;
-  fit_yaw_ = yaw;
+  if (support.empty() || (shift == fit_shift_ && yaw == fit_yaw_)) return false;
   const Eigen::Matrix2d back = rot2(-yaw);
   placed_support_.clear();
   for (const Eigen::Vector2d& s : support) placed_support_.push_back(back * (s - shift));
   const bool whole = whole_base_on(placed_support_);
-  if (whole && contact_whole_) return;
+  // (fit_shift_, fit_yaw_: the footprint the contact holds for, as snapshots restore it)
+  if (whole && contact_whole_) {
+    fit_shift_ = shift;
+    fit_yaw_ = yaw;
+    return false;
+  }
   if (!body_.parameters().hull.empty() && !support_within_base()) ++outcome3_.pedestal_beyond_base;
   // Off the support the item has fallen (the slide's margin event): its last cut stays.
-  if (!(inside_margin(placed_support_, body_.centre_of_mass().head<2>()) > 0.0)) return;
+  if (check_com && !(inside_margin(placed_support_, body_.centre_of_mass().head<2>()) > 0.0)) return false;
   try {
     body_ = body_.on_support(placed_support_);
   } catch (const BodyError&) {
-    return;  // a cut the base validation refuses (more than kMaxBaseVertices): the last cut stays
+    return false;  // a cut the base validation refuses (more than kMaxBaseVertices): the last cut stays
   }
   contact_whole_ = whole;
+  fit_shift_ = shift;
+  fit_yaw_ = yaw;
   derive_contact();
   if (mode_ == Mode3D::Slide) slide_stepper_.invalidate();  // its derivative was the old cut's
+  return true;
+}
+
+// Pivoting on a corner (VERTEX, sticking) the body also turns about the vertical: the support, fixed
+// on the floor, then lies under the base elsewhere than where the cut was made, and the cut's
+// corners (body points) are no longer the support's. The support is seen in the base's plane as
+// that plane's unfolding onto the floor about the line where the two meet (through the pivot): the
+// pose in which the support's corner that touches the base next lies where the base meets it. Where
+// that footprint has moved (by more than a tenth of the contact tolerance at the support's corners)
+// the contact is cut again from it: the support's corners now under the base are landing points,
+// the base's corners now beyond its edge are not. A pure tilt keeps the footprint: no cut. Returns
+// whether the cut changed; contact_ is then the pivot's number in the new cut, and armed_ those
+// vertices above the floor at `arm` (the motion's state where the touchdown search starts).
+bool Rocking3DModel::refit_on_vertex(const Vec7& y, const Vec7& arm) {
+  const std::vector<Eigen::Vector2d>& support = body_.parameters().support;
+  if (support.empty() || face_ != 0 || contact_ < 0 || mode_ != Mode3D::Vertex || pivot_slipping_) return false;
+  const Eigen::Matrix3d r = vertex_rotation(y);
+  const Eigen::Vector3d pivot = hv(contact_).position;
+  const Eigen::Vector3d line = r.col(2).cross(Eigen::Vector3d::UnitZ());  // where the base's plane meets the floor
+  const Eigen::Vector3d seen = r.transpose() * line;                      // that line in the base's plane
+  double yaw = line.norm() > 1e-12 ? std::atan2(line.y(), line.x()) - std::atan2(seen.y(), seen.x())
+                                   : std::atan2(r(1, 0), r(0, 0));
+  yaw = fit_yaw_ + std::remainder(yaw - fit_yaw_, 2.0 * kPi);
+  const Eigen::Vector2d shift = pivot_world_.head<2>() - rot2(yaw) * pivot.head<2>();
+  double reach = 0.0;
+  for (const Eigen::Vector2d& s : support) reach = std::max(reach, (s - fit_shift_).norm());
+  if ((shift - fit_shift_).norm() + std::abs(yaw - fit_yaw_) * reach <= 0.1 * floor_tol_) return false;
+  // Tipping over the support's edge (the centre of mass beyond it, seen from above): the last cut stays.
+  const Eigen::Vector3d com = r * (body_.centre_of_mass() - pivot) + pivot_world_;
+  if (!(inside_margin(support, com.head<2>()) > 0.0)) return false;
+  if (!fit_contact(shift, yaw, false)) return false;
+  int k = 0;  // the pivot in the new cut (it lies on the support: a vertex of the cut still)
+  for (int i = 1; i < fb().vertex_count(); ++i)
+    if ((fb().vertex(i).position - pivot).norm() < (fb().vertex(k).position - pivot).norm()) k = i;
+  contact_ = fc().hull_vertex[static_cast<std::size_t>(k)];
+  const Eigen::Matrix3d ra = vertex_rotation(arm);
+  const double eps = 3.0 * floor_tol_;  // (as enter_vertex arms them)
+  for (int i = 0; i < static_cast<int>(hull().vertices.size()); ++i)
+    armed_[i] = i != contact_ && (ra * (hv(i).position - hv(contact_).position)).z() > eps;
+  ++outcome3_.vertex_refits;
+  return true;
 }
 
 // Whether the whole base lies on `support` (item frame): then the contact is the whole base.

@@ -19,6 +19,7 @@ const char* to_string(Transition3D r) {
     case Transition3D::RestCapture: return "rest capture";
     case Transition3D::Degenerate: return "degenerate pivot motion: rest";
     case Transition3D::ForcedRest: return "forced rest (events per sample bound)";
+    case Transition3D::ForcedOverturn: return "overturned at the events per sample bound, beyond its tipping point";
     case Transition3D::FellOffSupport: return "fell off its support";
     case Transition3D::SlidesOverSupportEdge: return "braking would tip it over the support's edge (slide-rock over the edge; followed as sliding)";
     case Transition3D::PivotSlips: return "the pivot's reaction left the friction cone (slide-rock; followed as sticking)";

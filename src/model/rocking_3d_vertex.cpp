@@ -11,6 +11,7 @@
 #include "rocking_3d_internal.hpp"
 #include "rocking_monitor/model/rocking_3d_model.hpp"
 #include "rocking_monitor/integrate/event_location.hpp"
+#include "rocking_monitor/physics/support_polygon.hpp"
 
 namespace rocking_monitor::core {
 
@@ -180,6 +181,51 @@ Rocking3DModel::Event Rocking3DModel::vertex_event_in_step(const Rot& rot, const
   return event;
 }
 
+// On a support, the first instant in [t0, t1] at which a corner of the support (fixed on the floor,
+// beneath the base) meets the base's plane, probed as touchdown_in_step probes; +inf if none.
+template <class Rot>
+double Rocking3DModel::support_touchdown(const Rot& rot, double t0, double t1, double t_tol) const {
+  const Eigen::Vector3d pivot = hv(contact_).position;
+  double t_first = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector2d& s : body_.parameters().support) {
+    const Eigen::Vector3d from_pivot = Eigen::Vector3d(s.x(), s.y(), 0.0) - pivot_world_;
+    // how far the corner lies inside the body, through the base's plane (item frame), m
+    auto depth = [&](double t) { return (vertex_rotation(rot(t)).transpose() * from_pivot).z() + pivot.z(); };
+    const Eigen::Vector3d seen = vertex_rotation(rot(t1)).transpose() * from_pivot + pivot;
+    if (from_pivot.norm() <= floor_tol_ || !(inside_margin(body_.whole_base(), seen.head<2>()) >= 0.0)) continue;
+    double ta = t0, da = depth(t0);
+    if (da > floor_tol_) { t_first = std::min(t_first, t0); continue; }  // inside already: lands now
+    for (int k = 1; k <= kVertexProbes; ++k) {
+      const double tb = k == kVertexProbes ? t1 : t0 + (t1 - t0) * k / kVertexProbes, db = depth(tb);
+      if (db > 0.0 && da <= 0.0) {
+        t_first = std::min(t_first, bracketed_root(depth, ta, tb, da, db, t_tol));
+        break;
+      }
+      ta = tb;
+      da = db;
+    }
+  }
+  return t_first;
+}
+
+// On a support, pivoting on a corner: the touchdown searched again with the contact cut where the body
+// is when a corner of the support meets its base (that corner is then the cut's, and lands there), or
+// where it is at the touchdown or the step's end (the cut kept where the body has turned to).
+template <class Rot>
+Rocking3DModel::Event Rocking3DModel::refit_in_step(const Rot& rot, const Vec7& y0, const Vec7& y1, double t0,
+                                                    double t1, double t_tol, Event event, int& touching,
+                                                    double& t_event, Eigen::Vector3d& up_end) {
+  if (body_.parameters().support.empty() || face_ != 0) return event;
+  const double t_end = event == Event::None ? t1 : t_event;
+  const double t_corner = support_touchdown(rot, t0, t_end, t_tol);
+  for (int pass = 0; pass < 2; ++pass) {
+    const double t_fit = pass == 0 && std::isfinite(t_corner) ? t_corner : event == Event::Impact ? t_event : t1;
+    if (!refit_on_vertex(rot(t_fit), y0)) break;
+    event = vertex_event_in_step(rot, y0, y1, t0, t1, t_tol, touching, t_event, up_end);
+  }
+  return event;
+}
+
 // A turning point of the centre of mass in [t0, t_stop] (before any event): the peak of the rotation
 // ratio, located on the dense output as the planar model locates omega = 0.
 template <class Rot>
@@ -219,13 +265,15 @@ Rocking3DModel::Event Rocking3DModel::vertex_motion(Dopri5Vector<N>& stepper, Ei
   };
   while (tau < tau_end) {
     const Vec7 y0 = state.template head<7>();
+    if constexpr (N == 7) refit_on_vertex(y0, y0);  // (on a support: where the body has turned on it)
     if constexpr (N == 11) aim_slip_ref();
     report_.integrator_steps += stepper.step(f, tau, state, tau_end, settings_.tol, atol);
     const double t0 = stepper.t0(), t1 = stepper.t1();
     const Vec7 y1 = stepper.y1().template head<7>();
     double t_event;
     Eigen::Vector3d up_end;
-    const Event event = vertex_event_in_step(rot, y0, y1, t0, t1, t_tol, touching, t_event, up_end);
+    Event event = vertex_event_in_step(rot, y0, y1, t0, t1, t_tol, touching, t_event, up_end);
+    if constexpr (N == 7) event = refit_in_step(rot, y0, y1, t0, t1, t_tol, event, touching, t_event, up_end);
     const double t_stop = event == Event::None ? t1 : t_event;
     note_vertex_peak(rot, y0, event == Event::None ? y1 : rot(t_stop), t0, t_stop, t_tol);
     // A slip beginning (sticking) or ending (slipping) before the step's end or event: from there on

@@ -373,6 +373,48 @@ void visit(V& v, PlaneMonitor::Saved& s) {
 }
 
 template <class V>
+void visit(V& v, Rocking3DOutcome& o) {
+  v("edge_to_vertex", o.edge_to_vertex);
+  v("vertex_impacts", o.vertex_impacts);
+  v("flat_impacts", o.flat_impacts);
+  v("max_tilt", o.max_tilt);
+  v("max_impact_energy_ratio", o.max_impact_energy_ratio);
+  v("max_landing_violation", o.max_landing_violation);
+  v("max_friction_demand", o.max_friction_demand);
+  v("slipping_landings", o.slipping_landings);
+  v("frictional_landings", o.frictional_landings);
+  v("landing_slides", o.landing_slides);
+  v("pivot_slip_landings", o.pivot_slip_landings);
+  v("unresolved_landings", o.unresolved_landings);
+  v("edge_captures", o.edge_captures);
+  v("hull_landings", o.hull_landings);
+  v("rests_off_base", o.rests_off_base);
+  v("slides", o.slides);
+  v("sticks", o.sticks);
+  v("slide_to_rock", o.slide_to_rock);
+  v("first_slip_time", o.first_slip_time);
+  v("max_slip", o.max_slip);
+  v("max_slip_speed", o.max_slip_speed);
+  v("max_twist", o.max_twist);
+  v("slip_time", o.slip_time);
+  v("fell_off_support", o.fell_off_support);
+  v("fell_off_time", o.fell_off_time);
+  v("slides_over_support_edge", o.slides_over_support_edge);
+  v("pedestal_beyond_base", o.pedestal_beyond_base);
+  v("vertex_refits", o.vertex_refits);
+  v("forced_overturns", o.forced_overturns);
+  v("max_pivot_friction_demand", o.max_pivot_friction_demand);
+  v("pivot_slips", o.pivot_slips);
+  v("pivot_lifts", o.pivot_lifts);
+  v("first_pivot_slip_time", o.first_pivot_slip_time);
+  v("pivot_sticks", o.pivot_sticks);
+  v("pivot_slip_time", o.pivot_slip_time);
+  v("pivot_slip_distance", o.pivot_slip_distance);
+  v("pivot_slips_not_followed", o.pivot_slips_not_followed);
+  v("transitions", o.transitions);
+}
+
+template <class V>
 void visit(V& v, Rocking3DModel::Saved& s) {
   v.enumeration("mode", s.mode, static_cast<int>(Mode3D::Slide) + 1);
   v("contact", s.contact);
@@ -390,44 +432,7 @@ void visit(V& v, Rocking3DModel::Saved& s) {
   for (bool& a : s.armed) v("armed", a);
   v.group("report", [&] { visit(v, s.report); });
   v.group("outcome", [&] { visit(v, s.outcome); });
-  v.group("outcome_3d", [&] {
-    v("edge_to_vertex", s.outcome_3d.edge_to_vertex);
-    v("vertex_impacts", s.outcome_3d.vertex_impacts);
-    v("flat_impacts", s.outcome_3d.flat_impacts);
-    v("max_tilt", s.outcome_3d.max_tilt);
-    v("max_impact_energy_ratio", s.outcome_3d.max_impact_energy_ratio);
-    v("max_landing_violation", s.outcome_3d.max_landing_violation);
-    v("max_friction_demand", s.outcome_3d.max_friction_demand);
-    v("slipping_landings", s.outcome_3d.slipping_landings);
-    v("frictional_landings", s.outcome_3d.frictional_landings);
-    v("landing_slides", s.outcome_3d.landing_slides);
-    v("pivot_slip_landings", s.outcome_3d.pivot_slip_landings);
-    v("unresolved_landings", s.outcome_3d.unresolved_landings);
-    v("edge_captures", s.outcome_3d.edge_captures);
-    v("hull_landings", s.outcome_3d.hull_landings);
-    v("rests_off_base", s.outcome_3d.rests_off_base);
-    v("slides", s.outcome_3d.slides);
-    v("sticks", s.outcome_3d.sticks);
-    v("slide_to_rock", s.outcome_3d.slide_to_rock);
-    v("first_slip_time", s.outcome_3d.first_slip_time);
-    v("max_slip", s.outcome_3d.max_slip);
-    v("max_slip_speed", s.outcome_3d.max_slip_speed);
-    v("max_twist", s.outcome_3d.max_twist);
-    v("slip_time", s.outcome_3d.slip_time);
-    v("fell_off_support", s.outcome_3d.fell_off_support);
-    v("fell_off_time", s.outcome_3d.fell_off_time);
-    v("slides_over_support_edge", s.outcome_3d.slides_over_support_edge);
-    v("pedestal_beyond_base", s.outcome_3d.pedestal_beyond_base);
-    v("max_pivot_friction_demand", s.outcome_3d.max_pivot_friction_demand);
-    v("pivot_slips", s.outcome_3d.pivot_slips);
-    v("pivot_lifts", s.outcome_3d.pivot_lifts);
-    v("first_pivot_slip_time", s.outcome_3d.first_pivot_slip_time);
-    v("pivot_sticks", s.outcome_3d.pivot_sticks);
-    v("pivot_slip_time", s.outcome_3d.pivot_slip_time);
-    v("pivot_slip_distance", s.outcome_3d.pivot_slip_distance);
-    v("pivot_slips_not_followed", s.outcome_3d.pivot_slips_not_followed);
-    v("transitions", s.outcome_3d.transitions);
-  });
+  v.group("outcome_3d", [&] { visit(v, s.outcome_3d); });
   v("pivot_outside_cone", s.pivot_outside_cone);
   v("pivot_slipping", s.pivot_slipping);
   visit_matrix(v, "slip_state", s.slip_state);

@@ -182,6 +182,8 @@ json solid_json(const rm::Rocking3DModel& model, rm::SolidChoice choice, bool de
               {"fell_off_time_s", nullable(r3.fell_off_time)},
               {"slides_over_support_edge", r3.slides_over_support_edge},
               {"pedestal_beyond_base", r3.pedestal_beyond_base},
+              {"vertex_refits", r3.vertex_refits},
+              {"forced_overturns", r3.forced_overturns},
               {"support_margin_m", nullable(model.support_margin())},
               {"transitions_total", r3.transitions},
               {"transitions", transitions_json(model)},
@@ -228,6 +230,12 @@ void solid_support_and_hull_lines(const rm::Rocking3DModel& model, std::vector<s
                     : format("support     stayed on its support: the centre of mass %.4f m inside its edge at the end; %ld "
                              "slides braking within mu_k h of its edge (slide-rock over it, followed as sliding)",
                              model.support_margin(), r3.slides_over_support_edge));
+  if (!model.body().parameters().support.empty() && r3.vertex_refits > 0)
+    L.push_back(format("support     the contact cut again %ld times pivoting on a corner, where the body had turned on it",
+                       r3.vertex_refits));
+  if (r3.forced_overturns > 0)
+    L.push_back(format("events      the bound on events per sample reached beyond the tipping point: overturned there (%ld)",
+                       r3.forced_overturns));
   if (model.body().contact_hull().from_hull)
     L.push_back(format("hull        %zu faces, %zu vertices; %ld landings onto another face, %ld rests off the base; "
                        "ends on %s", model.body().contact_hull().faces.size(), model.body().contact_hull().vertices.size(),
@@ -239,8 +247,9 @@ void solid_support_and_hull_lines(const rm::Rocking3DModel& model, std::vector<s
     L.push_back(format("hull        on its pedestal the contact is the pedestal's top: its hull cannot land there%s",
                        r3.pedestal_beyond_base == 0
                            ? ""
-                           : format("; %ld times it slid so that the pedestal reached beyond its base, where the hull "
-                                    "could land (not modelled: it rocks on its base there)", r3.pedestal_beyond_base).c_str()));
+                           : format("; %ld contacts cut where it had slid or turned so that the pedestal reached beyond "
+                                    "its base, where the hull could land (not modelled: it rocks on its base there)",
+                                    r3.pedestal_beyond_base).c_str()));
 }
 
 }  // namespace

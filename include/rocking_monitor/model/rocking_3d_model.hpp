@@ -74,6 +74,7 @@ enum class Transition3D : std::uint8_t {
   PivotSticks,        ///< VERTEX: the slipping pivot stopped and the static law holds
   SlidesOverSupportEdge,  ///< SLIDE: braking would tip it over the support's edge (slide-rock over it; followed as sliding)
   Overturn,           ///< -> OVERTURNED: lying on its side, or over the tipping point
+  ForcedOverturn,     ///< -> OVERTURNED: the bound on events per sample, beyond the tipping point
 };
 const char* to_string(Transition3D reason);
 
@@ -142,10 +143,16 @@ struct Rocking3DOutcome {
   /// Slides in which braking would have tipped the item over the support's edge (its centre of mass
   /// within mu_k h of it): the slide-rock over the edge is not modelled, the slide goes on flat.
   long slides_over_support_edge = 0;
-  /// A body with a hull on a pedestal: contacts cut where a slide had carried the base so that the
-  /// pedestal reaches beyond the base's edge. Pivoting on that edge, the hull's face across it could
+  /// A body with a hull on a pedestal: contacts cut where a slide or a turn on a corner had carried
+  /// the base so that the pedestal reaches beyond the base's edge. Pivoting on that edge, the hull's face across it could
   /// land on the pedestal: not modelled (the body rocks on the base's cut).
   long pedestal_beyond_base = 0;
+  /// On a support: cuts made again while pivoting on a corner, where the body had turned about the
+  /// vertical so that the support lay otherwise under its base (rocking_3d_support.cpp).
+  long vertex_refits = 0;
+  /// Samples that reached the bound on events beyond the tipping point (a see-saw on the edge it
+  /// falls over): it overturns there (Transition3D::ForcedOverturn) instead of being put down flat.
+  long forced_overturns = 0;
   // The pivot while rocking (EDGE, VERTEX): the floor's reaction on the body against the friction cone
   // |F_h| <= mu_s F_z, from the equations of motion at each step's end (onsets located on the dense
   // output). Beyond it the real body slide-rocks (or flies); the model follows a sticking pivot.
@@ -397,6 +404,11 @@ class Rocking3DModel {
   Event vertex_event_in_step(const Rot& rot, const Vec7& y0, const Vec7& y1, double t0, double t1, double t_tol,
                              int& touching, double& t_event, Eigen::Vector3d& up_end) const;
   template <class Rot>
+  double support_touchdown(const Rot& rot, double t0, double t1, double t_tol) const;
+  template <class Rot>
+  Event refit_in_step(const Rot& rot, const Vec7& y0, const Vec7& y1, double t0, double t1, double t_tol,
+                      Event event, int& touching, double& t_event, Eigen::Vector3d& up_end);
+  template <class Rot>
   void note_vertex_peak(const Rot& rot, const Vec7& y0, const Vec7& y_stop, double t0, double t_stop, double t_tol);
   template <int N, class Rhs>
   Event vertex_motion(Dopri5Vector<N>& stepper, Eigen::Matrix<double, N, 1>& state, const Rhs& f,
@@ -420,7 +432,8 @@ class Rocking3DModel {
   // On a support (rocking_3d_support.cpp).
   double support_margin_of(const Vec6& y) const;
   void derive_contact();
-  void fit_contact(const Eigen::Vector2d& shift, double yaw);
+  bool fit_contact(const Eigen::Vector2d& shift, double yaw, bool check_com = true);
+  bool refit_on_vertex(const Vec7& y, const Vec7& arm);
   bool whole_base_on(const std::vector<Eigen::Vector2d>& support) const;
   bool support_within_base() const;  // placed_support_ within the whole base (a pedestal under a hull)
   double support_lift(const GroundInput3& in, double t, const Vec6& y, bool over, double margin) const;
