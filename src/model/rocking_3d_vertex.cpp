@@ -182,26 +182,39 @@ Rocking3DModel::Event Rocking3DModel::vertex_event_in_step(const Rot& rot, const
 }
 
 // On a support, the first instant in [t0, t1] at which a corner of the support (fixed on the floor,
-// beneath the base) meets the base's plane, probed as touchdown_in_step probes; +inf if none.
+// beneath the base) meets the base's plane, probed as touchdown_in_step probes; +inf if none. The
+// dense output is evaluated once per probe for all corners (the base's normal there), and only for a
+// corner beneath the base at t1.
 template <class Rot>
 double Rocking3DModel::support_touchdown(const Rot& rot, double t0, double t1, double t_tol) const {
   const Eigen::Vector3d pivot = hv(contact_).position;
+  const Eigen::Matrix3d r1 = vertex_rotation(rot(t1));
+  double probe_t[kVertexProbes + 1];
+  Eigen::Vector3d normal[kVertexProbes + 1];  // the base's normal (world) at the probes
+  bool probed = false;
   double t_first = std::numeric_limits<double>::infinity();
   for (const Eigen::Vector2d& s : body_.parameters().support) {
     const Eigen::Vector3d from_pivot = Eigen::Vector3d(s.x(), s.y(), 0.0) - pivot_world_;
+    if (from_pivot.norm() <= floor_tol_) continue;  // the pivot's own corner
+    const Eigen::Vector3d seen = r1.transpose() * from_pivot + pivot;
+    if (!(inside_margin(body_.whole_base(), seen.head<2>()) >= 0.0)) continue;
+    if (!probed) {
+      for (int k = 0; k <= kVertexProbes; ++k) {
+        probe_t[k] = k == kVertexProbes ? t1 : t0 + (t1 - t0) * k / kVertexProbes;
+        normal[k] = (k == kVertexProbes ? r1 : vertex_rotation(rot(probe_t[k]))).col(2);
+      }
+      probed = true;
+    }
     // how far the corner lies inside the body, through the base's plane (item frame), m
-    auto depth = [&](double t) { return (vertex_rotation(rot(t)).transpose() * from_pivot).z() + pivot.z(); };
-    const Eigen::Vector3d seen = vertex_rotation(rot(t1)).transpose() * from_pivot + pivot;
-    if (from_pivot.norm() <= floor_tol_ || !(inside_margin(body_.whole_base(), seen.head<2>()) >= 0.0)) continue;
-    double ta = t0, da = depth(t0);
+    auto depth = [&](double t) { return vertex_rotation(rot(t)).col(2).dot(from_pivot) + pivot.z(); };
+    double da = normal[0].dot(from_pivot) + pivot.z();
     if (da > floor_tol_) { t_first = std::min(t_first, t0); continue; }  // inside already: lands now
     for (int k = 1; k <= kVertexProbes; ++k) {
-      const double tb = k == kVertexProbes ? t1 : t0 + (t1 - t0) * k / kVertexProbes, db = depth(tb);
+      const double db = normal[k].dot(from_pivot) + pivot.z();
       if (db > 0.0 && da <= 0.0) {
-        t_first = std::min(t_first, bracketed_root(depth, ta, tb, da, db, t_tol));
+        t_first = std::min(t_first, bracketed_root(depth, probe_t[k - 1], probe_t[k], da, db, t_tol));
         break;
       }
-      ta = tb;
       da = db;
     }
   }
