@@ -48,8 +48,9 @@ Rocking3DModel::Rocking3DModel(const BaseBody& body, const SolverSettings& setti
 Rocking3DModel::Rocking3DModel(const BaseBody& body, const SolverSettings& settings, bool with_probe)
     : body_(body), settings_(checked_3d(settings)) {
   central_inverse_ = body_.central_inertia_per_mass().inverse();
-  placed_support_.reserve(body_.parameters().support.size());
-  contact_whole_ = body_.parameters().support.empty() || whole_base_on(body_.parameters().support);
+  const std::vector<Eigen::Vector2d>& support = body_.parameters().support;
+  placed_support_.reserve(support.size());
+  contact_whole_ = support.empty() || first_outside(body_.whole_base(), support, 0.0) < 0;
   whole_margin_ = inside_margin(body_.whole_base(), body_.centre_of_mass().head<2>());
   derive_contact();
   if (with_probe) probe_.reset(new Rocking3DModel(body, settings, false));
@@ -138,7 +139,7 @@ void Rocking3DModel::save(Saved& out) const {
 void Rocking3DModel::restore(const Saved& in) {
   if (in.face < 0 || in.face >= static_cast<int>(hull().faces.size()))
     throw std::invalid_argument("Rocking3DModel::restore: face " + std::to_string(in.face) + " is not a face of this body's hull");
-  fit_contact(in.fit_shift, in.fit_yaw, false);  // the contact the state was in (a support's cut follows the item)
+  fit_contact(in.fit_shift, in.fit_yaw, false);  // the contact the state was in (a support's cut follows it)
   mode_ = in.mode;
   contact_ = in.contact;
   set_face(in.face);

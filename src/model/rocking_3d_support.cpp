@@ -49,14 +49,20 @@ bool Rocking3DModel::fit_contact(const Eigen::Vector2d& shift, double yaw, bool 
   const Eigen::Matrix2d back = rot2(-yaw);
   placed_support_.clear();
   for (const Eigen::Vector2d& s : support) placed_support_.push_back(back * (s - shift));
-  const bool whole = whole_base_on(placed_support_);
+  const bool whole = first_outside(body_.whole_base(), placed_support_, 0.0) < 0;
   // (fit_shift_, fit_yaw_: the footprint the contact holds for, as snapshots restore it)
   if (whole && contact_whole_) {
     fit_shift_ = shift;
     fit_yaw_ = yaw;
     return false;
   }
-  if (!body_.parameters().hull.empty() && !support_within_base()) ++outcome3_.pedestal_beyond_base;
+  // A body with a hull stands on a pedestal within its base (BaseBody refuses others at load): every
+  // edge of the contact is the pedestal's, and a hull point can come down only beyond it. Once a slide
+  // or a turn has carried the base so that the pedestal reaches beyond one of the base's edges, the
+  // body may pivot on that edge, and the hull's face across it could land on the pedestal there: not
+  // modelled (the body rocks on the base's cut), counted.
+  if (!body_.parameters().hull.empty() && first_outside(placed_support_, body_.whole_base(), floor_tol_) >= 0)
+    ++outcome3_.pedestal_beyond_base;
   // Off the support the item has fallen (the slide's margin event): its last cut stays.
   if (check_com && !(inside_margin(placed_support_, body_.centre_of_mass().head<2>()) > 0.0)) return false;
   try {
@@ -110,24 +116,6 @@ bool Rocking3DModel::refit_on_vertex(const Vec7& y, const Vec7& arm) {
     armed_[i] = i != contact_ && (ra * (hv(i).position - hv(contact_).position)).z() > eps;
   ++outcome3_.vertex_refits;
   return true;
-}
-
-// Whether the whole base lies on `support` (item frame): then the contact is the whole base.
-bool Rocking3DModel::whole_base_on(const std::vector<Eigen::Vector2d>& support) const {
-  for (const Eigen::Vector2d& b : body_.whole_base())
-    if (!(inside_margin(support, b) >= 0.0)) return false;
-  return true;
-}
-
-// A body with a hull stands on a pedestal within its base (BaseBody refuses others at load): every
-// edge of the contact is the pedestal's, and a hull point can come down only beyond it. Once a slide
-// has carried the base so that the pedestal reaches beyond one of the base's edges, the body may
-// pivot on that edge, and the hull's face across it could land on the pedestal there: not modelled
-// (the body rocks on the base's cut), counted (pedestal_beyond_base).
-bool Rocking3DModel::support_within_base() const {
-  const double tol = floor_tol_;
-  return std::all_of(placed_support_.begin(), placed_support_.end(),
-                     [&](const Eigen::Vector2d& s) { return inside_margin(body_.whole_base(), s) >= -tol; });
 }
 
 // Sliding on a support: the uplift (eq. 19 about a line, as slide_lift's about an edge) about the

@@ -21,6 +21,7 @@ std::string fail(const std::string& field, const std::string& problem) { return 
 double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 std::string validate_body(const BaseBodyParameters& p, bool must_stand);
+double hull_tolerance(const BaseBodyParameters& p);
 
 // The support (issue 51): a valid polygon under the centre of mass, overlapping the base.
 std::string support_problem(const BaseBodyParameters& p) {
@@ -32,13 +33,10 @@ std::string support_problem(const BaseBodyParameters& p) {
     // A pedestal within the base: every pivot is on the pedestal's edge, so no hull point beyond it
     // can come down onto the pedestal (docs/rocking_3d.md); on a wider plinth the hull's other faces
     // would land on it beyond the base.
-    double size = 0.0;
-    for (const auto& b : p.base) size = std::max(size, b.norm());
-    for (std::size_t i = 0; i < p.support.size(); ++i)
-      if (inside_margin(p.base, p.support[i]) < -1e-9 * size)
-        return "with a hull, the support must lie within base_polygon (a pedestal under a scanned body): vertex " +
-               std::to_string(i + 1) + " lies beyond the base, where the hull's other faces could land on it " +
-               "(not modelled yet)";
+    if (const int i = first_outside(p.support, p.base, hull_tolerance(p)); i >= 0)
+      return "with a hull, the support must lie within base_polygon (a pedestal under a scanned body): vertex " +
+             std::to_string(i + 1) + " lies beyond the base, where the hull's other faces could land on it " +
+             "(not modelled yet)";
   }
   if (!(inside_margin(p.support, p.centre_of_mass.head<2>()) > 0.0))
     return "the centre of mass's plan position lies off the support: the item would fall at once";

@@ -82,4 +82,11 @@ double inside_margin(const std::vector<Eigen::Vector2d>& p, const Eigen::Vector2
   return m;
 }
 
+int first_outside(const std::vector<Eigen::Vector2d>& points, const std::vector<Eigen::Vector2d>& polygon,
+                  double tol) {
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (!(inside_margin(polygon, points[i]) >= -tol)) return static_cast<int>(i);
+  return -1;
+}
+
 }  // namespace rocking_monitor::core

@@ -434,8 +434,6 @@ class Rocking3DModel {
   void derive_contact();
   bool fit_contact(const Eigen::Vector2d& shift, double yaw, bool check_com = true);
   bool refit_on_vertex(const Vec7& y, const Vec7& arm);
-  bool whole_base_on(const std::vector<Eigen::Vector2d>& support) const;
-  bool support_within_base() const;  // placed_support_ within the whole base (a pedestal under a hull)
   double support_lift(const GroundInput3& in, double t, const Vec6& y, bool over, double margin) const;
   bool pivot_on_support_edge() const;
   void slide_to_edge(const GroundInput3& in, double tau);

@@ -25,4 +25,9 @@ std::vector<Eigen::Vector2d> clip_convex(const std::vector<Eigen::Vector2d>& sub
 /// < 0 outside (beyond the edge it is furthest beyond).
 double inside_margin(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& x);
 
+/// The first of `points` that lies more than `tol` (m) outside `polygon` (or whose margin is not a
+/// number), -1 when all lie within it.
+int first_outside(const std::vector<Eigen::Vector2d>& points, const std::vector<Eigen::Vector2d>& polygon,
+                  double tol);
+
 }  // namespace rocking_monitor::core
