@@ -171,6 +171,10 @@ void Rocking3DModel::closing_contacts(int touching, const Eigen::Matrix3d& r, co
 // fixed fraction of the wobble across the edge at each landing, infinitely often in finite time,
 // converging to rocking about the edge. Once the wobble's energy is below the rest capture's energy
 // (rest_capture_ratio * p * alpha, as for rest), it rocks about the edge (chosen, w updated).
+// So too where the end the law lets go leaves the floor too slowly to rise by the contact tolerance
+// under gravity (v^2 < 2 g floor_tol_): a hop no touchdown search resolves, which landed again at
+// the same instant, without an impulse, until the events bound put the body down flat (a spin about
+// the vertical, which the landings on the edge's ends do not take, kept the wobble's energy up).
 void Rocking3DModel::see_saw_rule(const LandingBody& lb, const LandingContacts& set, const int* hull_index,
                                   double kappa, Landing& chosen, Eigen::Vector3d& w) {
   const int n = set.base_vertex_count;
@@ -181,8 +185,11 @@ void Rocking3DModel::see_saw_rule(const LandingBody& lb, const LandingContacts& 
   const Eigen::Vector3d& pa = set.point[a];
   const Eigen::Vector3d w_edge = rotation_about_line(lb, pa, (set.point[1 - a] - pa).normalized());
   const Eigen::Matrix3d j = inertia_about(lb.central_inertia, lb.centre, pa);
-  if (kappa * kappa * (chosen.energy_after - rotation_energy(j, w_edge)) <
-      capture_energy(hv(hull_index[chosen.first]))) {
+  const int other = 1 - chosen.first;  // the end the law lets go (the pivot sticks: it turns about it)
+  const double leaves = chosen.omega.cross(set.point[other] - set.point[chosen.first]).z();
+  const bool grazing = leaves * leaves < 2.0 * kGravity * floor_tol_;
+  if (grazing || kappa * kappa * (chosen.energy_after - rotation_energy(j, w_edge)) <
+                     capture_energy(hv(hull_index[chosen.first]))) {
     chosen.mode = LandingMode::Edge;
     chosen.first = a;
     chosen.second = 1 - a;

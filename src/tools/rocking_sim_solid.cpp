@@ -184,6 +184,7 @@ json solid_json(const rm::Rocking3DModel& model, rm::SolidChoice choice, bool de
               {"pedestal_beyond_base", r3.pedestal_beyond_base},
               {"vertex_refits", r3.vertex_refits},
               {"forced_overturns", r3.forced_overturns},
+              {"forced_rests", model.outcome().forced_rest_captures},
               {"support_margin_m", nullable(model.support_margin())},
               {"transitions_total", r3.transitions},
               {"transitions", transitions_json(model)},
@@ -236,6 +237,9 @@ void solid_support_and_hull_lines(const rm::Rocking3DModel& model, std::vector<s
   if (r3.forced_overturns > 0)
     L.push_back(format("events      the bound on events per sample reached beyond the tipping point: overturned there (%ld)",
                        r3.forced_overturns));
+  if (model.outcome().forced_rest_captures > 0)
+    L.push_back(format("events      the bound on events per sample reached below the tipping point: put down flat there (%ld)",
+                       model.outcome().forced_rest_captures));
   if (model.body().contact_hull().from_hull)
     L.push_back(format("hull        %zu faces, %zu vertices; %ld landings onto another face, %ld rests off the base; "
                        "ends on %s", model.body().contact_hull().faces.size(), model.body().contact_hull().vertices.size(),
