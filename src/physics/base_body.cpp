@@ -85,6 +85,11 @@ std::string validate_body(const BaseBodyParameters& p, bool must_stand) {
   if (!(p.restitution_factor >= 0.0 && p.restitution_factor <= 1.0))
     return fail("restitution_factor", "must lie in [0, 1]");
   if (!(p.overturn_angle > 0.0 && p.overturn_angle <= kPi)) return fail("overturn_angle", "must lie in (0, pi] rad");
+  // On its pedestal a scanned body's other faces cannot land up to 90 degrees of tilt (the hull above
+  // the base's plane, the pedestal below it): beyond, they could come down on the pedestal's top.
+  if (!p.hull.empty() && !p.support.empty() && p.overturn_angle > 0.5 * kPi)
+    return fail("overturn_angle", "with a hull on a support, must be at most pi/2 rad (beyond, the hull's other "
+                                  "faces could land on the pedestal's top: not modelled)");
   if (p.hull.size() > static_cast<std::size_t>(kMaxBaseVertices))
     return fail("hull", "at most " + std::to_string(kMaxBaseVertices) + " points, found " +
                             std::to_string(p.hull.size()) + " (simplify the hull)");
@@ -237,6 +242,9 @@ BaseBody::BaseBody(const BaseBodyParameters& parameters, bool must_stand) : para
     // The hull's own checks (its base a face of it, the centre of mass inside), as without the support.
     BaseBodyParameters whole = parameters;
     whole.support.clear();
+    // (not the overturn angle: it is the pedestal's edges that tip the body, at smaller angles than
+    // the whole base's edges, which the body never rocks on)
+    whole.overturn_angle = kPi;
     const BaseBody check(whole);
   }
   if (must_stand) build_contact_hull();

@@ -429,6 +429,19 @@ TEST(Rocking3DSupport, BadSupportsAreRefusedNamingTheItemAndField) {
   EXPECT_NE(err.find("support: with a hull, the support must lie within base_polygon"), std::string::npos) << err;
   scanned["support"] = nlohmann::json::parse("[[0.05, 0.02], [0.15, 0.02], [0.15, 0.08], [0.05, 0.08]]");
   EXPECT_EQ(support_error(scanned), "");
+  // The overturn angle is the pedestal's matter: 0.25 rad exceeds its edges' tipping angles (atan(0.03 /
+  // 0.3) and atan(0.05 / 0.3)), not the whole base's (atan(0.1 / 0.3) = 0.32), which the body never
+  // rocks on (it was refused). Beyond 90 degrees its other faces could land on the pedestal's top.
+  // (The planar pair, the screening planes, tips at atan(width / 2 / cg_height): here the pedestal's.)
+  scanned["width"] = 0.1;
+  scanned["overturn_angle"] = 0.25;
+  EXPECT_EQ(support_error(scanned), "");
+  scanned["overturn_angle"] = 0.15;
+  EXPECT_NE(support_error(scanned).find("must exceed the tipping angle"), std::string::npos) << support_error(scanned);
+  scanned["overturn_angle"] = 2.0;
+  err = support_error(scanned);
+  EXPECT_NE(err.find("statue"), std::string::npos) << err;
+  EXPECT_NE(err.find("overturn_angle: with a hull on a support, must be at most pi/2"), std::string::npos) << err;
   nlohmann::json planar = item();
   for (const char* k : {"mass", "centre_of_mass", "central_inertia", "base_polygon"}) planar.erase(k);
   EXPECT_NE(support_error(planar).find("needs the 3-D description"), std::string::npos);
