@@ -154,8 +154,12 @@ double Rocking3DModel::touchdown_in_step(const Rot& rot, const Vec7& y0, const E
       const double zb = up[k].dot(offset);
       const bool armed = armed_[i] || za > eps;
       // An unarmed vertex that sinks clearly below the floor is a touchdown too (the pivot
-      // turned the wrong way for the vertex it left): resolved as an impact.
-      if ((armed && zb <= 0.0 && za > 0.0) || zb < -sink) {
+      // turned the wrong way for the vertex it left): resolved as an impact. One below the floor
+      // that rises is not: the pivot just left, a few nm below by the located landing's pose, or
+      // a point a cut made below the floor (on a support, where the body turned within the step).
+      // Taken for a touchdown it landed without an impulse, again and again, until the events
+      // bound put the body down flat.
+      if ((armed && zb <= 0.0 && za > 0.0) || (zb < -sink && zb < za)) {
         auto z_at = [&](double t) { return height(rot(t), i); };
         // (its rise rate: the dense output's angular velocity at the vertex)
         auto rate = [&](double t) {
@@ -268,7 +272,9 @@ double Rocking3DModel::crossing_touchdown(const Rot& rot, const Eigen::Matrix3d&
 
 // On a support, pivoting on a corner: the touchdown searched again with the contact cut where the body
 // is when a corner of the support meets its base (that corner is then the cut's, and lands there), or
-// where it is at the touchdown or the step's end (the cut kept where the body has turned to).
+// where it is at the touchdown or the step's end (the cut kept where the body has turned to). Each cut
+// moves the touchdown a little: up to four, each where the last one's touchdown is (with two, a
+// corner landed up to 19 um off the pedestal's corner).
 template <class Rot>
 Rocking3DModel::Event Rocking3DModel::refit_in_step(const Rot& rot, const Vec7& y0, const Vec7& y1, double t0,
                                                     double t1, double t_tol, Event event, int& touching,
@@ -276,7 +282,7 @@ Rocking3DModel::Event Rocking3DModel::refit_in_step(const Rot& rot, const Vec7& 
   if (body_.parameters().support.empty() || face_ != 0) return event;
   const double t_end = event == Event::None ? t1 : t_event;
   const double t_corner = support_touchdown(rot, t0, t_end, t_tol);
-  for (int pass = 0; pass < 2; ++pass) {
+  for (int pass = 0; pass < 4; ++pass) {
     const double t_fit = pass == 0 && std::isfinite(t_corner) ? t_corner : event == Event::Impact ? t_event : t1;
     if (!refit_on_vertex(rot(t_fit), y0)) break;
     event = vertex_event_in_step(rot, y0, y1, t0, t1, t_tol, touching, t_event, up_end);
