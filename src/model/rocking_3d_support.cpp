@@ -121,9 +121,9 @@ bool Rocking3DModel::refit_on_vertex(const Vec7& y, const Vec7& arm) {
 // Pivoting on a corner in pose r (vertex rotation): how far the support's edges reach into the body
 // through its base where they cross the base's outline (item frame height of those points, m; -inf
 // where no edge crosses it). Such a point is neither the support's corner nor the base's: as the body
-// turns it slides along the base's edge, so no body point of the cut follows it (a cabinet tipping
-// over its plinth's edge with a twist: the far end of that edge went 1 mm into the base unseen, and
-// each cut made again put it deeper). The pivot's own crossing stays at 0 and is skipped.
+// turns it slides along the base's edge, so no body point of the cut follows it (a round foot on a
+// square pedestal: where the pedestal's edge leaves the foot, 0.15 mm from the pedestal's corner, it
+// went 16 um into the base unseen). The pivot's own crossing stays at 0 and is skipped.
 double Rocking3DModel::support_crossing_depth(const Eigen::Matrix3d& r) const {
   const std::vector<Eigen::Vector2d>& support = body_.parameters().support;
   const std::vector<Eigen::Vector2d>& base = body_.whole_base();
