@@ -486,5 +486,25 @@ TEST(RockingSim3D, AnObliqueCatalogueItemRunsIn3DAndErrorsAreClear) {
   EXPECT_NE(no_model.out.find("rocking_sim: error: --history-3d needs the 3-D model"), std::string::npos) << no_model.out;
 }
 
+// The docs' urn on its 9 cm pedestal (docs/supports/urn_on_pedestal.yaml, the tool's output) under two
+// of the station pairs where the events bound put it down flat at 50e71fa (rocking_sim's forced_rests,
+// 1 each): El Centro #6 (a vertex below the floor that rose, taken for a touchdown at each landing) and
+// UCLA Grounds, one component along the diagonal (a hop whose top lay before the search's first probe).
+TEST(RockingSim3D, TheUrnOnItsPedestalNeverReachesTheEventsBound) {
+  const std::string e06 = kRecords.string() + "/imperial_valley_1979/RSN181_IMPVALL.H_H-E06";
+  const std::string ucla = kRecords.string() + "/northridge_1994/s05.bbp";
+  if (!fs::exists(e06 + "140.AT2") || !fs::exists(ucla)) GTEST_SKIP() << "records absent";
+  const std::string urn = "--catalogue " + std::string(ROCKING_SOURCE_DIR) +
+                          "/docs/supports/urn_on_pedestal.yaml --item lobby_urn --solid-model 3d";
+  for (const std::string& pair : {"--record " + e06 + "140.AT2 --record-y " + e06 + "230.AT2",
+                                  "--record " + ucla + " --record-y " + ucla}) {
+    const auto j = sim_json(urn + " " + pair);
+    ASSERT_TRUE(j.contains("solid")) << j.dump();
+    EXPECT_EQ(j["solid"]["forced_rests"], 0) << pair;
+    EXPECT_EQ(j["solid"]["forced_overturns"], 0) << pair;
+    EXPECT_TRUE(j["solid"]["fell_off_support"].get<bool>()) << pair;  // each falls off its pedestal
+  }
+}
+
 }  // namespace
 }  // namespace rocking_monitor::core
