@@ -118,41 +118,6 @@ bool Rocking3DModel::refit_on_vertex(const Vec7& y, const Vec7& arm) {
   return true;
 }
 
-// Pivoting on a corner in pose r (vertex rotation): how far the support's edges reach into the body
-// through its base where they cross the base's outline (item frame height of those points, m; -inf
-// where no edge crosses it). Such a point is neither the support's corner nor the base's: as the body
-// turns it slides along the base's edge, so no body point of the cut follows it (a round foot on a
-// square pedestal: where the pedestal's edge leaves the foot, 0.15 mm from the pedestal's corner, it
-// went 16 um into the base unseen). The pivot's own crossing stays at 0 and is skipped.
-double Rocking3DModel::support_crossing_depth(const Eigen::Matrix3d& r) const {
-  const std::vector<Eigen::Vector2d>& support = body_.parameters().support;
-  const std::vector<Eigen::Vector2d>& base = body_.whole_base();
-  const Eigen::Vector3d pivot = hv(contact_).position;
-  const double near = 1e3 * floor_tol_;  // (the pivot's crossing, to the cut's rounding)
-  auto seen = [&](const Eigen::Vector2d& s) {  // a support point in the item frame
-    return Eigen::Vector3d(r.transpose() * (Eigen::Vector3d(s.x(), s.y(), 0.0) - pivot_world_) + pivot);
-  };
-  double deepest = -std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < support.size(); ++k) {
-    const Eigen::Vector3d a = seen(support[k]), b = seen(support[(k + 1) % support.size()]);
-    double lo = 0.0, hi = 1.0;  // the part of the edge over the base (Cyrus-Beck against a convex polygon)
-    for (std::size_t j = 0; j < base.size() && lo < hi; ++j) {
-      const Eigen::Vector2d o = outward(base[j], base[(j + 1) % base.size()]);
-      const double fa = (a.head<2>() - base[j]).dot(o), fb = (b.head<2>() - base[j]).dot(o);
-      if (fa > 0.0 && fb > 0.0) lo = hi;
-      else if (fa > 0.0) lo = std::max(lo, fa / (fa - fb));
-      else if (fb > 0.0) hi = std::min(hi, fa / (fa - fb));
-    }
-    if (!(lo < hi)) continue;
-    for (double l : {lo, hi}) {
-      if (l == 0.0 || l == 1.0) continue;  // a support corner (support_touchdown's own)
-      const Eigen::Vector3d x = a + l * (b - a);
-      if ((x.head<2>() - pivot.head<2>()).norm() > near) deepest = std::max(deepest, x.z());
-    }
-  }
-  return deepest;
-}
-
 // Sliding on a support: the uplift (eq. 19 about a line, as slide_lift's about an edge) about the
 // lines of the whole base (`over` false), fixed in the item frame, or about the support's edges
 // (`over` true), which move with the slide. While it slides the item tips only about its own base's

@@ -247,27 +247,7 @@ double Rocking3DModel::support_touchdown(const Rot& rot, double t0, double t1, d
       da = db;
     }
   }
-  return std::min(t_first, crossing_touchdown(rot, r1, t0, t1, t_tol));
-}
-
-// On a support, pivoting on a corner: the first instant in [t0, t1] at which a support's edge, where it
-// crosses the base's outline, meets the base's plane (support_crossing_depth), probed as
-// support_touchdown probes; +inf if none (and where no edge reaches into the base at t1).
-template <class Rot>
-double Rocking3DModel::crossing_touchdown(const Rot& rot, const Eigen::Matrix3d& r1, double t0, double t1,
-                                          double t_tol) const {
-  if (!(support_crossing_depth(r1) > 0.0)) return std::numeric_limits<double>::infinity();
-  auto depth = [&](double t) { return support_crossing_depth(vertex_rotation(rot(t))); };
-  double ta = t0, da = depth(t0);
-  if (da > floor_tol_) return std::numeric_limits<double>::infinity();  // (inside already: nothing to locate)
-  for (int k = 1; k <= kVertexProbes; ++k) {
-    const double tb = k == kVertexProbes ? t1 : t0 + (t1 - t0) * k / kVertexProbes;
-    const double db = depth(tb);
-    if (db > 0.0 && da <= 0.0) return bracketed_root(depth, ta, tb, da, db, t_tol);
-    ta = tb;
-    da = db;
-  }
-  return std::numeric_limits<double>::infinity();
+  return t_first;
 }
 
 // On a support, pivoting on a corner: the touchdown searched again with the contact cut where the body

@@ -405,9 +405,6 @@ class Rocking3DModel {
                              int& touching, double& t_event, Eigen::Vector3d& up_end) const;
   template <class Rot>
   double support_touchdown(const Rot& rot, double t0, double t1, double t_tol) const;
-  double support_crossing_depth(const Eigen::Matrix3d& r) const;
-  template <class Rot>
-  double crossing_touchdown(const Rot& rot, const Eigen::Matrix3d& r1, double t0, double t1, double t_tol) const;
   template <class Rot>
   Event refit_in_step(const Rot& rot, const Vec7& y0, const Vec7& y1, double t0, double t1, double t_tol,
                       Event event, int& touching, double& t_event, Eigen::Vector3d& up_end);
