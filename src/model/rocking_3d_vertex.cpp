@@ -108,7 +108,7 @@ namespace {
 // scanned, and located on the rise rate where it lies before the scan's first point. Below the
 // floor all along, the touchdown is at the top (where it turns down), or at ta where it never rose.
 // (Put at ta while the vertex still rose, the law gave it no impulse and it landed again at that
-// instant, until the events bound put the body down flat: 4 of 315 urn-on-pedestal runs.)
+// instant, until the events bound put the body down flat: the urn on its pedestal at UCLA Grounds.)
 template <class Z, class Rate>
 double hop_touchdown(const Z& z_at, const Rate& rate, double t0, double ta, double tb, double z0, double zb,
                      double t_tol) {
