@@ -124,10 +124,12 @@ double hop_touchdown(const Z& z_at, const Rate& rate, double t0, double ta, doub
   }
   if (t_top == t0) {
     const double t_scan = t0 + (tb - t0) / kScan, r0 = rate(t0), r1 = rate(t_scan);
-    if (!(r0 > 0.0 && r1 < 0.0)) return z_top > 0.0 ? bracketed_root(z_at, t_top, tb, z_top, zb, t_tol) : ta;
-    t_top = bracketed_root(rate, t0, t_scan, r0, r1, t_tol);
-    z_top = z_at(t_top);
-    if (!(z_top > 0.0)) return t_top;
+    if (r0 > 0.0 && r1 < 0.0) {
+      t_top = bracketed_root(rate, t0, t_scan, r0, r1, t_tol);
+      z_top = z_at(t_top);
+    } else if (!(z_top > 0.0)) {
+      return ta;  // it never rose
+    }
   }
   return z_top > 0.0 ? bracketed_root(z_at, t_top, tb, z_top, zb, t_tol) : t_top;
 }
@@ -262,7 +264,8 @@ Rocking3DModel::Event Rocking3DModel::refit_in_step(const Rot& rot, const Vec7& 
   if (body_.parameters().support.empty() || face_ != 0) return event;
   const double t_end = event == Event::None ? t1 : t_event;
   const double t_corner = support_touchdown(rot, t0, t_end, t_tol);
-  for (int pass = 0; pass < 4; ++pass) {
+  constexpr int kCutsPerStep = 4;
+  for (int pass = 0; pass < kCutsPerStep; ++pass) {
     const double t_fit = pass == 0 && std::isfinite(t_corner) ? t_corner : event == Event::Impact ? t_event : t1;
     if (!refit_on_vertex(rot(t_fit), y0)) break;
     event = vertex_event_in_step(rot, y0, y1, t0, t1, t_tol, touching, t_event, up_end);

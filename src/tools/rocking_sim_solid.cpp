@@ -184,7 +184,7 @@ json solid_json(const rm::Rocking3DModel& model, rm::SolidChoice choice, bool de
               {"pedestal_beyond_base", r3.pedestal_beyond_base},
               {"vertex_refits", r3.vertex_refits},
               {"forced_overturns", r3.forced_overturns},
-              {"forced_rests", model.outcome().forced_rest_captures},
+              {"forced_rests", r.forced_rest_captures},
               {"support_margin_m", nullable(model.support_margin())},
               {"transitions_total", r3.transitions},
               {"transitions", transitions_json(model)},
