@@ -62,6 +62,11 @@ void Rocking3DModel::slide_after_landing(const Eigen::Matrix3d& rotation, int ve
   ++outcome3_.landing_slides;
   landing_reason_ = Transition3D::LandingSlides;
   if (std::isnan(outcome3_.first_slip_time)) outcome3_.first_slip_time = t_ + tau;
+  lip_held_ = -1;
+  if (!body_.parameters().support_lips.empty()) {  // (it slides on against a lip it moves into)
+    const int k = lip_touched(u);
+    if (k >= 0) hold_on_lip(k);
+  }
 }
 
 // Friction decides the landing (issue 51 part 3) where the sticking law needs more than mu_s or has

@@ -102,6 +102,7 @@ void Rocking3DModel::reset(double t, const Eigen::Vector3d& a) {
   pivot_slipping_ = false;
   ys_.setZero();
   slide_.setZero();
+  lip_held_ = -1;
   transition_count_ = 0;
   pivot_outside_cone_ = false;
 }
@@ -134,11 +135,16 @@ void Rocking3DModel::save(Saved& out) const {
   out.slip_state = ys_;
   out.slip_direction = slip_dir_;
   slip_stepper_.save(out.slip_stepper);
+  out.lip_held = lip_held_;
 }
 
 void Rocking3DModel::restore(const Saved& in) {
   if (in.face < 0 || in.face >= static_cast<int>(hull().faces.size()))
     throw std::invalid_argument("Rocking3DModel::restore: face " + std::to_string(in.face) + " is not a face of this body's hull");
+  const std::vector<int>& lips = body_.parameters().support_lips;
+  if (in.lip_held != -1 && (in.mode != Mode3D::Slide || std::find(lips.begin(), lips.end(), in.lip_held) == lips.end()))
+    throw std::invalid_argument("Rocking3DModel::restore: lip_held " + std::to_string(in.lip_held) +
+                                " is not a lip of this body's support holding a slide");
   fit_contact(in.fit_shift, in.fit_yaw, false);  // the contact the state was in (a support's cut follows it)
   mode_ = in.mode;
   contact_ = in.contact;
@@ -165,6 +171,7 @@ void Rocking3DModel::restore(const Saved& in) {
   ys_ = in.slip_state;
   slip_dir_ = in.slip_direction;
   slip_stepper_.restore(in.slip_stepper);
+  lip_held_ = in.lip_held;
 }
 
 Eigen::Matrix3d Rocking3DModel::yaw_matrix() const { return rot_z(yaw_); }
@@ -237,6 +244,8 @@ void Rocking3DModel::go_to_rest() {
   vector_.invalidate();
   slide_stepper_.invalidate();
   pivot_slipping_ = false;
+  lip_held_ = -1;
+  if (!body_.parameters().support_lips.empty()) note_lip_overhang();
 }
 
 void Rocking3DModel::set_edge_state(int edge, double theta, double omega) {
@@ -332,6 +341,7 @@ const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
         tau = slip;
         start_slide(tau);
         note_transition(Mode3D::Rest, Transition3D::SlipOnset, tau);
+        hold_if_pressed(-in.at(tau).head<2>(), tau);  // (begun against a lip that it presses)
       } else {
         tau = lift;
         start_motion(in, tau);

@@ -50,17 +50,24 @@ double Rocking3DModel::find_slip(const GroundInput3& in, double tau, double tau_
   const double mu = body_.parameters().mu_s;
   const double inf = std::numeric_limits<double>::infinity();
   if (!std::isfinite(mu) || slide_lifts_ > 0) return inf;
-  const double f0 = cone_excess(in.at(tau), mu);
+  auto f = [&](double t) { return static_excess(in.at(t), mu); };
+  const double f0 = f(tau);
   if (f0 > 0.0) return tau;
-  const double f1 = cone_excess(in.at(tau_end), mu);
+  const double f1 = f(tau_end);
   if (!(f1 > 0.0)) return inf;  // convex, <= 0 at both ends: inside all through the sample
-  auto f = [&](double t) { return cone_excess(in.at(t), mu); };
   return bracketed_root(f, tau, tau_end, f0, f1, 1e-15 * std::max(tau_end, 1e-9), 200);
+}
+
+// cone_excess with the lips the base lies against taking their part of the demand (lip_demand).
+double Rocking3DModel::static_excess(const Eigen::Vector3d& a, double mu) const {
+  if (body_.parameters().support_lips.empty()) return cone_excess(a, mu);
+  return lip_demand(a).norm() - mu * (kGravity + a.z());
 }
 
 void Rocking3DModel::start_slide(double tau) {
   mode_ = Mode3D::Slide;
   contact_ = -1;
+  lip_held_ = -1;
   slide_ << 0.0, 0.0, 0.0, shift_.x(), shift_.y(), yaw_;
   slide_stepper_.reset(sample_dt_);  // (a step size left from an event's bracket would start it crawling)
   ++outcome3_.slides;
@@ -100,7 +107,7 @@ Eigen::Vector2d Rocking3DModel::slide_friction(const GroundInput3& in, double t,
   if (spin == 0.0) {
     const double speed = u.norm();
     if (speed > 0.0) return -cap * u / speed;  // at the centre of pressure: no torque (see the docs)
-    return ground_following_friction(a.head<2>(), cap);
+    return ground_following_friction(lip_held_ >= 0 ? lip_demand(a) : Eigen::Vector2d(a.head<2>()), cap);
   }
   // Turning: the centre of pressure d (from the centre of mass, footprint frame) solves the moment
   // equations about the centre of mass (friction acts at the floor, h below it; the turning body's
@@ -149,6 +156,11 @@ void Rocking3DModel::slide_rhs(const GroundInput3& in, double t, const Vec6& y, 
   if (spin == 0.0) dy.segment<2>(3) = y.head<2>();
   else dy.segment<2>(3) = y.head<2>() - spin * perp2(rot2(y(5)) * fb().centre_of_mass().head<2>());
   dy(5) = spin;
+  if (lip_held_ >= 0) {  // the lip takes the motion into it and the turning (lip_push >= 0 while held)
+    const Eigen::Vector2d n = lip_normal(lip_held_);
+    dy.head<2>() -= dy.head<2>().dot(n) * n;
+    dy(2) = 0.0;
+  }
 }
 
 // The friction the uplift test sees. The stepper resolves the slip velocity to the floor of
@@ -160,10 +172,18 @@ void Rocking3DModel::slide_rhs(const GroundInput3& in, double t, const Vec6& y, 
 Eigen::Vector2d Rocking3DModel::lift_friction(const GroundInput3& in, double t, const Vec6& y) const {
   double torque;
   constexpr double kResolvedFloors = 100.0;
-  if (y(2) != 0.0 || y.head<2>().norm() > kResolvedFloors * kSlipFloorPerTol * settings_.tol)
-    return slide_friction(in, t, y, torque);
   const Eigen::Vector3d a = in.at(t);
-  return ground_following_friction(a.head<2>(), mu_k() * std::max(kGravity + a.z(), 0.0));
+  Eigen::Vector2d f;
+  if (y(2) != 0.0 || y.head<2>().norm() > kResolvedFloors * kSlipFloorPerTol * settings_.tol)
+    f = slide_friction(in, t, y, torque);
+  else
+    f = ground_following_friction(lip_held_ >= 0 ? lip_demand(a) : Eigen::Vector2d(a.head<2>()),
+                                  mu_k() * std::max(kGravity + a.z(), 0.0));
+  if (lip_held_ < 0) return f;
+  // Held by a lip: its push acts at the floor as the friction does (the body's own acceleration
+  // into the lip is the ground's).
+  const Eigen::Vector2d n = lip_normal(lip_held_);
+  return f - std::max((f - a.head<2>()).dot(n), 0.0) * n;
 }
 
 // > 0 when an edge lifts: the uplift test with the body's own acceleration (the friction) in place
@@ -195,6 +215,7 @@ void Rocking3DModel::note_slide() {
   outcome3_.max_slip = std::max(outcome3_.max_slip, slip().norm());
   outcome3_.max_slip_speed = std::max(outcome3_.max_slip_speed, slide_.head<2>().norm());
   outcome3_.max_twist = std::max(outcome3_.max_twist, std::abs(yaw_));
+  if (!body_.parameters().support_lips.empty()) note_lip_overhang();
 }
 
 // The slide ends on an edge: the body pivots on it, the pivot sticking (issue 40's plastic impact
@@ -219,6 +240,7 @@ void Rocking3DModel::slide_to_edge(const GroundInput3& in, double tau) {
   mode_ = Mode3D::Edge;
   contact_ = best;
   theta_ = 0.0;
+  lip_held_ = -1;
   omega_ = std::max(0.0, e.axis.dot(h) / e.pivot.inertia);
   dopri5_.invalidate();
   ++outcome3_.slide_to_rock;
@@ -252,7 +274,8 @@ void Rocking3DModel::aim_slide_ref(const GroundInput3& in, double tau, double rh
   slide_ref_ = Eigen::Vector3d(slide_(0), slide_(1), rho * slide_(2));
   if (slide_ref_.squaredNorm() > 0.0) return;
   const Eigen::Vector3d a = in.at(tau);
-  slide_ref_ = Eigen::Vector3d(-a.x(), -a.y(), 0.0);
+  const Eigen::Vector2d d = lip_held_ >= 0 ? lip_demand(a) : Eigen::Vector2d(a.head<2>());
+  slide_ref_ = Eigen::Vector3d(-d.x(), -d.y(), 0.0);
   slide_stepper_.invalidate();
 }
 
@@ -283,78 +306,126 @@ Rocking3DModel::Event Rocking3DModel::advance_slide(const GroundInput3& in, doub
   auto f = [&](double t, const Vec6& y, Vec6& dy) { slide_rhs(in, t, y, dy); };
   const double rho = std::sqrt(fb().central_inertia_per_mass()(2, 2));
   const Vec6 atol = slide_atol();
-  const bool supported = !body_.parameters().support.empty();
-  const double t_tol = 1e-13 * std::max(sample_dt_, 1e-6);
   int restarts = 0;
   while (tau < tau_end) {
     if (slide_lift(in, tau, slide_) > 0.0) return Event::Lift;
+    if (lip_held_ >= 0 && lip_push(in, tau, slide_) < 0.0) {  // (the demand already turned away)
+      lip_held_ = -1;
+      note_transition(Mode3D::Slide, Transition3D::LeavesLip, tau);
+    }
     aim_slide_ref(in, tau, rho);
-    const Eigen::Vector3d ref = slide_ref_;
+    if (!body_.parameters().support_lips.empty()) note_lip_floors();
     const double t_start = tau;
     report_.integrator_steps += slide_stepper_.step(f, tau, slide_, tau_end, settings_.tol, atol);
-    const double t0 = slide_stepper_.t0(), t1 = slide_stepper_.t1();
-    // Event functions: the stop (along <= 0), an edge lifting (> 0), the support's edge (margin <= 0).
-    auto along = [&](const Vec6& y) { return ref.dot(Eigen::Vector3d(y(0), y(1), rho * y(2))); };
-    auto lift = [&](const Vec6& y, double t) { return slide_lift(in, t, y); };
-    auto margin = [&](const Vec6& y) { return supported ? support_margin_of(y) : 1.0; };
-    auto over = [&](const Vec6& y, double t, double m) {  // > 0: braking would tip it over the support's edge
-      return supported ? support_lift(in, t, y, true, m) : -1.0;
-    };
-    constexpr int kProbes = 4;
-    double t_prev = t0, s_prev = 1.0, l_prev = lift(slide_, t0), m_prev = margin(slide_), o_prev = over(slide_, t0, m_prev);
-    for (int k = 1; k <= kProbes; ++k) {
-      const double tk = k == kProbes ? t1 : t0 + (t1 - t0) * k / kProbes;
-      const Vec6 yk = k == kProbes ? Vec6(slide_stepper_.y1()) : Vec6(slide_stepper_.eval(tk));
-      const double s = along(yk), l = lift(yk, tk), mk = margin(yk), ok = over(yk, tk, mk);
-      auto root = [&](auto g, double ga, double gb) {
-        return bracketed_root([&](double t) { return g(Vec6(slide_stepper_.eval(t)), t); }, t_prev, tk, ga, gb, t_tol);
-      };
-      const double t_over = ok > 0.0 && !(o_prev > 0.0) ? root([&](const Vec6& y, double t) { return over(y, t, margin(y)); }, o_prev, ok) : std::numeric_limits<double>::infinity();
-      auto over_before = [&](double t_end) { note_over_support_edge(t_over, t_end); };
-      auto along_t = [&](const Vec6& y, double) { return along(y); };
-      if (mk <= 0.0 && m_prev > 0.0) {
-        // Falling off the support comes first when it is in this interval (a stop or lift after it
-        // would be located on a body no longer on the support).
-        const double tf = root([&](const Vec6& y, double) { return margin(y); }, m_prev, mk);
-        const double ts = s <= 0.0 ? root(along_t, s_prev, s) : tk;
-        if (!(ts < tf)) {
-          over_before(tf);
-          fall_off_support(tau = tf, t_start);
-          return Event::Overturn;
-        }
-      }
-      const bool stops = s <= 0.0 && restarts < kMaxSlideRestarts, lifts = l > 0.0 && !(l_prev > 0.0);
-      if (stops || lifts) {
-        const double ts = stops ? root(along_t, s_prev, s) : tk;
-        const double tl = lifts ? root(lift, l_prev, l) : tk;
-        const bool stick_first = stops && (!lifts || ts <= tl);
-        tau = stick_first ? ts : tl;
-        over_before(tau);
-        slide_to_event(tau, t_start);
-        if (!stick_first) return Event::Lift;
-        slide_(0) = slide_(1) = slide_(2) = 0.0;
-        note_slide();
-        // Zero slip: the static law decides; where it cannot hold the body slips on (reversing).
-        if (!(cone_excess(in.at(tau), body_.parameters().mu_s) > 0.0)) return Event::Stick;
-        ++restarts;
-        slide_stepper_.reset(sample_dt_);
-        break;
-      }
-      over_before(tk);
-      t_prev = tk;
-      s_prev = s;
-      l_prev = l;
-      m_prev = mk;
-      o_prev = ok;
-      if (k == kProbes) {
-        slide_ = slide_stepper_.y1();
-        outcome3_.slip_time += t1 - t_start;
-        tau = t1;
-        note_slide();
-      }
-    }
+    Event e = Event::None;
+    if (slide_step_events(in, tau, t_start, rho, restarts, e)) return e;
   }
   return Event::None;
+}
+
+// The events of the slide step just taken from t_start, located on its dense output: true when the
+// slide ends there (`e`, tau its instant), false to step on from tau (the step's end, or a stop the
+// slip reverses through, or the lip letting go).
+bool Rocking3DModel::slide_step_events(const GroundInput3& in, double& tau, double t_start, double rho, int& restarts,
+                                       Event& e) {
+  const bool supported = !body_.parameters().support.empty(), lips = !body_.parameters().support_lips.empty();
+  const double t_tol = 1e-13 * std::max(sample_dt_, 1e-6);
+  const Eigen::Vector3d ref = slide_ref_;
+  const double t0 = slide_stepper_.t0(), t1 = slide_stepper_.t1();
+  // Event functions: the stop (along <= 0), an edge lifting (> 0), the support's edge (margin <= 0),
+  // a lip met (a base corner a tolerance beyond its line: <= 0), the holding lip letting go (< 0).
+  auto along = [&](const Vec6& y) { return ref.dot(Eigen::Vector3d(y(0), y(1), rho * y(2))); };
+  auto lift = [&](const Vec6& y, double t) { return slide_lift(in, t, y); };
+  auto margin = [&](const Vec6& y) { return supported ? support_margin_of(y) : 1.0; };
+  auto over = [&](const Vec6& y, double t, double m) {  // > 0: braking would tip it over the support's edge
+    return supported ? support_lift(in, t, y, true, m) : -1.0;
+  };
+  auto gap = [&](const Vec6& y) { int lip; return lips ? lip_gap(y, lip) + floor_tol_ : 1.0; };
+  auto push = [&](const Vec6& y, double t) { return lip_held_ >= 0 ? lip_push(in, t, y) : 1.0; };
+  constexpr int kProbes = 4;
+  double t_prev = t0, s_prev = 1.0, l_prev = lift(slide_, t0), m_prev = margin(slide_), o_prev = over(slide_, t0, m_prev);
+  double g_prev = gap(slide_), p_prev = push(slide_, t0);
+  for (int k = 1; k <= kProbes; ++k) {
+    const double tk = k == kProbes ? t1 : t0 + (t1 - t0) * k / kProbes;
+    const Vec6 yk = k == kProbes ? Vec6(slide_stepper_.y1()) : Vec6(slide_stepper_.eval(tk));
+    const double s = along(yk), l = lift(yk, tk), mk = margin(yk), ok = over(yk, tk, mk);
+    const double gk = gap(yk), pk = push(yk, tk);
+    auto root = [&](auto g, double ga, double gb) {
+      return bracketed_root([&](double t) { return g(Vec6(slide_stepper_.eval(t)), t); }, t_prev, tk, ga, gb, t_tol);
+    };
+    const double inf = std::numeric_limits<double>::infinity();
+    const double t_over = ok > 0.0 && !(o_prev > 0.0) ? root([&](const Vec6& y, double t) { return over(y, t, margin(y)); }, o_prev, ok) : inf;
+    auto over_before = [&](double t_end) { note_over_support_edge(t_over, t_end); };
+    auto along_t = [&](const Vec6& y, double) { return along(y); };
+    if (mk <= 0.0 && m_prev > 0.0) {
+      // Falling off the support comes first when it is in this interval (a stop or lift after it
+      // would be located on a body no longer on the support).
+      const double tf = root([&](const Vec6& y, double) { return margin(y); }, m_prev, mk);
+      const double ts = s <= 0.0 ? root(along_t, s_prev, s) : tk;
+      if (!(ts < tf)) {
+        over_before(tf);
+        fall_off_support(tau = tf, t_start);
+        e = Event::Overturn;
+        return true;
+      }
+    }
+    const bool stops = s <= 0.0 && restarts < kMaxSlideRestarts, lifts = l > 0.0 && !(l_prev > 0.0);
+    const bool meets = gk <= 0.0 && g_prev > 0.0, leaves = pk < 0.0 && !(p_prev < 0.0);
+    if (stops || lifts || meets || leaves) {
+      const double ts = stops ? root(along_t, s_prev, s) : inf;
+      const double tl = lifts ? root(lift, l_prev, l) : inf;
+      const double tm = meets ? root([&](const Vec6& y, double) { return gap(y); }, g_prev, gk) : inf;
+      const double tr = leaves ? root(push, p_prev, pk) : inf;
+      tau = std::min({ts, tl, tm, tr});
+      over_before(tau);
+      slide_to_event(tau, t_start);
+      return slide_event(in, tau, ts, tl, tm, tr, restarts, e);
+    }
+    over_before(tk);
+    t_prev = tk;
+    s_prev = s;
+    l_prev = l;
+    m_prev = mk;
+    o_prev = ok;
+    g_prev = gk;
+    p_prev = pk;
+  }
+  slide_ = slide_stepper_.y1();
+  outcome3_.slip_time += t1 - t_start;
+  tau = t1;
+  note_slide();
+  return false;
+}
+
+// The first of the slide's events at tau (its instants ts: the stop, tl: an edge lifting, tm: a lip
+// met, tr: the lip letting go; a stop first on a tie): as slide_step_events returns.
+bool Rocking3DModel::slide_event(const GroundInput3& in, double tau, double ts, double tl, double tm, double tr,
+                                 int& restarts, Event& e) {
+  if (tau == tl && ts > tl) {
+    e = Event::Lift;
+    return true;
+  }
+  if (tau == tm && ts > tm && tl > tm) {
+    lip_gap(slide_, lip_met_);
+    e = Event::Lip;
+    return true;
+  }
+  if (tau == tr && ts > tr) {
+    lip_held_ = -1;  // the demand turned away from the lip: free again
+    note_transition(Mode3D::Slide, Transition3D::LeavesLip, tau);
+    slide_stepper_.reset(sample_dt_);
+    return false;
+  }
+  slide_(0) = slide_(1) = slide_(2) = 0.0;
+  note_slide();
+  // Zero slip: the static law decides; where it cannot hold the body slips on (reversing).
+  if (!(static_excess(in.at(tau), body_.parameters().mu_s) > 0.0)) {
+    e = Event::Stick;
+    return true;
+  }
+  ++restarts;
+  slide_stepper_.reset(sample_dt_);
+  return false;
 }
 
 }  // namespace rocking_monitor::core

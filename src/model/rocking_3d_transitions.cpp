@@ -21,6 +21,9 @@ const char* to_string(Transition3D r) {
     case Transition3D::ForcedRest: return "forced rest (events per sample bound)";
     case Transition3D::ForcedOverturn: return "overturned at the events per sample bound, beyond its tipping point";
     case Transition3D::FellOffSupport: return "fell off its support";
+    case Transition3D::TripsOverLip: return "tripped over a lip (pivots on the base at the lip)";
+    case Transition3D::HeldByLip: return "held by a lip (slides along it)";
+    case Transition3D::LeavesLip: return "the lip let go (the demand turned away from it)";
     case Transition3D::SlidesOverSupportEdge: return "braking would tip it over the support's edge (slide-rock over the edge; followed as sliding)";
     case Transition3D::PivotSlips: return "the pivot's reaction left the friction cone (slide-rock; followed as sticking)";
     case Transition3D::PivotSticks: return "the slipping pivot stopped and the static law holds";
@@ -35,7 +38,8 @@ void Rocking3DModel::note_transition(Mode3D from, Transition3D reason, double ta
   // A new contact starts inside the cone, except after a landing already counted with a slipping pivot;
   // an end of the edge lifting keeps the other end's slip (the same contact goes on).
   if (reason != Transition3D::PivotSlips && reason != Transition3D::PivotLifts && reason != Transition3D::PivotSticks &&
-      reason != Transition3D::EdgeToVertex && reason != Transition3D::SlidesOverSupportEdge)
+      reason != Transition3D::EdgeToVertex && reason != Transition3D::SlidesOverSupportEdge &&
+      reason != Transition3D::HeldByLip && reason != Transition3D::LeavesLip)
     pivot_outside_cone_ = reason == Transition3D::LandingPivotSlips;
   if (transition_count_ >= kMaxTransitionRecords) return;
   const bool has_contact = mode_ == Mode3D::Edge || mode_ == Mode3D::Vertex;
@@ -83,6 +87,13 @@ void Rocking3DModel::handle_event(Event e, int other, const GroundInput3& in, do
         note_transition(from, Transition3D::EdgeToVertex, tau);
       }
       return;
+    case Event::Lip:
+      switch (meet_lip(lip_met_, tau)) {
+        case 1: note_transition(from, Transition3D::TripsOverLip, tau); return;
+        case 0: note_transition(from, Transition3D::HeldByLip, tau); return;
+        case 2: note_transition(from, Transition3D::Stick, tau); return;
+        default: return;  // beyond the lip's end: nothing met (counted)
+      }
     default:
       land(other, tau);  // EDGE: -1 back flat on the face, -2 the face across comes flat; VERTEX: the vertex
       note_transition(from, landing_reason_, tau);

@@ -121,7 +121,8 @@ void Rocking3DModel::begin_slip(const GroundInput3& in, double tau) {
   const Eigen::Vector2d fh = f.head<2>();
   slip_dir_ = starting_slip_direction(in, tau, fh.norm() > 0.0 ? Eigen::Vector2d(-fh / fh.norm()) : Eigen::Vector2d::UnitX());
   ys_ << y_, pivot_world_.x(), pivot_world_.y(), 0.0, 0.0;
-  if (slip_presses_neighbour(in, tau)) {
+  if (slip_presses_neighbour(in, tau) || point_lip_gap(pivot_world_.head<2>(), slip_dir_) <= 10.0 * floor_tol_) {
+    // (or the slip would carry the pivot over a lip it lies against: the lip holds it)
     // The slip would drive a base point lying on the floor into it (the body turning onto an edge:
     // slide-rock on an edge, not modelled): held, for the rest of the sample, counted.
     ++outcome3_.pivot_slips_not_followed;
@@ -197,6 +198,15 @@ double Rocking3DModel::slip_end(const GroundInput3& in, double t0, double t1, do
     auto fade = [&](double t) { return Eigen::Vector2d(slip_stepper_.eval(t).segment<2>(9)).norm() - stop_speed_; };
     const double s0 = fade(t0), s1 = fade(t1);
     if (s0 > 0.0 && !(s1 > 0.0)) earlier(bracketed_root(fade, t0, t1, s0, s1, t_tol));
+  }
+  if (!body_.parameters().support_lips.empty()) {
+    // The slipping pivot reaching a lip stops there (end_slip: it sticks, or is held, counted).
+    auto gap = [&](double t) {
+      const Vec11 y = slip_stepper_.eval(t);
+      return point_lip_gap(y.segment<2>(7), slip_ref_) + floor_tol_;
+    };
+    const double g0 = gap(t0), g1 = gap(t1);
+    if (g0 > 0.0 && !(g1 > 0.0)) earlier(bracketed_root(gap, t0, t1, g0, g1, t_tol));
   }
   if (!std::isfinite(best)) {
     // Slower than stop_speed_ at the step's end and not speeding up (a slip that never grew, or faded

@@ -145,6 +145,7 @@ void parse_solid(const Entry& e, ItemSpec& s) {
     if (e.has("restitution_factor")) e.fail("restitution_factor", "needs the 3-D description (base_polygon, ...)");
     if (e.has("hull")) e.fail("hull", "needs the 3-D description (base_polygon, ...)");
     if (e.has("support")) e.fail("support", "needs the 3-D description (base_polygon, ...)");
+    if (e.has("support_lips")) e.fail("support_lips", "needs the 3-D description (base_polygon, ...) and a support");
     return;
   }
   for (const char* k : keys)
@@ -182,6 +183,16 @@ void parse_solid(const Entry& e, ItemSpec& s) {
     for (std::size_t k = 0; k < support.size(); ++k) {
       const auto v = numbers(e, support[k], "support", 2, "vertex " + std::to_string(k + 1) + " [x, y] (m)");
       b.support.emplace_back(v[0], v[1]);
+    }
+  }
+  if (e.has("support_lips")) {
+    // The support's edges with a lip, numbered from 1 as its vertices (edge k: vertex k to k + 1).
+    const json& lips = e.member("support_lips");
+    if (!lips.is_array()) e.fail("support_lips", "must be a list of the support's edge numbers (edge k runs from vertex k to k + 1)");
+    for (std::size_t k = 0; k < lips.size(); ++k) {
+      if (!lips[k].is_number_integer())
+        e.fail("support_lips", "entry " + std::to_string(k + 1) + " must be an edge number (an integer from 1)");
+      b.support_lips.push_back(lips[k].get<int>() - 1);
     }
   }
   b.mu_s = s.body.mu_s;
@@ -342,7 +353,7 @@ CatalogueItem parse_item(const json& v, int i, const std::set<std::string>* sens
   e.only({"id", "description", "sensor", "frame", "shape", "width", "depth", "cg_height", "eccentricity",
           "eccentricity_y", "radius_of_gyration", "radius_of_gyration_y", "mu_s", "mu_k", "restitution",
           "restitution_shift", "overturn_angle", "pose", "ensemble_size", "mass", "centre_of_mass",
-          "central_inertia", "base_polygon", "restitution_factor", "hull", "support", "input_gain"});
+          "central_inertia", "base_polygon", "restitution_factor", "hull", "support", "support_lips", "input_gain"});
   CatalogueItem item;
   ItemSpec& s = item.spec;
   UncertainItemSpec& u = item.uncertain;

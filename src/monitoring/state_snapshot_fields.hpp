@@ -403,6 +403,11 @@ void visit(V& v, Rocking3DOutcome& o) {
   v("pedestal_beyond_base", o.pedestal_beyond_base);
   v("vertex_refits", o.vertex_refits);
   v("forced_overturns", o.forced_overturns);
+  v("lip_trips", o.lip_trips);
+  v("lip_holds", o.lip_holds);
+  v("lip_slipping_trips", o.lip_slipping_trips);
+  v("lip_ends_passed", o.lip_ends_passed);
+  v("max_lip_overhang", o.max_lip_overhang);
   v("max_pivot_friction_demand", o.max_pivot_friction_demand);
   v("pivot_slips", o.pivot_slips);
   v("pivot_lifts", o.pivot_lifts);
@@ -435,6 +440,7 @@ void visit(V& v, Rocking3DModel::Saved& s) {
   v.group("outcome_3d", [&] { visit(v, s.outcome_3d); });
   v("pivot_outside_cone", s.pivot_outside_cone);
   v("pivot_slipping", s.pivot_slipping);
+  v("lip_held", s.lip_held);
   visit_matrix(v, "slip_state", s.slip_state);
   visit_matrix(v, "slip_direction", s.slip_direction);
   v.group("slip_stepper", [&] {

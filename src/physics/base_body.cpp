@@ -44,6 +44,28 @@ std::string support_problem(const BaseBodyParameters& p) {
   return {};
 }
 
+// The lips (issue 51): edges of the support, each once, with the base within them (a lip under the
+// base would hold nothing: the base already reaches beyond it).
+std::string lips_problem(const BaseBodyParameters& p) {
+  if (p.support_lips.empty()) return {};
+  if (p.support.empty()) return "needs a support (the lips are along its edges)";
+  const int n = static_cast<int>(p.support.size());
+  std::vector<bool> seen(static_cast<std::size_t>(n), false);
+  for (const int k : p.support_lips) {
+    if (k < 0 || k >= n)
+      return "edge " + std::to_string(k + 1) + " is not an edge of the support (1 to " + std::to_string(n) + ")";
+    if (seen[static_cast<std::size_t>(k)]) return "edge " + std::to_string(k + 1) + " is listed twice";
+    seen[static_cast<std::size_t>(k)] = true;
+    const Eigen::Vector2d& a = p.support[static_cast<std::size_t>(k)];
+    const Eigen::Vector2d d = p.support[static_cast<std::size_t>((k + 1) % n)] - a;
+    for (std::size_t i = 0; i < p.base.size(); ++i)
+      if (cross2(d, p.base[i] - a) < -1e-9 * d.norm() * d.norm())
+        return "edge " + std::to_string(k + 1) + ": base_polygon vertex " + std::to_string(i + 1) +
+               " lies beyond it (the lip would stand under the item)";
+  }
+  return {};
+}
+
 }  // namespace
 
 std::string validate(const BaseBodyParameters& p) { return validate_body(p, true); }
@@ -69,6 +91,7 @@ std::string validate_body(const BaseBodyParameters& p, bool must_stand) {
                                         std::to_string(i + 1) + "): the item cannot stand");
   }
   if (const std::string e = support_problem(p); !e.empty()) return fail("support", e);
+  if (const std::string e = lips_problem(p); !e.empty()) return fail("support_lips", e);
   const Eigen::Matrix3d& I = p.central_inertia;
   if (!I.allFinite()) return fail("central_inertia", "must be finite (kg m^2)");
   const double scale = I.diagonal().cwiseAbs().maxCoeff();

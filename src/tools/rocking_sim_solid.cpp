@@ -181,6 +181,11 @@ json solid_json(const rm::Rocking3DModel& model, rm::SolidChoice choice, bool de
               {"fell_off_support", r3.fell_off_support},
               {"fell_off_time_s", nullable(r3.fell_off_time)},
               {"slides_over_support_edge", r3.slides_over_support_edge},
+              {"lip_trips", r3.lip_trips},
+              {"lip_holds", r3.lip_holds},
+              {"lip_slipping_trips", r3.lip_slipping_trips},
+              {"lip_ends_passed", r3.lip_ends_passed},
+              {"max_lip_overhang_m", r3.max_lip_overhang},
               {"pedestal_beyond_base", r3.pedestal_beyond_base},
               {"vertex_refits", r3.vertex_refits},
               {"forced_overturns", r3.forced_overturns},
@@ -231,6 +236,11 @@ void solid_support_and_hull_lines(const rm::Rocking3DModel& model, std::vector<s
                     : format("support     stayed on its support: the centre of mass %.4f m inside its edge at the end; %ld "
                              "slides braking within mu_k h of its edge (slide-rock over it, followed as sliding)",
                              model.support_margin(), r3.slides_over_support_edge));
+  if (!model.body().parameters().support_lips.empty())
+    L.push_back(format("lips        %ld slides tripped over a lip (%ld of them needing more than mu_s at its foot), %ld held "
+                       "by one (sliding along it); corners over a lip by up to %.4f m (swung over it in the air, "
+                       "turning on a corner); %ld met a lip's line beyond its end", r3.lip_trips, r3.lip_slipping_trips,
+                       r3.lip_holds, r3.max_lip_overhang, r3.lip_ends_passed));
   if (!model.body().parameters().support.empty() && r3.vertex_refits > 0)
     L.push_back(format("support     the contact cut again %ld times pivoting on a corner, where the body had turned on it",
                        r3.vertex_refits));

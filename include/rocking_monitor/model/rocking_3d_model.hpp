@@ -67,12 +67,15 @@ enum class Transition3D : std::uint8_t {
   Degenerate,         ///< -> REST: a degenerate pivot motion (rocking_3d_vertex.cpp)
   ForcedRest,         ///< -> REST: the bound on events per sample
   FellOffSupport,     ///< -> OVERTURNED: the centre of mass passed the support's edge sliding, or it tipped over that edge
+  TripsOverLip,       ///< SLIDE -> EDGE or VERTEX: the base met a lip and pivots on it (the plastic impact)
   // Not a mode change (from == to): where the rocking model stops being exact (slide-rock and flight
   // are not modelled in 3-D yet; the motion after is followed as rocking on a sticking pivot).
   PivotSlips,         ///< EDGE, VERTEX: the pivot's reaction left the friction cone (slide-rock)
   PivotLifts,         ///< EDGE, VERTEX: the pivot's normal reaction vanished (flight)
   PivotSticks,        ///< VERTEX: the slipping pivot stopped and the static law holds
   SlidesOverSupportEdge,  ///< SLIDE: braking would tip it over the support's edge (slide-rock over it; followed as sliding)
+  HeldByLip,          ///< SLIDE: a lip holds the base: it slides along the lip (met sliding, or slipping from rest against it)
+  LeavesLip,          ///< SLIDE: the lip no longer pushes (the demand turned away from it): free again
   Overturn,           ///< -> OVERTURNED: lying on its side, or over the tipping point
   ForcedOverturn,     ///< -> OVERTURNED: the bound on events per sample, beyond the tipping point
 };
@@ -153,6 +156,20 @@ struct Rocking3DOutcome {
   /// Samples that reached the bound on events beyond the tipping point (a see-saw on the edge it
   /// falls over): it overturns there (Transition3D::ForcedOverturn) instead of being put down flat.
   long forced_overturns = 0;
+  // Lips along the support's edges (support_lips).
+  long lip_trips = 0;             ///< slides that met a lip and tripped over it (pivoting on the base's corner or edge there)
+  long lip_holds = 0;             ///< slides held by a lip (sliding along it): met it without tripping, or began against it
+  /// Trips over a lip whose sticking pivot needed more friction than mu_s at the lip's foot (the
+  /// sticking answer followed, as at landings where the frictional impact is not solved).
+  long lip_slipping_trips = 0;
+  /// Base corners that met a lipped edge's line beyond the lip's end (past the support's corner, the
+  /// base overhanging the next edge): nothing is met there; while that corner lies beyond the line the
+  /// lip is not watched.
+  long lip_ends_passed = 0;
+  /// The most a base corner lay beyond a lip while flat, m: a corner the rocking swings across a lip's
+  /// line in the air (turning on a corner) passes over it (the lip is low) and lands on it; no slide
+  /// carries it further.
+  double max_lip_overhang = 0.0;
   // The pivot while rocking (EDGE, VERTEX): the floor's reaction on the body against the friction cone
   // |F_h| <= mu_s F_z, from the equations of motion at each step's end (onsets located on the dense
   // output). Beyond it the real body slide-rocks (or flies); the model follows a sticking pivot.
@@ -230,6 +247,7 @@ class Rocking3DModel {
     Eigen::Matrix<double, 11, 1> slip_state = Eigen::Matrix<double, 11, 1>::Zero();  ///< q, omega (rad/s), pivot (m), its velocity (m/s)
     Eigen::Vector2d slip_direction = Eigen::Vector2d::UnitX();  ///< the slip's direction while its speed is 0
     Dopri5Vector<11>::Saved slip_stepper;
+    int lip_held = -1;                ///< SLIDE: the support's edge whose lip holds the base (0-based), -1: none
   };
   void save(Saved& out) const;
   void restore(const Saved& in);
@@ -298,7 +316,7 @@ class Rocking3DModel {
  private:
   using Vec7 = Eigen::Matrix<double, 7, 1>;
   Rocking3DModel(const BaseBody& body, const SolverSettings& settings, bool with_probe);
-  enum class Event { None, Impact, Overturn, Lift, Degenerate, Stick };
+  enum class Event { None, Impact, Overturn, Lift, Degenerate, Stick, Lip };
   using Vec6 = Eigen::Matrix<double, 6, 1>;
 
   Eigen::Matrix3d yaw_matrix() const;
@@ -420,8 +438,12 @@ class Rocking3DModel {
   Eigen::Matrix3d vertex_rotation(const Vec7& y) const;
   // SLIDE (rocking_3d_slide.cpp).
   double find_slip(const GroundInput3& in, double tau, double tau_end) const;
+  double static_excess(const Eigen::Vector3d& a, double mu) const;
   void start_slide(double tau);
   Event advance_slide(const GroundInput3& in, double& tau, double tau_end);
+  bool slide_step_events(const GroundInput3& in, double& tau, double t_start, double rho, int& restarts, Event& e);
+  bool slide_event(const GroundInput3& in, double tau, double ts, double tl, double tm, double tr, int& restarts,
+                   Event& e);
   Vec6 slide_atol() const;
   void aim_slide_ref(const GroundInput3& in, double tau, double rho);
   void slide_to_event(double tau, double t_start);
@@ -440,6 +462,19 @@ class Rocking3DModel {
   void fall_off_support(double tau, double t_start);
   void note_over_support_edge(double t_over, double t_end);
   void note_slide();
+  // Lips along the support's edges (rocking_3d_lip.cpp).
+  Eigen::Vector2d lip_normal(int lip) const;
+  double lip_gap(const Vec6& y, int& lip) const;
+  void note_lip_floors();
+  void note_lip_overhang();
+  double point_lip_gap(const Eigen::Vector2d& x, const Eigen::Vector2d& moving) const;
+  int lip_touched(const Eigen::Vector2d& push) const;
+  Eigen::Vector2d lip_demand(const Eigen::Vector3d& a) const;
+  double lip_push(const GroundInput3& in, double t, const Vec6& y) const;
+  void hold_on_lip(int lip);
+  void hold_if_pressed(const Eigen::Vector2d& push, double tau);
+  int meet_lip(int lip, double tau);
+  bool trip_over_lip(int lip, int p, const Eigen::Matrix2d& r, double tau);
   double mu_k() const { return std::isnan(body_.parameters().mu_k) ? body_.parameters().mu_s : body_.parameters().mu_k; }
 
   BaseBody body_;
@@ -451,6 +486,12 @@ class Rocking3DModel {
   std::vector<double> slide_first_;     // per hull face, the smallest tan(alpha) of its edges: no lift below it
   Vec6 slide_ = Vec6::Zero();      // SLIDE: u (world, m/s), spin (rad/s), shift (m), yaw (rad)
   Eigen::Vector3d slide_ref_ = Eigen::Vector3d::Zero();  // SLIDE: the generalised velocity at the step start (stick event)
+  int lip_held_ = -1;  // SLIDE: the support's edge whose lip holds the base (it slides along it, not turning)
+  int lip_met_ = -1;   // the lip the last slide step's event met (advance_slide -> handle_event)
+  // Per support edge, how far beyond its lip the base already lay at the slide step's start (m, <= 0):
+  // a corner that landed over a (low) lip, having swung across it in the air, lies on the lip; the
+  // slide may not carry it further out.
+  double lip_floor_[kMaxBaseVertices] = {};
 
   Mode3D mode_ = Mode3D::Rest;
   int contact_ = -1;

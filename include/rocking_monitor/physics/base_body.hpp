@@ -47,6 +47,11 @@ struct BaseBodyParameters {
   /// of mass passes the support's edge. With a hull only a pedestal within the base: the body rocks
   /// on the pedestal's edges, and no other hull face can come down onto the pedestal.
   std::vector<Eigen::Vector2d> support;
+  /// The support's edges with a lip (issue 51), 0-based: edge k runs from support vertex k to k + 1. A
+  /// lip is a stop at the support's top along that edge, low beside the item: the base cannot slide
+  /// across it; meeting it the item trips (pivots on the base's corner or edge at the lip, the plastic
+  /// impact) or slides on along it. The base must lie within every lipped edge.
+  std::vector<int> support_lips;
 };
 
 /// Empty when valid, else "<field>: <problem>" naming the field as the catalogue does.
