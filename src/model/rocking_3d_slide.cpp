@@ -61,7 +61,8 @@ double Rocking3DModel::find_slip(const GroundInput3& in, double tau, double tau_
 // cone_excess with the lips the base lies against taking their part of the demand (lip_demand).
 double Rocking3DModel::static_excess(const Eigen::Vector3d& a, double mu) const {
   if (body_.parameters().support_lips.empty()) return cone_excess(a, mu);
-  return lip_demand(a).norm() - mu * (kGravity + a.z());
+  const Eigen::Vector2d d = lip_demand(a);
+  return std::hypot(d.x(), d.y()) - mu * (kGravity + a.z());  // (as cone_excess: the same where no lip takes part)
 }
 
 void Rocking3DModel::start_slide(double tau) {

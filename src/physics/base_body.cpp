@@ -190,9 +190,11 @@ BaseBody BaseBody::on_support(const std::vector<Eigen::Vector2d>& placed) const 
   moved.base = whole_base_;
   moved.support = placed;
   moved.hull.clear();  // (on a support the contact is the base's cut: the hull was checked at load)
+  moved.support_lips.clear();  // (checked at load; a corner swung over a lip may lie beyond it now)
   BaseBody body(moved, true);
   body.params_.support = params_.support;
   body.params_.hull = params_.hull;
+  body.params_.support_lips = params_.support_lips;
   return body;
 }
 BaseBody::BaseBody(const BaseBodyParameters& parameters) : BaseBody(parameters, true) {}

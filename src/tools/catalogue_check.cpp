@@ -85,6 +85,9 @@ json item_json(const CatalogueItem& item) {
   j["support"] = nullptr;
   j["support_margin"] = nullptr;
   j["contact_margin"] = nullptr;
+  j["support_lips"] = json::array();  // the lipped edges, numbered from 1 as in the catalogue
+  if (s.solid)
+    for (const int k : s.solid->support_lips) j["support_lips"].push_back(k + 1);
   if (s.solid && !s.solid->support.empty()) {
     const Eigen::Vector2d c = s.solid->centre_of_mass.head<2>();
     j["support"] = json::array();
