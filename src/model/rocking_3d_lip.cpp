@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "rocking_3d_internal.hpp"
+#include "rocking_monitor/integrate/event_location.hpp"
 #include "rocking_monitor/model/rocking_3d_model.hpp"
 
 namespace rocking_monitor::core {
@@ -266,6 +267,94 @@ bool Rocking3DModel::trip_over_lip(int lip, int p, const Eigen::Matrix2d& r, dou
   report_.uplift = true;
   if (std::isnan(outcome_.uplift_time)) outcome_.uplift_time = t_ + tau;
   return true;
+}
+
+// Pivoting on a corner (VERTEX, sticking) with the state y: how far the base's corners lifted less
+// than the lips' height lie inside the lipped edges, from where they lay at the step's start if beyond
+// (face_floor_), m; `corner`, `lip`: which. +inf without such a corner.
+double Rocking3DModel::lip_face_gap(const Vec7& y, int& corner, int& lip) const {
+  corner = lip = -1;
+  double best = std::numeric_limits<double>::infinity();
+  const Eigen::Matrix3d r = vertex_rotation(y);
+  const Eigen::Vector3d pivot = hv(contact_).position;
+  const std::vector<Eigen::Vector2d>& base = body_.whole_base();
+  const double height = body_.parameters().support_lip_height;
+  for (std::size_t i = 0; i < base.size(); ++i) {
+    const Eigen::Vector3d rel = Eigen::Vector3d(base[i].x(), base[i].y(), 0.0) - pivot;
+    if (rel.squaredNorm() <= floor_tol_ * floor_tol_) continue;  // the pivot
+    const Eigen::Vector3d x = r * rel + pivot_world_;
+    if (!(x.z() < height)) continue;
+    for (const int k : body_.parameters().support_lips) {
+      const Eigen::Vector2d n = lip_normal(k);
+      const double g = body_.parameters().support[static_cast<std::size_t>(k)].dot(n) - x.head<2>().dot(n) - face_floor_[k];
+      if (g < best) {
+        best = g;
+        corner = static_cast<int>(i);
+        lip = k;
+      }
+    }
+  }
+  return best;
+}
+
+// The first instant in [t0, t1] of the sticking vertex stepper's last step at which a lifted corner
+// lower than the lips meets a lip's face (a contact tolerance beyond it, or beyond where it lay at t0),
+// located on the dense output; `corner` -1: none (then t1). Bounded per sample (kMaxLipFaceHits).
+double Rocking3DModel::lip_face_in_step(double t0, double t1, double t_tol, int& corner, int& lip) {
+  corner = lip = -1;
+  if (body_.parameters().support_lips.empty() || !(body_.parameters().support_lip_height > 0.0) || face_ != 0) return t1;
+  if (lip_face_hits_ >= kMaxLipFaceHits) return t1;
+  {
+    const Eigen::Matrix3d r = vertex_rotation(Vec7(vector_.eval(t0)));
+    for (const int k : body_.parameters().support_lips) {  // where each lip's low corners lay at t0 (<= 0)
+      double worst = 0.0;
+      const Eigen::Vector2d n = lip_normal(k);
+      const double line = body_.parameters().support[static_cast<std::size_t>(k)].dot(n);
+      for (const Eigen::Vector2d& b : body_.whole_base()) {
+        const Eigen::Vector3d x = r * (Eigen::Vector3d(b.x(), b.y(), 0.0) - hv(contact_).position) + pivot_world_;
+        if (x.z() < body_.parameters().support_lip_height) worst = std::min(worst, line - x.head<2>().dot(n));
+      }
+      face_floor_[k] = worst;
+    }
+  }
+  auto g = [&](double t) {
+    int c, l;
+    return lip_face_gap(Vec7(vector_.eval(t)), c, l) + floor_tol_;
+  };
+  double t_prev = t0, g_prev = g(t0);
+  for (int k = 1; k <= kVertexProbes; ++k) {
+    const double tk = t0 + (t1 - t0) * k / kVertexProbes;
+    const double gk = g(tk);
+    if (gk <= 0.0 && g_prev > 0.0) {
+      const double tc = bracketed_root(g, t_prev, tk, g_prev, gk, t_tol);
+      lip_face_gap(Vec7(vector_.eval(tc)), corner, lip);
+      if (++lip_face_hits_ >= kMaxLipFaceHits) ++outcome3_.lip_faces_not_followed;
+      return tc;
+    }
+    t_prev = tk;
+    g_prev = gk;
+  }
+  return t1;
+}
+
+// A lifted corner meets the lip's face (pivoting on a corner, the pivot sticking): the plastic
+// frictionless impact there stops the corner's motion into the lip, w+ = w - lambda J_p^-1 a with
+// a = (x - p) x n, lambda = (w . a) / (a . J_p^-1 a): kinetic energy only falls.
+void Rocking3DModel::hit_lip_face(int corner, int lip, double tau) {
+  const Eigen::Matrix3d r = vertex_rotation(y_);
+  const Eigen::Vector2d& b = body_.whole_base()[static_cast<std::size_t>(corner)];
+  const Eigen::Vector3d lever = r * (Eigen::Vector3d(b.x(), b.y(), 0.0) - hv(contact_).position);
+  const Eigen::Vector2d n2 = lip_normal(lip);
+  const Eigen::Vector3d a = lever.cross(Eigen::Vector3d(n2.x(), n2.y(), 0.0));
+  const Eigen::Matrix3d jp = r * hv(contact_).inertia * r.transpose();
+  const Eigen::Vector3d ja = jp.ldlt().solve(a);
+  const Eigen::Vector3d w = y_.tail<3>();
+  const double into = w.dot(a);
+  if (!(into > 0.0)) return;
+  y_.tail<3>() = w - into / a.dot(ja) * ja;
+  vector_.invalidate();
+  ++outcome3_.lip_face_impacts;
+  note_transition(Mode3D::Vertex, Transition3D::LipFace, tau);
 }
 
 }  // namespace rocking_monitor::core

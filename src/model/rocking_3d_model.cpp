@@ -326,6 +326,7 @@ const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
   slide_lifts_ = 0;
   slip_switches_ = 0;
   slip_steps_ = 0;
+  lip_face_hits_ = 0;
   GroundInput3 in;
   in.a0 = a_prev_;
   in.slope = (a - a_prev_) / dt;

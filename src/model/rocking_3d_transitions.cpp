@@ -24,6 +24,7 @@ const char* to_string(Transition3D r) {
     case Transition3D::TripsOverLip: return "tripped over a lip (pivots on the base at the lip)";
     case Transition3D::HeldByLip: return "held by a lip (slides along it)";
     case Transition3D::LeavesLip: return "the lip let go (the demand turned away from it)";
+    case Transition3D::LipFace: return "a lifted corner met a lip's face (impact; pivoting on)";
     case Transition3D::SlidesOverSupportEdge: return "braking would tip it over the support's edge (slide-rock over the edge; followed as sliding)";
     case Transition3D::PivotSlips: return "the pivot's reaction left the friction cone (slide-rock; followed as sticking)";
     case Transition3D::PivotSticks: return "the slipping pivot stopped and the static law holds";
@@ -39,7 +40,7 @@ void Rocking3DModel::note_transition(Mode3D from, Transition3D reason, double ta
   // an end of the edge lifting keeps the other end's slip (the same contact goes on).
   if (reason != Transition3D::PivotSlips && reason != Transition3D::PivotLifts && reason != Transition3D::PivotSticks &&
       reason != Transition3D::EdgeToVertex && reason != Transition3D::SlidesOverSupportEdge &&
-      reason != Transition3D::HeldByLip && reason != Transition3D::LeavesLip)
+      reason != Transition3D::HeldByLip && reason != Transition3D::LeavesLip && reason != Transition3D::LipFace)
     pivot_outside_cone_ = reason == Transition3D::LandingPivotSlips;
   if (transition_count_ >= kMaxTransitionRecords) return;
   const bool has_contact = mode_ == Mode3D::Edge || mode_ == Mode3D::Vertex;

@@ -321,8 +321,11 @@ Rocking3DModel::Event Rocking3DModel::vertex_motion(Dopri5Vector<N>& stepper, Ei
     Eigen::Vector3d up_end;
     Event event = vertex_event_in_step(rot, y0, y1, t0, t1, t_tol, touching, t_event, up_end);
     if constexpr (N == 7) event = refit_in_step(rot, y0, y1, t0, t1, t_tol, event, touching, t_event, up_end);
-    const double t_stop = event == Event::None ? t1 : t_event;
-    note_vertex_peak(rot, y0, event == Event::None ? y1 : rot(t_stop), t0, t_stop, t_tol);
+    double t_stop = event == Event::None ? t1 : t_event;
+    int lip_corner = -1, lip = -1;  // a lifted corner meeting a lip's face first (support_lip_height)
+    if constexpr (N == 7) t_stop = lip_face_in_step(t0, t_stop, t_tol, lip_corner, lip);
+    if (lip_corner >= 0) event = Event::None;
+    note_vertex_peak(rot, y0, event == Event::None && lip_corner < 0 ? y1 : rot(t_stop), t0, t_stop, t_tol);
     // A slip beginning (sticking) or ending (slipping) before the step's end or event: from there on
     // the other stepper.
     bool lifts = false;
@@ -352,7 +355,7 @@ Rocking3DModel::Event Rocking3DModel::vertex_motion(Dopri5Vector<N>& stepper, Ei
       switched = true;
       return Event::None;
     }
-    if (event == Event::None) {
+    if (event == Event::None && lip_corner < 0) {
       settle(stepper.y1());
       tau = t1;
       for (int i : hull().neighbours[static_cast<std::size_t>(contact_)])
@@ -360,11 +363,12 @@ Rocking3DModel::Event Rocking3DModel::vertex_motion(Dopri5Vector<N>& stepper, Ei
       note_ratio();
       continue;
     }
-    settle(stepper.eval(t_event));
+    settle(stepper.eval(t_stop));
     stepper.invalidate();
-    tau = t_event;
+    tau = t_stop;
     note_ratio();
-    return event;
+    if (lip_corner < 0) return event;
+    hit_lip_face(lip_corner, lip, tau);  // (and the motion goes on)
   }
   return Event::None;
 }

@@ -146,6 +146,7 @@ void parse_solid(const Entry& e, ItemSpec& s) {
     if (e.has("hull")) e.fail("hull", "needs the 3-D description (base_polygon, ...)");
     if (e.has("support")) e.fail("support", "needs the 3-D description (base_polygon, ...)");
     if (e.has("support_lips")) e.fail("support_lips", "needs the 3-D description (base_polygon, ...) and a support");
+    if (e.has("support_lip_height")) e.fail("support_lip_height", "needs the 3-D description (base_polygon, ...) and a support");
     return;
   }
   for (const char* k : keys)
@@ -195,6 +196,8 @@ void parse_solid(const Entry& e, ItemSpec& s) {
       b.support_lips.push_back(lips[k].get<int>() - 1);
     }
   }
+  if (e.has("support_lip_height"))
+    b.support_lip_height = e.number("support_lip_height", false, 0.0, "the lips' height above the support's top (m)");
   b.mu_s = s.body.mu_s;
   b.mu_k = s.body.mu_k;
   b.overturn_angle = s.body.overturn_angle;
@@ -353,7 +356,7 @@ CatalogueItem parse_item(const json& v, int i, const std::set<std::string>* sens
   e.only({"id", "description", "sensor", "frame", "shape", "width", "depth", "cg_height", "eccentricity",
           "eccentricity_y", "radius_of_gyration", "radius_of_gyration_y", "mu_s", "mu_k", "restitution",
           "restitution_shift", "overturn_angle", "pose", "ensemble_size", "mass", "centre_of_mass",
-          "central_inertia", "base_polygon", "restitution_factor", "hull", "support", "support_lips", "input_gain"});
+          "central_inertia", "base_polygon", "restitution_factor", "hull", "support", "support_lips", "support_lip_height", "input_gain"});
   CatalogueItem item;
   ItemSpec& s = item.spec;
   UncertainItemSpec& u = item.uncertain;

@@ -408,6 +408,8 @@ void visit(V& v, Rocking3DOutcome& o) {
   v("lip_slipping_trips", o.lip_slipping_trips);
   v("lip_ends_passed", o.lip_ends_passed);
   v("max_lip_overhang", o.max_lip_overhang);
+  v("lip_face_impacts", o.lip_face_impacts);
+  v("lip_faces_not_followed", o.lip_faces_not_followed);
   v("max_pivot_friction_demand", o.max_pivot_friction_demand);
   v("pivot_slips", o.pivot_slips);
   v("pivot_lifts", o.pivot_lifts);

@@ -92,6 +92,10 @@ std::string validate_body(const BaseBodyParameters& p, bool must_stand) {
   }
   if (const std::string e = support_problem(p); !e.empty()) return fail("support", e);
   if (const std::string e = lips_problem(p); !e.empty()) return fail("support_lips", e);
+  if (!(p.support_lip_height >= 0.0 && std::isfinite(p.support_lip_height)))
+    return fail("support_lip_height", "must be a finite value >= 0 m");
+  if (p.support_lip_height > 0.0 && p.support_lips.empty())
+    return fail("support_lip_height", "needs support_lips (the support's edges with a lip)");
   const Eigen::Matrix3d& I = p.central_inertia;
   if (!I.allFinite()) return fail("central_inertia", "must be finite (kg m^2)");
   const double scale = I.diagonal().cwiseAbs().maxCoeff();

@@ -186,6 +186,8 @@ json solid_json(const rm::Rocking3DModel& model, rm::SolidChoice choice, bool de
               {"lip_slipping_trips", r3.lip_slipping_trips},
               {"lip_ends_passed", r3.lip_ends_passed},
               {"max_lip_overhang_m", r3.max_lip_overhang},
+              {"lip_face_impacts", r3.lip_face_impacts},
+              {"lip_faces_not_followed", r3.lip_faces_not_followed},
               {"pedestal_beyond_base", r3.pedestal_beyond_base},
               {"vertex_refits", r3.vertex_refits},
               {"forced_overturns", r3.forced_overturns},
@@ -239,8 +241,9 @@ void solid_support_and_hull_lines(const rm::Rocking3DModel& model, std::vector<s
   if (!model.body().parameters().support_lips.empty())
     L.push_back(format("lips        %ld slides tripped over a lip (%ld of them needing more than mu_s at its foot), %ld held "
                        "by one (sliding along it); corners over a lip by up to %.4f m (swung over it in the air, "
-                       "turning on a corner); %ld met a lip's line beyond its end", r3.lip_trips, r3.lip_slipping_trips,
-                       r3.lip_holds, r3.max_lip_overhang, r3.lip_ends_passed));
+                       "turning on a corner); %ld met a lip's line beyond its end; %ld lifted corners met a lip's face "
+                       "(%ld samples at the bound on them)", r3.lip_trips, r3.lip_slipping_trips, r3.lip_holds,
+                       r3.max_lip_overhang, r3.lip_ends_passed, r3.lip_face_impacts, r3.lip_faces_not_followed));
   if (!model.body().parameters().support.empty() && r3.vertex_refits > 0)
     L.push_back(format("support     the contact cut again %ld times pivoting on a corner, where the body had turned on it",
                        r3.vertex_refits));

@@ -255,6 +255,48 @@ TEST(Rocking3DLip, UnderBidirectionalShakingNoSlideCarriesACornerOverALip) {
               "over a lip by up to %.2g m\n", cases, trips, holds, overturned, fell_unlipped, overhang);
 }
 
+// Pivoting on the corner at a lip, the box turns about the vertical so that its other corner on the
+// lip's side (lifted 1 cm) swings into the lip. A lip 3 cm high stops it: the plastic frictionless
+// impact at the corner takes its motion into the lip (its velocity into the lip is 0 after, and the
+// energy falls); the corner never lies beyond the lip while lower than it. A low lip (no height) lets
+// it pass over.
+TEST(Rocking3DLip, ACornerLowerThanTheLipMeetsItsFace) {
+  for (double height : {0.03, 0.0}) {
+    BaseBodyParameters p = lip_box(0.8);
+    p.support = {{-0.5, -0.4}, {kHalfX, -0.4}, {kHalfX, 0.4}, {-0.5, 0.4}};
+    p.support_lips = {1};
+    p.support_lip_height = height;
+    Rocking3DModel m(BaseBody(p), lip_settings());
+    m.reset(0.0);
+    // tilted about (1, 1, 0) through the corner (0.3, -0.25): every other corner up, (0.3, 0.25) by 1 cm
+    const double tilt = std::asin(0.01 * std::sqrt(2.0) / (2 * kHalfY));
+    m.set_vertex_state(1, Eigen::Quaterniond(Eigen::AngleAxisd(tilt, Eigen::Vector3d(1, 1, 0).normalized())),
+                       Eigen::Vector3d(0.0, 0.0, -1.0));
+    auto energy = [&] { return m.kinetic_energy() + kGravity * (m.rotation() * p.centre_of_mass + m.translation()).z(); };
+    auto corner = [&] { return m.rotation() * Eigen::Vector3d(kHalfX, kHalfY, 0.0) + m.translation(); };
+    const double e0 = energy(), start = corner().x() - kHalfX;  // (the tilt about the diagonal: 1e-4 m out)
+    double beyond = 0.0;
+    for (int i = 0; i < 20 && m.mode() == Mode3D::Vertex; ++i) {
+      m.step(Eigen::Vector3d::Zero(), 0.001);
+      if (corner().z() < height || height == 0.0) beyond = std::max(beyond, corner().x() - kHalfX);
+    }
+    if (height > 0.0) {
+      ASSERT_GE(m.outcome_3d().lip_face_impacts, 1);
+      EXPECT_LT(beyond, start + 1e-9);  // no further out than it started
+      EXPECT_LT(m.outcome_3d().max_impact_energy_ratio, 1.0 + 1e-12);
+      // (the face impact alone: before any landing, the energy fell)
+      int landings = 0;
+      for (int i = 0; i < m.transition_records(); ++i) landings += m.transition(i).reason == Transition3D::Landing;
+      if (landings == 0) EXPECT_LT(energy(), e0);
+    } else {
+      EXPECT_EQ(m.outcome_3d().lip_face_impacts, 0);
+      EXPECT_GT(beyond, start + 1e-3);  // over the low lip
+    }
+    std::printf("[ measured ] lip %.2f m: the corner beyond the lip's line by up to %.3g m, %ld face impacts\n", height,
+                beyond, m.outcome_3d().lip_face_impacts);
+  }
+}
+
 std::string lip_error(nlohmann::json entry) {
   try {
     parse_catalogue_items(nlohmann::json::array({entry}));
@@ -288,6 +330,12 @@ TEST(Rocking3DLip, BadLipsAreRefusedNamingTheItemAndField) {
   under["support"] = nlohmann::json::parse("[[-0.1, -0.1], [0.15, -0.1], [0.15, 0.2], [-0.1, 0.2]]");
   std::string err = lip_error(under);
   EXPECT_NE(err.find("support_lips: edge 2: base_polygon vertex 2 lies beyond it"), std::string::npos) << err;
+  nlohmann::json high = item();
+  high["support_lip_height"] = -0.01;
+  EXPECT_NE(lip_error(high).find("support_lip_height: must be a finite value >= 0 m"), std::string::npos) << lip_error(high);
+  high.erase("support_lips");
+  high["support_lip_height"] = 0.02;
+  EXPECT_NE(lip_error(high).find("support_lip_height: needs support_lips"), std::string::npos) << lip_error(high);
   nlohmann::json bare = item();
   bare.erase("support");
   EXPECT_NE(lip_error(bare).find("support_lips: needs a support"), std::string::npos) << lip_error(bare);

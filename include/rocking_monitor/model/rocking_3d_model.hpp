@@ -76,6 +76,7 @@ enum class Transition3D : std::uint8_t {
   SlidesOverSupportEdge,  ///< SLIDE: braking would tip it over the support's edge (slide-rock over it; followed as sliding)
   HeldByLip,          ///< SLIDE: a lip holds the base: it slides along the lip (met sliding, or slipping from rest against it)
   LeavesLip,          ///< SLIDE: the lip no longer pushes (the demand turned away from it): free again
+  LipFace,            ///< VERTEX: a lifted corner below the lips' height met a lip's face (an impact; the pivot goes on)
   Overturn,           ///< -> OVERTURNED: lying on its side, or over the tipping point
   ForcedOverturn,     ///< -> OVERTURNED: the bound on events per sample, beyond the tipping point
 };
@@ -170,6 +171,12 @@ struct Rocking3DOutcome {
   /// line in the air (turning on a corner) passes over it (the lip is low) and lands on it; no slide
   /// carries it further.
   double max_lip_overhang = 0.0;
+  /// Pivoting on a corner, a lifted corner below the lip's height (support_lip_height) met a lip's
+  /// face: the plastic frictionless impact there (the pivot sticking) stopped its motion into the lip.
+  long lip_face_impacts = 0;
+  /// Samples where the bound on lip-face impacts (a corner pressed on the lip's face, met again and
+  /// again) was reached: the corner was not watched for the rest of the sample.
+  long lip_faces_not_followed = 0;
   // The pivot while rocking (EDGE, VERTEX): the floor's reaction on the body against the friction cone
   // |F_h| <= mu_s F_z, from the equations of motion at each step's end (onsets located on the dense
   // output). Beyond it the real body slide-rocks (or flies); the model follows a sticking pivot.
@@ -467,6 +474,9 @@ class Rocking3DModel {
   double lip_gap(const Vec6& y, int& lip) const;
   void note_lip_floors();
   void note_lip_overhang();
+  double lip_face_gap(const Vec7& y, int& corner, int& lip) const;
+  double lip_face_in_step(double t0, double t1, double t_tol, int& corner, int& lip);
+  void hit_lip_face(int corner, int lip, double tau);
   double point_lip_gap(const Eigen::Vector2d& x, const Eigen::Vector2d& moving) const;
   int lip_touched(const Eigen::Vector2d& push) const;
   Eigen::Vector2d lip_demand(const Eigen::Vector3d& a) const;
@@ -492,6 +502,9 @@ class Rocking3DModel {
   // a corner that landed over a (low) lip, having swung across it in the air, lies on the lip; the
   // slide may not carry it further out.
   double lip_floor_[kMaxBaseVertices] = {};
+  double face_floor_[kMaxBaseVertices] = {};  // the same for corners pivoting on a corner (lip_face_in_step)
+  static constexpr int kMaxLipFaceHits = 16;  // per sample
+  int lip_face_hits_ = 0;
 
   Mode3D mode_ = Mode3D::Rest;
   int contact_ = -1;

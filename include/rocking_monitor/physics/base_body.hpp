@@ -52,6 +52,10 @@ struct BaseBodyParameters {
   /// across it; meeting it the item trips (pivots on the base's corner or edge at the lip, the plastic
   /// impact) or slides on along it. The base must lie within every lipped edge.
   std::vector<int> support_lips;
+  /// The lips' height above the support's top, m (>= 0). Pivoting on a corner, a lifted base corner
+  /// lower than this meets the lip's face (a plastic impact stops its motion into it); 0: the lip is
+  /// low beside the item and a corner rocking over it passes over it.
+  double support_lip_height = 0.0;
 };
 
 /// Empty when valid, else "<field>: <problem>" naming the field as the catalogue does.
