@@ -18,6 +18,7 @@
 #include "rocking_monitor/model/rocking_3d_model.hpp"
 #include "rocking_monitor/model/rocking_model.hpp"
 #include "rocking_monitor/monitoring/catalogue.hpp"
+#include "catalogue_error.hpp"
 #include "rocking_monitor/physics/support_polygon.hpp"
 
 namespace rocking_monitor::core {
@@ -391,14 +392,7 @@ TEST(Rocking3DSupport, ClippingAndMarginsAreExact) {
   EXPECT_TRUE(clip_convex(base, {{2, 2}, {3, 2}, {3, 3}}).empty());
 }
 
-std::string support_error(nlohmann::json entry) {
-  try {
-    parse_catalogue_items(nlohmann::json::array({entry}));
-  } catch (const CatalogueError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string support_error(const nlohmann::json& entry) { return testing::catalogue_item_error(entry); }
 
 TEST(Rocking3DSupport, BadSupportsAreRefusedNamingTheItemAndField) {
   auto item = [] {
