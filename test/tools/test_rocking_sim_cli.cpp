@@ -506,5 +506,32 @@ TEST(RockingSim3D, TheUrnOnItsPedestalNeverReachesTheEventsBound) {
   }
 }
 
+// Lips (support_lips): the box on its plinth slides off at Rinaldi; with a lip all round the plinth it
+// trips over the lip instead and stays on, and rocking_sim says so (JSON counts and the lips line).
+TEST(RockingSim3D, ALippedPlinthKeepsTheBoxThatSlidesOffTheOpenOne) {
+  const std::string rinaldi318 = (kRecords / "northridge_1994/Rinaldi318.AT2").string();
+  if (!fs::exists(kRinaldi) || !fs::exists(rinaldi318)) GTEST_SKIP() << "records absent";
+  const std::string plinths = std::string(ROCKING_SOURCE_DIR) + "/docs/supports/plinths.yaml";
+  const std::string pair = " --item box_gap10 --solid-model 3d --record " + kRinaldi + " --record-y " + rinaldi318;
+  const auto open = sim_json("--catalogue " + plinths + pair);
+  ASSERT_TRUE(open.contains("solid")) << open.dump();
+  EXPECT_TRUE(open["solid"]["fell_off_support"].get<bool>());
+  EXPECT_EQ(open["solid"]["lip_trips"], 0);
+  std::ifstream in(plinths);
+  std::string yaml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (std::size_t at = yaml.find("  support:"); at != std::string::npos; at = yaml.find("  support:", at + 40))
+    yaml.insert(at, "  support_lips: [1, 2, 3, 4]\n");
+  const std::string lipped = ::testing::TempDir() + "/plinths_lipped.yaml";
+  std::ofstream(lipped) << yaml;
+  const auto held = sim_json("--catalogue " + lipped + pair);
+  ASSERT_TRUE(held.contains("solid")) << held.dump();
+  EXPECT_FALSE(held["solid"]["fell_off_support"].get<bool>());
+  EXPECT_FALSE(held["solid"]["overturned"].get<bool>());
+  EXPECT_GT(held["solid"]["lip_trips"].get<long>(), 0);
+  const CliRun text = run_sim("--catalogue " + lipped + pair);
+  EXPECT_NE(text.out.find("lips        "), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("tripped over a lip"), std::string::npos) << text.out;
+}
+
 }  // namespace
 }  // namespace rocking_monitor::core
