@@ -64,6 +64,10 @@ def closed(polygon):
 def draw_plan(ax, item, h):
     com = item['centre_of_mass']
     ax.fill(*closed(item['support']), color='0.85', label='support (plinth top)')
+    support = item['support']
+    for n, k in enumerate(item.get('support_lips', [])):  # numbered from 1: edge k from vertex k to k + 1
+        a, b = support[k - 1], support[k % len(support)]
+        ax.plot([a[0], b[0]], [a[1], b[1]], color='0.3', lw=3, label='lip' if n == 0 else None)
     ax.plot(*closed(item['base_polygon']), color='tab:blue', label='base at rest')
     # the footprint where it last stood flat (slip only: the yaw is not in the history)
     last = max(i for i, m in enumerate(h['mode']) if m in ('REST', 'SLIDE'))
