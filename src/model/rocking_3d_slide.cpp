@@ -50,7 +50,8 @@ double Rocking3DModel::find_slip(const GroundInput3& in, double tau, double tau_
   const double mu = body_.parameters().mu_s;
   const double inf = std::numeric_limits<double>::infinity();
   if (!std::isfinite(mu) || slide_lifts_ > 0) return inf;
-  auto f = [&](double t) { return static_excess(in.at(t), mu); };
+  const bool lips = !body_.parameters().support_lips.empty();
+  auto f = [&](double t) { return lips ? static_excess(in.at(t), mu) : cone_excess(in.at(t), mu); };
   const double f0 = f(tau);
   if (f0 > 0.0) return tau;
   const double f1 = f(tau_end);
@@ -173,13 +174,12 @@ void Rocking3DModel::slide_rhs(const GroundInput3& in, double t, const Vec6& y, 
 Eigen::Vector2d Rocking3DModel::lift_friction(const GroundInput3& in, double t, const Vec6& y) const {
   double torque;
   constexpr double kResolvedFloors = 100.0;
+  const bool resolved = y(2) != 0.0 || y.head<2>().norm() > kResolvedFloors * kSlipFloorPerTol * settings_.tol;
+  if (lip_held_ < 0 && resolved) return slide_friction(in, t, y, torque);
   const Eigen::Vector3d a = in.at(t);
-  Eigen::Vector2d f;
-  if (y(2) != 0.0 || y.head<2>().norm() > kResolvedFloors * kSlipFloorPerTol * settings_.tol)
-    f = slide_friction(in, t, y, torque);
-  else
-    f = ground_following_friction(lip_held_ >= 0 ? lip_demand(a) : Eigen::Vector2d(a.head<2>()),
-                                  mu_k() * std::max(kGravity + a.z(), 0.0));
+  const Eigen::Vector2d f = resolved ? slide_friction(in, t, y, torque)
+                                     : ground_following_friction(lip_held_ >= 0 ? lip_demand(a) : Eigen::Vector2d(a.head<2>()),
+                                                                 mu_k() * std::max(kGravity + a.z(), 0.0));
   if (lip_held_ < 0) return f;
   // Held by a lip: its push acts at the floor as the friction does (the body's own acceleration
   // into the lip is the ground's).
@@ -345,12 +345,13 @@ bool Rocking3DModel::slide_step_events(const GroundInput3& in, double& tau, doub
   auto push = [&](const Vec6& y, double t) { return lip_held_ >= 0 ? lip_push(in, t, y) : 1.0; };
   constexpr int kProbes = 4;
   double t_prev = t0, s_prev = 1.0, l_prev = lift(slide_, t0), m_prev = margin(slide_), o_prev = over(slide_, t0, m_prev);
-  double g_prev = gap(slide_), p_prev = push(slide_, t0);
+  const bool watch = lips || lip_held_ >= 0;  // (without lips nothing more is evaluated)
+  double g_prev = watch ? gap(slide_) : 1.0, p_prev = watch ? push(slide_, t0) : 1.0;
   for (int k = 1; k <= kProbes; ++k) {
     const double tk = k == kProbes ? t1 : t0 + (t1 - t0) * k / kProbes;
     const Vec6 yk = k == kProbes ? Vec6(slide_stepper_.y1()) : Vec6(slide_stepper_.eval(tk));
     const double s = along(yk), l = lift(yk, tk), mk = margin(yk), ok = over(yk, tk, mk);
-    const double gk = gap(yk), pk = push(yk, tk);
+    const double gk = watch ? gap(yk) : 1.0, pk = watch ? push(yk, tk) : 1.0;
     auto root = [&](auto g, double ga, double gb) {
       return bracketed_root([&](double t) { return g(Vec6(slide_stepper_.eval(t)), t); }, t_prev, tk, ga, gb, t_tol);
     };
