@@ -274,7 +274,7 @@ TEST(Rocking3DLip, ACornerLowerThanTheLipMeetsItsFace) {
     m.set_vertex_state(1, Eigen::Quaterniond(Eigen::AngleAxisd(tilt, Eigen::Vector3d(1, 1, 0).normalized())),
                        Eigen::Vector3d(0.0, 0.0, -1.0));
     auto energy = [&] { return m.kinetic_energy() + kGravity * (m.rotation() * p.centre_of_mass + m.translation()).z(); };
-    auto corner = [&] { return m.rotation() * Eigen::Vector3d(kHalfX, kHalfY, 0.0) + m.translation(); };
+    auto corner = [&]() -> Eigen::Vector3d { return m.rotation() * Eigen::Vector3d(kHalfX, kHalfY, 0.0) + m.translation(); };
     const double e0 = energy(), start = corner().x() - kHalfX;  // (the tilt about the diagonal: 1e-4 m out)
     double beyond = 0.0;
     for (int i = 0; i < 20 && m.mode() == Mode3D::Vertex; ++i) {
