@@ -32,6 +32,16 @@ Eigen::Vector2d Rocking3DModel::lip_normal(int lip) const {
   return Eigen::Vector2d(d.y(), -d.x());
 }
 
+// How far the base's nearest corner lies inside lip k's line with the footprint turned by r and
+// shifted by `shift` (world), m (< 0: beyond it).
+double Rocking3DModel::lip_depth(int k, const Eigen::Matrix2d& r, const Eigen::Vector2d& shift) const {
+  const Eigen::Vector2d n = lip_normal(k);
+  const double line = body_.parameters().support[static_cast<std::size_t>(k)].dot(n);
+  double depth = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector2d& b : body_.whole_base()) depth = std::min(depth, line - (r * b + shift).dot(n));
+  return depth;
+}
+
 // How far the base's nearest corner lies inside the lipped edges' lines at the slide state y, m (< 0
 // beyond one), from where it lay at the step's start if beyond (lip_floor_); `lip`: which. The lip
 // holding the base is left out (it slides along it). +inf without.
@@ -44,14 +54,10 @@ double Rocking3DModel::lip_gap(const Vec6& y, int& lip) const {
   const Eigen::Vector2d shift = y.segment<2>(3);
   for (const int k : lips) {
     if (k == lip_held_) continue;
-    const Eigen::Vector2d n = lip_normal(k);
-    const double line = body_.parameters().support[static_cast<std::size_t>(k)].dot(n);
-    for (const Eigen::Vector2d& b : body_.whole_base()) {
-      const double g = line - (r * b + shift).dot(n) - lip_floor_[k];
-      if (g < best) {
-        best = g;
-        lip = k;
-      }
+    const double g = lip_depth(k, r, shift) - lip_floor_[k];
+    if (g < best) {
+      best = g;
+      lip = k;
     }
   }
   return best;
@@ -72,37 +78,22 @@ double Rocking3DModel::point_lip_gap(const Eigen::Vector2d& x, const Eigen::Vect
 void Rocking3DModel::note_lip_floors() {
   const Eigen::Matrix2d r = rot2(slide_(5));
   const Eigen::Vector2d shift = slide_.segment<2>(3);
-  for (const int k : body_.parameters().support_lips) {
-    const Eigen::Vector2d n = lip_normal(k);
-    const double line = body_.parameters().support[static_cast<std::size_t>(k)].dot(n);
-    double g = 0.0;
-    for (const Eigen::Vector2d& b : body_.whole_base()) g = std::min(g, line - (r * b + shift).dot(n));
-    lip_floor_[k] = g;
-  }
+  for (const int k : body_.parameters().support_lips) lip_floor_[k] = std::min(0.0, lip_depth(k, r, shift));
 }
 
 // Flat again (rest, or a slide's step): how far a corner lies beyond a lip (max_lip_overhang).
 void Rocking3DModel::note_lip_overhang() {
   const Eigen::Matrix2d r = rot2(yaw_);
-  for (const int k : body_.parameters().support_lips) {
-    const Eigen::Vector2d n = lip_normal(k);
-    const double line = body_.parameters().support[static_cast<std::size_t>(k)].dot(n);
-    for (const Eigen::Vector2d& b : body_.whole_base())
-      outcome3_.max_lip_overhang = std::max(outcome3_.max_lip_overhang, (r * b + shift_).dot(n) - line);
-  }
+  for (const int k : body_.parameters().support_lips)
+    outcome3_.max_lip_overhang = std::max(outcome3_.max_lip_overhang, -lip_depth(k, r, shift_));
 }
 
 // The lip the base lies against (its nearest corner within kTouchPerTol tolerances, at the current
 // footprint) that `push` (a horizontal velocity or demand, world) presses the base into; -1: none.
 int Rocking3DModel::lip_touched(const Eigen::Vector2d& push) const {
   const Eigen::Matrix2d r = rot2(yaw_);
-  for (const int k : body_.parameters().support_lips) {
-    const Eigen::Vector2d n = lip_normal(k);
-    if (!(push.dot(n) > 0.0)) continue;
-    const double line = body_.parameters().support[static_cast<std::size_t>(k)].dot(n);
-    for (const Eigen::Vector2d& b : body_.whole_base())
-      if (line - (r * b + shift_).dot(n) <= kTouchPerTol * floor_tol_) return k;
-  }
+  for (const int k : body_.parameters().support_lips)
+    if (push.dot(lip_normal(k)) > 0.0 && lip_depth(k, r, shift_) <= kTouchPerTol * floor_tol_) return k;
   return -1;
 }
 
@@ -112,18 +103,23 @@ int Rocking3DModel::lip_touched(const Eigen::Vector2d& push) const {
 // tangential part and of the positive normal part), as find_slip's bracketing needs.
 Eigen::Vector2d Rocking3DModel::lip_demand(const Eigen::Vector3d& a) const {
   Eigen::Vector2d d = a.head<2>();
-  if (body_.parameters().support_lips.empty()) return d;
-  if (lip_held_ >= 0) {
-    const Eigen::Vector2d n = lip_normal(lip_held_);
-    if (d.dot(n) < 0.0) d -= d.dot(n) * n;  // the body is pushed against the lip (-a into it)
-    return d;
-  }
+  if (body_.parameters().support_lips.empty() || lip_held_ >= 0) return held_demand(a);
   for (int pass = 0; pass < 2; ++pass) {  // (two lips meet at a corner of the support)
     const int k = lip_touched(-d);
     if (k < 0) break;
     const Eigen::Vector2d n = lip_normal(k);
     d -= d.dot(n) * n;
   }
+  return d;
+}
+
+// The demand while sliding: the ground's horizontal acceleration, less the part the lip holding the
+// base takes (the part that presses it against the lip, -a into it).
+Eigen::Vector2d Rocking3DModel::held_demand(const Eigen::Vector3d& a) const {
+  Eigen::Vector2d d = a.head<2>();
+  if (lip_held_ < 0) return d;
+  const Eigen::Vector2d n = lip_normal(lip_held_);
+  if (d.dot(n) < 0.0) d -= d.dot(n) * n;
   return d;
 }
 

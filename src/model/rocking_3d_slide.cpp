@@ -109,7 +109,7 @@ Eigen::Vector2d Rocking3DModel::slide_friction(const GroundInput3& in, double t,
   if (spin == 0.0) {
     const double speed = u.norm();
     if (speed > 0.0) return -cap * u / speed;  // at the centre of pressure: no torque (see the docs)
-    return ground_following_friction(lip_held_ >= 0 ? lip_demand(a) : Eigen::Vector2d(a.head<2>()), cap);
+    return ground_following_friction(held_demand(a), cap);
   }
   // Turning: the centre of pressure d (from the centre of mass, footprint frame) solves the moment
   // equations about the centre of mass (friction acts at the floor, h below it; the turning body's
@@ -178,8 +178,7 @@ Eigen::Vector2d Rocking3DModel::lift_friction(const GroundInput3& in, double t, 
   if (lip_held_ < 0 && resolved) return slide_friction(in, t, y, torque);
   const Eigen::Vector3d a = in.at(t);
   const Eigen::Vector2d f = resolved ? slide_friction(in, t, y, torque)
-                                     : ground_following_friction(lip_held_ >= 0 ? lip_demand(a) : Eigen::Vector2d(a.head<2>()),
-                                                                 mu_k() * std::max(kGravity + a.z(), 0.0));
+                                     : ground_following_friction(held_demand(a), mu_k() * std::max(kGravity + a.z(), 0.0));
   if (lip_held_ < 0) return f;
   // Held by a lip: its push acts at the floor as the friction does (the body's own acceleration
   // into the lip is the ground's).
@@ -275,7 +274,7 @@ void Rocking3DModel::aim_slide_ref(const GroundInput3& in, double tau, double rh
   slide_ref_ = Eigen::Vector3d(slide_(0), slide_(1), rho * slide_(2));
   if (slide_ref_.squaredNorm() > 0.0) return;
   const Eigen::Vector3d a = in.at(tau);
-  const Eigen::Vector2d d = lip_held_ >= 0 ? lip_demand(a) : Eigen::Vector2d(a.head<2>());
+  const Eigen::Vector2d d = held_demand(a);
   slide_ref_ = Eigen::Vector3d(-d.x(), -d.y(), 0.0);
   slide_stepper_.invalidate();
 }

@@ -471,6 +471,7 @@ class Rocking3DModel {
   void note_slide();
   // Lips along the support's edges (rocking_3d_lip.cpp).
   Eigen::Vector2d lip_normal(int lip) const;
+  double lip_depth(int k, const Eigen::Matrix2d& r, const Eigen::Vector2d& shift) const;
   double lip_gap(const Vec6& y, int& lip) const;
   void note_lip_floors();
   void note_lip_overhang();
@@ -480,6 +481,7 @@ class Rocking3DModel {
   double point_lip_gap(const Eigen::Vector2d& x, const Eigen::Vector2d& moving) const;
   int lip_touched(const Eigen::Vector2d& push) const;
   Eigen::Vector2d lip_demand(const Eigen::Vector3d& a) const;
+  Eigen::Vector2d held_demand(const Eigen::Vector3d& a) const;
   double lip_push(const GroundInput3& in, double t, const Vec6& y) const;
   void hold_on_lip(int lip);
   void hold_if_pressed(const Eigen::Vector2d& push, double tau);
