@@ -114,6 +114,13 @@ double Rocking3DModel::capture_energy(const BaseVertex& v) const {
 // pivot); EDGE: the face that comes flat (else null). `touching` as for land().
 const std::vector<int>* Rocking3DModel::landing_pose(int touching, Eigen::Matrix3d& r, Eigen::Vector3d& t,
                                                      Eigen::Vector3d& omega, Eigen::Vector3d& fixed) {
+  if (mode_ == Mode3D::Flight) {
+    flight_pose(r, t);
+    omega = yf_.segment<3>(4);
+    fixed = yf_.segment<3>(7);
+    ++outcome3_.flight_landings;
+    return nullptr;
+  }
   if (mode_ != Mode3D::Edge) {
     r = vertex_rotation(y_);
     t = pivot_world_ - r * hv(contact_).position;
@@ -222,7 +229,8 @@ void Rocking3DModel::land(int touching, double tau) {
   lb.central_inertia = r * body_.central_inertia_per_mass() * r.transpose();
   lb.centre = r * body_.centre_of_mass() + t;
   lb.omega = omega;
-  lb.velocity = omega.cross(lb.centre - fixed);
+  // (from flight: the centre's own velocity; pivoting: that of the turn about the fixed point)
+  lb.velocity = mode_ == Mode3D::Flight ? Eigen::Vector3d(yf_.tail<3>()) : Eigen::Vector3d(omega.cross(lb.centre - fixed));
   if (mode_ == Mode3D::Vertex && pivot_slipping_) lb.velocity += Eigen::Vector3d(ys_(9), ys_(10), 0.0);  // slide-rock
   pivot_slipping_ = false;
   const Landing law = plastic_landing(lb, set);

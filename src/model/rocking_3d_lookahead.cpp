@@ -27,6 +27,7 @@ bool Rocking3DModel::falls_if_shaking_stops(double t_now) {
   p.a_prev_.setZero();
   p.dopri5_.invalidate();  // the derivative cached for the shaken motion no longer holds
   p.vector_.invalidate();
+  p.flight_stepper_.invalidate();
   for (double s = 0.0; s < kProbeHorizon; s += kProbeStep) {
     p.step(Eigen::Vector3d::Zero(), kProbeStep);
     if (p.mode_ == Mode3D::Overturned) return true;
@@ -72,6 +73,16 @@ OverturnMargin Rocking3DModel::margin() const {
     case Mode3D::Edge:
       return overturn_margin(fb().edge(contact_).pivot, 1, ModelKind::Nonlinear, theta_, omega_);
     case Mode3D::Vertex: break;
+    case Mode3D::Flight: {
+      // As on a corner, about the lowest hull point: the energy against the centre of mass standing
+      // straight above it (its height now counts the flight's).
+      int low;
+      lowest_point(yf_, low);
+      const BaseVertex& v = hv(low);
+      const double tip = kGravity * v.radius, rest = kGravity * body_.centre_of_mass().z();
+      const double m = (tip - kinetic_energy() - kGravity * yf_(9)) / (tip - rest);
+      return {m, m < 0.0};
+    }
   }
   const BaseVertex& v = hv(contact_);
   const double height = (vertex_rotation(y_) * v.to_centre).z();
@@ -86,6 +97,11 @@ double Rocking3DModel::kinetic_energy() const {
   if (mode_ == Mode3D::Edge) return 0.5 * fb().edge(contact_).pivot.inertia * omega_ * omega_;
   if (mode_ == Mode3D::Slide)
     return 0.5 * slide_.head<2>().squaredNorm() + 0.5 * fb().central_inertia_per_mass()(2, 2) * slide_(2) * slide_(2);
+  if (mode_ == Mode3D::Flight) {
+    const Eigen::Matrix3d r = rotation();
+    const Eigen::Vector3d w = yf_.segment<3>(4);
+    return 0.5 * yf_.tail<3>().squaredNorm() + 0.5 * w.dot(r * body_.central_inertia_per_mass() * r.transpose() * w);
+  }
   if (mode_ != Mode3D::Vertex) return 0.0;
   const Eigen::Matrix3d r = vertex_rotation(y_);
   const Eigen::Vector3d w = y_.tail<3>();

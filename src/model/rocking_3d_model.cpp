@@ -26,6 +26,7 @@ const char* to_string(Mode3D mode) {
     case Mode3D::Vertex: return "VERTEX";
     case Mode3D::Overturned: return "OVERTURNED";
     case Mode3D::Slide: return "SLIDE";
+    case Mode3D::Flight: return "FLIGHT";
   }
   return "UNKNOWN";
 }
@@ -99,6 +100,8 @@ void Rocking3DModel::reset(double t, const Eigen::Vector3d& a) {
   vector_.reset(0.05 / body_.max_p());
   slide_stepper_.reset(0.05 / body_.max_p());
   slip_stepper_.reset(0.05 / body_.max_p());
+  flight_stepper_.reset(0.05 / body_.max_p());
+  yf_.setZero();
   pivot_slipping_ = false;
   ys_.setZero();
   slide_.setZero();
@@ -136,6 +139,8 @@ void Rocking3DModel::save(Saved& out) const {
   out.slip_direction = slip_dir_;
   slip_stepper_.save(out.slip_stepper);
   out.lip_held = lip_held_;
+  out.flight = yf_;
+  flight_stepper_.save(out.flight_stepper);
 }
 
 void Rocking3DModel::restore(const Saved& in) {
@@ -172,6 +177,8 @@ void Rocking3DModel::restore(const Saved& in) {
   slip_dir_ = in.slip_direction;
   slip_stepper_.restore(in.slip_stepper);
   lip_held_ = in.lip_held;
+  yf_ = in.flight;
+  flight_stepper_.restore(in.flight_stepper);
 }
 
 Eigen::Matrix3d Rocking3DModel::yaw_matrix() const { return rot_z(yaw_); }
@@ -195,6 +202,7 @@ Eigen::Matrix3d Rocking3DModel::rotation() const {
       break;
     }
     case Mode3D::Vertex: return vertex_rotation(y_);
+    case Mode3D::Flight: return Eigen::Quaterniond(yf_(0), yf_(1), yf_(2), yf_(3)).normalized().toRotationMatrix();
     default: r = yaw_matrix();
   }
   return face_ == 0 ? r : Eigen::Matrix3d(r * fc().rotation);
@@ -211,6 +219,7 @@ Eigen::Vector3d Rocking3DModel::translation() const {
       return face_ == 0 ? t : Eigen::Vector3d(t + yaw_matrix() * (re * fc().offset));
     }
     case Mode3D::Vertex: return pivot_world_ - vertex_rotation(y_) * hv(contact_).position;
+    case Mode3D::Flight: return Eigen::Vector3d(yf_.segment<3>(7)) - rotation() * body_.centre_of_mass();
     default: return face_ == 0 ? shift3 : Eigen::Vector3d(shift3 + yaw_matrix() * fc().offset);
   }
 }
@@ -224,6 +233,7 @@ Eigen::Vector3d Rocking3DModel::contact_point() const {
 Eigen::Vector3d Rocking3DModel::angular_velocity() const {
   if (mode_ == Mode3D::Edge) return yaw_matrix() * (omega_ * fb().edge(contact_).axis);
   if (mode_ == Mode3D::Vertex) return y_.tail<3>();
+  if (mode_ == Mode3D::Flight) return yf_.segment<3>(4);
   return Eigen::Vector3d::Zero();
 }
 
@@ -301,7 +311,7 @@ void Rocking3DModel::note_committed(double dt) {
       outcome_.committed_time = t_ + dt;
       report_.committed_entered = true;
     }
-  } else if ((mode_ == Mode3D::Vertex || mode_ == Mode3D::Edge) && !closed_form && !outcome_.committed && probe_ &&
+  } else if ((mode_ == Mode3D::Vertex || mode_ == Mode3D::Edge || mode_ == Mode3D::Flight) && !closed_form && !outcome_.committed && probe_ &&
              t_ + dt - last_probe_t_ >= kProbeInterval &&
              margin().committed) {
     last_probe_t_ = t_ + dt;
@@ -332,13 +342,20 @@ const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
   in.slope = (a - a_prev_) / dt;
   double tau = 0.0;
   int events = 0;
-  auto on_side = [&] { return face_ != 0 && mode_ != Mode3D::Vertex && tilt() >= body_.overturn_angle(); };
+  auto on_side = [&] {
+    return face_ != 0 && mode_ != Mode3D::Vertex && mode_ != Mode3D::Flight && tilt() >= body_.overturn_angle();
+  };
   while (tau < dt && mode_ != Mode3D::Overturned) {
     if (mode_ == Mode3D::Rest) {
-      // Whichever the input brings first: an edge lifting, or the demand leaving the friction cone.
-      const double lift = find_uplift(in, tau, dt), slip = find_slip(in, tau, dt);
-      if (!std::isfinite(lift) && !std::isfinite(slip)) break;
-      if (slip < lift) {
+      // Whichever the input brings first: an edge lifting, the demand leaving the friction cone, or
+      // the floor dropping faster than gravity (flight first on a tie: its normal force is gone).
+      const double lift = find_uplift(in, tau, dt), slip = find_slip(in, tau, dt), fly = flight_onset(in, tau, dt);
+      if (!std::isfinite(lift) && !std::isfinite(slip) && !std::isfinite(fly)) break;
+      if (fly <= lift && fly <= slip) {
+        tau = fly;
+        enter_flight(tau);
+        note_transition(Mode3D::Rest, Transition3D::LiftOff, tau);
+      } else if (slip < lift) {
         tau = slip;
         start_slide(tau);
         note_transition(Mode3D::Rest, Transition3D::SlipOnset, tau);
@@ -354,7 +371,12 @@ const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
     int other = -1;
     if (mode_ == Mode3D::Edge) e = advance_edge(in, tau, dt, other);
     else if (mode_ == Mode3D::Vertex) e = advance_vertex(in, tau, dt, other);
-    else if (mode_ == Mode3D::Slide) e = advance_slide(in, tau, dt);
+    else if (mode_ == Mode3D::Flight) e = advance_flight(in, tau, dt, other);
+    else if (mode_ == Mode3D::Slide) {
+      const double fly = flight_onset(in, tau, dt);
+      e = advance_slide(in, tau, std::min(dt, fly));
+      if (e == Event::None && tau >= fly) e = Event::Flight;
+    }
     // Off the base, lying on the side (the item base's tilt at the overturn angle) is OVERTURNED
     // as on the base: checked where the motion stops (a step's end, an event, a landing).
     if (e != Event::Overturn && on_side()) e = Event::Overturn;

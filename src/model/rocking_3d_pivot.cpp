@@ -88,6 +88,7 @@ double Rocking3DModel::watch_pivot(const GroundInput3& in, double t0, double t1,
   const double t = m0 > 0.0 ? bracketed_root(margin_at, t0, t1, m0, m1, t_tol) : t0;
   // At the root mu_s F_z = |F_h|: a pull when F_z is (to rounding) zero there, a slip otherwise.
   const bool lifts = !(pivot_reaction(in, t).z() > 1e-9 * kGravity);
+  if (lifts && follows_flight()) return kNone;  // (the body flies from there: lift_in_step locates it)
   if (lifts) ++outcome3_.pivot_lifts;
   else ++outcome3_.pivot_slips;
   if (std::isnan(outcome3_.first_pivot_slip_time)) outcome3_.first_pivot_slip_time = t_ + t;

@@ -29,6 +29,7 @@ const char* to_string(Transition3D r) {
     case Transition3D::PivotSlips: return "the pivot's reaction left the friction cone (slide-rock; followed as sticking)";
     case Transition3D::PivotSticks: return "the slipping pivot stopped and the static law holds";
     case Transition3D::PivotLifts: return "the pivot's normal reaction vanished (flight; followed as sticking)";
+    case Transition3D::LiftOff: return "lift-off (the floor's normal force vanished): flight";
     case Transition3D::Overturn: return "overturned";
   }
   return "unknown";
@@ -87,6 +88,10 @@ void Rocking3DModel::handle_event(Event e, int other, const GroundInput3& in, do
         enter_vertex_from_edge(other);
         note_transition(from, Transition3D::EdgeToVertex, tau);
       }
+      return;
+    case Event::Flight:
+      enter_flight(tau);
+      note_transition(from, Transition3D::LiftOff, tau);
       return;
     case Event::Lip:
       switch (meet_lip(lip_met_, tau)) {

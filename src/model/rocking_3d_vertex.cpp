@@ -330,8 +330,20 @@ Rocking3DModel::Event Rocking3DModel::vertex_motion(Dopri5Vector<N>& stepper, Ei
     // the other stepper.
     bool lifts = false;
     double t_switch;
-    if constexpr (N == 7) t_switch = watch_pivot(in, t0, t_stop, t_tol);
-    else t_switch = slip_end(in, t0, t_stop, t_tol, lifts);
+    if constexpr (N == 7) {
+      t_switch = watch_pivot(in, t0, t_stop, t_tol);
+      // The pivot's normal reaction vanishing before a slip begins: the body flies from there.
+      const double t_fly = lift_in_step(in, t0, t_stop, t_tol);
+      if (std::isfinite(t_fly) && !(t_switch < t_fly)) {
+        settle(stepper.eval(t_fly));
+        stepper.invalidate();
+        tau = t_fly;
+        note_ratio();
+        return Event::Flight;
+      }
+    } else {
+      t_switch = slip_end(in, t0, t_stop, t_tol, lifts);
+    }
     // Bounded work: a slip that needs more than kMaxSlipSteps steps in one sample (the 2-D law near
     // zero speed can be stiff) is held from the step's end, counted.
     if constexpr (N == 11) {
@@ -351,6 +363,7 @@ Rocking3DModel::Event Rocking3DModel::vertex_motion(Dopri5Vector<N>& stepper, Ei
       tau = t_switch;
       note_ratio();
       if constexpr (N == 7) begin_slip(in, tau);
+      else if (lifts && follows_flight()) return Event::Flight;  // (the slipping pivot's normal force vanished)
       else end_slip(in, tau, lifts);
       switched = true;
       return Event::None;

@@ -418,12 +418,17 @@ void visit(V& v, Rocking3DOutcome& o) {
   v("pivot_slip_time", o.pivot_slip_time);
   v("pivot_slip_distance", o.pivot_slip_distance);
   v("pivot_slips_not_followed", o.pivot_slips_not_followed);
+  v("flights", o.flights);
+  v("first_flight_time", o.first_flight_time);
+  v("flight_time", o.flight_time);
+  v("max_flight_height", o.max_flight_height);
+  v("flight_landings", o.flight_landings);
   v("transitions", o.transitions);
 }
 
 template <class V>
 void visit(V& v, Rocking3DModel::Saved& s) {
-  v.enumeration("mode", s.mode, static_cast<int>(Mode3D::Slide) + 1);
+  v.enumeration("mode", s.mode, static_cast<int>(Mode3D::Flight) + 1);
   v("contact", s.contact);
   v("face", s.face);
   v("theta", s.theta);
@@ -462,6 +467,12 @@ void visit(V& v, Rocking3DModel::Saved& s) {
     v("h", s.slide_stepper.h);
     v("fsal_valid", s.slide_stepper.fsal_valid);
     visit_matrix(v, "k1", s.slide_stepper.k1);
+  });
+  visit_matrix(v, "flight", s.flight);
+  v.group("flight_stepper", [&] {
+    v("h", s.flight_stepper.h);
+    v("fsal_valid", s.flight_stepper.fsal_valid);
+    visit_matrix(v, "k1", s.flight_stepper.k1);
   });
 }
 

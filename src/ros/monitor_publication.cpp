@@ -352,6 +352,10 @@ void RockingMonitor::fill_state(const Item& it, const core::ItemSummary& sm, Roc
       out.contact.append(face != 0 ? "sliding on hull face " + std::to_string(face) : std::string("sliding"));
       out.contact_mode = RockingState::CONTACT_SLIDE;
     }
+    if (solid->mode() == core::Mode3D::Flight) {  // (issue 51: the floor dropped faster than gravity)
+      out.contact = "in flight";
+      out.contact_mode = RockingState::CONTACT_FLIGHT;
+    }
     out.slip = solid->slip().norm();
     if (solid->outcome_3d().fell_off_support) out.contact = "fell off its support";
     const double margin = solid->support_margin();

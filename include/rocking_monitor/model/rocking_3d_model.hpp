@@ -19,7 +19,8 @@
 // pivot's reaction leaves the friction cone the vertex slips on the floor under kinetic friction
 // mu_k against its slip (rocking_3d_vertex_slip.cpp) until it sticks again under the static law, lands
 // or lifts. On an edge, slide-rock is not modelled yet: the onset is located and named (PivotSlips)
-// and the edge followed as sticking; flight likewise (PivotLifts).
+// and the edge followed as sticking. FLIGHT (rocking_3d_flight.cpp): where the floor's normal force
+// vanishes the body flies free of torque until a hull point lands (the same impact law).
 //
 // Frames: the item's floor frame at rest (x, y horizontal, z up); the body keeps a footprint
 // (yaw and shift on the floor) that changes only when it turns while pivoting on a vertex.
@@ -49,7 +50,7 @@ namespace rocking_monitor::core {
 struct StepEvents;  // integrate/event_location.hpp
 struct RockingOde;  // physics/dynamics.hpp
 
-enum class Mode3D : std::uint8_t { Rest, Edge, Vertex, Overturned, Slide };
+enum class Mode3D : std::uint8_t { Rest, Edge, Vertex, Overturned, Slide, Flight };
 const char* to_string(Mode3D mode);
 
 /// Why the 3-D model changed mode: every transition is located (its instant inside the sample), named
@@ -77,6 +78,7 @@ enum class Transition3D : std::uint8_t {
   HeldByLip,          ///< SLIDE: a lip holds the base: it slides along the lip (met sliding, or slipping from rest against it)
   LeavesLip,          ///< SLIDE: the lip no longer pushes (the demand turned away from it): free again
   LipFace,            ///< VERTEX: a lifted corner below the lips' height met a lip's face (an impact; the pivot goes on)
+  LiftOff,            ///< REST, SLIDE, EDGE, VERTEX -> FLIGHT: the floor's normal force vanished (it drops faster than gravity)
   Overturn,           ///< -> OVERTURNED: lying on its side, or over the tipping point
   ForcedOverturn,     ///< -> OVERTURNED: the bound on events per sample, beyond the tipping point
 };
@@ -190,6 +192,13 @@ struct Rocking3DOutcome {
   double pivot_slip_distance = 0.0;  ///< path of slipping vertex pivots on the floor, m (at step ends)
   /// Slips not started because the sample's bound on them was reached (followed as sticking).
   long pivot_slips_not_followed = 0;
+  // Free flight (issue 51 part 2): the floor's normal force vanished (REST, SLIDE: g + a_z <= 0; EDGE,
+  // VERTEX: the pivot's normal reaction). Followed without a support; on one, counted as pivot_lifts.
+  long flights = 0;               ///< lift-offs into FLIGHT (Transition3D::LiftOff)
+  double first_flight_time = std::numeric_limits<double>::quiet_NaN();  ///< s
+  double flight_time = 0.0;       ///< time spent in flight, s
+  double max_flight_height = 0.0; ///< largest height of the body's lowest point above the floor in flight, m (at step ends)
+  long flight_landings = 0;       ///< landings from flight (the impact law over the points that touch)
   long transitions = 0;           ///< mode transitions (the first kMaxTransitionRecords are kept: transitions())
 };
 
@@ -255,6 +264,9 @@ class Rocking3DModel {
     Eigen::Vector2d slip_direction = Eigen::Vector2d::UnitX();  ///< the slip's direction while its speed is 0
     Dopri5Vector<11>::Saved slip_stepper;
     int lip_held = -1;                ///< SLIDE: the support's edge whose lip holds the base (0-based), -1: none
+    /// FLIGHT: q (w, x, y, z), omega (rad/s), centre of mass (m), its velocity (m/s), world frame
+    Eigen::Matrix<double, 13, 1> flight = Eigen::Matrix<double, 13, 1>::Zero();
+    Dopri5Vector<13>::Saved flight_stepper;
   };
   void save(Saved& out) const;
   void restore(const Saved& in);
@@ -280,6 +292,15 @@ class Rocking3DModel {
   Eigen::Vector2d pivot_slip_velocity() const {
     return mode_ == Mode3D::Vertex && pivot_slipping_ ? Eigen::Vector2d(ys_.segment<2>(9)) : Eigen::Vector2d::Zero();
   }
+  /// FLIGHT: the centre of mass's velocity relative to the floor (world), m/s; zero otherwise.
+  Eigen::Vector3d flight_velocity() const {
+    return mode_ == Mode3D::Flight ? Eigen::Vector3d(yf_.tail<3>()) : Eigen::Vector3d::Zero();
+  }
+  /// Puts the body in flight: turned by `rotation` from its rest pose, centre of mass at `centre` (m,
+  /// world) moving with `velocity` (m/s), angular velocity `omega` (rad/s, world) (tests). The body
+  /// must clear the floor; std::invalid_argument otherwise.
+  void set_flight_state(const Eigen::Quaterniond& rotation, const Eigen::Vector3d& centre, const Eigen::Vector3d& velocity,
+                        const Eigen::Vector3d& omega);
   /// SLIDE: the turning rate about the vertical, rad/s.
   double spin() const { return mode_ == Mode3D::Slide ? slide_(2) : 0.0; }
   /// Horizontal displacement of the centre of mass from where it stood at reset() while flat on the
@@ -323,7 +344,7 @@ class Rocking3DModel {
  private:
   using Vec7 = Eigen::Matrix<double, 7, 1>;
   Rocking3DModel(const BaseBody& body, const SolverSettings& settings, bool with_probe);
-  enum class Event { None, Impact, Overturn, Lift, Degenerate, Stick, Lip };
+  enum class Event { None, Impact, Overturn, Lift, Degenerate, Stick, Lip, Flight };
   using Vec6 = Eigen::Matrix<double, 6, 1>;
 
   Eigen::Matrix3d yaw_matrix() const;
@@ -487,6 +508,20 @@ class Rocking3DModel {
   void hold_if_pressed(const Eigen::Vector2d& push, double tau);
   int meet_lip(int lip, double tau);
   bool trip_over_lip(int lip, int p, const Eigen::Matrix2d& r, double tau);
+  // FLIGHT (rocking_3d_flight.cpp).
+  using Vec13 = Eigen::Matrix<double, 13, 1>;
+  // Without a friction coefficient the body is the paper's pure-rocking body (no slide, no flight: a
+  // vanishing normal reaction stays a counted onset, as in the planar pair); on a support the cut of
+  // the base would move with the flying body.
+  bool follows_flight() const { return std::isfinite(body_.parameters().mu_s) && body_.parameters().support.empty(); }
+  double flight_onset(const GroundInput3& in, double tau, double tau_end) const;
+  double lift_in_step(const GroundInput3& in, double t0, double t1, double t_tol) const;
+  void enter_flight(double tau);
+  void flight_rhs(const GroundInput3& in, double t, const Vec13& y, Vec13& dy) const;
+  double lowest_point(const Vec13& y, int& lowest) const;
+  double flight_touchdown(const Vec13& y0, double t0, double t1, double t_tol, int& touching) const;
+  Event advance_flight(const GroundInput3& in, double& tau, double tau_end, int& touching);
+  void flight_pose(Eigen::Matrix3d& r, Eigen::Vector3d& t) const;
   double mu_k() const { return std::isnan(body_.parameters().mu_k) ? body_.parameters().mu_s : body_.parameters().mu_k; }
 
   BaseBody body_;
@@ -550,6 +585,9 @@ class Rocking3DModel {
   Eigen::Vector2d slip_dir_ = Eigen::Vector2d::UnitX();  // the slip's direction while its speed is 0
   Eigen::Vector2d slip_ref_ = Eigen::Vector2d::UnitX();  // the slip's velocity at the step's start (stop event)
   Dopri5Vector<11> slip_stepper_;
+  // FLIGHT: q, omega, centre of mass, its velocity (world) on its own stepper.
+  Vec13 yf_ = Vec13::Zero();
+  Dopri5Vector<13> flight_stepper_;
   Eigen::Matrix3d central_inverse_ = Eigen::Matrix3d::Identity();  // (J_c / m)^-1 in the item frame
   double stop_speed_ = 0.0;  // m/s: a slipping pivot slower than this has stopped (1e-6 g / p)
   // Bounded work: at most kMaxSlipSwitches slips begun or ended in one sample (then followed as sticking).

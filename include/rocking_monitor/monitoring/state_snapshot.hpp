@@ -28,7 +28,7 @@
 
 namespace rocking_monitor::core {
 
-inline constexpr std::uint32_t kSnapshotVersion = 9;  // 2: the 3-D model's landing outcome, 128 base vertices; 3: its hull face; 4: its sliding (issue 51); 5: its frictional landings; 6: its pivot against the friction cone; 7: the footprint its contact on a support was cut for; 8: a pedestal reaching beyond a hull body's base, cuts made again on a corner, overturns at the events bound; 9: lips along the support's edges
+inline constexpr std::uint32_t kSnapshotVersion = 10;  // 2: the 3-D model's landing outcome, 128 base vertices; 3: its hull face; 4: its sliding (issue 51); 5: its frictional landings; 6: its pivot against the friction cone; 7: the footprint its contact on a support was cut for; 8: a pedestal reaching beyond a hull body's base, cuts made again on a corner, overturns at the events bound; 9: lips along the support's edges; 10: the 3-D model's flight
 inline constexpr std::size_t kSnapshotHeaderBytes = 32;
 
 /// A sensor's stream position at the snapshot (what the node needs to continue its items).
