@@ -163,6 +163,11 @@ json solid_json(const rm::Rocking3DModel& model, rm::SolidChoice choice, bool de
               {"pivot_slip_time_s", r3.pivot_slip_time},
               {"pivot_slip_distance_m", r3.pivot_slip_distance},
               {"pivot_slips_not_followed", r3.pivot_slips_not_followed},
+              {"flights", r3.flights},
+              {"first_flight_time_s", nullable(r3.first_flight_time)},
+              {"flight_time_s", r3.flight_time},
+              {"max_flight_height_m", r3.max_flight_height},
+              {"flight_landings", r3.flight_landings},
               {"final_mode", rm::to_string(model.mode())},
               {"final_contact", model.contact()},
               {"final_face", model.face()},
@@ -208,16 +213,16 @@ void solid_motion_lines(const rm::Rocking3DModel& model, std::vector<std::string
   L.push_back(format("result      %s, final mode %s, max tilt %.5f rad, max |theta|/alpha %.4f",
                      r.overturned ? "OVERTURNED" : "survived", rm::to_string(model.mode()), r3.max_tilt,
                      r.max_rotation_ratio));
-  L.push_back(format("impacts     %ld (flat %ld, on a vertex %ld), edge-to-vertex lifts %ld", r.impacts,
-                     r3.flat_impacts, r3.vertex_impacts, r3.edge_to_vertex));
+  L.push_back(format("impacts     %ld (flat %ld, on a vertex %ld, from flight %ld), edge-to-vertex lifts %ld", r.impacts,
+                     r3.flat_impacts, r3.vertex_impacts, r3.flight_landings, r3.edge_to_vertex));
   L.push_back(format("landings    friction demand up to %.3f (%ld above mu_s), largest violation of the sticking "
                      "law %.2g m/s; friction decided %ld: %ld slid on flat, %ld with a slipping pivot (slide-rock, "
                      "followed as sticking), %ld unresolved", r3.max_friction_demand, r3.slipping_landings,
                      r3.max_landing_violation, r3.frictional_landings, r3.landing_slides, r3.pivot_slip_landings,
                      r3.unresolved_landings));
   L.push_back(format("pivot       friction demand while rocking up to %.3f; %ld slip onsets, %ld lift-offs (first at "
-                     "%s); on a vertex slide-rock for %.3f s over %.4f m, %ld sticks (on an edge, and flight, followed as "
-                     "sticking)", r3.max_pivot_friction_demand, r3.pivot_slips, r3.pivot_lifts,
+                     "%s); on a vertex slide-rock for %.3f s over %.4f m, %ld sticks (on an edge followed as sticking; "
+                     "lift-offs not flown without mu_s or on a support)", r3.max_pivot_friction_demand, r3.pivot_slips, r3.pivot_lifts,
                      std::isnan(r3.first_pivot_slip_time) ? "-" : format("%.4f s", r3.first_pivot_slip_time).c_str(),
                      r3.pivot_slip_time, r3.pivot_slip_distance, r3.pivot_sticks));
   L.push_back(format("sliding     %ld slip onsets from rest and %ld from landings (the first at %s), %ld sticks; max "
@@ -226,6 +231,10 @@ void solid_motion_lines(const rm::Rocking3DModel& model, std::vector<std::string
                      std::isnan(r3.first_slip_time) ? "-" : format("%.4f s", r3.first_slip_time).c_str(),
                      r3.sticks, r3.max_slip, model.slip().norm(), r3.max_slip_speed, r3.max_twist, r3.slip_time,
                      r3.slide_to_rock));
+  L.push_back(format("flight      %ld lift-offs (the first at %s), %.4f s in the air, lowest point up to %.4f m above the "
+                     "floor, %ld landings from it", r3.flights,
+                     std::isnan(r3.first_flight_time) ? "-" : format("%.4f s", r3.first_flight_time).c_str(),
+                     r3.flight_time, r3.max_flight_height, r3.flight_landings));
 }
 
 // The support's and the hull's lines, for a body that has them.

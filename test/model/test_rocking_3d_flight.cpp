@@ -305,5 +305,55 @@ TEST(Rocking3DFlight, ARhombusFliesOffItsVertexAsThePlanarContactModel) {
   EXPECT_GE(exact, 12);
 }
 
+// A snapshot taken in flight resumes exactly (save/restore carry the flight's state and stepper): the
+// copy goes on as the original, through the landing and the slide after it, sample for sample.
+TEST(Rocking3DFlight, ASnapshotTakenInFlightResumesExactly) {
+  const double dt = 0.005;
+  auto a_at = [](double t) {
+    return Eigen::Vector3d(t > 0.2 && t < 0.25 ? -1.5 * kGravity : 0.0, 0.3 * kGravity * std::sin(2 * kPi * t),
+                           t > 0.1 && t < 0.3 ? -1.6 * kGravity * std::sin(kPi * (t - 0.1) / 0.2) : 0.0);
+  };
+  const BaseBodyParameters p = testing::uniform_box(0.4, 0.5, 0.6, 0.3, 0.25);
+  Rocking3DModel a(BaseBody(p), flight_settings()), b(BaseBody(p), flight_settings());
+  a.reset(0.0);
+  int i = 1;
+  for (; a.mode() != Mode3D::Flight || i * dt < 0.3; ++i) a.step(a_at(i * dt), dt);
+  Rocking3DModel::Saved saved;
+  a.save(saved);
+  b.restore(saved);
+  ASSERT_EQ(b.mode(), Mode3D::Flight);
+  for (; i * dt <= 1.5 + 1e-12; ++i) {
+    a.step(a_at(i * dt), dt);
+    b.step(a_at(i * dt), dt);
+    ASSERT_EQ(a.mode(), b.mode()) << i;
+    ASSERT_EQ(a.translation(), b.translation()) << i;
+    ASSERT_EQ(a.rotation(), b.rotation()) << i;
+  }
+  EXPECT_EQ(b.outcome_3d().flight_landings, 1);
+  EXPECT_EQ(a.outcome_3d().flight_time, b.outcome_3d().flight_time);
+  EXPECT_GT(b.outcome_3d().landing_slides + b.outcome_3d().slides, 0);  // (it slid after landing)
+}
+
+// Where flight is not followed the onset is counted as before: on a support (its cut of the base would
+// move with the body) and without a friction coefficient (the paper's pure-rocking body).
+TEST(Rocking3DFlight, OnASupportOrWithoutFrictionTheBodyDoesNotFly) {
+  const double dt = 0.005;
+  BaseBodyParameters on_plinth = testing::uniform_box(0.4, 0.5, 0.6, 0.3, 0.3);
+  on_plinth.support = {{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}};
+  const BaseBodyParameters pure = testing::uniform_box(0.4, 0.5, 0.6, INFINITY, NAN);
+  for (const BaseBodyParameters& p : {on_plinth, pure}) {
+    Rocking3DModel m(BaseBody(p), flight_settings());
+    m.reset(0.0);
+    for (int i = 1; i * dt <= 1.0 + 1e-12; ++i) {
+      const double t = i * dt;
+      m.step(Eigen::Vector3d(0.3 * kGravity * std::sin(2 * kPi * t / 0.5), 0.0,
+                             t > 0.1 && t < 0.3 ? -1.6 * kGravity * std::sin(kPi * (t - 0.1) / 0.2) : 0.0), dt);
+      ASSERT_NE(m.mode(), Mode3D::Flight) << t;
+    }
+    EXPECT_EQ(m.outcome_3d().flights, 0);
+    EXPECT_TRUE(std::isnan(m.outcome_3d().first_flight_time));
+  }
+}
+
 }  // namespace
 }  // namespace rocking_monitor::core
