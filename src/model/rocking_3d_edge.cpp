@@ -171,9 +171,10 @@ Rocking3DModel::Event Rocking3DModel::advance_edge(const GroundInput3& in, doubl
     if (ev.terminal == StepEvents::Terminal::Degenerate) { tau = dopri5_.t1(); return Event::Degenerate; }
     if (edge_lifts(in, ode, t_start, th_start, om_start, t_end_step, t_tol, tau, lift_vertex)) return Event::Lift;
     // The pivot's normal reaction vanishing in the step (before its own event): the body flies.
-    const double t_fly = lift_in_step(in, dopri5_.t0(), t_end_step, t_tol);
+    double lift_at;
+    watch_pivot(in, dopri5_.t0(), t_end_step, t_tol, lift_at);
+    const double t_fly = lift_in_step(in, dopri5_.t0(), t_end_step, t_tol, lift_at);
     if (std::isfinite(t_fly) && (terminal == Event::None || t_fly < t_end_step)) {
-      watch_pivot(in, dopri5_.t0(), t_fly, t_tol);
       tau = t_fly;
       if (tau > t_start) dopri5_.single_step(ode, t_start, th_start, om_start, tau - t_start, theta_, omega_);
       else theta_ = th_start, omega_ = om_start;
@@ -181,7 +182,6 @@ Rocking3DModel::Event Rocking3DModel::advance_edge(const GroundInput3& in, doubl
       return Event::Flight;
     }
     if (terminal == Event::None) {
-      watch_pivot(in, dopri5_.t0(), dopri5_.t1(), t_tol);
       theta_ = dopri5_.theta1();
       omega_ = dopri5_.omega1();
       tau = dopri5_.t1();
@@ -192,7 +192,6 @@ Rocking3DModel::Event Rocking3DModel::advance_edge(const GroundInput3& in, doubl
       outcome3_.max_tilt = std::max(outcome3_.max_tilt, theta_);
       continue;
     }
-    watch_pivot(in, dopri5_.t0(), t_end_step, t_tol);
     tau = t_end_step;
     dopri5_.single_step(ode, t_start, th_start, om_start, tau - t_start, theta_, omega_);
     dopri5_.invalidate();

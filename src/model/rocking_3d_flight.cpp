@@ -32,13 +32,13 @@ double Rocking3DModel::flight_onset(const GroundInput3& in, double tau, double t
   return std::clamp(tau + (tau_end - tau) * n0 / (n0 - n1), tau, tau_end);
 }
 
-// EDGE, VERTEX (sticking): the first instant in the step [t0, t1] just taken where the pivot's normal
-// reaction reaches zero, on the dense output; NaN if none, or where flight is not followed.
-double Rocking3DModel::lift_in_step(const GroundInput3& in, double t0, double t1, double t_tol) const {
-  const double none = std::numeric_limits<double>::quiet_NaN();
-  if (!follows_flight()) return none;
+// EDGE, VERTEX (sticking), where watch_pivot found the reaction leaving the cone through its apex at
+// lift_at in the step [t0, t1] just taken: the instant the normal reaction reaches zero, on the dense
+// output (lift_at where it only touches zero); NaN without a lift.
+double Rocking3DModel::lift_in_step(const GroundInput3& in, double t0, double t1, double t_tol, double lift_at) const {
+  if (std::isnan(lift_at)) return lift_at;
   const double f1 = pivot_reaction(in, t1).z();
-  if (f1 > 0.0) return none;
+  if (f1 > 0.0) return lift_at;
   auto normal = [&](double t) { return pivot_reaction(in, t).z(); };
   const double f0 = normal(t0);
   return f0 > 0.0 ? bracketed_root(normal, t0, t1, f0, f1, t_tol) : t0;

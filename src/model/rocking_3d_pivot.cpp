@@ -65,8 +65,13 @@ double Rocking3DModel::cone_margin(const Eigen::Vector3d& f) const {
 // Over the step [t0, t1] just taken (its dense output valid): the largest demand at its end, and the
 // first instant the reaction leaves the cone, located and recorded once until it comes back inside.
 // Returns that instant where the motion after it is modelled (a vertex's slip: slide-rock), else NaN.
-double Rocking3DModel::watch_pivot(const GroundInput3& in, double t0, double t1, double t_tol) {
+// lift_at: where the reaction leaves the cone through its apex (the normal force vanishing with the
+// friction it needs: the body flies, follows_flight()), else NaN. A normal force that vanishes only
+// after the cone was left (the pivot outside it, followed as sticking on an edge or at the bound on
+// slips) is not a flight: the sticking motion is no longer the body's there.
+double Rocking3DModel::watch_pivot(const GroundInput3& in, double t0, double t1, double t_tol, double& lift_at) {
   constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  lift_at = kNone;
   const Eigen::Vector3d f1 = pivot_reaction(in, t1);
   if (f1.z() > 0.0)
     outcome3_.max_pivot_friction_demand = std::max(outcome3_.max_pivot_friction_demand, std::hypot(f1.x(), f1.y()) / f1.z());
@@ -88,7 +93,10 @@ double Rocking3DModel::watch_pivot(const GroundInput3& in, double t0, double t1,
   const double t = m0 > 0.0 ? bracketed_root(margin_at, t0, t1, m0, m1, t_tol) : t0;
   // At the root mu_s F_z = |F_h|: a pull when F_z is (to rounding) zero there, a slip otherwise.
   const bool lifts = !(pivot_reaction(in, t).z() > 1e-9 * kGravity);
-  if (lifts && follows_flight()) return kNone;  // (the body flies from there: lift_in_step locates it)
+  if (lifts && follows_flight()) {  // (the body flies from there: lift_in_step locates it)
+    lift_at = t;
+    return kNone;
+  }
   if (lifts) ++outcome3_.pivot_lifts;
   else ++outcome3_.pivot_slips;
   if (std::isnan(outcome3_.first_pivot_slip_time)) outcome3_.first_pivot_slip_time = t_ + t;

@@ -331,10 +331,11 @@ Rocking3DModel::Event Rocking3DModel::vertex_motion(Dopri5Vector<N>& stepper, Ei
     bool lifts = false;
     double t_switch;
     if constexpr (N == 7) {
-      t_switch = watch_pivot(in, t0, t_stop, t_tol);
-      // The pivot's normal reaction vanishing before a slip begins: the body flies from there.
-      const double t_fly = lift_in_step(in, t0, t_stop, t_tol);
-      if (std::isfinite(t_fly) && !(t_switch < t_fly)) {
+      double lift_at;
+      t_switch = watch_pivot(in, t0, t_stop, t_tol, lift_at);
+      // The pivot's normal reaction vanishing (inside the cone until then): the body flies from there.
+      const double t_fly = lift_in_step(in, t0, t_stop, t_tol, lift_at);
+      if (std::isfinite(t_fly)) {
         settle(stepper.eval(t_fly));
         stepper.invalidate();
         tau = t_fly;

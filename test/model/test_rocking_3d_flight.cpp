@@ -2,9 +2,10 @@
 // Oracles: the closed form of a body thrown off a floor whose acceleration is piecewise linear (the
 // samples' first-order hold: its motion is a piecewise cubic) and of the flat landing's Coulomb rule
 // (plastic normal impulse, friction up to mu_s of it, else mu_k of it, then Coulomb sliding to rest);
-// the free symmetric top (Euler's torque-free motion in closed form, Landau & Lifshitz §33); the
-// planar contact model's FLIGHT (an independent code: x, y, theta with RK4 and its own events) for a
-// box about a side; and a snapshot taken in flight resuming bit for bit.
+// the free symmetric top (Euler's torque-free motion in closed form: Landau & Lifshitz, Mechanics,
+// section 33); the planar contact model's slide-rock and FLIGHT (an independent code: x, y, theta with
+// RK4 and its own events) for a rhombus on its corner; and a snapshot taken in flight resuming bit for
+// bit.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -426,7 +426,7 @@ class Rocking3DModel {
   Eigen::Vector3d vertex_reaction(const GroundInput3& in, double t, const Vec7& y, const Vec7& dy) const;
   Eigen::Vector3d pivot_reaction(const GroundInput3& in, double t) const;
   double cone_margin(const Eigen::Vector3d& f) const;
-  double watch_pivot(const GroundInput3& in, double t0, double t1, double t_tol);
+  double watch_pivot(const GroundInput3& in, double t0, double t1, double t_tol, double& lift_at);
   // Slide-rock on a vertex (rocking_3d_vertex_slip.cpp).
   using Vec11 = Eigen::Matrix<double, 11, 1>;
   double slip_dynamics(const GroundInput3& in, double t, const Vec11& y, Eigen::Vector3d& w_dot,
@@ -515,7 +515,7 @@ class Rocking3DModel {
   // the base would move with the flying body.
   bool follows_flight() const { return std::isfinite(body_.parameters().mu_s) && body_.parameters().support.empty(); }
   double flight_onset(const GroundInput3& in, double tau, double tau_end) const;
-  double lift_in_step(const GroundInput3& in, double t0, double t1, double t_tol) const;
+  double lift_in_step(const GroundInput3& in, double t0, double t1, double t_tol, double lift_at) const;
   void enter_flight(double tau);
   void flight_rhs(const GroundInput3& in, double t, const Vec13& y, Vec13& dy) const;
   double lowest_point(const Vec13& y, int& lowest) const;
