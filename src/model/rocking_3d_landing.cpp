@@ -69,6 +69,21 @@ void Rocking3DModel::slide_after_landing(const Eigen::Matrix3d& rotation, int ve
   }
 }
 
+// A landing from flight on one corner that friction could not stop: the body pivots on that corner with
+// the frictional impact's angular velocity, the corner slipping on with its velocity after the impact.
+void Rocking3DModel::slip_after_landing(const LandingScene& sc) {
+  const FrictionalLanding& f = sc.friction;
+  const Eigen::Vector3d& p = sc.set.point[0];
+  enter_vertex(sc.hull_index[0], p, sc.r, f.omega);
+  const Eigen::Vector3d u = point_velocity(f.omega, f.velocity, sc.body->centre, p);
+  ys_ << y_, p.x(), p.y(), u.x(), u.y();
+  slip_dir_ = u.head<2>().normalized();
+  pivot_slipping_ = true;
+  slip_stepper_.invalidate();
+  ++outcome3_.corner_slip_landings;
+  landing_reason_ = Transition3D::LandingCornerSlips;
+}
+
 // Friction decides the landing (issue 51 part 3) where the sticking law needs more than mu_s or has
 // no solution: the frictional plastic impact (physics/frictional_impact.hpp), solved by
 // solve_friction() where its answer can change what follows.
@@ -251,9 +266,14 @@ void Rocking3DModel::land(int touching, double tau) {
   // answer and the frictionless one), is taken as a slipping pivot: not solved (the sticking answer
   // is followed there anyway; rocking_benchmarks and monitor_benchmarks: the solve would cost 20 us).
   // Where the sticking law stops the body (a rest capture's landing) the capture's rule decides.
-  if (scene.needs_friction && set.count >= 3 && law.mode != LandingMode::Rest && !keeps_loaded_pivot(scene))
+  // From flight onto one corner the frictional impact is that corner's (Routh's): solved, and where the
+  // corner slips on it is followed slide-rocking (the planar contact model's corner impact from flight).
+  const bool one_corner = mode_ == Mode3D::Flight && set.count == 1;
+  if (scene.needs_friction && ((set.count >= 3 && law.mode != LandingMode::Rest && !keeps_loaded_pivot(scene)) || one_corner))
     solve_friction(scene);
-  if (scene.frictional && scene.friction.stay >= 3) {
+  if (one_corner && scene.frictional && scene.friction.stay == 1 && scene.friction.slipping == 1) {
+    slip_after_landing(scene);
+  } else if (scene.frictional && scene.friction.stay >= 3) {
     // The base stays on the floor: friction could not stop it; it slides on (exactly).
     slide_after_landing(r, hull_index[0], set.point[0], scene.down, scene.friction.velocity.head<2>(),
                         scene.friction.omega.z(), tau);

@@ -16,6 +16,7 @@ const char* to_string(Transition3D r) {
     case Transition3D::Landing: return "landing (sticking impact)";
     case Transition3D::LandingSlides: return "landing that friction could not stop: slides on";
     case Transition3D::LandingPivotSlips: return "landing with a slipping pivot (followed as sticking)";
+    case Transition3D::LandingCornerSlips: return "landing on a corner that friction could not stop: slide-rocks on";
     case Transition3D::RestCapture: return "rest capture";
     case Transition3D::Degenerate: return "degenerate pivot motion: rest";
     case Transition3D::ForcedRest: return "forced rest (events per sample bound)";

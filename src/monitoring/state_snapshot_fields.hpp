@@ -423,6 +423,7 @@ void visit(V& v, Rocking3DOutcome& o) {
   v("flight_time", o.flight_time);
   v("max_flight_height", o.max_flight_height);
   v("flight_landings", o.flight_landings);
+  v("corner_slip_landings", o.corner_slip_landings);
   v("transitions", o.transitions);
 }
 

@@ -168,6 +168,7 @@ json solid_json(const rm::Rocking3DModel& model, rm::SolidChoice choice, bool de
               {"flight_time_s", r3.flight_time},
               {"max_flight_height_m", r3.max_flight_height},
               {"flight_landings", r3.flight_landings},
+              {"corner_slip_landings", r3.corner_slip_landings},
               {"final_mode", rm::to_string(model.mode())},
               {"final_contact", model.contact()},
               {"final_face", model.face()},
@@ -232,9 +233,9 @@ void solid_motion_lines(const rm::Rocking3DModel& model, std::vector<std::string
                      r3.sticks, r3.max_slip, model.slip().norm(), r3.max_slip_speed, r3.max_twist, r3.slip_time,
                      r3.slide_to_rock));
   L.push_back(format("flight      %ld lift-offs (the first at %s), %.4f s in the air, lowest point up to %.4f m above the "
-                     "floor, %ld landings from it", r3.flights,
+                     "floor, %ld landings from it (%ld on a corner that slipped on)", r3.flights,
                      std::isnan(r3.first_flight_time) ? "-" : format("%.4f s", r3.first_flight_time).c_str(),
-                     r3.flight_time, r3.max_flight_height, r3.flight_landings));
+                     r3.flight_time, r3.max_flight_height, r3.flight_landings, r3.corner_slip_landings));
 }
 
 // The support's and the hull's lines, for a body that has them.

@@ -64,6 +64,7 @@ enum class Transition3D : std::uint8_t {
   Landing,            ///< a landing under issue 40's sticking impact (-> EDGE, VERTEX or REST)
   LandingSlides,      ///< a landing whose friction could not stop the base: SLIDE on
   LandingPivotSlips,  ///< a landing friction decided with a slipping pivot (followed as sticking)
+  LandingCornerSlips, ///< FLIGHT -> VERTEX: a landing on one corner that friction could not stop: it slide-rocks on
   RestCapture,        ///< a landing with almost no energy left: REST (the Zeno rule)
   Degenerate,         ///< -> REST: a degenerate pivot motion (rocking_3d_vertex.cpp)
   ForcedRest,         ///< -> REST: the bound on events per sample
@@ -199,6 +200,9 @@ struct Rocking3DOutcome {
   double flight_time = 0.0;       ///< time spent in flight, s
   double max_flight_height = 0.0; ///< largest height of the body's lowest point above the floor in flight, m (at step ends)
   long flight_landings = 0;       ///< landings from flight (the impact law over the points that touch)
+  /// Of those, the ones on a single corner whose frictional impact left it slipping: followed, the
+  /// corner slide-rocking on (Transition3D::LandingCornerSlips; counted in frictional_landings too).
+  long corner_slip_landings = 0;
   long transitions = 0;           ///< mode transitions (the first kMaxTransitionRecords are kept: transitions())
 };
 
@@ -403,6 +407,7 @@ class Rocking3DModel {
   void place_flat(const Eigen::Matrix3d& rotation, int vertex, const Eigen::Vector3d& point, int face);
   void slide_after_landing(const Eigen::Matrix3d& rotation, int vertex, const Eigen::Vector3d& point, int face,
                            const Eigen::Vector2d& u, double spin, double tau);
+  void slip_after_landing(const LandingScene& scene);
   double capture_energy(const BaseVertex& v) const;
   void capture_rest(const Eigen::Matrix3d& rotation, int vertex, const Eigen::Vector3d& point, int face);
   double face_tilt(const Eigen::Matrix3d& rotation, int face) const;
