@@ -107,7 +107,7 @@ void Rocking3DModel::reset(double t, const Eigen::Vector3d& a) {
   slide_.setZero();
   lip_held_ = -1;
   transition_count_ = 0;
-  pivot_outside_cone_ = false;
+  pivot_outside_cone_ = pivot_pulled_ = false;
 }
 
 void Rocking3DModel::save(Saved& out) const {
@@ -134,6 +134,7 @@ void Rocking3DModel::save(Saved& out) const {
   out.slide = slide_;
   slide_stepper_.save(out.slide_stepper);
   out.pivot_outside_cone = pivot_outside_cone_;
+  out.pivot_pulled = pivot_pulled_;
   out.pivot_slipping = pivot_slipping_;
   out.slip_state = ys_;
   out.slip_direction = slip_dir_;
@@ -172,6 +173,7 @@ void Rocking3DModel::restore(const Saved& in) {
   slide_ = in.slide;
   slide_stepper_.restore(in.slide_stepper);
   pivot_outside_cone_ = in.pivot_outside_cone;
+  pivot_pulled_ = in.pivot_pulled;
   pivot_slipping_ = in.pivot_slipping;
   ys_ = in.slip_state;
   slip_dir_ = in.slip_direction;

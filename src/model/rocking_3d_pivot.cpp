@@ -77,10 +77,12 @@ double Rocking3DModel::watch_pivot(const GroundInput3& in, double t0, double t1,
     outcome3_.max_pivot_friction_demand = std::max(outcome3_.max_pivot_friction_demand, std::hypot(f1.x(), f1.y()) / f1.z());
   const double m1 = cone_margin(f1);
   if (m1 >= 0.0) {
-    pivot_outside_cone_ = false;
+    pivot_outside_cone_ = pivot_pulled_ = false;
     return kNone;
   }
   if (pivot_outside_cone_) {
+    if (!(f1.z() > 0.0) && !pivot_pulled_) ++outcome3_.pulled_pivots;
+    pivot_pulled_ = !(f1.z() > 0.0);
     // Outside already (counted on the edge this vertex ended, or held by the bound): a vertex pressing
     // on the floor slips from here.
     if (mode_ != Mode3D::Vertex || !(f1.z() > 0.0) || slip_switches_ >= kMaxSlipSwitches) return kNone;

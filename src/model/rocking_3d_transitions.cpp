@@ -42,8 +42,10 @@ void Rocking3DModel::note_transition(Mode3D from, Transition3D reason, double ta
   // an end of the edge lifting keeps the other end's slip (the same contact goes on).
   if (reason != Transition3D::PivotSlips && reason != Transition3D::PivotLifts && reason != Transition3D::PivotSticks &&
       reason != Transition3D::EdgeToVertex && reason != Transition3D::SlidesOverSupportEdge &&
-      reason != Transition3D::HeldByLip && reason != Transition3D::LeavesLip && reason != Transition3D::LipFace)
+      reason != Transition3D::HeldByLip && reason != Transition3D::LeavesLip && reason != Transition3D::LipFace) {
     pivot_outside_cone_ = reason == Transition3D::LandingPivotSlips;
+    pivot_pulled_ = false;
+  }
   if (transition_count_ >= kMaxTransitionRecords) return;
   const bool has_contact = mode_ == Mode3D::Edge || mode_ == Mode3D::Vertex;
   transitions_[static_cast<std::size_t>(transition_count_++)] = {t_ + tau, from, mode_, reason, has_contact ? contact_ : -1};

@@ -418,6 +418,7 @@ void visit(V& v, Rocking3DOutcome& o) {
   v("pivot_slip_time", o.pivot_slip_time);
   v("pivot_slip_distance", o.pivot_slip_distance);
   v("pivot_slips_not_followed", o.pivot_slips_not_followed);
+  v("pulled_pivots", o.pulled_pivots);
   v("flights", o.flights);
   v("first_flight_time", o.first_flight_time);
   v("flight_time", o.flight_time);
@@ -448,6 +449,7 @@ void visit(V& v, Rocking3DModel::Saved& s) {
   v.group("outcome_3d", [&] { visit(v, s.outcome_3d); });
   v("pivot_outside_cone", s.pivot_outside_cone);
   v("pivot_slipping", s.pivot_slipping);
+  v("pivot_pulled", s.pivot_pulled);
   v("lip_held", s.lip_held);
   visit_matrix(v, "slip_state", s.slip_state);
   visit_matrix(v, "slip_direction", s.slip_direction);

@@ -163,6 +163,7 @@ json solid_json(const rm::Rocking3DModel& model, rm::SolidChoice choice, bool de
               {"pivot_slip_time_s", r3.pivot_slip_time},
               {"pivot_slip_distance_m", r3.pivot_slip_distance},
               {"pivot_slips_not_followed", r3.pivot_slips_not_followed},
+              {"pulled_pivots", r3.pulled_pivots},
               {"flights", r3.flights},
               {"first_flight_time_s", nullable(r3.first_flight_time)},
               {"flight_time_s", r3.flight_time},
@@ -223,9 +224,10 @@ void solid_motion_lines(const rm::Rocking3DModel& model, std::vector<std::string
                      r3.unresolved_landings));
   L.push_back(format("pivot       friction demand while rocking up to %.3f; %ld slip onsets, %ld lift-offs (first at "
                      "%s); on a vertex slide-rock for %.3f s over %.4f m, %ld sticks (on an edge followed as sticking; "
-                     "lift-offs not flown without mu_s or on a support)", r3.max_pivot_friction_demand, r3.pivot_slips, r3.pivot_lifts,
+                     "lift-offs not flown without mu_s or on a support); %ld times held down by a pull outside the cone",
+                     r3.max_pivot_friction_demand, r3.pivot_slips, r3.pivot_lifts,
                      std::isnan(r3.first_pivot_slip_time) ? "-" : format("%.4f s", r3.first_pivot_slip_time).c_str(),
-                     r3.pivot_slip_time, r3.pivot_slip_distance, r3.pivot_sticks));
+                     r3.pivot_slip_time, r3.pivot_slip_distance, r3.pivot_sticks, r3.pulled_pivots));
   L.push_back(format("sliding     %ld slip onsets from rest and %ld from landings (the first at %s), %ld sticks; max "
                      "slip %.4f m, final %.4f m, max slip speed %.3f m/s, max twist %.4f rad, %.3f s sliding; %ld slides "
                      "ended by an edge lifting", r3.slides, r3.landing_slides,

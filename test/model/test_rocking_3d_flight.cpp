@@ -308,6 +308,29 @@ TEST(Rocking3DFlight, ARhombusFliesOffItsVertexAsThePlanarContactModel) {
   EXPECT_GE(slipped, 3);
 }
 
+// A box about a side whose edge's reaction leaves the cone (an edge's slide-rock: counted, followed as
+// sticking) before the floor drops faster than gravity: its normal force then turns negative with the
+// pivot already outside the cone. That is not a lift-off of the body's motion (the real box slide-rocks
+// until its normal force vanishes): counted as held down by a pull (pulled_pivots), not flown.
+TEST(Rocking3DFlight, AnEdgeOutsideTheConeIsCountedPulledNotFlown) {
+  const double b = 0.4, d = 0.5, h = 0.8, dt = 0.005;
+  Rocking3DModel m(BaseBody(testing::uniform_box(b, d, h, 0.6, 0.6)), flight_settings());
+  m.reset(0.0);
+  long pulled_on_edge = 0;
+  for (int i = 1; i * dt <= 0.45 + 1e-12; ++i) {
+    const double t = i * dt;
+    const long before = m.outcome_3d().pulled_pivots;
+    m.step(Eigen::Vector3d(t < 0.6 ? 0.6 * kGravity * std::sin(2 * kPi * t / 0.6) : 0.0, 0.0,
+                           t > 0.3 && t < 0.5 ? -1.6 * kGravity * std::sin(kPi * (t - 0.3) / 0.2) : 0.0), dt);
+    if (m.outcome_3d().pulled_pivots > before && m.mode() == Mode3D::Edge) ++pulled_on_edge;
+  }
+  const Rocking3DOutcome& o = m.outcome_3d();
+  std::printf("[ measure ] %ld slip onsets on the edge, %ld pulls, %ld flights\n", o.pivot_slips, o.pulled_pivots, o.flights);
+  EXPECT_GE(o.pivot_slips, 1);
+  EXPECT_GE(pulled_on_edge, 1);
+  EXPECT_EQ(o.flights, 0);
+}
+
 // A snapshot taken in flight resumes exactly (save/restore carry the flight's state and stepper): the
 // copy goes on as the original, through the landing and the slide after it, sample for sample.
 TEST(Rocking3DFlight, ASnapshotTakenInFlightResumesExactly) {

@@ -193,6 +193,10 @@ struct Rocking3DOutcome {
   double pivot_slip_distance = 0.0;  ///< path of slipping vertex pivots on the floor, m (at step ends)
   /// Slips not started because the sample's bound on them was reached (followed as sticking).
   long pivot_slips_not_followed = 0;
+  /// A pivot followed as sticking outside the cone (an edge's slide-rock, or at the bound on slips)
+  /// whose normal force then turned negative (at a step's end): held on the floor by a pull no floor
+  /// exerts, where the real body slide-rocks and may leave the floor. Episodes, not flown.
+  long pulled_pivots = 0;
   // Free flight (issue 51 part 2): the floor's normal force vanished (REST, SLIDE: g + a_z <= 0; EDGE,
   // VERTEX: the pivot's normal reaction). Followed without a support; on one, counted as pivot_lifts.
   long flights = 0;               ///< lift-offs into FLIGHT (Transition3D::LiftOff)
@@ -264,6 +268,7 @@ class Rocking3DModel {
     Dopri5Vector<6>::Saved slide_stepper;
     bool pivot_outside_cone = false;  ///< EDGE, VERTEX: the pivot's reaction is outside the cone (onset counted)
     bool pivot_slipping = false;      ///< VERTEX: the pivot slips (slip_state holds the motion)
+    bool pivot_pulled = false;        ///< EDGE, VERTEX: outside the cone, the normal force negative (counted)
     Eigen::Matrix<double, 11, 1> slip_state = Eigen::Matrix<double, 11, 1>::Zero();  ///< q, omega (rad/s), pivot (m), its velocity (m/s)
     Eigen::Vector2d slip_direction = Eigen::Vector2d::UnitX();  ///< the slip's direction while its speed is 0
     Dopri5Vector<11>::Saved slip_stepper;
@@ -583,6 +588,7 @@ class Rocking3DModel {
   std::array<Transition3DRecord, kMaxTransitionRecords> transitions_{};
   int transition_count_ = 0;
   bool pivot_outside_cone_ = false;  // EDGE, VERTEX: the onset is counted, not again until back inside
+  bool pivot_pulled_ = false;        // ... and its normal force negative (pulled_pivots counted)
   // VERTEX slide-rock: the slipping pivot's motion (q, omega, pivot x y, its velocity) on its own
   // stepper; y_ and pivot_world_ follow it at every step's end, so that every measure reads them.
   bool pivot_slipping_ = false;
