@@ -329,6 +329,29 @@ void Rocking3DModel::note_committed(double dt) {
   }
 }
 
+// REST: whichever the input brings first in [tau, dt]: an edge lifting, the demand leaving the friction
+// cone, or the floor dropping faster than gravity (flight first on a tie: its normal force is gone).
+// False where nothing does (the body rests through the sample).
+bool Rocking3DModel::leave_rest(const GroundInput3& in, double& tau, double dt) {
+  const double lift = find_uplift(in, tau, dt), slip = find_slip(in, tau, dt), fly = flight_onset(in, tau, dt);
+  if (!std::isfinite(lift) && !std::isfinite(slip) && !std::isfinite(fly)) return false;
+  if (fly <= lift && fly <= slip) {
+    tau = fly;
+    enter_flight(tau);
+    note_transition(Mode3D::Rest, Transition3D::LiftOff, tau);
+  } else if (slip < lift) {
+    tau = slip;
+    start_slide(tau);
+    note_transition(Mode3D::Rest, Transition3D::SlipOnset, tau);
+    hold_if_pressed(-in.at(tau).head<2>(), tau);  // (begun against a lip that it presses)
+  } else {
+    tau = lift;
+    start_motion(in, tau);
+    note_transition(Mode3D::Rest, Transition3D::Uplift, tau);
+  }
+  return true;
+}
+
 const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
   if (!(dt > 0.0) || !std::isfinite(dt) || !a.allFinite())
     throw std::invalid_argument("Rocking3DModel::step: dt must be finite and > 0 and the acceleration finite");
@@ -349,24 +372,7 @@ const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
   };
   while (tau < dt && mode_ != Mode3D::Overturned) {
     if (mode_ == Mode3D::Rest) {
-      // Whichever the input brings first: an edge lifting, the demand leaving the friction cone, or
-      // the floor dropping faster than gravity (flight first on a tie: its normal force is gone).
-      const double lift = find_uplift(in, tau, dt), slip = find_slip(in, tau, dt), fly = flight_onset(in, tau, dt);
-      if (!std::isfinite(lift) && !std::isfinite(slip) && !std::isfinite(fly)) break;
-      if (fly <= lift && fly <= slip) {
-        tau = fly;
-        enter_flight(tau);
-        note_transition(Mode3D::Rest, Transition3D::LiftOff, tau);
-      } else if (slip < lift) {
-        tau = slip;
-        start_slide(tau);
-        note_transition(Mode3D::Rest, Transition3D::SlipOnset, tau);
-        hold_if_pressed(-in.at(tau).head<2>(), tau);  // (begun against a lip that it presses)
-      } else {
-        tau = lift;
-        start_motion(in, tau);
-        note_transition(Mode3D::Rest, Transition3D::Uplift, tau);
-      }
+      if (!leave_rest(in, tau, dt)) break;
       ++events;
     }
     Event e = Event::None;

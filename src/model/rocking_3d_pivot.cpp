@@ -112,4 +112,23 @@ double Rocking3DModel::watch_pivot(const GroundInput3& in, double t0, double t1,
   return t;
 }
 
+// VERTEX, over the step [t0, t1] just taken: the first instant the pivot's contact changes, NaN if none:
+// a slip beginning (sticking) or ending (slipping; `lifts` where its normal force vanished), or the
+// body leaving the floor (`flies`: the reaction left the cone through its apex, or the slipping
+// pivot's normal force vanished, where flight is followed).
+double Rocking3DModel::pivot_change_in_step(const GroundInput3& in, double t0, double t1, double t_tol, bool& lifts,
+                                            bool& flies) {
+  lifts = flies = false;
+  if (pivot_slipping_) {
+    const double t = slip_end(in, t0, t1, t_tol, lifts);
+    flies = lifts && follows_flight();
+    return t;
+  }
+  double lift_at;
+  const double t_switch = watch_pivot(in, t0, t1, t_tol, lift_at);
+  const double t_fly = lift_in_step(in, t0, t1, t_tol, lift_at);
+  flies = std::isfinite(t_fly);
+  return flies ? t_fly : t_switch;
+}
+
 }  // namespace rocking_monitor::core

@@ -326,25 +326,10 @@ Rocking3DModel::Event Rocking3DModel::vertex_motion(Dopri5Vector<N>& stepper, Ei
     if constexpr (N == 7) t_stop = lip_face_in_step(t0, t_stop, t_tol, lip_corner, lip);
     if (lip_corner >= 0) event = Event::None;
     note_vertex_peak(rot, y0, event == Event::None && lip_corner < 0 ? y1 : rot(t_stop), t0, t_stop, t_tol);
-    // A slip beginning (sticking) or ending (slipping) before the step's end or event: from there on
-    // the other stepper.
-    bool lifts = false;
-    double t_switch;
-    if constexpr (N == 7) {
-      double lift_at;
-      t_switch = watch_pivot(in, t0, t_stop, t_tol, lift_at);
-      // The pivot's normal reaction vanishing (inside the cone until then): the body flies from there.
-      const double t_fly = lift_in_step(in, t0, t_stop, t_tol, lift_at);
-      if (std::isfinite(t_fly)) {
-        settle(stepper.eval(t_fly));
-        stepper.invalidate();
-        tau = t_fly;
-        note_ratio();
-        return Event::Flight;
-      }
-    } else {
-      t_switch = slip_end(in, t0, t_stop, t_tol, lifts);
-    }
+    // A slip beginning (sticking) or ending (slipping), or the body leaving the floor, before the
+    // step's end or event: from there on the other stepper, or flight.
+    bool lifts, flies;
+    const double t_switch = pivot_change_in_step(in, t0, t_stop, t_tol, lifts, flies);
     // Bounded work: a slip that needs more than kMaxSlipSteps steps in one sample (the 2-D law near
     // zero speed can be stiff) is held from the step's end, counted.
     if constexpr (N == 11) {
@@ -363,8 +348,8 @@ Rocking3DModel::Event Rocking3DModel::vertex_motion(Dopri5Vector<N>& stepper, Ei
       stepper.invalidate();
       tau = t_switch;
       note_ratio();
+      if (flies) return Event::Flight;
       if constexpr (N == 7) begin_slip(in, tau);
-      else if (lifts && follows_flight()) return Event::Flight;  // (the slipping pivot's normal force vanished)
       else end_slip(in, tau, lifts);
       switched = true;
       return Event::None;

@@ -362,6 +362,7 @@ class Rocking3DModel {
   double uplift_at(const GroundInput3& in, int edge, double tau) const;
   double find_uplift(const GroundInput3& in, double tau, double tau_end) const;
   void start_motion(const GroundInput3& in, double tau);
+  bool leave_rest(const GroundInput3& in, double& tau, double dt);
   void endpoint_reactions(int edge, double theta, double omega, double theta_ddot,
                           const Eigen::Vector3d& a_footprint, double& fa, double& fb) const;
   double end_rise(int edge, double theta, double omega, const Eigen::Vector3d& a_footprint, int stays) const;
@@ -437,6 +438,7 @@ class Rocking3DModel {
   Eigen::Vector3d pivot_reaction(const GroundInput3& in, double t) const;
   double cone_margin(const Eigen::Vector3d& f) const;
   double watch_pivot(const GroundInput3& in, double t0, double t1, double t_tol, double& lift_at);
+  double pivot_change_in_step(const GroundInput3& in, double t0, double t1, double t_tol, bool& lifts, bool& flies);
   // Slide-rock on a vertex (rocking_3d_vertex_slip.cpp).
   using Vec11 = Eigen::Matrix<double, 11, 1>;
   double slip_dynamics(const GroundInput3& in, double t, const Vec11& y, Eigen::Vector3d& w_dot,
