@@ -16,18 +16,13 @@
 
 #include "rocking_monitor/model/contact_model.hpp"
 #include "rocking_monitor/model/rocking_3d_model.hpp"
+#include "rhombus_on_corner.hpp"
 #include "test_helpers.hpp"
 
 namespace rocking_monitor::core {
 namespace {
 
-SolverSettings flight_settings() {
-  SolverSettings s;
-  s.method = Method::Dopri5;
-  s.model = ModelKind::Nonlinear;
-  s.tol = 1e-11;
-  return s;
-}
+SolverSettings flight_settings() { return testing::tight_settings(1e-11); }  // (dopri5, nonlinear: the defaults)
 
 // Exact motion under an acceleration linear in each sample [t_i, t_i + dt] (the first-order hold of
 // the samples acc(t_i)): position and velocity at t from (t0, x0, v0).
@@ -235,26 +230,10 @@ TEST(Rocking3DFlight, ARhombusFliesOffItsVertexAsThePlanarContactModel) {
     for (double drop : {1.3, 2.0})
       for (double amp : {0.0, 0.3})
         for (double omega0 : {0.8, -0.5}) {
-          BaseBodyParameters p;
-          p.centre_of_mass = {0.0, 0.0, h};
-          p.base = {{-a, 0.0}, {0.0, -c}, {a, 0.0}, {0.0, c}};
-          p.central_inertia = Eigen::Vector3d(ig * ig + 0.01, ig * ig, 0.05).asDiagonal();
-          p.mu_s = p.mu_k = mu;
+          const BaseBodyParameters p = testing::rhombus(a, c, h, ig, mu);
           Rocking3DModel solid(BaseBody(p), flight_settings());
-          solid.reset(0.0);
-          const double theta0 = 0.08;
-          solid.set_vertex_state(2, Eigen::Quaterniond(Eigen::AngleAxisd(theta0, Eigen::Vector3d::UnitY())),
-                                 Eigen::Vector3d(0.0, omega0, 0.0));
-          BodyParameters x;
-          x.width = 2 * a;
-          x.cg_height = h;
-          x.radius_of_gyration = ig;
-          x.mu_s = x.mu_k = mu;
-          ContactSettings cs;
-          cs.substeps = 512;
-          ContactModel planar(x, cs);
-          planar.reset(0.0);
-          planar.set_state(0.0, 0.0, 0.0, 1, theta0, omega0);
+          ContactModel planar(testing::planar_rhombus(a, h, ig, mu), testing::fine_contact());
+          testing::tilt_on_corner(solid, planar, 0.08, omega0);
           double worst_theta = 0.0, worst_x = 0.0, worst_z = 0.0;
           const double x0 = (solid.rotation() * p.centre_of_mass + solid.translation()).x(), px0 = planar.state()[0];
           double lift3 = NAN, lift2 = NAN, land3 = NAN, land2 = NAN;

@@ -11,6 +11,7 @@
 
 #include "rocking_monitor/model/contact_model.hpp"
 #include "rocking_monitor/model/rocking_3d_model.hpp"
+#include "rhombus_on_corner.hpp"
 #include "test_helpers.hpp"
 
 namespace rocking_monitor::core {
@@ -140,28 +141,9 @@ TEST(Rocking3DPivot, ARhombusSlideRocksOnItsVertexAsThePlanarContactModel) {
   for (double mu : {0.12, 0.2})
     for (double amp : {0.0, 0.3, -0.3})
       for (double omega0 : {0.8, -0.5}) {
-        BaseBodyParameters p;
-        p.centre_of_mass = {0.0, 0.0, h};
-        p.base = {{-a, 0.0}, {0.0, -c}, {a, 0.0}, {0.0, c}};
-        p.central_inertia = Eigen::Vector3d(ig * ig + 0.01, ig * ig, 0.05).asDiagonal();
-        p.mu_s = mu;
-        p.mu_k = mu;
-        Rocking3DModel solid(BaseBody(p), pivot_settings());
-        solid.reset(0.0);
-        const double theta0 = 0.08;
-        solid.set_vertex_state(2, Eigen::Quaterniond(Eigen::AngleAxisd(theta0, Eigen::Vector3d::UnitY())),
-                               Eigen::Vector3d(0.0, omega0, 0.0));
-        BodyParameters x;
-        x.width = 2 * a;
-        x.cg_height = h;
-        x.radius_of_gyration = ig;
-        x.mu_s = mu;
-        x.mu_k = mu;
-        ContactSettings cs;
-        cs.substeps = 512;
-        ContactModel planar(x, cs);
-        planar.reset(0.0);
-        planar.set_state(0.0, 0.0, 0.0, 1, theta0, omega0);
+        Rocking3DModel solid(BaseBody(testing::rhombus(a, c, h, ig, mu)), pivot_settings());
+        ContactModel planar(testing::planar_rhombus(a, h, ig, mu), testing::fine_contact());
+        testing::tilt_on_corner(solid, planar, 0.08, omega0);
         const Eigen::Vector3d start = solid.rotation() * solid.contact_point() + solid.translation();
         double slip = 0.0;
         for (int i = 1; i <= 400; ++i) {

@@ -197,45 +197,45 @@ TEST(StateSnapshot, ResumedThreeDModelEqualsTheUnbrokenRun) {
   EXPECT_GE(o.resumed_moving, 2u);
 }
 
+// The crate as a 3-D item, and three samples (at least `gap` apart) at which its 3-D model is in `mode`.
+ItemSpec crate_3d(ItemMonitor::Options& opt) {
+  ItemSpec spec = box("crate_3d", 0.60, 0.50, 0.35, 0.2);
+  spec.solid = box_base_body(spec.body, spec.depth.depth, 0.5, std::nan(""));
+  opt.solid = SolidChoice::Solid;
+  return spec;
+}
+
+std::vector<std::size_t> samples_in_mode(const ItemSpec& spec, const ItemMonitor::Options& opt, const Motion& m,
+                                         Mode3D mode, std::size_t gap) {
+  std::vector<std::size_t> at;
+  ItemMonitor probe(spec, opt);
+  probe.start(0.0, m.x[0], m.y[0], m.z[0], m.dt);
+  for (std::size_t i = 1; i < m.size() && at.size() < 3; ++i) {
+    probe.step(m.x[i], m.y[i], m.z[i], m.dt);
+    if (probe.solid()->mode() == mode && (at.empty() || i > at.back() + gap)) at.push_back(i);
+  }
+  return at;
+}
+
 // A 3-D item that slides (issue 51, snapshot format 4): snapshots taken while it slides resume exactly.
 TEST(StateSnapshot, ResumedSlidingThreeDItemEqualsTheUnbrokenRun) {
   const Motion m = rinaldi(0.8);
-  ItemSpec spec = box("crate_3d", 0.60, 0.50, 0.35, 0.2);
-  spec.solid = box_base_body(spec.body, spec.depth.depth, 0.5, std::nan(""));
   ItemMonitor::Options opt;
-  opt.solid = SolidChoice::Solid;
-  std::vector<std::size_t> at;
-  {
-    ItemMonitor probe(spec, opt);
-    probe.start(0.0, m.x[0], m.y[0], m.z[0], m.dt);
-    for (std::size_t i = 1; i < m.size() && at.size() < 3; ++i) {
-      probe.step(m.x[i], m.y[i], m.z[i], m.dt);
-      if (probe.solid()->mode() == Mode3D::Slide && (at.empty() || i > at.back() + 50)) at.push_back(i);
-    }
-  }
+  const ItemSpec spec = crate_3d(opt);
+  const std::vector<std::size_t> at = samples_in_mode(spec, opt, m, Mode3D::Slide, 50);
   ASSERT_EQ(at.size(), 3u) << "the crate never slid: the test would not test a sliding item";
   resume_equals_unbroken(spec, opt, m, at);
   ASSERT_FALSE(HasFailure());
 }
 
-// Rinaldi with its vertical doubled (1.7 g up): the crate leaves the floor. Snapshotted in flight, it
-// resumes through the landing with the unbroken run's events, and its state at the end is the same.
+// Rinaldi with its vertical doubled (1.7 g up): the crate leaves the floor. Snapshotted in flight
+// (format 10), it resumes through the landing with the unbroken run's events and ends in its state.
 TEST(StateSnapshot, ResumedFlyingThreeDItemEqualsTheUnbrokenRun) {
   Motion m = rinaldi(0.5);
   for (double& z : m.z) z *= 4.0;
-  ItemSpec spec = box("crate_3d", 0.60, 0.50, 0.35, 0.2);
-  spec.solid = box_base_body(spec.body, spec.depth.depth, 0.5, std::nan(""));
   ItemMonitor::Options opt;
-  opt.solid = SolidChoice::Solid;
-  std::vector<std::size_t> at;
-  {
-    ItemMonitor probe(spec, opt);
-    probe.start(0.0, m.x[0], m.y[0], m.z[0], m.dt);
-    for (std::size_t i = 1; i < m.size() && at.size() < 3; ++i) {
-      probe.step(m.x[i], m.y[i], m.z[i], m.dt);
-      if (probe.solid()->mode() == Mode3D::Flight && (at.empty() || i > at.back() + 20)) at.push_back(i);
-    }
-  }
+  const ItemSpec spec = crate_3d(opt);
+  const std::vector<std::size_t> at = samples_in_mode(spec, opt, m, Mode3D::Flight, 20);
   ASSERT_EQ(at.size(), 3u) << "the crate never flew: the test would not test a flying item";
   resume_equals_unbroken(spec, opt, m, at);
   ASSERT_FALSE(HasFailure());

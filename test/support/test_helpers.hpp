@@ -40,6 +40,28 @@ inline BaseBodyParameters uniform_box(double b, double d, double h, double mu_s,
   return p;
 }
 
+/// A rhombus base (a vertex at +x, symmetric about the x-z plane; diagonals 2a along x, 2c along y), the
+/// centre of mass h above its centre, radius of gyration ig about y, friction mu. Pivoting on its +x
+/// vertex it moves in the x-z plane as planar_rhombus() on its corner (the slide-rock and flight tests).
+inline BaseBodyParameters rhombus(double a, double c, double h, double ig, double mu) {
+  BaseBodyParameters p;
+  p.centre_of_mass = {0.0, 0.0, h};
+  p.base = {{-a, 0.0}, {0.0, -c}, {a, 0.0}, {0.0, c}};
+  p.central_inertia = Eigen::Vector3d(ig * ig + 0.01, ig * ig, 0.05).asDiagonal();
+  p.mu_s = p.mu_k = mu;
+  return p;
+}
+
+/// The planar body of rhombus(a, c, h, ig, mu) in its x-z plane: width 2a.
+inline BodyParameters planar_rhombus(double a, double h, double ig, double mu) {
+  BodyParameters x;
+  x.width = 2 * a;
+  x.cg_height = h;
+  x.radius_of_gyration = ig;
+  x.mu_s = x.mu_k = mu;
+  return x;
+}
+
 /// A homogeneous regular hexagonal prism (circumradius a, length along y) lying on a rectangular
 /// side: the base is that side, the hull its 12 corners (a body whose hull rolls, issue 40).
 inline BaseBodyParameters hexagonal_prism(double a, double length) {
