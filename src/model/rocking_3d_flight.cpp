@@ -15,6 +15,7 @@
 
 #include "rocking_3d_internal.hpp"
 #include "rocking_monitor/integrate/event_location.hpp"
+#include "rocking_monitor/physics/impact_3d.hpp"
 #include "rocking_monitor/model/rocking_3d_model.hpp"
 
 namespace rocking_monitor::core {
@@ -33,15 +34,17 @@ double Rocking3DModel::flight_onset(const GroundInput3& in, double tau, double t
 }
 
 // EDGE, VERTEX (sticking), where watch_pivot found the reaction leaving the cone through its apex at
-// lift_at in the step [t0, t1] just taken: the instant the normal reaction reaches zero, on the dense
-// output (lift_at where it only touches zero); NaN without a lift.
+// lift_at in the step [t0, t1] just taken (or, outside it, the floor dropping faster than gravity): the
+// instant the normal reaction reaches zero, on the dense output, not before lift_at (lift_at where it
+// only touches zero); NaN without a lift.
 double Rocking3DModel::lift_in_step(const GroundInput3& in, double t0, double t1, double t_tol, double lift_at) const {
   if (std::isnan(lift_at)) return lift_at;
   const double f1 = pivot_reaction(in, t1).z();
   if (f1 > 0.0) return lift_at;
   auto normal = [&](double t) { return pivot_reaction(in, t).z(); };
   const double f0 = normal(t0);
-  return f0 > 0.0 ? bracketed_root(normal, t0, t1, f0, f1, t_tol) : t0;
+  // (no earlier than lift_at: outside the cone, the floor dropping faster than gravity lets it go there)
+  return std::max(f0 > 0.0 ? bracketed_root(normal, t0, t1, f0, f1, t_tol) : t0, lift_at);
 }
 
 // The body leaves the floor at tau with the pose and velocities of the mode it leaves.
@@ -185,7 +188,7 @@ Rocking3DModel::Event Rocking3DModel::advance_flight(const GroundInput3& in, dou
     tau = t_stop;
     int low;
     outcome3_.max_flight_height = std::max(outcome3_.max_flight_height, lowest_point(yf_, low));
-    outcome3_.max_tilt = std::max(outcome3_.max_tilt, tilt());
+    note_ratio();  // (the tilt, and the turn towards the corner it would land on)
     if (event != Event::None) {
       flight_stepper_.invalidate();
       return event;
@@ -208,6 +211,38 @@ void Rocking3DModel::set_flight_state(const Eigen::Quaterniond& rotation, const 
   pivot_slipping_ = false;
   lip_held_ = -1;
   flight_stepper_.invalidate();
+}
+
+// FLIGHT: the energy per unit mass about the lowest hull point p (returned in `lowest`) that a sticking
+// landing there would leave, J/kg: the turn about p keeping the angular momentum about p,
+// L_p = J_c w + (c - p) x v, and the centre's height above p.
+double Rocking3DModel::flight_energy(int& lowest) const {
+  lowest_point(yf_, lowest);
+  const Eigen::Matrix3d r = rotation();
+  const Eigen::Vector3d c = yf_.segment<3>(7), p = r * (hv(lowest).position - body_.centre_of_mass()) + c;
+  const Eigen::Matrix3d jc = r * body_.central_inertia_per_mass() * r.transpose();
+  const Eigen::Vector3d lp = jc * yf_.segment<3>(4) + (c - p).cross(yf_.tail<3>());
+  const Eigen::Matrix3d jp = inertia_about(jc, c, p);
+  return 0.5 * lp.dot(jp.ldlt().solve(lp)) + kGravity * (c.z() - p.z());
+}
+
+// Vertical acceleration of the body point at to_pivot from the centre (world) were the body free (no
+// contact force): the floor lets go of a pivot only where that point would rise, m/s^2.
+double Rocking3DModel::free_rise(const GroundInput3& in, double t, const Eigen::Matrix3d& r, const Eigen::Vector3d& w,
+                                 const Eigen::Vector3d& to_pivot) const {
+  const Eigen::Vector3d wb = r.transpose() * w;
+  const Eigen::Vector3d w_dot = r * (central_inverse_ * -wb.cross(body_.central_inertia_per_mass() * wb));
+  return (gravity_and_inertia(in.at(t)) + w_dot.cross(to_pivot) + w.cross(w.cross(to_pivot))).z();
+}
+
+// At the events bound in flight: put down flat on the face it would land on under its lowest point.
+void Rocking3DModel::put_down_from_flight() {
+  int low;
+  lowest_point(yf_, low);
+  const Eigen::Matrix3d r = rotation();
+  Eigen::Vector3d point = r * (hv(low).position - body_.centre_of_mass()) + yf_.segment<3>(7);
+  point.z() = 0.0;
+  place_flat(r, low, point, hull().from_hull ? hull().face_down(r) : 0);
 }
 
 // The pose at a landing from flight: a body point x (item frame) at r x + t, lifted so that its lowest

@@ -39,13 +39,20 @@ bool Rocking3DModel::falls_if_shaking_stops(double t_now) {
 double Rocking3DModel::rotation_ratio() const {
   if (mode_ == Mode3D::Edge) return theta_ / fb().edge(contact_).pivot.alpha;
   if (mode_ == Mode3D::Overturned) return outcome_.max_rotation_ratio;  // as it went over (> 1)
+  if (mode_ == Mode3D::Flight) {  // (about the lowest hull point: the corner it would land on)
+    int low;
+    lowest_point(yf_, low);
+    return ratio_about(rotation(), low);
+  }
   if (mode_ != Mode3D::Vertex) return 0.0;
   return ratio_of(y_);
 }
 
-double Rocking3DModel::ratio_of(const Vec7& y) const {
-  const BaseVertex& v = hv(contact_);
-  const Eigen::Matrix3d r = vertex_rotation(y);
+double Rocking3DModel::ratio_of(const Vec7& y) const { return ratio_about(vertex_rotation(y), contact_); }
+
+// How far the centre of mass has turned towards the vertical through hull vertex `vertex` in pose r.
+double Rocking3DModel::ratio_about(const Eigen::Matrix3d& r, int vertex) const {
+  const BaseVertex& v = hv(vertex);
   const Eigen::Vector3d lever = r * v.to_centre;
   // Which side of the vertical through the vertex the centre of mass is on: the side of the base
   // (inside, ratio < 1) or beyond it (ratio > 1). The base's inward direction is lowered by 45
@@ -74,13 +81,13 @@ OverturnMargin Rocking3DModel::margin() const {
       return overturn_margin(fb().edge(contact_).pivot, 1, ModelKind::Nonlinear, theta_, omega_);
     case Mode3D::Vertex: break;
     case Mode3D::Flight: {
-      // As on a corner, about the lowest hull point: the energy against the centre of mass standing
-      // straight above it (its height now counts the flight's).
+      // As on a corner, about the lowest hull point p, with the energy a sticking landing there would
+      // leave (the turn about p that keeps the angular momentum about it) and the height above it: the
+      // flight's own height and drift do not tip the body.
       int low;
-      lowest_point(yf_, low);
-      const BaseVertex& v = hv(low);
-      const double tip = kGravity * v.radius, rest = kGravity * body_.centre_of_mass().z();
-      const double m = (tip - kinetic_energy() - kGravity * yf_(9)) / (tip - rest);
+      const double energy = flight_energy(low);
+      const double tip = kGravity * hv(low).radius, rest = kGravity * body_.centre_of_mass().z();
+      const double m = (tip - energy) / (tip - rest);
       return {m, m < 0.0};
     }
   }

@@ -402,12 +402,13 @@ const StepReport& Rocking3DModel::step(const Eigen::Vector3d& a, double dt) {
       // beyond its tipping point (a see-saw on the edge it falls over, its landings ever faster):
       // put down flat from there it would stand again, so it overturns where the bound stops it.
       const Mode3D from = mode_;
-      if ((mode_ == Mode3D::Edge || mode_ == Mode3D::Vertex) && rotation_ratio() > 1.0) {
+      if ((mode_ == Mode3D::Edge || mode_ == Mode3D::Vertex || mode_ == Mode3D::Flight) && rotation_ratio() > 1.0) {
         overturn_at(tau);
         ++outcome3_.forced_overturns;
         note_transition(from, Transition3D::ForcedOverturn, tau);
         break;
       }
+      if (mode_ == Mode3D::Flight) put_down_from_flight();  // (under its lowest point, not where it took off)
       go_to_rest();
       report_.forced_rest = true;
       ++outcome_.forced_rest_captures;

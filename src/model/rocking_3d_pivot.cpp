@@ -81,8 +81,18 @@ double Rocking3DModel::watch_pivot(const GroundInput3& in, double t0, double t1,
     return kNone;
   }
   if (pivot_outside_cone_) {
-    if (!(f1.z() > 0.0) && !pivot_pulled_) ++outcome3_.pulled_pivots;
-    pivot_pulled_ = !(f1.z() > 0.0);
+    const bool pulled = !(f1.z() > 0.0);
+    // The floor dropping faster than gravity lets go of any pivot, outside the cone too: the body flies
+    // from where both hold (the normal force negative and g + a_z <= 0).
+    if (pulled && follows_flight()) {
+      const double t_floor = flight_onset(in, t0, t1);
+      if (std::isfinite(t_floor)) {
+        lift_at = t_floor;
+        return kNone;
+      }
+    }
+    if (pulled && !pivot_pulled_) ++outcome3_.pulled_pivots;
+    pivot_pulled_ = pulled;
     // Outside already (counted on the edge this vertex ended, or held by the bound): a vertex pressing
     // on the floor slips from here.
     if (mode_ != Mode3D::Vertex || !(f1.z() > 0.0) || slip_switches_ >= kMaxSlipSwitches) return kNone;
@@ -121,7 +131,14 @@ double Rocking3DModel::pivot_change_in_step(const GroundInput3& in, double t0, d
   lifts = flies = false;
   if (pivot_slipping_) {
     const double t = slip_end(in, t0, t1, t_tol, lifts);
-    flies = lifts && follows_flight();
+    if (lifts && follows_flight()) {
+      // (not where the slipping corner's normal force is indeterminate, Painleve's paradox: free, the
+      // corner would move into the floor; end_slip counts that as before)
+      Vec11 y = slip_stepper_.eval(t);
+      y.head<4>().normalize();
+      const Eigen::Matrix3d r = vertex_rotation(Vec7(y.head<7>()));
+      flies = free_rise(in, t, r, y.segment<3>(4), -(r * hv(contact_).to_centre)) >= -1e-9 * kGravity;
+    }
     return t;
   }
   double lift_at;

@@ -50,6 +50,17 @@ struct DrawnBody {
   bool valid;
 };
 
+// The contact mode of a 3-D item, as the planar contact model's (RockingState::CONTACT_*).
+std::uint8_t contact_mode_3d(const core::Rocking3DModel& solid) {
+  switch (solid.mode()) {
+    case core::Mode3D::Rest: return RockingState::CONTACT_REST;
+    case core::Mode3D::Slide: return RockingState::CONTACT_SLIDE;
+    case core::Mode3D::Flight: return RockingState::CONTACT_FLIGHT;
+    case core::Mode3D::Overturned: return RockingState::CONTACT_OVERTURNED;
+    default: return solid.pivot_slip_velocity().squaredNorm() > 0.0 ? RockingState::CONTACT_SLIDE_ROCK : RockingState::CONTACT_ROCK;
+  }
+}
+
 Eigen::Isometry3d about_pivot(const Eigen::Vector3d& pivot, const Eigen::Matrix3d& r) {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
   t.linear() = r;
@@ -334,6 +345,7 @@ void RockingMonitor::fill_state(const Item& it, const core::ItemSummary& sm, Roc
     out.rotation_ratio = solid->rotation_ratio();
     out.impacts = static_cast<std::uint32_t>(solid->outcome().impacts);
     out.energy_margin = solid->margin().margin;
+    out.contact_mode = contact_mode_3d(*solid);
     const int k = solid->contact(), face = solid->face();
     const bool base_vertex = k < solid->body().vertex_count();
     // (on a support, numbered as the catalogue's base polygon, or on the support's own edge)
@@ -350,12 +362,8 @@ void RockingMonitor::fill_state(const Item& it, const core::ItemSummary& sm, Roc
     // Sliding flat on its face (issue 51): the contact mode and the slip as for the planar contact model.
     if (solid->mode() == core::Mode3D::Slide) {
       out.contact.append(face != 0 ? "sliding on hull face " + std::to_string(face) : std::string("sliding"));
-      out.contact_mode = RockingState::CONTACT_SLIDE;
     }
-    if (solid->mode() == core::Mode3D::Flight) {  // (issue 51: the floor dropped faster than gravity)
-      out.contact = "in flight";
-      out.contact_mode = RockingState::CONTACT_FLIGHT;
-    }
+    if (solid->mode() == core::Mode3D::Flight) out.contact = "in flight";  // (the floor dropped faster than gravity)
     out.slip = solid->slip().norm();
     if (solid->outcome_3d().fell_off_support) out.contact = "fell off its support";
     const double margin = solid->support_margin();

@@ -115,6 +115,9 @@ TEST(Rocking3DFlight, AFloorDroppingFasterThanGravityThrowsTheBoxUpAndItLandsFla
           if (m.mode() == Mode3D::Flight) {
             EXPECT_LT(m.tilt(), 1e-12);  // no torque about the centre: it never turns
             top = std::max(top, m.translation().z());
+            // Flying flat is no step towards tipping: the flight's height and speed do not count.
+            EXPECT_LT(m.rotation_ratio(), 1e-9);
+            EXPECT_FALSE(m.committed_now());
           }
         }
         const Rocking3DOutcome& o = m.outcome_3d();
@@ -122,7 +125,8 @@ TEST(Rocking3DFlight, AFloorDroppingFasterThanGravityThrowsTheBoxUpAndItLandsFla
                     "final slip %.9f m (%.9f), %ld flights\n", Z, X, mu, o.first_flight_time, t_lift,
                     leaves(m, Mode3D::Flight), t_land, m.slip().x(), slip, o.flights);
         ++cases;
-        if (u != 0.0) ++slid;
+        EXPECT_EQ(o.landing_slides > 0, u != 0.0);  // (the landing's friction could not stop it: slides on)
+        slid += o.landing_slides > 0;
         ASSERT_EQ(o.flights, 1);
         EXPECT_EQ(o.flight_landings, 1);
         EXPECT_NEAR(o.first_flight_time, t_lift, 1e-9);
@@ -226,12 +230,13 @@ TEST(Rocking3DFlight, ARhombusFliesOffItsVertexAsThePlanarContactModel) {
   int flights = 0, compared = 0, overturns = 0;
   long slipped = 0;
   double worst_lift = 0.0, worst = 0.0;
+  for (double tol : {1e-11, 1e-8})  // (the tests' and the node's default)
   for (double mu : {0.2, 0.6})
     for (double drop : {1.3, 2.0})
       for (double amp : {0.0, 0.3})
         for (double omega0 : {0.8, -0.5}) {
           const BaseBodyParameters p = testing::rhombus(a, c, h, ig, mu);
-          Rocking3DModel solid(BaseBody(p), flight_settings());
+          Rocking3DModel solid(BaseBody(p), testing::tight_settings(tol));
           ContactModel planar(testing::planar_rhombus(a, h, ig, mu), testing::fine_contact());
           testing::tilt_on_corner(solid, planar, 0.08, omega0);
           double worst_theta = 0.0, worst_x = 0.0, worst_z = 0.0;
@@ -283,31 +288,66 @@ TEST(Rocking3DFlight, ARhombusFliesOffItsVertexAsThePlanarContactModel) {
   std::printf("[ measure ] %d flights, lift-off within %.2g s; %d samples: tilt and centre within %.2g (rad, m); %d "
               "overturns in the same sample; %ld landings on a corner that slipped on\n", flights, worst_lift, compared,
               worst, overturns, slipped);
-  EXPECT_EQ(flights, 16);
+  EXPECT_EQ(flights, 32);
   EXPECT_GE(slipped, 3);
 }
 
-// A box about a side whose edge's reaction leaves the cone (an edge's slide-rock: counted, followed as
-// sticking) before the floor drops faster than gravity: its normal force then turns negative with the
-// pivot already outside the cone. That is not a lift-off of the body's motion (the real box slide-rocks
-// until its normal force vanishes): counted as held down by a pull (pulled_pivots), not flown.
-TEST(Rocking3DFlight, AnEdgeOutsideTheConeIsCountedPulledNotFlown) {
-  const double b = 0.4, d = 0.5, h = 0.8, dt = 0.005;
-  Rocking3DModel m(BaseBody(testing::uniform_box(b, d, h, 0.6, 0.6)), flight_settings());
+// A tall box thrown turning hard about y: in the air it turns past its tipping point and lies on its
+// side. BEYOND_TIPPING (the rotation ratio about the corner it would land on past 1) comes first, then
+// the overturn where the tilt reaches the overturn angle.
+TEST(Rocking3DFlight, ATumblingBoxPassesItsTippingPointBeforeItOverturns) {
+  const BaseBodyParameters p = testing::uniform_box(0.3, 0.4, 0.6, 0.5, 0.5);
+  Rocking3DModel m(BaseBody(p), flight_settings());
   m.reset(0.0);
-  long pulled_on_edge = 0;
-  for (int i = 1; i * dt <= 0.45 + 1e-12; ++i) {
-    const double t = i * dt;
-    const long before = m.outcome_3d().pulled_pivots;
-    m.step(Eigen::Vector3d(t < 0.6 ? 0.6 * kGravity * std::sin(2 * kPi * t / 0.6) : 0.0, 0.0,
-                           t > 0.3 && t < 0.5 ? -1.6 * kGravity * std::sin(kPi * (t - 0.3) / 0.2) : 0.0), dt);
-    if (m.outcome_3d().pulled_pivots > before && m.mode() == Mode3D::Edge) ++pulled_on_edge;
+  m.set_flight_state(Eigen::Quaterniond(Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitY())), Eigen::Vector3d(0.0, 0.0, 1.2),
+                     Eigen::Vector3d(0.0, 0.0, 2.0), Eigen::Vector3d(0.0, 6.0, 0.0));
+  double ratio_before = 0.0;
+  for (int i = 1; i <= 100 && m.mode() == Mode3D::Flight; ++i) {
+    ratio_before = std::max(ratio_before, m.rotation_ratio());
+    m.step(Eigen::Vector3d::Zero(), 0.005);
   }
-  const Rocking3DOutcome& o = m.outcome_3d();
-  std::printf("[ measure ] %ld slip onsets on the edge, %ld pulls, %ld flights\n", o.pivot_slips, o.pulled_pivots, o.flights);
-  EXPECT_GE(o.pivot_slips, 1);
-  EXPECT_GE(pulled_on_edge, 1);
-  EXPECT_EQ(o.flights, 0);
+  const RockingOutcome& o = m.outcome();
+  std::printf("[ measure ] beyond tipping at %.4f s, overturned at %.4f s, largest ratio %.3f\n", o.beyond_tipping_time,
+              o.overturn_time, o.max_rotation_ratio);
+  ASSERT_EQ(m.mode(), Mode3D::Overturned);
+  EXPECT_EQ(m.outcome_3d().flight_landings, 0);  // (on its side in the air)
+  EXPECT_TRUE(o.beyond_tipping);
+  EXPECT_LT(o.beyond_tipping_time, o.overturn_time);
+  EXPECT_GT(o.max_rotation_ratio, 1.0);
+  EXPECT_GT(ratio_before, 1.0);
+  EXPECT_TRUE(o.committed);
+}
+
+// A box about a side whose edge's reaction leaves the cone (an edge's slide-rock: counted, followed as
+// sticking), then the floor drops: its normal force turns negative with the pivot already outside the
+// cone. Below g that is not a lift-off of the body's motion (the real box slide-rocks until its normal
+// force vanishes): counted as held down by a pull (pulled_pivots), not flown. Faster than g the floor
+// lets go of any pivot: it flies.
+TEST(Rocking3DFlight, AnEdgeOutsideTheConeIsCountedPulledOrFliesWithTheFloor) {
+  const double b = 0.4, d = 0.5, h = 0.8, dt = 0.005;
+  for (double drop : {0.95, 1.6}) {
+    Rocking3DModel m(BaseBody(testing::uniform_box(b, d, h, 0.6, 0.6)), flight_settings());
+    m.reset(0.0);
+    long pulled_on_edge = 0;
+    for (int i = 1; i * dt <= 0.45 + 1e-12; ++i) {
+      const double t = i * dt;
+      const long before = m.outcome_3d().pulled_pivots;
+      m.step(Eigen::Vector3d(t < 0.6 ? 0.6 * kGravity * std::sin(2 * kPi * t / 0.6) : 0.0, 0.0,
+                             t > 0.3 && t < 0.5 ? -drop * kGravity * std::sin(kPi * (t - 0.3) / 0.2) : 0.0), dt);
+      if (m.outcome_3d().pulled_pivots > before && m.mode() == Mode3D::Edge) ++pulled_on_edge;
+    }
+    const Rocking3DOutcome& o = m.outcome_3d();
+    std::printf("[ measure ] drop %.2f g: %ld slip onsets on the edge, %ld pulls (%ld on the edge), %ld flights\n", drop,
+                o.pivot_slips, o.pulled_pivots, pulled_on_edge, o.flights);
+    EXPECT_GE(o.pivot_slips, 1);
+    if (drop < 1.0) {
+      EXPECT_GE(pulled_on_edge, 1);
+      EXPECT_EQ(o.flights, 0);
+    } else {
+      EXPECT_EQ(o.pulled_pivots, 0);
+      EXPECT_EQ(o.flights, 1);
+    }
+  }
 }
 
 // A snapshot taken in flight resumes exactly (save/restore carry the flight's state and stepper): the
@@ -322,7 +362,7 @@ TEST(Rocking3DFlight, ASnapshotTakenInFlightResumesExactly) {
   Rocking3DModel a(BaseBody(p), flight_settings()), b(BaseBody(p), flight_settings());
   a.reset(0.0);
   int i = 1;
-  for (; a.mode() != Mode3D::Flight || i * dt < 0.3; ++i) a.step(a_at(i * dt), dt);
+  for (; (a.mode() != Mode3D::Flight || i * dt < 0.3) && i * dt < 1.0; ++i) a.step(a_at(i * dt), dt);
   Rocking3DModel::Saved saved;
   a.save(saved);
   b.restore(saved);
@@ -357,6 +397,7 @@ TEST(Rocking3DFlight, OnASupportOrWithoutFrictionTheBodyDoesNotFly) {
     }
     EXPECT_EQ(m.outcome_3d().flights, 0);
     EXPECT_TRUE(std::isnan(m.outcome_3d().first_flight_time));
+    EXPECT_GT(m.outcome_3d().pivot_lifts, 0);  // (the onset counted, as before flight was modelled)
   }
 }
 

@@ -177,8 +177,10 @@ TEST(FrictionLanding, EveryTransitionIsRecordedInOrderWithItsReason) {
       EXPECT_EQ(n(Transition3D::LandingPivotSlips), o.pivot_slip_landings);
       EXPECT_EQ(n(Transition3D::PivotSlips), o.pivot_slips);
       EXPECT_EQ(n(Transition3D::PivotLifts), o.pivot_lifts);
+      EXPECT_EQ(n(Transition3D::LiftOff), o.flights);
+      EXPECT_EQ(n(Transition3D::LandingCornerSlips), o.corner_slip_landings);
       EXPECT_EQ(n(Transition3D::Landing) + n(Transition3D::LandingSlides) + n(Transition3D::LandingPivotSlips) +
-                    n(Transition3D::RestCapture),
+                    n(Transition3D::RestCapture) + n(Transition3D::LandingCornerSlips),
                 m.outcome().impacts);
       EXPECT_EQ(n(Transition3D::Overturn) + n(Transition3D::FellOffSupport), m.outcome().overturned ? 1 : 0);
       if (m.outcome().overturned) EXPECT_EQ(t, m.outcome().overturn_time);

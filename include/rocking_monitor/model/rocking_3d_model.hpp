@@ -429,6 +429,7 @@ class Rocking3DModel {
   }
   const BaseVertex& hv(int i) const { return hull().vertices[static_cast<std::size_t>(i)]; }
   double ratio_of(const Vec7& y) const;
+  double ratio_about(const Eigen::Matrix3d& r, int vertex) const;
   double rise_rate(const Vec7& y) const;
   void record_impact(double tau, double energy_before);
   // The pivot's reaction while rocking (rocking_3d_pivot.cpp).
@@ -534,6 +535,10 @@ class Rocking3DModel {
   double flight_touchdown(const Vec13& y0, double t0, double t1, double t_tol, int& touching) const;
   Event advance_flight(const GroundInput3& in, double& tau, double tau_end, int& touching);
   void flight_pose(Eigen::Matrix3d& r, Eigen::Vector3d& t) const;
+  double free_rise(const GroundInput3& in, double t, const Eigen::Matrix3d& r, const Eigen::Vector3d& w,
+                   const Eigen::Vector3d& to_pivot) const;
+  double flight_energy(int& lowest) const;
+  void put_down_from_flight();
   double mu_k() const { return std::isnan(body_.parameters().mu_k) ? body_.parameters().mu_s : body_.parameters().mu_k; }
 
   BaseBody body_;
