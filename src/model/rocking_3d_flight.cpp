@@ -50,31 +50,19 @@ double Rocking3DModel::lift_in_step(const GroundInput3& in, double t0, double t1
 // The body leaves the floor at tau with the pose and velocities of the mode it leaves.
 void Rocking3DModel::enter_flight(double tau) {
   const Eigen::Matrix3d r = rotation();
-  const Eigen::Vector3d t = translation();
-  const Eigen::Vector3d c = r * body_.centre_of_mass() + t;
-  Eigen::Vector3d w = angular_velocity(), v = Eigen::Vector3d::Zero();
-  if (mode_ == Mode3D::Slide) {
-    w = Eigen::Vector3d(0.0, 0.0, slide_(2));
-    v = Eigen::Vector3d(slide_(0), slide_(1), 0.0);
-  } else if (mode_ == Mode3D::Edge) {
-    const Eigen::Vector3d a = r * hv(fc().hull_vertex[static_cast<std::size_t>(fb().edge(contact_).a)]).position + t;
-    v = w.cross(c - a);
-  } else if (mode_ == Mode3D::Vertex) {
-    v = w.cross(c - pivot_world_);
-    if (pivot_slipping_) v += Eigen::Vector3d(ys_(9), ys_(10), 0.0);
-  }
+  const Eigen::Vector3d c = r * body_.centre_of_mass() + translation();
+  // (sliding, the turn about the vertical is the slide's spin)
+  const Eigen::Vector3d w = mode_ == Mode3D::Slide ? Eigen::Vector3d(0.0, 0.0, slide_(2)) : angular_velocity();
   const Eigen::Quaterniond q(r);
-  yf_ << q.w(), q.x(), q.y(), q.z(), w, c, v;
+  Vec13 y;
+  y << q.w(), q.x(), q.y(), q.z(), w, c, centre_velocity();
   int lowest;
-  const double z = lowest_point(yf_, lowest);
-  if (z < 0.0) yf_(9) -= z;  // (an event's pose a few nm below the floor: it leaves from the floor)
-  mode_ = Mode3D::Flight;
-  contact_ = -1;
-  pivot_slipping_ = false;
-  lip_held_ = -1;
+  const double z = lowest_point(y, lowest);
+  if (z < 0.0) y(9) -= z;  // (an event's pose a few nm below the floor: it leaves from the floor)
   dopri5_.invalidate();
   vector_.invalidate();
   slide_stepper_.invalidate();
+  fly(y);
   flight_stepper_.reset(sample_dt_);
   ++outcome3_.flights;
   if (std::isnan(outcome3_.first_flight_time)) outcome3_.first_flight_time = t_ + tau;
@@ -83,23 +71,17 @@ void Rocking3DModel::enter_flight(double tau) {
 // Per unit mass: the centre under gravity and the ground's inertial force; Euler's equations about the
 // centre with no torque, in the body's frame (J constant there): J wb' = -wb x J wb.
 void Rocking3DModel::flight_rhs(const GroundInput3& in, double t, const Vec13& y, Vec13& dy) const {
-  const Eigen::Matrix3d r = Eigen::Quaterniond(y(0), y(1), y(2), y(3)).normalized().toRotationMatrix();
+  const Eigen::Matrix3d r = rocking_3d::quaternion_rotation(y);
   const Eigen::Vector3d w = y.segment<3>(4);
-  const Eigen::Vector3d wb = r.transpose() * w;
-  const Eigen::Matrix3d& j = body_.central_inertia_per_mass();
-  dy.segment<3>(4) = r * (central_inverse_ * -wb.cross(j * wb));
-  const Eigen::Quaterniond qd = Eigen::Quaterniond(0.0, w.x(), w.y(), w.z()) * Eigen::Quaterniond(y(0), y(1), y(2), y(3));
-  dy(0) = 0.5 * qd.w();
-  dy(1) = 0.5 * qd.x();
-  dy(2) = 0.5 * qd.y();
-  dy(3) = 0.5 * qd.z();
+  dy.segment<3>(4) = free_spin_rate(r, w);
+  dy.head<4>() = rocking_3d::quaternion_rate(w, y);
   dy.segment<3>(7) = y.segment<3>(10);
   dy.segment<3>(10) = gravity_and_inertia(in.at(t));
 }
 
 // The height of the body's lowest hull point above the floor, m, and which it is.
 double Rocking3DModel::lowest_point(const Vec13& y, int& lowest) const {
-  const Eigen::Matrix3d r = Eigen::Quaterniond(y(0), y(1), y(2), y(3)).normalized().toRotationMatrix();
+  const Eigen::Matrix3d r = rocking_3d::quaternion_rotation(y);
   const Eigen::Vector3d up = r.row(2).transpose();
   const double base = y(9) - up.dot(body_.centre_of_mass());
   double low = std::numeric_limits<double>::infinity();
@@ -121,7 +103,7 @@ double Rocking3DModel::lowest_point(const Vec13& y, int& lowest) const {
 double Rocking3DModel::flight_touchdown(const Vec13& y0, double t0, double t1, double t_tol, int& touching) const {
   touching = -1;
   auto height = [&](const Vec13& y, int i) {
-    const Eigen::Matrix3d r = Eigen::Quaterniond(y(0), y(1), y(2), y(3)).normalized().toRotationMatrix();
+    const Eigen::Matrix3d r = rocking_3d::quaternion_rotation(y);
     return y(9) + (r * (hv(i).position - body_.centre_of_mass())).z() + floor_tol_;
   };
   double ta = t0;
@@ -162,7 +144,7 @@ Rocking3DModel::Event Rocking3DModel::advance_flight(const GroundInput3& in, dou
   const double t_tol = 1e-12 * std::max(sample_dt_, 1e-6);
   const double cos_over = std::cos(body_.overturn_angle());
   auto upright = [&](const Vec13& y) {
-    return Eigen::Quaterniond(y(0), y(1), y(2), y(3)).normalized().toRotationMatrix()(2, 2) - cos_over;
+    return rocking_3d::quaternion_rotation(y)(2, 2) - cos_over;
   };
   while (tau < tau_end) {
     const Vec13 y0 = yf_;
@@ -205,12 +187,17 @@ void Rocking3DModel::set_flight_state(const Eigen::Quaterniond& rotation, const 
   int low;
   if (!y.allFinite() || !(lowest_point(y, low) >= 0.0))
     throw std::invalid_argument("set_flight_state: a finite state with the body clear of the floor");
+  fly(y);
+  flight_stepper_.invalidate();
+}
+
+// FLIGHT from the state y (q, omega, centre, velocity): no contact, no slip, no lip.
+void Rocking3DModel::fly(const Vec13& y) {
   yf_ = y;
   mode_ = Mode3D::Flight;
   contact_ = -1;
   pivot_slipping_ = false;
   lip_held_ = -1;
-  flight_stepper_.invalidate();
 }
 
 // FLIGHT: the energy per unit mass about the lowest hull point p (returned in `lowest`) that a sticking
@@ -230,9 +217,14 @@ double Rocking3DModel::flight_energy(int& lowest) const {
 // contact force): the floor lets go of a pivot only where that point would rise, m/s^2.
 double Rocking3DModel::free_rise(const GroundInput3& in, double t, const Eigen::Matrix3d& r, const Eigen::Vector3d& w,
                                  const Eigen::Vector3d& to_pivot) const {
+  return (gravity_and_inertia(in.at(t)) + free_spin_rate(r, w).cross(to_pivot) + w.cross(w.cross(to_pivot))).z();
+}
+
+// The angular acceleration of the body turning free of torque (Euler's equations about the centre, in
+// the body's frame, where J is constant: J wb' = -wb x J wb), world, rad/s^2.
+Eigen::Vector3d Rocking3DModel::free_spin_rate(const Eigen::Matrix3d& r, const Eigen::Vector3d& w) const {
   const Eigen::Vector3d wb = r.transpose() * w;
-  const Eigen::Vector3d w_dot = r * (central_inverse_ * -wb.cross(body_.central_inertia_per_mass() * wb));
-  return (gravity_and_inertia(in.at(t)) + w_dot.cross(to_pivot) + w.cross(w.cross(to_pivot))).z();
+  return r * (central_inverse_ * -wb.cross(body_.central_inertia_per_mass() * wb));
 }
 
 // At the events bound in flight: put down flat on the face it would land on under its lowest point.
@@ -248,7 +240,7 @@ void Rocking3DModel::put_down_from_flight() {
 // The pose at a landing from flight: a body point x (item frame) at r x + t, lifted so that its lowest
 // point lies on the floor (the touchdown is located a contact tolerance below it).
 void Rocking3DModel::flight_pose(Eigen::Matrix3d& r, Eigen::Vector3d& t) const {
-  r = Eigen::Quaterniond(yf_(0), yf_(1), yf_(2), yf_(3)).normalized().toRotationMatrix();
+  r = rocking_3d::quaternion_rotation(yf_);
   t = yf_.segment<3>(7) - r * body_.centre_of_mass();
   int lowest;
   t.z() -= lowest_point(yf_, lowest);

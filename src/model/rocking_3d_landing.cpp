@@ -125,14 +125,13 @@ double Rocking3DModel::capture_energy(const BaseVertex& v) const {
   return 0.5 * r * r * kGravity * v.radius * v.alpha * v.alpha;
 }
 
-// The pose at a landing, the motion before and a point that does not move (on the edge's axis or the
-// pivot); EDGE: the face that comes flat (else null). `touching` as for land().
+// The pose at a landing and the angular velocity before (the centre's: centre_velocity()); EDGE: the
+// face that comes flat (else null). `touching` as for land().
 const std::vector<int>* Rocking3DModel::landing_pose(int touching, Eigen::Matrix3d& r, Eigen::Vector3d& t,
-                                                     Eigen::Vector3d& omega, Eigen::Vector3d& fixed) {
+                                                     Eigen::Vector3d& omega) {
   if (mode_ == Mode3D::Flight) {
     flight_pose(r, t);
     omega = yf_.segment<3>(4);
-    fixed = yf_.segment<3>(7);
     ++outcome3_.flight_landings;
     return nullptr;
   }
@@ -140,7 +139,6 @@ const std::vector<int>* Rocking3DModel::landing_pose(int touching, Eigen::Matrix
     r = vertex_rotation(y_);
     t = pivot_world_ - r * hv(contact_).position;
     omega = y_.tail<3>();
-    fixed = pivot_world_;
     ++outcome3_.vertex_impacts;
     return nullptr;
   }
@@ -153,7 +151,6 @@ const std::vector<int>* Rocking3DModel::landing_pose(int touching, Eigen::Matrix
   r = rotation();
   t = translation();
   omega = angular_velocity();
-  fixed = r * hv(fc().hull_vertex[static_cast<std::size_t>(fb().edge(contact_).a)]).position + t;
   ++outcome3_.flat_impacts;
   return flat_edge ? &fc().hull_vertex : &hull().faces[static_cast<std::size_t>(across)].hull_vertex;
 }
@@ -233,8 +230,8 @@ void Rocking3DModel::land(int touching, double tau) {
   const bool flat_edge = mode_ == Mode3D::Edge && touching == -1;
   const int face_before = face_;
   Eigen::Matrix3d r;
-  Eigen::Vector3d t, omega, fixed;
-  const std::vector<int>* landing_face = landing_pose(touching, r, t, omega, fixed);
+  Eigen::Vector3d t, omega;
+  const std::vector<int>* landing_face = landing_pose(touching, r, t, omega);
   // One per thread, not per item: 3.6 KB that only a landing uses (no allocation per sample).
   static thread_local LandingContacts set;
   static thread_local int hull_index[LandingContacts::kMax];
@@ -244,9 +241,7 @@ void Rocking3DModel::land(int touching, double tau) {
   lb.central_inertia = r * body_.central_inertia_per_mass() * r.transpose();
   lb.centre = r * body_.centre_of_mass() + t;
   lb.omega = omega;
-  // (from flight: the centre's own velocity; pivoting: that of the turn about the fixed point)
-  lb.velocity = mode_ == Mode3D::Flight ? Eigen::Vector3d(yf_.tail<3>()) : Eigen::Vector3d(omega.cross(lb.centre - fixed));
-  if (mode_ == Mode3D::Vertex && pivot_slipping_) lb.velocity += Eigen::Vector3d(ys_(9), ys_(10), 0.0);  // slide-rock
+  lb.velocity = centre_velocity();
   pivot_slipping_ = false;
   const Landing law = plastic_landing(lb, set);
   outcome3_.max_landing_violation = std::max(outcome3_.max_landing_violation, law.violation);
@@ -266,9 +261,10 @@ void Rocking3DModel::land(int touching, double tau) {
   // answer and the frictionless one), is taken as a slipping pivot: not solved (the sticking answer
   // is followed there anyway; rocking_benchmarks and monitor_benchmarks: the solve would cost 20 us).
   // Where the sticking law stops the body (a rest capture's landing) the capture's rule decides.
-  // From flight onto one corner the frictional impact is that corner's (Routh's): solved, and where the
-  // corner slips on it is followed slide-rocking (the planar contact model's corner impact from flight).
-  const bool one_corner = mode_ == Mode3D::Flight && set.count == 1;
+  // Onto one corner (only from flight: pivoting, the pivot is in the set too) the frictional impact is
+  // that corner's (Routh's): solved, and where the corner slips on it is followed slide-rocking (the
+  // planar contact model's corner impact from flight).
+  const bool one_corner = set.count == 1;
   if (scene.needs_friction && ((set.count >= 3 && law.mode != LandingMode::Rest && !keeps_loaded_pivot(scene)) || one_corner))
     solve_friction(scene);
   if (one_corner && scene.frictional && scene.friction.stay == 1 && scene.friction.slipping == 1) {

@@ -272,25 +272,39 @@ double Rocking3DModel::lip_face_gap(const Vec7& y, int& corner, int& lip) const 
   corner = lip = -1;
   double best = std::numeric_limits<double>::infinity();
   const Eigen::Matrix3d r = vertex_rotation(y);
-  const Eigen::Vector3d pivot = hv(contact_).position;
-  const std::vector<Eigen::Vector2d>& base = body_.whole_base();
-  const double height = body_.parameters().support_lip_height;
-  for (std::size_t i = 0; i < base.size(); ++i) {
-    const Eigen::Vector3d rel = Eigen::Vector3d(base[i].x(), base[i].y(), 0.0) - pivot;
-    if (rel.squaredNorm() <= floor_tol_ * floor_tol_) continue;  // the pivot
-    const Eigen::Vector3d x = r * rel + pivot_world_;
-    if (!(x.z() < height)) continue;
-    for (const int k : body_.parameters().support_lips) {
-      const Eigen::Vector2d n = lip_normal(k);
-      const double g = body_.parameters().support[static_cast<std::size_t>(k)].dot(n) - x.head<2>().dot(n) - face_floor_[k];
-      if (g < best) {
-        best = g;
-        corner = static_cast<int>(i);
-        lip = k;
-      }
+  for (const int k : body_.parameters().support_lips) {
+    int c;
+    const double g = low_corner_depth(r, k, false, c) - face_floor_[k];
+    if (g < best) {
+      best = g;
+      corner = c;
+      lip = k;
     }
   }
   return best;
+}
+
+// Pivoting on a corner in pose r: how far the base's corners lower than the lips' height lie inside lip
+// k's line, the nearest of them (`corner`), m; +inf without one. with_pivot: the pivot counts too.
+double Rocking3DModel::low_corner_depth(const Eigen::Matrix3d& r, int k, bool with_pivot, int& corner) const {
+  const Eigen::Vector3d pivot = hv(contact_).position;
+  const std::vector<Eigen::Vector2d>& base = body_.whole_base();
+  const Eigen::Vector2d n = lip_normal(k);
+  const double line = body_.parameters().support[static_cast<std::size_t>(k)].dot(n);
+  double depth = std::numeric_limits<double>::infinity();
+  corner = -1;
+  for (std::size_t i = 0; i < base.size(); ++i) {
+    const Eigen::Vector3d rel = Eigen::Vector3d(base[i].x(), base[i].y(), 0.0) - pivot;
+    if (!with_pivot && rel.squaredNorm() <= floor_tol_ * floor_tol_) continue;
+    const Eigen::Vector3d x = r * rel + pivot_world_;
+    if (!(x.z() < body_.parameters().support_lip_height)) continue;
+    const double g = line - x.head<2>().dot(n);
+    if (g < depth) {
+      depth = g;
+      corner = static_cast<int>(i);
+    }
+  }
+  return depth;
 }
 
 // The first instant in [t0, t1] of the sticking vertex stepper's last step at which a lifted corner
@@ -300,18 +314,10 @@ double Rocking3DModel::lip_face_in_step(double t0, double t1, double t_tol, int&
   corner = lip = -1;
   if (body_.parameters().support_lips.empty() || !(body_.parameters().support_lip_height > 0.0) || face_ != 0) return t1;
   if (lip_face_hits_ >= kMaxLipFaceHits) return t1;
-  {
-    const Eigen::Matrix3d r = vertex_rotation(Vec7(vector_.eval(t0)));
-    for (const int k : body_.parameters().support_lips) {  // where each lip's low corners lay at t0 (<= 0)
-      double worst = 0.0;
-      const Eigen::Vector2d n = lip_normal(k);
-      const double line = body_.parameters().support[static_cast<std::size_t>(k)].dot(n);
-      for (const Eigen::Vector2d& b : body_.whole_base()) {
-        const Eigen::Vector3d x = r * (Eigen::Vector3d(b.x(), b.y(), 0.0) - hv(contact_).position) + pivot_world_;
-        if (x.z() < body_.parameters().support_lip_height) worst = std::min(worst, line - x.head<2>().dot(n));
-      }
-      face_floor_[k] = worst;
-    }
+  const Eigen::Matrix3d r0 = vertex_rotation(Vec7(vector_.eval(t0)));
+  for (const int k : body_.parameters().support_lips) {  // where each lip's low corners lay at t0 (<= 0)
+    int c;
+    face_floor_[k] = std::min(0.0, low_corner_depth(r0, k, true, c));
   }
   auto g = [&](double t) {
     int c, l;

@@ -190,7 +190,7 @@ Eigen::Vector3d Rocking3DModel::to_footprint(const Eigen::Vector3d& world) const
 }
 
 Eigen::Matrix3d Rocking3DModel::vertex_rotation(const Vec7& y) const {
-  return Eigen::Quaterniond(y(0), y(1), y(2), y(3)).normalized().toRotationMatrix();
+  return rocking_3d::quaternion_rotation(y);
 }
 
 // EDGE and REST are stated in the current face's floor frame (face 0: the item frame); a point x of
@@ -204,7 +204,7 @@ Eigen::Matrix3d Rocking3DModel::rotation() const {
       break;
     }
     case Mode3D::Vertex: return vertex_rotation(y_);
-    case Mode3D::Flight: return Eigen::Quaterniond(yf_(0), yf_(1), yf_(2), yf_(3)).normalized().toRotationMatrix();
+    case Mode3D::Flight: return rocking_3d::quaternion_rotation(yf_);
     default: r = yaw_matrix();
   }
   return face_ == 0 ? r : Eigen::Matrix3d(r * fc().rotation);
@@ -230,6 +230,26 @@ Eigen::Vector3d Rocking3DModel::contact_point() const {
   if (mode_ == Mode3D::Vertex) return hv(contact_).position;
   if (mode_ == Mode3D::Edge) return hv(fc().hull_vertex[static_cast<std::size_t>(fb().edge(contact_).a)]).position;
   return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+}
+
+// The centre of mass's velocity relative to the floor (world): a slide's, the turn's about the edge or
+// the pivot (and the pivot's slip), the flight's; m/s.
+Eigen::Vector3d Rocking3DModel::centre_velocity() const {
+  switch (mode_) {
+    case Mode3D::Slide: return Eigen::Vector3d(slide_(0), slide_(1), 0.0);
+    case Mode3D::Flight: return yf_.tail<3>();
+    case Mode3D::Edge: {
+      const Eigen::Matrix3d r = rotation();
+      const Eigen::Vector3d t = translation();
+      const Eigen::Vector3d a = r * hv(fc().hull_vertex[static_cast<std::size_t>(fb().edge(contact_).a)]).position + t;
+      return angular_velocity().cross(r * body_.centre_of_mass() + t - a);
+    }
+    case Mode3D::Vertex: {
+      const Eigen::Vector3d v = angular_velocity().cross(rotation() * body_.centre_of_mass() + translation() - pivot_world_);
+      return pivot_slipping_ ? Eigen::Vector3d(v + Eigen::Vector3d(ys_(9), ys_(10), 0.0)) : v;
+    }
+    default: return Eigen::Vector3d::Zero();
+  }
 }
 
 Eigen::Vector3d Rocking3DModel::angular_velocity() const {

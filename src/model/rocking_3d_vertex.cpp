@@ -31,13 +31,7 @@ void Rocking3DModel::vertex_rhs(const GroundInput3& in, double t, const Vec7& y,
   const Eigen::Vector3d gb = r.transpose() * gravity_and_inertia(in.at(t));
   const Eigen::Vector3d mb = v.to_centre.cross(gb) - wb.cross(v.inertia * wb);
   dy.tail<3>() = r * (v.inertia_inverse * mb);
-  // q' = 1/2 (0, w) q (w in the world frame).
-  const Eigen::Quaterniond wq(0.0, w.x(), w.y(), w.z());
-  const Eigen::Quaterniond qd = wq * Eigen::Quaterniond(y(0), y(1), y(2), y(3));
-  dy(0) = 0.5 * qd.w();
-  dy(1) = 0.5 * qd.x();
-  dy(2) = 0.5 * qd.y();
-  dy(3) = 0.5 * qd.z();
+  dy.head<4>() = rocking_3d::quaternion_rate(w, y);
 }
 
 void Rocking3DModel::enter_vertex(int vertex, const Eigen::Vector3d& pivot_world,

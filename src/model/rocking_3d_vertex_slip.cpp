@@ -103,12 +103,7 @@ void Rocking3DModel::slip_rhs(const GroundInput3& in, double t, const Vec11& y, 
   Eigen::Vector3d w_dot;
   Eigen::Vector2d u_dot;
   slip_dynamics(in, t, y, w_dot, u_dot);
-  const Eigen::Quaterniond wq(0.0, y(4), y(5), y(6));
-  const Eigen::Quaterniond qd = wq * Eigen::Quaterniond(y(0), y(1), y(2), y(3));
-  dy(0) = 0.5 * qd.w();
-  dy(1) = 0.5 * qd.x();
-  dy(2) = 0.5 * qd.y();
-  dy(3) = 0.5 * qd.z();
+  dy.head<4>() = rocking_3d::quaternion_rate(Eigen::Vector3d(y.segment<3>(4)), y);
   dy.segment<3>(4) = w_dot;
   dy.segment<2>(7) = y.segment<2>(9);
   dy.segment<2>(9) = u_dot;

@@ -217,14 +217,18 @@ std::vector<std::size_t> samples_in_mode(const ItemSpec& spec, const ItemMonitor
   return at;
 }
 
-// A 3-D item that slides (issue 51, snapshot format 4): snapshots taken while it slides resume exactly.
-TEST(StateSnapshot, ResumedSlidingThreeDItemEqualsTheUnbrokenRun) {
-  const Motion m = rinaldi(0.8);
+// The crate snapshotted at three samples in `mode` resumes exactly (`what` it did there, for the message).
+void expect_crate_resumes_in_mode(const Motion& m, Mode3D mode, std::size_t gap, const char* what) {
   ItemMonitor::Options opt;
   const ItemSpec spec = crate_3d(opt);
-  const std::vector<std::size_t> at = samples_in_mode(spec, opt, m, Mode3D::Slide, 50);
-  ASSERT_EQ(at.size(), 3u) << "the crate never slid: the test would not test a sliding item";
+  const std::vector<std::size_t> at = samples_in_mode(spec, opt, m, mode, gap);
+  ASSERT_EQ(at.size(), 3u) << "the crate never " << what << ": the test would not test it";
   resume_equals_unbroken(spec, opt, m, at);
+}
+
+// A 3-D item that slides (issue 51, snapshot format 4): snapshots taken while it slides resume exactly.
+TEST(StateSnapshot, ResumedSlidingThreeDItemEqualsTheUnbrokenRun) {
+  expect_crate_resumes_in_mode(rinaldi(0.8), Mode3D::Slide, 50, "slid");
   ASSERT_FALSE(HasFailure());
 }
 
@@ -233,11 +237,7 @@ TEST(StateSnapshot, ResumedSlidingThreeDItemEqualsTheUnbrokenRun) {
 TEST(StateSnapshot, ResumedFlyingThreeDItemEqualsTheUnbrokenRun) {
   Motion m = rinaldi(0.5);
   for (double& z : m.z) z *= 4.0;
-  ItemMonitor::Options opt;
-  const ItemSpec spec = crate_3d(opt);
-  const std::vector<std::size_t> at = samples_in_mode(spec, opt, m, Mode3D::Flight, 20);
-  ASSERT_EQ(at.size(), 3u) << "the crate never flew: the test would not test a flying item";
-  resume_equals_unbroken(spec, opt, m, at);
+  expect_crate_resumes_in_mode(m, Mode3D::Flight, 20, "flew");
   ASSERT_FALSE(HasFailure());
 }
 

@@ -149,10 +149,8 @@ class Rocking3DModel {
   Eigen::Vector2d pivot_slip_velocity() const {
     return mode_ == Mode3D::Vertex && pivot_slipping_ ? Eigen::Vector2d(ys_.segment<2>(9)) : Eigen::Vector2d::Zero();
   }
-  /// FLIGHT: the centre of mass's velocity relative to the floor (world), m/s; zero otherwise.
-  Eigen::Vector3d flight_velocity() const {
-    return mode_ == Mode3D::Flight ? Eigen::Vector3d(yf_.tail<3>()) : Eigen::Vector3d::Zero();
-  }
+  /// The centre of mass's velocity relative to the floor (world), m/s (zero at rest and overturned).
+  Eigen::Vector3d centre_velocity() const;
   /// Puts the body in flight: turned by `rotation` from its rest pose, centre of mass at `centre` (m,
   /// world) moving with `velocity` (m/s), angular velocity `omega` (rad/s, world) (tests). The body
   /// must clear the floor; std::invalid_argument otherwise.
@@ -248,8 +246,7 @@ class Rocking3DModel {
     bool frictional = false;         // ... and converged: its answer is followed
     FrictionalLanding friction;
   };
-  const std::vector<int>* landing_pose(int touching, Eigen::Matrix3d& r, Eigen::Vector3d& t, Eigen::Vector3d& omega,
-                                       Eigen::Vector3d& fixed);
+  const std::vector<int>* landing_pose(int touching, Eigen::Matrix3d& r, Eigen::Vector3d& t, Eigen::Vector3d& omega);
   void closing_contacts(int touching, const Eigen::Matrix3d& r, const Eigen::Vector3d& t,
                         const std::vector<int>* landing_face, LandingContacts& set, int* hull_index) const;
   void see_saw_rule(const LandingBody& lb, const LandingContacts& set, const int* hull_index, double kappa,
@@ -358,6 +355,7 @@ class Rocking3DModel {
   void note_lip_floors();
   void note_lip_overhang();
   double lip_face_gap(const Vec7& y, int& corner, int& lip) const;
+  double low_corner_depth(const Eigen::Matrix3d& r, int k, bool with_pivot, int& corner) const;
   double lip_face_in_step(double t0, double t1, double t_tol, int& corner, int& lip);
   void hit_lip_face(int corner, int lip, double tau);
   double point_lip_gap(const Eigen::Vector2d& x, const Eigen::Vector2d& moving) const;
@@ -378,6 +376,8 @@ class Rocking3DModel {
   double flight_onset(const GroundInput3& in, double tau, double tau_end) const;
   double lift_in_step(const GroundInput3& in, double t0, double t1, double t_tol, double lift_at) const;
   void enter_flight(double tau);
+  void fly(const Vec13& y);
+  Eigen::Vector3d free_spin_rate(const Eigen::Matrix3d& r, const Eigen::Vector3d& w) const;
   void flight_rhs(const GroundInput3& in, double t, const Vec13& y, Vec13& dy) const;
   double lowest_point(const Vec13& y, int& lowest) const;
   double flight_touchdown(const Vec13& y0, double t0, double t1, double t_tol, int& touching) const;
